@@ -1,0 +1,261 @@
+#include "core/tet_mesh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <sstream>
+#include <unordered_map>
+
+#include "predicates/predicates.hpp"
+
+namespace anitet {
+
+uint32_t TetMesh::add_vertex(const double p[3], uint8_t flags) {
+  const auto id = static_cast<uint32_t>(num_vertices());
+  xyz.insert(xyz.end(), p, p + 3);
+  vflags.push_back(flags);
+  return id;
+}
+
+uint32_t TetMesh::new_tet(uint32_t a, uint32_t b, uint32_t c, uint32_t d, int32_t region) {
+  uint32_t t;
+  if (!free_tets.empty()) {
+    t = free_tets.back();
+    free_tets.pop_back();
+  } else {
+    t = static_cast<uint32_t>(num_tet_slots());
+    tet_v.resize(tet_v.size() + 4);
+    tet_adj.resize(tet_adj.size() + 4);
+    tet_flags.push_back(0);
+    tet_region.push_back(0);
+  }
+  uint32_t* v = &tet_v[4 * size_t(t)];
+  v[0] = a;
+  v[1] = b;
+  v[2] = c;
+  v[3] = d;
+  std::fill_n(&tet_adj[4 * size_t(t)], 4, kNoNeighbour);
+  tet_flags[t] = 0;
+  tet_region[t] = region;
+  return t;
+}
+
+void TetMesh::delete_tet(uint32_t t) {
+  tet_flags[t] = tflag::kDeleted;
+  free_tets.push_back(t);
+}
+
+namespace {
+
+// A facet key: its three vertex ids sorted.
+struct FacetKey {
+  uint32_t v[3];
+  bool operator==(const FacetKey& o) const { return v[0] == o.v[0] && v[1] == o.v[1] && v[2] == o.v[2]; }
+};
+struct FacetKeyHash {
+  size_t operator()(const FacetKey& k) const {
+    uint64_t h = k.v[0];
+    h = h * 0x9E3779B97F4A7C15ull ^ k.v[1];
+    h = h * 0x9E3779B97F4A7C15ull ^ k.v[2];
+    return static_cast<size_t>(h ^ (h >> 29));
+  }
+};
+
+FacetKey facet_key(const TetMesh& m, uint32_t t, int i) {
+  FacetKey k{{m.vertex(t, kFacetVertex[i][0]), m.vertex(t, kFacetVertex[i][1]),
+              m.vertex(t, kFacetVertex[i][2])}};
+  std::sort(k.v, k.v + 3);
+  return k;
+}
+
+}  // namespace
+
+Status TetMesh::build_adjacency() {
+  std::unordered_map<FacetKey, uint64_t, FacetKeyHash> open;
+  open.reserve(2 * num_live_tets() + 16);
+  for (uint32_t t = 0; t < num_tet_slots(); ++t) {
+    if (is_deleted(t)) continue;
+    for (int i = 0; i < 4; ++i) {
+      tet_adj[4 * size_t(t) + i] = kNoNeighbour;
+      const FacetKey k = facet_key(*this, t, i);
+      auto [it, inserted] = open.emplace(k, 4 * uint64_t(t) + uint64_t(i));
+      if (inserted) continue;
+      if (it->second == kNoNeighbour) {
+        std::ostringstream msg;
+        msg << "facet (" << k.v[0] << ", " << k.v[1] << ", " << k.v[2]
+            << ") is shared by more than two tets (tet " << t << " among them)";
+        return Status(Error::InvalidMesh, msg.str());
+      }
+      const uint64_t other = it->second;
+      link(t, i, static_cast<uint32_t>(other >> 2), static_cast<int>(other & 3));
+      it->second = kNoNeighbour;  // matched: a third claimant is an error
+    }
+  }
+  return Status::success();
+}
+
+VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices) const {
+  VolumeMesh out;
+  const size_t nv = num_vertices();
+  std::vector<uint32_t> remap(nv, kNone);
+  if (!drop_unused_vertices)
+    for (size_t v = 0; v < nv; ++v) remap[v] = static_cast<uint32_t>(v);
+  for (uint32_t t = 0; t < num_tet_slots(); ++t) {
+    if (is_deleted(t) || is_ghost(t)) continue;
+    for (int i = 0; i < 4; ++i) {
+      uint32_t v = vertex(t, i);
+      if (remap[v] == kNone) remap[v] = 0;  // mark used; numbered below in vertex order
+    }
+  }
+  if (drop_unused_vertices) {
+    uint32_t next = 0;
+    for (size_t v = 0; v < nv; ++v)
+      if (remap[v] != kNone) remap[v] = next++;
+  }
+  out.xyz.reserve(3 * nv);
+  for (size_t v = 0; v < nv; ++v)
+    if (remap[v] != kNone) out.xyz.insert(out.xyz.end(), &xyz[3 * v], &xyz[3 * v] + 3);
+  for (uint32_t t = 0; t < num_tet_slots(); ++t) {
+    if (is_deleted(t) || is_ghost(t)) continue;
+    for (int i = 0; i < 4; ++i) out.tet.push_back(remap[vertex(t, i)]);
+    out.region.push_back(tet_region[t]);
+  }
+  return out;
+}
+
+TetMesh TetMesh::from_volume_mesh(const VolumeMesh& m) {
+  TetMesh out;
+  out.xyz = m.xyz;
+  out.vflags.assign(m.num_vertices(), 0);
+  for (size_t t = 0; t < m.num_tets(); ++t) {
+    const uint32_t* v = &m.tet[4 * t];
+    out.new_tet(v[0], v[1], v[2], v[3], m.region.empty() ? 0 : m.region[t]);
+  }
+  return out;
+}
+
+namespace {
+
+// Collects the first few problems and counts them all.
+class ProblemLog {
+ public:
+  void add(const std::string& what) {
+    if (++count_ <= 8) text_ << (count_ > 1 ? "; " : "") << what;
+  }
+  Status status() const {
+    if (count_ == 0) return Status::success();
+    std::ostringstream msg;
+    msg << count_ << " mesh problem(s): " << text_.str() << (count_ > 8 ? "; ..." : "");
+    return Status(Error::InvalidMesh, msg.str());
+  }
+
+ private:
+  size_t count_ = 0;
+  std::ostringstream text_;
+};
+
+}  // namespace
+
+Status check_mesh(const TetMesh& m, const MeshCheckOptions& options) {
+  ProblemLog log;
+  const size_t nv = m.num_vertices();
+  const size_t nt = m.num_tet_slots();
+  if (m.tet_adj.size() != 4 * nt || m.tet_flags.size() != nt || m.tet_region.size() != nt ||
+      m.vflags.size() != nv)
+    return Status(Error::InvalidMesh, "array sizes disagree");
+
+  const bool check_hull = options.check_convex_hull || options.check_delaunay;
+  std::vector<char> on_free_list(nt, 0);
+  for (uint32_t t : m.free_tets) {
+    if (t >= nt || on_free_list[t]) log.add("bad free-list entry " + std::to_string(t));
+    else on_free_list[t] = 1;
+  }
+  for (uint32_t t = 0; t < nt; ++t) {
+    const bool deleted = m.is_deleted(t);
+    if (deleted != bool(on_free_list[t]))
+      log.add("tet " + std::to_string(t) + (deleted ? " deleted but not on the free list"
+                                                     : " on the free list but not deleted"));
+    if (deleted) continue;
+    if (m.tet_flags[t] & tflag::kScratchMask)
+      log.add("tet " + std::to_string(t) + " has scratch flag bits left set");
+
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t v = m.vertex(t, i);
+      const bool ghost_slot_ok = (v == TetMesh::kGhost && i == 3);
+      if (v >= nv && !ghost_slot_ok)
+        log.add("tet " + std::to_string(t) + " has bad vertex " + std::to_string(v));
+    }
+    if (!m.is_ghost(t)) {
+      bool in_range = true;
+      for (int i = 0; i < 4; ++i) in_range = in_range && m.vertex(t, i) < nv;
+      if (in_range && predicates::orient3d(m.point(m.vertex(t, 0)), m.point(m.vertex(t, 1)),
+                                           m.point(m.vertex(t, 2)), m.point(m.vertex(t, 3))) <= 0)
+        log.add("tet " + std::to_string(t) + " is not positively oriented");
+    }
+
+    for (int i = 0; i < 4; ++i) {
+      const uint64_t adj = m.tet_adj[4 * size_t(t) + i];
+      if (adj == TetMesh::kNoNeighbour) {
+        if (options.require_closed || m.is_ghost(t))
+          log.add("facet " + std::to_string(i) + " of tet " + std::to_string(t) + " has no neighbour");
+        continue;
+      }
+      const uint32_t n = m.neighbour(t, i);
+      const int j = m.neighbour_facet(t, i);
+      if (n >= nt || m.is_deleted(n)) {
+        log.add("tet " + std::to_string(t) + " points to missing neighbour " + std::to_string(n));
+        continue;
+      }
+      if (m.tet_adj[4 * size_t(n) + j] != 4 * uint64_t(t) + uint64_t(i)) {
+        log.add("adjacency of tets " + std::to_string(t) + " and " + std::to_string(n) + " is not symmetric");
+        continue;
+      }
+      // The shared facet must have the same three vertices, in opposite orientation.
+      std::array<uint32_t, 3> a{}, b{};
+      for (int k = 0; k < 3; ++k) {
+        a[k] = m.vertex(t, kFacetVertex[i][k]);
+        b[k] = m.vertex(n, kFacetVertex[j][k]);
+      }
+      std::array<uint32_t, 3> sa = a, sb = b;
+      std::sort(sa.begin(), sa.end());
+      std::sort(sb.begin(), sb.end());
+      if (sa != sb) {
+        log.add("tets " + std::to_string(t) + " and " + std::to_string(n) + " are linked by different facets");
+        continue;
+      }
+      // Opposite orientation: b is a reversed rotation of a.
+      bool reversed = false;
+      for (int r = 0; r < 3; ++r)
+        reversed = reversed || (b[0] == a[r] && b[1] == a[(r + 2) % 3] && b[2] == a[(r + 1) % 3]);
+      if (!reversed)
+        log.add("tets " + std::to_string(t) + " and " + std::to_string(n) + " share a facet with the same orientation");
+      if (m.facet_protected(t, i) != m.facet_protected(n, j))
+        log.add("facet " + std::to_string(i) + " of tet " + std::to_string(t) + " is protected on one side only");
+
+      if (check_hull && m.is_ghost(t) && (i == 3) == m.is_ghost(n)) {
+        log.add("ghost tet " + std::to_string(t) + (i == 3 ? " has a ghost behind its hull facet"
+                                                           : " has a real tet beside it"));
+      } else if (check_hull && m.is_ghost(t) && i != 3 && t < n) {
+        // Hull edge shared by the hull facets of t and n: n's third vertex must not lie beyond
+        // t's hull facet (whose normal, facet 3 of a ghost, points out of the hull).
+        uint32_t d = TetMesh::kNone;
+        for (int k = 0; k < 3; ++k)
+          if (m.vertex(n, k) != m.vertex(t, 0) && m.vertex(n, k) != m.vertex(t, 1) &&
+              m.vertex(n, k) != m.vertex(t, 2))
+            d = m.vertex(n, k);
+        if (d < nv && predicates::orient3d(m.point(m.vertex(t, 0)), m.point(m.vertex(t, 1)),
+                                           m.point(m.vertex(t, 2)), m.point(d)) > 0)
+          log.add("hull is not convex at the edge shared by ghost tets " + std::to_string(t) +
+                  " and " + std::to_string(n));
+      }
+      if (options.check_delaunay && t < n && !m.is_ghost(t) && !m.is_ghost(n) && !m.facet_protected(t, i)) {
+        const uint32_t apex = m.vertex(n, j);
+        if (predicates::insphere(m.point(m.vertex(t, 0)), m.point(m.vertex(t, 1)),
+                                 m.point(m.vertex(t, 2)), m.point(m.vertex(t, 3)), m.point(apex)) > 0)
+          log.add("facet " + std::to_string(i) + " of tet " + std::to_string(t) + " is not locally Delaunay");
+      }
+    }
+  }
+  return log.status();
+}
+
+}  // namespace anitet

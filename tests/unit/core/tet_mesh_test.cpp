@@ -1,0 +1,116 @@
+#include <gtest/gtest.h>
+
+#include "core/tet_mesh.hpp"
+#include "predicates/predicates.hpp"
+
+using namespace anitet;
+
+namespace {
+
+// A unit cube split into 6 positive tets around the diagonal 0-6.
+TetMesh cube_mesh() {
+  TetMesh m;
+  const double p[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                          {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  for (auto& q : p) m.add_vertex(q);
+  const uint32_t ring[6] = {1, 2, 3, 7, 4, 5};  // the cycle of vertices around the diagonal 0-6
+  for (int k = 0; k < 6; ++k) {
+    uint32_t a = ring[k], b = ring[(k + 1) % 6];
+    uint32_t t = m.new_tet(0, a, b, 6);
+    if (predicates::orient3d(m.point(0), m.point(a), m.point(b), m.point(6)) < 0) {
+      m.tet_v[4 * t + 1] = b;
+      m.tet_v[4 * t + 2] = a;
+    }
+  }
+  return m;
+}
+
+}  // namespace
+
+TEST(TetMesh, FacetTableFacesInward) {
+  TetMesh m;
+  const double p[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (auto& q : p) m.add_vertex(q);
+  ASSERT_GT(predicates::orient3d(p[0], p[1], p[2], p[3]), 0);
+  for (int i = 0; i < 4; ++i)
+    EXPECT_GT(predicates::orient3d(p[kFacetVertex[i][0]], p[kFacetVertex[i][1]], p[kFacetVertex[i][2]], p[i]), 0)
+        << "facet " << i;
+}
+
+TEST(TetMesh, BuildAdjacencyAndCheck) {
+  TetMesh m = cube_mesh();
+  ASSERT_TRUE(m.build_adjacency().ok());
+  Status s = check_mesh(m, {});
+  EXPECT_TRUE(s.ok()) << s.message();
+  // 6 tets, 24 facets: 6 interior facets matched twice, 12 on the cube's surface.
+  size_t open = 0;
+  for (uint64_t a : m.tet_adj) open += (a == TetMesh::kNoNeighbour);
+  EXPECT_EQ(open, 12u);
+  EXPECT_FALSE(check_mesh(m, {false, true}).ok()) << "require_closed must see the open facets";
+}
+
+TEST(TetMesh, CheckFindsInvertedTet) {
+  TetMesh m = cube_mesh();
+  std::swap(m.tet_v[1], m.tet_v[2]);
+  ASSERT_TRUE(m.build_adjacency().ok());
+  Status s = check_mesh(m, {});
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("not positively oriented"), std::string::npos) << s.message();
+}
+
+TEST(TetMesh, CheckFindsAsymmetricAdjacency) {
+  TetMesh m = cube_mesh();
+  ASSERT_TRUE(m.build_adjacency().ok());
+  for (int i = 0; i < 4; ++i)
+    if (m.tet_adj[i] != TetMesh::kNoNeighbour) {
+      m.tet_adj[i] = TetMesh::kNoNeighbour;
+      break;
+    }
+  EXPECT_FALSE(check_mesh(m, {}).ok());
+}
+
+TEST(TetMesh, CheckFindsOneSidedProtection) {
+  TetMesh m = cube_mesh();
+  ASSERT_TRUE(m.build_adjacency().ok());
+  for (int i = 0; i < 4; ++i)
+    if (m.tet_adj[i] != TetMesh::kNoNeighbour) {
+      m.set_facet_protected(0, i, true);
+      break;
+    }
+  Status s = check_mesh(m, {});
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("protected on one side"), std::string::npos) << s.message();
+}
+
+TEST(TetMesh, RejectsFacetSharedByThreeTets) {
+  TetMesh m;
+  const double p[5][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 2}};
+  for (auto& q : p) m.add_vertex(q);
+  m.new_tet(0, 1, 2, 3);
+  m.new_tet(0, 1, 2, 4);  // overlaps the first: facet 012 is now claimed three times below
+  m.new_tet(0, 2, 1, 3);
+  EXPECT_EQ(m.build_adjacency().code(), Error::InvalidMesh);
+}
+
+TEST(TetMesh, FreeListReusesSlotsAndExportSkipsThem) {
+  TetMesh m = cube_mesh();
+  m.delete_tet(2);
+  EXPECT_EQ(m.num_live_tets(), 5u);
+  ASSERT_TRUE(m.build_adjacency().ok());
+  EXPECT_TRUE(check_mesh(m, {}).ok());
+  VolumeMesh v = m.to_volume_mesh();
+  EXPECT_EQ(v.num_tets(), 5u);
+  uint32_t t = m.new_tet(0, 1, 2, 6);
+  EXPECT_EQ(t, 2u) << "a deleted slot is reused first";
+  EXPECT_EQ(m.num_live_tets(), 6u);
+}
+
+TEST(TetMesh, VolumeMeshRoundTrip) {
+  TetMesh m = cube_mesh();
+  VolumeMesh v = m.to_volume_mesh();
+  ASSERT_EQ(v.num_vertices(), 8u);
+  TetMesh back = TetMesh::from_volume_mesh(v);
+  ASSERT_TRUE(back.build_adjacency().ok());
+  EXPECT_TRUE(check_mesh(back, {}).ok());
+  EXPECT_EQ(back.num_live_tets(), 6u);
+}
