@@ -1,0 +1,21 @@
+// Whole-file reads and writes. Readers parse from memory (fast, and tests can feed bytes
+// directly); writers build the whole file in memory and write it in one call.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "core/status.hpp"
+
+namespace anitet {
+
+// The bytes of a file; Error::FileNotFound when it cannot be opened or read.
+Result<std::string> read_file_bytes(const std::string& path);
+
+// Writes (replaces) a file; Error::FileNotFound when it cannot be created or written.
+Status write_file_bytes(const std::string& path, std::string_view bytes);
+
+// The extension of a path, lower case and without the dot ("" when there is none).
+std::string lower_extension(const std::string& path);
+
+}  // namespace anitet

@@ -1,0 +1,252 @@
+// Medit .mesh (ASCII): keyword sections "Vertices n / x y z ref", "Triangles n / a b c ref",
+// "Quadrilaterals n / a b c d ref", "Tetrahedra n / a b c d ref" (1-based), "Dimension 3",
+// '#' comments, "End". Other sections are skipped. Also the .sol writer.
+#include <string>
+#include <vector>
+
+#include "io/number_text.hpp"
+#include "io/reader_util.hpp"
+#include "io/surface_io.hpp"
+#include "io/text_scanner.hpp"
+#include "io/volume_io.hpp"
+
+namespace anitet {
+
+namespace {
+
+struct MeditContent {
+  std::vector<double> xyz;
+  std::vector<uint32_t> tri, quad, tet;  // 0-based after the index check
+  std::vector<int32_t> tri_ref, quad_ref, tet_ref;
+};
+
+bool starts_number(std::string_view token) {
+  char c = token.empty() ? 'x' : token[0];
+  return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
+}
+
+bool read_ref(TextScanner& in, int32_t& ref) {
+  int64_t value = 0;
+  if (!in.read_int(value) || value < INT32_MIN || value > INT32_MAX) return false;
+  ref = static_cast<int32_t>(value);
+  return true;
+}
+
+// Reads `count` elements of `n` vertex indices and a ref; indices are checked later.
+Status read_elements(TextScanner& in, const char* what, int n, std::vector<uint32_t>& vertices,
+                     std::vector<int32_t>& refs) {
+  uint64_t count = 0;
+  if (!in.read_count(UINT32_MAX, count)) return in.expected(std::string("the number of ") + what);
+  // Each element takes at least 2 bytes per number.
+  if (!fits(count, 2 * (n + 1), in.remaining() + 1)) {
+    return in.error(Error::Parse, std::to_string(count) + " " + what + " do not fit in the file");
+  }
+  vertices.reserve(vertices.size() + n * count);
+  refs.reserve(refs.size() + count);
+  for (uint64_t e = 0; e < count; ++e) {
+    for (int k = 0; k < n; ++k) {
+      int64_t v = 0;
+      if (!in.read_int(v)) {
+        return in.expected("a vertex index of " + std::string(what) + " " + std::to_string(e + 1));
+      }
+      // 0 or too large wraps to a huge value and fails the later range check.
+      vertices.push_back(v >= 1 && v <= static_cast<int64_t>(kMaxVertices)
+                             ? static_cast<uint32_t>(v - 1)
+                             : UINT32_MAX);
+    }
+    int32_t ref = 0;
+    if (!read_ref(in, ref)) {
+      return in.expected("the reference of " + std::string(what) + " " + std::to_string(e + 1));
+    }
+    refs.push_back(ref);
+  }
+  return Status::success();
+}
+
+Status check_indices(const std::string& name, const char* what, int n,
+                     const std::vector<uint32_t>& vertices, size_t num_vertices) {
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    if (vertices[i] >= num_vertices) {
+      return Status(Error::BadIndex, name + ": " + what + " " + std::to_string(i / n + 1) +
+                                         " refers to a vertex outside 1.." +
+                                         std::to_string(num_vertices));
+    }
+  }
+  return Status::success();
+}
+
+Status parse_medit(std::string_view data, const std::string& name, MeditContent& out) {
+  if (data.size() >= 4 && data.substr(0, 4).find('\0') != std::string_view::npos) {
+    return Status(Error::UnsupportedFormat,
+                  name + ": binary Medit files (.meshb) are not supported");
+  }
+  TextScanner in(data, name);
+  bool have_vertices = false;
+  for (;;) {
+    std::string_view key = in.next_token();
+    if (key.empty() || iequals(key, "End")) break;
+    Status status;
+    if (iequals(key, "MeshVersionFormatted")) {
+      int64_t version = 0;
+      if (!in.read_int(version)) return in.expected("the mesh version");
+    } else if (iequals(key, "Dimension")) {
+      int64_t dim = 0;
+      if (!in.read_int(dim)) return in.expected("the dimension");
+      if (dim != 3) return in.error(Error::UnsupportedFormat, "only Dimension 3 is supported");
+    } else if (iequals(key, "Vertices")) {
+      if (have_vertices) return in.error(Error::Parse, "a second Vertices section");
+      have_vertices = true;
+      uint64_t count = 0;
+      if (!in.read_count(kMaxVertices, count)) return in.expected("the number of vertices");
+      if (!fits(count, 8, in.remaining() + 1)) {
+        return in.error(Error::Parse, std::to_string(count) + " vertices do not fit in the file");
+      }
+      out.xyz.resize(3 * count);
+      for (uint64_t v = 0; v < count; ++v) {
+        for (int k = 0; k < 3; ++k) {
+          if (!in.read_double(out.xyz[3 * v + k])) {
+            return in.expected("a coordinate of vertex " + std::to_string(v + 1));
+          }
+        }
+        int32_t ref;
+        if (!read_ref(in, ref)) {
+          return in.expected("the reference of vertex " + std::to_string(v + 1));
+        }
+      }
+    } else if (iequals(key, "Triangles")) {
+      status = read_elements(in, "triangles", 3, out.tri, out.tri_ref);
+    } else if (iequals(key, "Quadrilaterals")) {
+      status = read_elements(in, "quadrilaterals", 4, out.quad, out.quad_ref);
+    } else if (iequals(key, "Tetrahedra")) {
+      status = read_elements(in, "tetrahedra", 4, out.tet, out.tet_ref);
+    } else if (starts_number(key)) {
+      return in.error(Error::Parse, "expected a keyword, found '" + quote_token(key) + "'");
+    } else {
+      // An unknown section: skip its numbers up to the next keyword.
+      while (starts_number(in.peek_token())) in.next_token();
+    }
+    if (!status.ok()) return status;
+  }
+  size_t nv = out.xyz.size() / 3;
+  Status status = check_indices(name, "triangle", 3, out.tri, nv);
+  if (status.ok()) status = check_indices(name, "quadrilateral", 4, out.quad, nv);
+  if (status.ok()) status = check_indices(name, "tetrahedron", 4, out.tet, nv);
+  return status;
+}
+
+Result<SurfaceMesh> parse_medit_surface(std::string_view data, const std::string& name) {
+  MeditContent content;
+  Status status = parse_medit(data, name, content);
+  if (!status.ok()) return status;
+  SurfaceMesh mesh;
+  mesh.xyz = std::move(content.xyz);
+  mesh.tri = std::move(content.tri);
+  mesh.patch = std::move(content.tri_ref);
+  for (size_t q = 0; q < content.quad_ref.size(); ++q) {
+    add_fan(mesh, &content.quad[4 * q], 4, content.quad_ref[q]);
+  }
+  if (mesh.tri.empty()) return Status(Error::EmptyInput, name + ": the file has no triangles");
+  return mesh;
+}
+
+Result<VolumeMesh> parse_medit_volume(std::string_view data, const std::string& name) {
+  MeditContent content;
+  Status status = parse_medit(data, name, content);
+  if (!status.ok()) return status;
+  if (content.tet.empty()) return Status(Error::EmptyInput, name + ": the file has no tetrahedra");
+  VolumeMesh mesh;
+  mesh.xyz = std::move(content.xyz);
+  mesh.tet = std::move(content.tet);
+  mesh.region = std::move(content.tet_ref);
+  mesh.bnd_tri = std::move(content.tri);
+  mesh.bnd_patch = std::move(content.tri_ref);
+  return mesh;
+}
+
+void append_vertices(std::string& out, const std::vector<double>& xyz) {
+  out += "\nVertices\n";
+  append_line(out, xyz.size() / 3);
+  for (size_t v = 0; v < xyz.size() / 3; ++v) {
+    append_line(out, xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2], int32_t{0});
+  }
+}
+
+// "Keyword / count / a b c [d] ref" with 1-based indices; refs may be empty (all 0).
+void append_elements(std::string& out, const char* keyword, int n,
+                     const std::vector<uint32_t>& vertices, const std::vector<int32_t>& refs) {
+  size_t count = vertices.size() / n;
+  if (count == 0) return;
+  out += "\n";
+  out += keyword;
+  out += "\n";
+  append_line(out, count);
+  for (size_t e = 0; e < count; ++e) {
+    for (int k = 0; k < n; ++k) {
+      append_int(out, int64_t{vertices[n * e + k]} + 1);
+      out += ' ';
+    }
+    append_int(out, refs.empty() ? 0 : refs[e]);
+    out += '\n';
+  }
+}
+
+const char* kMeditHeader = "MeshVersionFormatted 2\n\nDimension 3\n";
+
+}  // namespace
+
+Result<SurfaceMesh> read_medit_surface(std::string_view data, const std::string& name) {
+  return catch_bad_alloc(name, [&] { return parse_medit_surface(data, name); });
+}
+
+Result<VolumeMesh> read_medit_volume(std::string_view data, const std::string& name) {
+  return catch_bad_alloc(name, [&] { return parse_medit_volume(data, name); });
+}
+
+Result<std::string> to_medit(const SurfaceMesh& mesh) {
+  Status valid = check_surface_arrays(mesh);
+  if (!valid.ok()) return valid;
+  std::string out = kMeditHeader;
+  append_vertices(out, mesh.xyz);
+  append_elements(out, "Triangles", 3, mesh.tri, mesh.patch);
+  out += "\nEnd\n";
+  return out;
+}
+
+Result<std::string> to_medit(const VolumeMesh& mesh) {
+  Status valid = check_volume_arrays(mesh);
+  if (!valid.ok()) return valid;
+  std::string out = kMeditHeader;
+  append_vertices(out, mesh.xyz);
+  append_elements(out, "Triangles", 3, mesh.bnd_tri, mesh.bnd_patch);
+  append_elements(out, "Tetrahedra", 4, mesh.tet, mesh.region);
+  out += "\nEnd\n";
+  return out;
+}
+
+Result<std::string> to_sol(const VolumeMesh& mesh) {
+  size_t nv = mesh.num_vertices();
+  size_t per_vertex = nv == 0 ? 0 : mesh.vertex_metric.size() / nv;
+  if (nv == 0 || (per_vertex != 1 && per_vertex != 6) ||
+      per_vertex * nv != mesh.vertex_metric.size()) {
+    return Status(Error::InvalidArgument,
+                  "a .sol needs 1 or 6 metric values per vertex; the mesh has " +
+                      std::to_string(mesh.vertex_metric.size()) + " values for " +
+                      std::to_string(nv) + " vertices");
+  }
+  std::string out = kMeditHeader;
+  out += "\nSolAtVertices\n";
+  append_line(out, nv);
+  out += per_vertex == 1 ? "1 1\n" : "1 3\n";  // one field: scalar (1) or symmetric tensor (3)
+  for (size_t v = 0; v < nv; ++v) {
+    const double* m = &mesh.vertex_metric[per_vertex * v];
+    for (size_t k = 0; k < per_vertex; ++k) {
+      if (k) out += ' ';
+      append_double(out, m[k]);
+    }
+    out += '\n';
+  }
+  out += "\nEnd\n";
+  return out;
+}
+
+}  // namespace anitet

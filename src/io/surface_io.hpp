@@ -1,0 +1,60 @@
+// Reading and writing triangulated surfaces.
+//
+// Every reader parses bytes held in memory (`data`), using `name` (usually the path) in messages,
+// and never crashes on bad input: it returns Error::Parse naming the line (text) or byte offset
+// (binary) and what was expected, Error::BadIndex naming the triangle for an index out of range,
+// Error::EmptyInput when there is no triangle, Error::UnsupportedFormat for variants not handled.
+// Polygons are fan-triangulated. Non-finite coordinates are read as they are (validation reports
+// them). Indices in SurfaceMesh are 0-based.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "core/status.hpp"
+#include "core/surface_mesh.hpp"
+
+namespace anitet {
+
+enum class SurfaceFormat { Off, Obj, Stl, Ply, Medit, Gmsh };
+
+// From the extension, case-insensitive: .off .obj .stl .ply .mesh .msh.
+Result<SurfaceFormat> surface_format_from_path(const std::string& path);
+
+// Reads a file, choosing the format from its extension.
+Result<SurfaceMesh> read_surface(const std::string& path);
+Result<SurfaceMesh> read_surface(std::string_view data, SurfaceFormat format,
+                                 const std::string& name);
+
+// OFF (also COFF/NOFF/STOFF: extra per-vertex values are skipped); patches 0.
+Result<SurfaceMesh> read_off(std::string_view data, const std::string& name);
+// OBJ `v` and `f` (v, v/vt, v//vn, v/vt/vn, negative indices). Each distinct `g`/`o` name gets a
+// patch label 1, 2, ... in order of first appearance; faces before any group get 0.
+Result<SurfaceMesh> read_obj(std::string_view data, const std::string& name);
+// STL ASCII or binary (detected by content, also when a binary header starts with "solid").
+// Corners with bit-equal coordinates are merged into one vertex. Patches: 0, or 1, 2, ... for the
+// blocks of an ASCII file with several `solid` blocks.
+Result<SurfaceMesh> read_stl(std::string_view data, const std::string& name);
+// PLY ascii, binary_little_endian or binary_big_endian: `vertex` x y z and the `face` index list.
+Result<SurfaceMesh> read_ply(std::string_view data, const std::string& name);
+// Medit .mesh (ASCII): Vertices and Triangles (refs become patches; Quadrilaterals are split).
+Result<SurfaceMesh> read_medit_surface(std::string_view data, const std::string& name);
+// Gmsh .msh 4.1 (ASCII or binary) or 2.2 (ASCII): triangles (type 2); patch = the entity tag of
+// the surface the triangle is on (the elementary tag in 2.2).
+Result<SurfaceMesh> read_gmsh_surface(std::string_view data, const std::string& name);
+
+// Writes a file, choosing the format from its extension: .off .obj .stl (binary) .mesh.
+Status write_surface(const SurfaceMesh& mesh, const std::string& path);
+
+// The file contents. OBJ writes a group `patch<label>` for each patch run when some label is not 0.
+// STL binary stores coordinates as float, so it is the one lossy format here.
+Result<std::string> to_off(const SurfaceMesh& mesh);
+Result<std::string> to_obj(const SurfaceMesh& mesh);
+Result<std::string> to_stl_binary(const SurfaceMesh& mesh);
+Result<std::string> to_medit(const SurfaceMesh& mesh);
+
+// Error::InvalidArgument unless xyz, tri and patch sizes agree; Error::BadIndex for an index that
+// is not a vertex. Writers run this first.
+Status check_surface_arrays(const SurfaceMesh& mesh);
+
+}  // namespace anitet

@@ -1,0 +1,91 @@
+// Format choice by extension, file access and array checks for tetrahedral meshes.
+#include "io/volume_io.hpp"
+
+#include "io/file_bytes.hpp"
+
+namespace anitet {
+
+Result<VolumeFormat> volume_format_from_path(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == "mesh") return VolumeFormat::Medit;
+  if (ext == "msh") return VolumeFormat::Gmsh;
+  if (ext == "node" || ext == "ele") return VolumeFormat::TetGen;
+  if (ext == "vtu") return VolumeFormat::Vtu;
+  return Status(Error::UnsupportedFormat, path + ": unknown volume mesh format '." + ext +
+                                              "' (expected .mesh, .msh, .node, .ele or .vtu)");
+}
+
+Result<VolumeMesh> read_volume_mesh(const std::string& path) {
+  Result<VolumeFormat> format = volume_format_from_path(path);
+  if (!format.ok()) return format.status();
+  if (format.value() == VolumeFormat::TetGen) {
+    const std::string base = path.substr(0, path.size() - lower_extension(path).size() - 1);
+    Result<std::string> node = read_file_bytes(base + ".node");
+    if (!node.ok()) return node.status();
+    Result<std::string> ele = read_file_bytes(base + ".ele");
+    if (!ele.ok()) return ele.status();
+    Result<std::string> face = read_file_bytes(base + ".face");  // optional
+    return read_tetgen(node.value(), ele.value(), face.ok() ? face.value() : std::string(), base);
+  }
+  Result<std::string> bytes = read_file_bytes(path);
+  if (!bytes.ok()) return bytes.status();
+  switch (format.value()) {
+    case VolumeFormat::Medit:
+      return read_medit_volume(bytes.value(), path);
+    case VolumeFormat::Gmsh:
+      return read_gmsh_volume(bytes.value(), path);
+    case VolumeFormat::Vtu:
+      return read_vtu(bytes.value(), path);
+    case VolumeFormat::TetGen:
+      break;
+  }
+  return Status(Error::UnsupportedFormat, path + ": unknown volume mesh format");
+}
+
+Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path,
+                         const std::vector<TetScalar>& tet_scalars) {
+  const std::string ext = lower_extension(path);
+  Result<std::string> bytes =
+      Status(Error::UnsupportedFormat, path + ": cannot write volume mesh format '." + ext +
+                                           "' (expected .mesh, .msh or .vtu)");
+  if (ext == "mesh") {
+    bytes = to_medit(mesh);
+  } else if (ext == "msh") {
+    bytes = to_gmsh(mesh);
+  } else if (ext == "vtu") {
+    bytes = to_vtu(mesh, tet_scalars);
+  }
+  if (!bytes.ok()) return bytes.status();
+  return write_file_bytes(path, bytes.value());
+}
+
+Status write_sol(const VolumeMesh& mesh, const std::string& path) {
+  Result<std::string> bytes = to_sol(mesh);
+  if (!bytes.ok()) return bytes.status();
+  return write_file_bytes(path, bytes.value());
+}
+
+Status check_volume_arrays(const VolumeMesh& mesh) {
+  if (mesh.xyz.size() % 3 != 0 || mesh.tet.size() % 4 != 0 || mesh.bnd_tri.size() % 3 != 0 ||
+      (!mesh.region.empty() && mesh.region.size() != mesh.num_tets()) ||
+      mesh.bnd_patch.size() != mesh.num_boundary_triangles()) {
+    return Status(Error::InvalidArgument, "volume mesh arrays of inconsistent sizes");
+  }
+  const size_t nv = mesh.num_vertices();
+  for (size_t i = 0; i < mesh.tet.size(); ++i) {
+    if (mesh.tet[i] >= nv) {
+      return Status(Error::BadIndex, "tetrahedron " + std::to_string(i / 4) + " refers to vertex " +
+                                         std::to_string(mesh.tet[i]) + " of " + std::to_string(nv));
+    }
+  }
+  for (size_t i = 0; i < mesh.bnd_tri.size(); ++i) {
+    if (mesh.bnd_tri[i] >= nv) {
+      return Status(Error::BadIndex, "boundary triangle " + std::to_string(i / 3) +
+                                         " refers to vertex " + std::to_string(mesh.bnd_tri[i]) +
+                                         " of " + std::to_string(nv));
+    }
+  }
+  return Status::success();
+}
+
+}  // namespace anitet
