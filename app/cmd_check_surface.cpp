@@ -1,0 +1,139 @@
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "exit_codes.hpp"
+#include "io/surface_io.hpp"
+#include "surface_check.hpp"
+
+namespace anitet::cli {
+
+namespace {
+
+std::string coords(const std::array<double, 3>& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.10g, %.10g, %.10g)", p[0], p[1], p[2]);
+  return buf;
+}
+
+std::string describe_example(const ProblemExample& e) {
+  std::ostringstream os;
+  if (!e.triangles.empty()) {
+    os << "triangles";
+    for (size_t i = 0; i < e.triangles.size(); ++i) os << (i ? ", " : " ") << e.triangles[i];
+  }
+  if (!e.vertices.empty()) {
+    os << (e.triangles.empty() ? "" : "; ") << "vertices";
+    for (size_t i = 0; i < e.vertices.size(); ++i) {
+      os << (i ? ", " : " ") << e.vertices[i];
+      if (i < e.points.size()) os << " " << coords(e.points[i]);
+    }
+  }
+  return os.str();
+}
+
+}  // namespace
+
+int load_and_validate(const std::string& command, const std::string& path, CheckedSurface& out,
+                      bool print_invalid) {
+  Result<SurfaceMesh> read = read_surface(path);
+  if (!read.ok()) {
+    std::cerr << "anitet " << command << ": cannot read surface '" << path << "': "
+              << read.status().message() << " [" << error_name(read.status().code()) << "]\n";
+    return kExitReadError;
+  }
+  out.surface = std::move(read).value();
+  out.report = validate_surface(out.surface);
+  if (!out.report.ok()) {
+    if (print_invalid) print_invalid_surface(command, path, out.report);
+    return kExitInvalidInput;
+  }
+  return kExitOk;
+}
+
+void print_invalid_surface(const std::string& command, const std::string& path,
+                           const ValidationReport& report) {
+  const Status st = report.status();
+  std::cerr << "anitet " << command << ": invalid surface '" << path << "': " << st.message() << " ["
+            << error_name(st.code()) << "]\n";
+  for (const Problem& p : report.problems) {
+    if (p.severity == Severity::Error) std::cerr << "  " << p.kind << ": " << p.count << "\n";
+  }
+}
+
+std::string describe_validation(const std::string& path, const CheckedSurface& checked) {
+  const ValidationReport& r = checked.report;
+  std::ostringstream os;
+  os << "surface: " << path << "\n";
+  os << "  " << checked.surface.num_vertices() << " vertices, " << checked.surface.num_triangles()
+     << " triangles\n";
+  size_t closed = 0;
+  for (const ShellInfo& s : r.shells) closed += s.closed;
+  os << "  shells: " << r.shells.size() << " (" << closed << " closed), regions: " << r.num_regions
+     << "\n";
+  constexpr size_t kMaxShells = 10;
+  for (size_t i = 0; i < r.shells.size() && i < kMaxShells; ++i) {
+    const ShellInfo& s = r.shells[i];
+    os << "    shell " << i << ": " << s.num_triangles << " triangles from triangle " << s.first_triangle
+       << ", " << (s.closed ? "closed" : "open");
+    if (s.closed) {
+      os << ", depth " << s.depth << (s.depth % 2 ? " (cavity)" : " (body)");
+      if (s.parent >= 0) os << " inside shell " << s.parent;
+      os << ", region " << s.region << ", signed volume " << s.signed_volume;
+    }
+    if (s.flipped) os << ", reoriented";
+    os << "\n";
+  }
+  if (r.shells.size() > kMaxShells) os << "    ... " << r.shells.size() - kMaxShells << " more shells\n";
+  if (r.repairs.empty()) {
+    os << "  repairs: none\n";
+  } else {
+    os << "  repairs:\n";
+    for (const Repair& rep : r.repairs) {
+      os << "    " << (rep.message.empty() ? rep.kind + " (" + std::to_string(rep.count) + ")" : rep.message)
+         << "\n";
+    }
+  }
+  if (r.problems.empty()) {
+    os << "  problems: none\n";
+  } else {
+    os << "  problems:\n";
+    for (const Problem& p : r.problems) {
+      os << "    " << p.kind << (p.severity == Severity::Error ? " (error)" : " (warning)") << ": "
+         << p.count << " in total";
+      if (!p.message.empty()) os << " - " << p.message;
+      os << "\n";
+      for (size_t i = 0; i < p.examples.size(); ++i) {
+        os << "      #" << i + 1 << " " << describe_example(p.examples[i]) << "\n";
+      }
+      if (p.count > p.examples.size()) os << "      ... " << p.count - p.examples.size() << " more\n";
+    }
+  }
+  os << "  result: " << (r.ok() ? "OK" : "INVALID") << "\n";
+  return os.str();
+}
+
+int run_check_surface(const CheckSurfaceArgs& args) {
+  CheckedSurface checked;
+  const int code = load_and_validate("check-surface", args.input, checked, false);
+  if (code == kExitReadError) return code;
+  if (args.json) {
+    nlohmann::json j = nlohmann::json::parse(report_to_json(checked.report), nullptr, false);
+    if (j.is_discarded() || !j.is_object()) j = nlohmann::json::object();
+    j["file"] = args.input;
+    j["vertices"] = checked.surface.num_vertices();
+    j["triangles"] = checked.surface.num_triangles();
+    j["ok"] = checked.report.ok();
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << describe_validation(args.input, checked);
+  }
+  std::cout.flush();  // the report first, then the verdict on stderr
+  if (code == kExitInvalidInput) print_invalid_surface("check-surface", args.input, checked.report);
+  return code;
+}
+
+}  // namespace anitet::cli

@@ -1,0 +1,35 @@
+// The subcommands of the `anitet` tool. Each returns the process exit code (exit_codes.hpp),
+// prints results on stdout and errors (naming the file) on stderr, and never throws.
+#pragma once
+
+#include <string>
+
+namespace anitet::cli {
+
+struct CheckSurfaceArgs {
+  std::string input;
+  bool json = false;
+};
+int run_check_surface(const CheckSurfaceArgs& args);
+
+struct QualityArgs {
+  std::string mesh;
+  std::string surface;    // empty: no input surface
+  std::string hist_csv;   // empty: no histogram file
+  double tolerance = 1e-9;
+  bool json = false;
+  bool strict = false;    // exit 4 when the mesh is invalid or not boundary constrained
+};
+int run_quality(const QualityArgs& args);
+
+// `mesh` and `recover`: read and validate the input surface, then (for now) stop with
+// "not implemented yet". The options are the ones the later stages will take.
+struct MeshArgs {
+  std::string command;  // "mesh" or "recover", for messages
+  std::string input;
+  std::string output;
+  bool quiet = false;
+};
+int run_mesh(const MeshArgs& args);
+
+}  // namespace anitet::cli

@@ -1,0 +1,13 @@
+// Exit codes of the `anitet` command-line tool: one per failure class, stable for scripts.
+#pragma once
+
+namespace anitet::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitInternal = 1;        // an unexpected failure inside the tool
+constexpr int kExitUsage = 2;           // bad command line
+constexpr int kExitReadError = 3;       // a file cannot be read, parsed or written
+constexpr int kExitInvalidInput = 4;    // the input is read but invalid (e.g. an open surface)
+constexpr int kExitNotImplemented = 5;  // the requested stage does not exist yet
+
+}  // namespace anitet::cli

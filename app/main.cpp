@@ -1,0 +1,91 @@
+// anitet: the command-line tool. Subcommands: check-surface, quality, mesh, recover.
+#include <exception>
+#include <iostream>
+#include <new>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+#include "exit_codes.hpp"
+
+namespace {
+
+int run(int argc, char** argv) {
+  using namespace anitet::cli;
+  CLI::App app{"anitet: boundary-constrained tetrahedral mesh generator"};
+  app.set_version_flag("--version", std::string("anitet ") + ANITET_VERSION);
+  app.require_subcommand(1);
+  app.footer(
+      "Exit codes: 0 success, 1 internal error, 2 usage, 3 read/write error, 4 invalid input,\n"
+      "5 not implemented yet.");
+
+  CheckSurfaceArgs check;
+  CLI::App* check_cmd = app.add_subcommand(
+      "check-surface", "Read and validate a triangulated surface; report problems and safe repairs");
+  check_cmd->add_option("IN", check.input, "Surface file (.off .obj .stl .ply .mesh .msh)")->required();
+  check_cmd->add_flag("--json", check.json, "Print the report as JSON");
+
+  QualityArgs quality;
+  CLI::App* quality_cmd = app.add_subcommand(
+      "quality", "Quality report of a tetrahedral mesh, optionally against its input surface");
+  quality_cmd->add_option("MESH", quality.mesh, "Mesh file (.mesh .msh .vtu, TetGen .node/.ele)")->required();
+  quality_cmd->add_option("--surface", quality.surface,
+                          "Input surface: check that the mesh keeps it (boundary constrained)");
+  quality_cmd->add_flag("--json", quality.json, "Print the report as JSON");
+  quality_cmd->add_option("--hist", quality.hist_csv, "Write the radius-ratio histogram as CSV here");
+  quality_cmd->add_option("--tol", quality.tolerance,
+                          "Relative tolerance for matching mesh vertices to input vertices "
+                          "written with fewer digits (exact matches come first)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  quality_cmd->add_flag("--strict", quality.strict,
+                        "Exit 4 when the mesh is invalid or does not keep the surface");
+
+  MeshArgs mesh, recover;
+  mesh.command = "mesh";
+  recover.command = "recover";
+  CLI::App* mesh_cmd = app.add_subcommand("mesh", "Mesh the volume inside a closed surface (not implemented yet)");
+  CLI::App* recover_cmd = app.add_subcommand(
+      "recover", "Delaunay mesh of the surface's points with the surface recovered (not implemented yet)");
+  for (auto [cmd, args] : {std::pair{mesh_cmd, &mesh}, std::pair{recover_cmd, &recover}}) {
+    cmd->add_option("IN", args->input, "Closed surface file")->required();
+    cmd->add_option("-o,--output", args->output, "Output mesh (.mesh .msh .vtu)")->required();
+    cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);  // prints the message and a hint on stderr
+    return kExitUsage;
+  }
+
+  if (check_cmd->parsed()) return run_check_surface(check);
+  if (quality_cmd->parsed()) return run_quality(quality);
+  if (mesh_cmd->parsed()) return run_mesh(mesh);
+  if (recover_cmd->parsed()) return run_mesh(recover);
+  std::cerr << app.help();
+  return kExitUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "anitet: out of memory\n";
+  } catch (const std::exception& e) {
+    std::cerr << "anitet: internal error: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "anitet: internal error\n";
+  }
+  return anitet::cli::kExitInternal;
+}

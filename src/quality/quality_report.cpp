@@ -1,0 +1,259 @@
+#include "quality/quality_report.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "predicates/predicates.hpp"
+#include "quality/parallel_for.hpp"
+#include "quality/report_detail.hpp"
+#include "quality/tet_measures.hpp"
+
+namespace anitet {
+
+namespace quality_detail {
+
+Stats make_stats(std::vector<double> values) {
+  Stats s;
+  s.count = values.size();
+  if (values.empty()) return s;
+  // Neumaier summation: the mean stays accurate for millions of values.
+  double sum = 0.0, comp = 0.0;
+  s.min = values[0];
+  s.max = values[0];
+  for (double x : values) {
+    const double t = sum + x;
+    comp += std::fabs(sum) >= std::fabs(x) ? (sum - t) + x : (x - t) + sum;
+    sum = t;
+    s.min = std::min(s.min, x);
+    s.max = std::max(s.max, x);
+  }
+  s.mean = (sum + comp) / double(values.size());
+  // numpy.percentile's default ("linear"): interpolate between ranks floor(q) and floor(q) + 1.
+  const double rank = 0.01 * double(values.size() - 1);
+  const size_t lo = static_cast<size_t>(std::floor(rank));
+  const double frac = rank - double(lo);
+  std::nth_element(values.begin(), values.begin() + lo, values.end());
+  const double a = values[lo];
+  double b = a;
+  if (lo + 1 < values.size()) b = *std::min_element(values.begin() + lo + 1, values.end());
+  s.p01 = frac >= 0.5 ? b - (b - a) * (1.0 - frac) : a + (b - a) * frac;
+  return s;
+}
+
+QualitySplit split_quality(const TetData& data, const std::vector<uint8_t>& select, uint8_t value) {
+  QualitySplit q;
+  std::vector<double> rr, mr;
+  double dmin = 180.0;
+  size_t good = 0, bad = 0;
+  for (size_t t = 0; t < select.size(); ++t) {
+    if (select[t] != value) continue;
+    const double r = data.radius_ratio[t];
+    rr.push_back(r);
+    mr.push_back(data.mean_ratio[t]);
+    dmin = std::min(dmin, data.min_dihedral[t]);
+    good += r > 0.4;
+    bad += r < 0.1;
+  }
+  q.tets = rr.size();
+  if (q.tets == 0) return q;
+  q.min_dihedral_deg = dmin;
+  q.good_fraction = double(good) / double(q.tets);
+  q.bad_fraction = double(bad) / double(q.tets);
+  q.radius_ratio = make_stats(std::move(rr));
+  q.mean_ratio = make_stats(std::move(mr));
+  return q;
+}
+
+}  // namespace quality_detail
+
+namespace {
+
+using quality_detail::for_chunks;
+using quality_detail::TetData;
+
+// Every tet index in range and every used coordinate finite; marks the used vertices.
+Status check_input(const VolumeMesh& mesh, std::vector<uint8_t>& used) {
+  const size_t nv = mesh.num_vertices();
+  used.assign(nv, 0);
+  if (mesh.xyz.size() % 3 != 0 || mesh.tet.size() % 4 != 0) {
+    return Status(Error::InvalidArgument, "mesh arrays are not a whole number of vertices/tets");
+  }
+  for (size_t i = 0; i < mesh.tet.size(); ++i) {
+    const uint32_t v = mesh.tet[i];
+    if (v >= nv) {
+      std::ostringstream os;
+      os << "tet " << i / 4 << " refers to vertex " << v << " but the mesh has " << nv
+         << " vertices";
+      return Status(Error::BadIndex, os.str());
+    }
+    used[v] = 1;
+  }
+  for (size_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    const double* p = mesh.point(v);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+      std::ostringstream os;
+      os << "vertex " << v << " has a non-finite coordinate (" << p[0] << ", " << p[1] << ", "
+         << p[2] << ")";
+      return Status(Error::NonFiniteCoordinate, os.str());
+    }
+  }
+  return Status::success();
+}
+
+TetData measure_tets(const VolumeMesh& mesh, bool parallel) {
+  const size_t nt = mesh.num_tets();
+  TetData d;
+  d.volume.resize(nt);
+  d.radius_ratio.resize(nt);
+  d.mean_ratio.resize(nt);
+  d.min_dihedral.resize(nt);
+  d.max_dihedral.resize(nt);
+  d.orient.resize(nt);
+  for_chunks(nt, parallel, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      const uint32_t* v = &mesh.tet[4 * t];
+      const double *a = mesh.point(v[0]), *b = mesh.point(v[1]), *c = mesh.point(v[2]),
+                   *e = mesh.point(v[3]);
+      const int o = predicates::orient3d(a, b, c, e);
+      TetMeasures m = tet_measures(a, b, c, e);
+      if (o == 0) {  // exactly flat: the float volume is rounding noise
+        m.radius_ratio = 0.0;
+        m.mean_ratio = 0.0;
+      }
+      d.orient[t] = static_cast<int8_t>(o);
+      d.volume[t] = m.volume;
+      d.radius_ratio[t] = m.radius_ratio;
+      d.mean_ratio[t] = m.mean_ratio;
+      d.min_dihedral[t] = m.min_dihedral_deg;
+      d.max_dihedral[t] = m.max_dihedral_deg;
+    }
+  });
+  return d;
+}
+
+// Faces by multiplicity: faces used once are boundary faces (appended as sorted triples), faces
+// used more than twice are counted. A counting sort on the smallest vertex, then a small sort per
+// vertex, keeps this linear in practice.
+void classify_faces(const VolumeMesh& mesh, bool parallel, std::vector<uint32_t>& boundary,
+                    size_t& shared_by_more_than_two) {
+  const size_t nv = mesh.num_vertices();
+  const size_t nt = mesh.num_tets();
+  auto face_of = [&](size_t t, int i, uint32_t f[3]) {
+    const uint32_t* v = &mesh.tet[4 * t];
+    int k = 0;
+    for (int j = 0; j < 4; ++j) {
+      if (j != i) f[k++] = v[j];
+    }
+    if (f[0] > f[1]) std::swap(f[0], f[1]);
+    if (f[1] > f[2]) std::swap(f[1], f[2]);
+    if (f[0] > f[1]) std::swap(f[0], f[1]);
+  };
+  std::vector<size_t> start(nv + 1, 0);
+  for (size_t t = 0; t < nt; ++t) {
+    for (int i = 0; i < 4; ++i) {
+      uint32_t f[3];
+      face_of(t, i, f);
+      ++start[f[0] + 1];
+    }
+  }
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<uint64_t> rest(4 * nt);  // (middle << 32) | largest, bucketed by the smallest
+  {
+    std::vector<size_t> fill(start.begin(), start.end() - 1);
+    for (size_t t = 0; t < nt; ++t) {
+      for (int i = 0; i < 4; ++i) {
+        uint32_t f[3];
+        face_of(t, i, f);
+        rest[fill[f[0]]++] = (uint64_t(f[1]) << 32) | f[2];
+      }
+    }
+  }
+  for_chunks(nv, parallel, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) std::sort(rest.begin() + start[v], rest.begin() + start[v + 1]);
+  });
+  shared_by_more_than_two = 0;
+  for (size_t v = 0; v < nv; ++v) {
+    for (size_t k = start[v]; k < start[v + 1];) {
+      size_t run = k + 1;
+      while (run < start[v + 1] && rest[run] == rest[k]) ++run;
+      if (run - k == 1) {
+        boundary.push_back(uint32_t(v));
+        boundary.push_back(uint32_t(rest[k] >> 32));
+        boundary.push_back(uint32_t(rest[k] & 0xffffffffu));
+      } else if (run - k > 2) {
+        ++shared_by_more_than_two;
+      }
+      k = run;
+    }
+  }
+}
+
+}  // namespace
+
+Result<QualityReport> compute_quality_report(const VolumeMesh& mesh,
+                                             const SurfaceMesh* input_surface,
+                                             const QualityOptions& options) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  QualityReport r;
+  std::vector<uint8_t> used;
+  if (Status s = check_input(mesh, used); !s.ok()) return s;
+  if (options.histogram_bins < 1) return Status(Error::InvalidArgument, "histogram_bins must be >= 1");
+
+  r.vertices = mesh.num_vertices();
+  r.tets = mesh.num_tets();
+  r.unused_vertices = size_t(std::count(used.begin(), used.end(), uint8_t(0)));
+
+  const TetData d = measure_tets(mesh, options.parallel);
+  double vol = 0.0, comp = 0.0;  // Neumaier sum of the signed volumes
+  r.rr_histogram.assign(size_t(options.histogram_bins), 0);
+  const double bins = double(options.histogram_bins);
+  size_t good = 0, bad = 0;
+  for (size_t t = 0; t < r.tets; ++t) {
+    if (d.orient[t] <= 0) {
+      ++r.nonpositive_tets;
+      r.inverted_tets += d.orient[t] < 0;
+      r.flat_tets += d.orient[t] == 0;
+      if (r.nonpositive_examples.size() < options.max_listed) r.nonpositive_examples.push_back(uint32_t(t));
+    }
+    const double x = d.volume[t], sum = vol + x;
+    comp += std::fabs(vol) >= std::fabs(x) ? (vol - sum) + x : (x - sum) + vol;
+    vol = sum;
+    const double rr = d.radius_ratio[t];
+    good += rr > 0.4;
+    bad += rr < 0.1;
+    r.tets_dihedral_lt_5deg += d.min_dihedral[t] < 5.0;
+    r.tets_dihedral_lt_10deg += d.min_dihedral[t] < 10.0;
+    // Bin edges i/bins; a value on an edge goes up, 1.0 (and rounding just above it) in the last.
+    long bin = static_cast<long>(std::clamp(rr, 0.0, 1.0) * bins);
+    if (bin > 0 && rr < double(bin) / bins) --bin;
+    if (bin + 1 < options.histogram_bins && rr >= double(bin + 1) / bins) ++bin;
+    r.rr_histogram[size_t(std::min<long>(bin, options.histogram_bins - 1))] += 1;
+  }
+  r.volume = vol + comp;
+  if (r.tets > 0) {
+    r.good_fraction = double(good) / double(r.tets);
+    r.bad_fraction = double(bad) / double(r.tets);
+    r.radius_ratio = quality_detail::make_stats(d.radius_ratio);
+    r.mean_ratio = quality_detail::make_stats(d.mean_ratio);
+    const Stats dmin = quality_detail::make_stats(d.min_dihedral);
+    r.min_dihedral_deg = dmin.min;
+    r.dihedral_p01_deg = dmin.p01;
+    r.max_dihedral_deg = *std::max_element(d.max_dihedral.begin(), d.max_dihedral.end());
+  }
+
+  std::vector<uint32_t> boundary;
+  classify_faces(mesh, options.parallel, boundary, r.faces_shared_by_more_than_two);
+  r.boundary_faces = boundary.size() / 3;
+  r.valid = r.nonpositive_tets == 0 && r.faces_shared_by_more_than_two == 0;
+
+  if (input_surface != nullptr) {
+    quality_detail::match_surface(mesh, *input_surface, boundary, used, d, options, r);
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return r;
+}
+
+}  // namespace anitet

@@ -1,0 +1,30 @@
+// Internal pieces of the quality report shared by its .cpp files.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "quality/quality_report.hpp"
+
+namespace anitet::quality_detail {
+
+// Per-tet measures of the whole mesh, index = tet id.
+struct TetData {
+  std::vector<double> volume, radius_ratio, mean_ratio, min_dihedral, max_dihedral;
+  std::vector<int8_t> orient;  // exact orient3d sign
+};
+
+// Statistics of the values (taken by value: the percentile reorders them). Empty gives zeros.
+Stats make_stats(std::vector<double> values);
+
+// Quality of the tets whose select flag is set.
+QualitySplit split_quality(const TetData& data, const std::vector<uint8_t>& select, uint8_t value);
+
+// Fills out.surface: vertex matching, missing/extra boundary faces, Steiner points, exact
+// on-surface vertices, volumes and the touching/interior split. boundary_faces holds 3 sorted
+// vertex ids per boundary face; used marks the vertices used by a tet.
+void match_surface(const VolumeMesh& mesh, const SurfaceMesh& surface,
+                   const std::vector<uint32_t>& boundary_faces, const std::vector<uint8_t>& used,
+                   const TetData& data, const QualityOptions& options, QualityReport& out);
+
+}  // namespace anitet::quality_detail
