@@ -1,0 +1,484 @@
+#include "delaunay/cavity_kernel.hpp"
+
+#include <algorithm>
+
+#include "predicates/predicates.hpp"
+
+namespace anitet::delaunay_detail {
+
+namespace {
+
+constexpr uint32_t kGhost = TetMesh::kGhost;
+constexpr uint64_t kNoNeighbour = TetMesh::kNoNeighbour;
+
+// The facets of a ghost tet (ghost in slot 3) that contain the ghost, rotated so that the ghost
+// comes last: kGhostFacet[i][k] = kFacetVertex[i][(k + kGhostFacetRot[i]) % 3].
+constexpr int kGhostFacet[3][3] = {{2, 1, 3}, {0, 2, 3}, {1, 0, 3}};
+constexpr uint8_t kGhostFacetRot[3] = {2, 0, 2};
+
+// Where the vertices of a boundary triangle (v0 v1 v2) go in the new tet built on it:
+// (v0 v1 v2 p), or (v1 v0 p G) when v2 is the ghost (same orientation, ghost in slot 3).
+constexpr int kSlotReal[3] = {0, 1, 2};
+constexpr int kSlotGhost[3] = {1, 0, 3};
+
+constexpr int kEdgeIndex[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
+
+}  // namespace
+
+bool exactly_collinear(const double* a, const double* b, const double* c) {
+  for (int d = 0; d < 3; ++d) {
+    const int e = (d + 1) % 3;
+    const double pa[2] = {a[d], a[e]}, pb[2] = {b[d], b[e]}, pc[2] = {c[d], c[e]};
+    if (predicates::orient2d(pa, pb, pc) != 0) return false;
+  }
+  return true;
+}
+
+void KernelCounters::add_predicates_since(const predicates::PredicateCounters& before) {
+  const predicates::PredicateCounters& now = predicates::thread_counters();
+  predicates.orient2d_calls += now.orient2d_calls - before.orient2d_calls;
+  predicates.orient2d_exact += now.orient2d_exact - before.orient2d_exact;
+  predicates.orient3d_calls += now.orient3d_calls - before.orient3d_calls;
+  predicates.orient3d_exact += now.orient3d_exact - before.orient3d_exact;
+  predicates.insphere_calls += now.insphere_calls - before.insphere_calls;
+  predicates.insphere_exact += now.insphere_exact - before.insphere_exact;
+  predicates.orient4d_calls += now.orient4d_calls - before.orient4d_calls;
+  predicates.orient4d_exact += now.orient4d_exact - before.orient4d_exact;
+  predicates.sos_ties += now.sos_ties - before.sos_ties;
+}
+
+CavityKernel::CavityKernel(uint64_t seed)
+    : rng_(static_cast<uint32_t>(seed ^ (seed >> 32)) | 1u), edge_table_(kTableSide * kTableSide) {}
+
+void CavityKernel::bind(TetStorage& storage, const double* coords, size_t num_points,
+                        const uint32_t* sos_ids) {
+  store_ = &storage;
+  coords_ = coords;
+  sos_ids_ = sos_ids;
+  if (local_of_.size() < num_points)
+    local_of_.resize(std::max(num_points, 2 * local_of_.size()), uint8_t(0xff));
+}
+
+int CavityKernel::orient3d_slow(const double* a, const double* b, const double* c, const double* p) {
+  return predicates::orient3d(a, b, c, p);
+}
+
+int CavityKernel::insphere_slow(uint32_t t, const double* p, uint32_t pid) {
+  const uint32_t* v = store_->verts(t);
+  return predicates::insphere_sos(pt(v[0]), pt(v[1]), pt(v[2]), pt(v[3]), p, sos_id(v[0]),
+                                  sos_id(v[1]), sos_id(v[2]), sos_id(v[3]), sos_id(pid));
+}
+
+void CavityKernel::make_first_tet(uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
+  const uint32_t t = store_->append(5);
+  store_->init_tet(t, 0, 0);
+  uint32_t* tv = store_->verts(t);
+  tv[0] = a, tv[1] = b, tv[2] = c, tv[3] = d;
+  for (int i = 0; i < 4; ++i) {
+    const uint32_t g = t + 1 + static_cast<uint32_t>(i);
+    store_->init_tet(g, 0, 0);
+    uint32_t* gv = store_->verts(g);
+    // Reversed: the hull facet faces the ghost.
+    gv[0] = tv[kFacetVertex[i][0]];
+    gv[1] = tv[kFacetVertex[i][2]];
+    gv[2] = tv[kFacetVertex[i][1]];
+    gv[3] = kGhost;
+    store_->set_adj(4 * uint64_t(t) + uint64_t(i), 4 * uint64_t(g) + 3);
+    store_->set_adj(4 * uint64_t(g) + 3, 4 * uint64_t(t) + uint64_t(i));
+  }
+  // Ghost facets through the ghost: pair those with the same two real vertices.
+  for (uint32_t g = t + 1; g < t + 5; ++g)
+    for (int i = 0; i < 3; ++i)
+      for (uint32_t h = g + 1; h < t + 5; ++h)
+        for (int j = 0; j < 3; ++j) {
+          const uint32_t* gv = store_->verts(g);
+          const uint32_t* hv = store_->verts(h);
+          const uint32_t g0 = gv[(i + 1) % 3], g1 = gv[(i + 2) % 3];
+          const uint32_t h0 = hv[(j + 1) % 3], h1 = hv[(j + 2) % 3];
+          if ((g0 == h0 && g1 == h1) || (g0 == h1 && g1 == h0)) {
+            store_->set_adj(4 * uint64_t(g) + uint64_t(i), 4 * uint64_t(h) + uint64_t(j));
+            store_->set_adj(4 * uint64_t(h) + uint64_t(j), 4 * uint64_t(g) + uint64_t(i));
+          }
+        }
+  last_real_ = t;
+}
+
+// A ghost tet conflicts with p when p lies strictly beyond its hull facet, or on that facet's
+// plane and in conflict with the real tet behind it (inside the facet's circumcircle, ties
+// broken by the same SoS as that tet's insphere).
+template <bool kStorageMarks>
+inline bool CavityKernel::in_conflict(uint32_t t, const double* p, uint32_t pid) {
+  const uint32_t* v = store_->verts(t);
+  if (v[3] != kGhost) return insphere(t, p, pid) > 0;
+  const int o = orient3d(pt(v[0]), pt(v[1]), pt(v[2]), p);
+  if (o != 0) return o > 0;
+  const uint64_t behind = store_->adj(t, 3);
+  if (behind == kNoNeighbour) return false;
+  const auto r = static_cast<uint32_t>(behind >> 2);
+  const uint32_t mark = kStorageMarks ? store_->mark(r) : marks_.get(r);
+  if (mark != 0) return mark == kMarkIn;
+  return insphere(r, p, pid) > 0;
+}
+
+bool CavityKernel::equals_vertex(uint32_t v, const double* p) const {
+  const double* q = pt(v);
+  return q[0] == p[0] && q[1] == p[1] && q[2] == p[2];
+}
+
+Location CavityKernel::locate(uint32_t t, const double* p) {
+  const size_t limit = 8 * store_->num_slots() + 1024;
+  int entry = -1;  // the facet we came through: p is not beyond it
+  if (is_ghost(t)) {
+    const uint32_t* v = store_->verts(t);
+    if (orient3d(pt(v[0]), pt(v[1]), pt(v[2]), p) > 0) return {Located::kInGhost, t, TetMesh::kNone};
+    const uint64_t adj = store_->adj(t, 3);
+    if (adj == kNoNeighbour) return locate_by_scan(p);
+    t = static_cast<uint32_t>(adj >> 2);
+    entry = static_cast<int>(adj & 3);
+  }
+  for (size_t steps = 0;; ++steps) {
+    if (steps > limit) {
+      ++counters.walk_fallbacks;
+      return locate_by_scan(p);
+    }
+    ++counters.walk_steps;
+    const uint32_t* v = store_->verts(t);
+    const double* P[4] = {pt(v[0]), pt(v[1]), pt(v[2]), pt(v[3])};
+    // Facets in a random cyclic order: a deterministic order can cycle forever.
+    const int first = static_cast<int>(next_random() >> 30);
+    int exit = -1;
+    for (int k = 0; k < 4; ++k) {
+      const int i = (first + k) & 3;
+      if (i == entry) continue;
+      const int* f = kFacetVertex[i];
+      if (orient3d(P[f[0]], P[f[1]], P[f[2]], p) < 0) {
+        exit = i;
+        break;
+      }
+    }
+    if (exit < 0) {
+      for (int k = 0; k < 4; ++k)
+        if (equals_vertex(v[k], p)) return {Located::kDuplicate, t, v[k]};
+      return {Located::kInTet, t, TetMesh::kNone};
+    }
+    const uint64_t adj = store_->adj(t, exit);
+    if (adj == kNoNeighbour) return {Located::kOutside, t, TetMesh::kNone};
+    const auto n = static_cast<uint32_t>(adj >> 2);
+    if (is_ghost(n)) return {Located::kInGhost, n, TetMesh::kNone};
+    t = n;
+    entry = static_cast<int>(adj & 3);
+  }
+}
+
+// The last resort when a walk does not end (possible in non-Delaunay meshes): test every tet.
+Location CavityKernel::locate_by_scan(const double* p) {
+  const size_t nt = store_->num_slots();
+  for (uint32_t t = 0; t < nt; ++t) {
+    if (store_->deleted(t) || is_ghost(t)) continue;
+    const uint32_t* v = store_->verts(t);
+    bool inside = true;
+    for (int i = 0; i < 4 && inside; ++i) {
+      const int* f = kFacetVertex[i];
+      inside = orient3d(pt(v[f[0]]), pt(v[f[1]]), pt(v[f[2]]), p) >= 0;
+    }
+    if (!inside) continue;
+    for (int k = 0; k < 4; ++k)
+      if (equals_vertex(v[k], p)) return {Located::kDuplicate, t, v[k]};
+    return {Located::kInTet, t, TetMesh::kNone};
+  }
+  for (uint32_t t = 0; t < nt; ++t) {
+    if (store_->deleted(t) || !is_ghost(t)) continue;
+    const uint32_t* v = store_->verts(t);
+    if (orient3d(pt(v[0]), pt(v[1]), pt(v[2]), p) > 0) return {Located::kInGhost, t, TetMesh::kNone};
+  }
+  return {Located::kOutside, TetMesh::kNone, TetMesh::kNone};
+}
+
+template <bool kCarry>
+void CavityKernel::add_boundary(uint32_t c, int i, uint64_t outside) {
+  const uint32_t* cv = store_->verts(c);
+  // Filled in place: a copy of a stack struct made of narrow stores stalls store forwarding.
+  BoundaryFacet& b = boundary_.emplace_back();
+  const int* f;
+  if (cv[3] == kGhost && i != 3) {
+    f = kGhostFacet[i];
+    b.rot = kGhostFacetRot[i];
+  } else {
+    f = kFacetVertex[i];
+    b.rot = 0;
+  }
+  b.v[0] = cv[f[0]];
+  b.v[1] = cv[f[1]];
+  b.v[2] = cv[f[2]];
+  b.ctet = c;
+  b.outside = outside;
+  // The bulk build has no flags or regions to carry.
+  b.region = kCarry ? store_->region(c) : 0;
+  b.cflags = kCarry ? static_cast<uint16_t>(store_->flags(c) & ~(tflag::kScratchMask | tflag::kDeleted)) : 0;
+  b.cfacet = static_cast<uint8_t>(i);
+}
+
+uint32_t CavityKernel::insert_delaunay(uint32_t t0, uint32_t pid) {
+  const double* p = pt(pid);
+  cavity_.clear();
+  boundary_.clear();
+  store_->set_mark(t0, kMarkIn);
+  cavity_.push_back(t0);
+  // Breadth-first growth over facets; every tet is tested at most once.
+  for (size_t k = 0; k < cavity_.size(); ++k) {
+    const uint32_t c = cavity_[k];
+    uint64_t cadj[4];
+    // The four neighbours are usually cache misses: request them all before testing any.
+    for (int i = 0; i < 4; ++i) {
+      cadj[i] = store_->adj(c, i);
+      store_->prefetch_tet(static_cast<uint32_t>(cadj[i] >> 2));
+    }
+    for (int i = 0; i < 4; ++i) {
+      const auto n = static_cast<uint32_t>(cadj[i] >> 2);
+      const uint32_t mark = store_->mark(n);
+      if (mark == kMarkIn) continue;
+      if (mark == 0) {
+        if (in_conflict<true>(n, p, pid)) {
+          store_->set_mark(n, kMarkIn);
+          store_->prefetch_adj(n);
+          cavity_.push_back(n);
+          continue;
+        }
+        store_->set_mark(n, kMarkOut);
+        store_->prefetch_adj(n);  // its link to the new tet is written soon
+      }
+      add_boundary<false>(c, i, cadj[i]);
+    }
+  }
+  fill_cavity(pid, false);
+  return last_real_;
+}
+
+void CavityKernel::collect_boundary(bool respect_protected) {
+  boundary_.clear();
+  for (uint32_t c : cavity_) {
+    for (int i = 0; i < 4; ++i) {
+      const uint64_t adj = store_->adj(c, i);
+      // A protected facet bounds the cavity even when its other side is in the cavity too: the
+      // side away from the new point then fails the visibility test and leaves.
+      if (adj == kNoNeighbour || marks_.get(static_cast<uint32_t>(adj >> 2)) != TetMarks::kIn ||
+          (respect_protected && ((store_->flags(c) >> i) & 1u)))
+        add_boundary<true>(c, i, adj);
+    }
+  }
+}
+
+bool CavityKernel::boundary_facet_ok(const BoundaryFacet& b, const double* p) {
+  if (b.v[2] != kGhost) return orient3d(pt(b.v[0]), pt(b.v[1]), pt(b.v[2]), p) > 0;
+  // A facet (a b ghost): the new hull triangle (b a p) must be a proper triangle and the hull must
+  // stay convex at edge ab, i.e. the third vertex d of the hull triangle across is not beyond it.
+  if (b.outside == kNoNeighbour) return false;
+  const uint32_t* nv = store_->verts(static_cast<uint32_t>(b.outside >> 2));
+  if (nv[3] != kGhost) return false;
+  uint32_t d = TetMesh::kNone;
+  for (int k = 0; k < 3; ++k)
+    if (nv[k] != b.v[0] && nv[k] != b.v[1]) d = nv[k];
+  if (d == TetMesh::kNone) return false;
+  const double *a = pt(b.v[0]), *bb = pt(b.v[1]);
+  if (orient3d(bb, a, p, pt(d)) > 0) return false;
+  return !exactly_collinear(a, bb, p);
+}
+
+bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected) {
+  const double* p = pt(pid);
+  cavity_.clear();
+  marks_.clear();
+  marks_.set(t0, TetMarks::kIn);
+  cavity_.push_back(t0);
+  for (size_t k = 0; k < cavity_.size(); ++k) {
+    const uint32_t c = cavity_[k];
+    for (int i = 0; i < 4; ++i) {
+      const uint64_t adj = store_->adj(c, i);
+      if (adj == kNoNeighbour) continue;
+      if (respect_protected && ((store_->flags(c) >> i) & 1u)) continue;
+      const auto n = static_cast<uint32_t>(adj >> 2);
+      if (marks_.get(n) != TetMarks::kNone) continue;
+      if (in_conflict<false>(n, p, pid)) {
+        marks_.set(n, TetMarks::kIn);
+        cavity_.push_back(n);
+      } else {
+        marks_.set(n, TetMarks::kOut);
+      }
+    }
+  }
+  // Shrink until every boundary facet sees p strictly from the cavity side: then the cavity is
+  // star-shaped from p and coning its boundary to p gives positive tets only.
+  for (;;) {
+    collect_boundary(respect_protected);
+    bool removed = false;
+    for (const BoundaryFacet& b : boundary_) {
+      if (marks_.get(b.ctet) == TetMarks::kIn && !boundary_facet_ok(b, p)) {
+        marks_.set(b.ctet, TetMarks::kOut);
+        removed = true;
+      }
+    }
+    if (!removed || marks_.get(t0) != TetMarks::kIn) break;
+    cavity_.erase(std::remove_if(cavity_.begin(), cavity_.end(),
+                                 [this](uint32_t t) { return marks_.get(t) != TetMarks::kIn; }),
+                  cavity_.end());
+  }
+  if (marks_.get(t0) != TetMarks::kIn) return false;
+  fill_cavity(pid, true);
+  return true;
+}
+
+void CavityKernel::take_slots(size_t count) {
+  new_tets_.clear();
+  const size_t reuse = std::min(count, cavity_.size());
+  new_tets_.insert(new_tets_.end(), cavity_.begin(), cavity_.begin() + static_cast<ptrdiff_t>(reuse));
+  size_t need = count - reuse;
+  uint32_t t;
+  while (need > 0 && store_->reuse_free(t)) {
+    new_tets_.push_back(t);
+    --need;
+  }
+  if (need == 0) return;
+  const uint32_t first = store_->append(need);
+  for (size_t k = 0; k < need; ++k) new_tets_.push_back(first + static_cast<uint32_t>(k));
+}
+
+uint8_t CavityKernel::local_id(uint32_t v) {
+  if (v == kGhost) {
+    if (ghost_local_ < 0) {
+      if (local_vertices_.size() + 1 >= size_t(kTableSide)) return 0xff;
+      ghost_local_ = static_cast<int>(local_vertices_.size());
+      local_vertices_.push_back(kGhost);
+    }
+    return static_cast<uint8_t>(ghost_local_);
+  }
+  uint8_t& l = local_of_[v];
+  if (l == 0xff) {
+    if (local_vertices_.size() + 1 >= size_t(kTableSide)) return 0xff;
+    l = static_cast<uint8_t>(local_vertices_.size());
+    local_vertices_.push_back(v);
+  }
+  return l;
+}
+
+void CavityKernel::fill_cavity(uint32_t pid, bool carry) {
+  const size_t nb = boundary_.size(), nc = cavity_.size();
+  counters.cavity_tets += nc;
+  counters.tets_created += nb;
+  take_slots(nb);
+  for (size_t k = nb; k < nc; ++k) store_->release(cavity_[k]);
+
+  last_real_ = new_tets_[0];
+  bool found_real = false;
+  for (size_t k = 0; k < nb; ++k) {
+    const BoundaryFacet& b = boundary_[k];
+    const uint32_t s = new_tets_[k];
+    uint32_t* w = store_->verts(s);
+    const bool ghost = b.v[2] == kGhost;
+    const int* slot = ghost ? kSlotGhost : kSlotReal;
+    const int ps = ghost ? 2 : 3;  // the slot of p, opposite the boundary facet
+    if (ghost) {
+      w[0] = b.v[1];
+      w[1] = b.v[0];
+      w[2] = pid;
+      w[3] = kGhost;
+    } else {
+      w[0] = b.v[0];
+      w[1] = b.v[1];
+      w[2] = b.v[2];
+      w[3] = pid;
+      if (!found_real) {
+        found_real = true;
+        last_real_ = s;
+      }
+    }
+    const uint64_t hf = 4 * uint64_t(s) + uint64_t(ps);
+    store_->set_adj(hf, b.outside);
+    if (b.outside != kNoNeighbour) {
+      store_->set_adj(b.outside, hf);
+      store_->clear_mark(static_cast<uint32_t>(b.outside >> 2));
+    }
+    if (!carry) {  // bulk build: no flags to carry, and every region is 0 already
+      store_->clear_flags(s);
+      continue;
+    }
+    uint16_t flags = 0;
+    {
+      if ((b.cflags >> b.cfacet) & 1u) flags = static_cast<uint16_t>(1u << ps);
+      if (b.cflags & tflag::kEdgeConstrainedMask) {
+        // Constrained edges of the boundary triangle keep their bit in the new tet.
+        for (int k0 = 0; k0 < 3; ++k0) {
+          const int k1 = (k0 + 1) % 3;
+          const int c0 = kFacetVertex[b.cfacet][(k0 + b.rot) % 3];
+          const int c1 = kFacetVertex[b.cfacet][(k1 + b.rot) % 3];
+          if ((b.cflags >> (tflag::kEdgeConstrainedShift + kEdgeIndex[c0][c1])) & 1u)
+            flags |= static_cast<uint16_t>(1u << (tflag::kEdgeConstrainedShift + kEdgeIndex[slot[k0]][slot[k1]]));
+        }
+      }
+    }
+    store_->init_tet(s, flags, b.region);
+  }
+
+  // Adjacency between the new tets: each one's facet through p and boundary edge (a b) meets the
+  // new tet on the other boundary triangle with that edge, which runs (b a) there.
+  bool small = nb / 2 + 2 < size_t(kTableSide);
+  if (small) {
+    for (BoundaryFacet& b : boundary_) {
+      for (int k = 0; k < 3; ++k) {
+        b.lid[k] = local_id(b.v[k]);
+        if (b.lid[k] == 0xff) small = false;
+      }
+      if (!small) break;
+    }
+  }
+  if (small) link_by_table();
+  else link_by_sort();
+  for (uint32_t v : local_vertices_)
+    if (v != kGhost) local_of_[v] = 0xff;
+  local_vertices_.clear();
+  ghost_local_ = -1;
+}
+
+void CavityKernel::link_by_table() {
+  uint64_t* table = edge_table_.data();
+  const size_t nb = boundary_.size();
+  for (size_t k = 0; k < nb; ++k) {
+    const BoundaryFacet& b = boundary_[k];
+    const int* slot = b.v[2] == kGhost ? kSlotGhost : kSlotReal;
+    const uint64_t base = 4 * uint64_t(new_tets_[k]);
+    table[b.lid[1] * kTableSide + b.lid[2]] = base + uint64_t(slot[0]);
+    table[b.lid[2] * kTableSide + b.lid[0]] = base + uint64_t(slot[1]);
+    table[b.lid[0] * kTableSide + b.lid[1]] = base + uint64_t(slot[2]);
+  }
+  for (size_t k = 0; k < nb; ++k) {
+    const BoundaryFacet& b = boundary_[k];
+    const int* slot = b.v[2] == kGhost ? kSlotGhost : kSlotReal;
+    const uint64_t base = 4 * uint64_t(new_tets_[k]);
+    store_->set_adj(base + uint64_t(slot[0]), table[b.lid[2] * kTableSide + b.lid[1]]);
+    store_->set_adj(base + uint64_t(slot[1]), table[b.lid[0] * kTableSide + b.lid[2]]);
+    store_->set_adj(base + uint64_t(slot[2]), table[b.lid[1] * kTableSide + b.lid[0]]);
+  }
+}
+
+void CavityKernel::link_by_sort() {
+  edges_.clear();
+  const size_t nb = boundary_.size();
+  for (size_t k = 0; k < nb; ++k) {
+    const BoundaryFacet& b = boundary_[k];
+    const int* slot = b.v[2] == kGhost ? kSlotGhost : kSlotReal;
+    const uint64_t base = 4 * uint64_t(new_tets_[k]);
+    for (int e = 0; e < 3; ++e) {
+      const uint64_t key = (uint64_t(b.v[(e + 1) % 3]) << 32) | b.v[(e + 2) % 3];
+      edges_.push_back({key, base + uint64_t(slot[e])});
+    }
+  }
+  std::sort(edges_.begin(), edges_.end(),
+            [](const DirectedEdge& x, const DirectedEdge& y) { return x.key < y.key; });
+  for (const DirectedEdge& e : edges_) {
+    const uint64_t reverse = (e.key << 32) | (e.key >> 32);
+    auto it = std::lower_bound(edges_.begin(), edges_.end(), reverse,
+                               [](const DirectedEdge& x, uint64_t key) { return x.key < key; });
+    store_->set_adj(e.half_face, (it != edges_.end() && it->key == reverse) ? it->half_face : kNoNeighbour);
+  }
+}
+
+}  // namespace anitet::delaunay_detail

@@ -1,0 +1,126 @@
+// Incremental 3D Delaunay triangulation on TetMesh, and the modified Delaunay kernel that later
+// stages (boundary recovery, refinement, CVT) use to insert points one at a time.
+//
+// delaunay_tetrahedralize() builds the Delaunay triangulation of a point set: points are inserted
+// in a biased randomized order (BRIO) sorted along a Hilbert curve inside each round, each one
+// located by a randomized visibility walk from the last created tet, and inserted with the
+// Bowyer-Watson cavity (exact insphere, ties broken by Simulation of Simplicity on the input point
+// ids, so cospherical inputs such as grids are handled). A ghost vertex closes the convex hull (see
+// core/tet_mesh.hpp). Same input, same options: same mesh, bit for bit.
+//
+// PointInserter (and the insert_point() shorthand) inserts one point into an existing mesh: the
+// cavity never crosses a protected facet, and is then shrunk until it is star-shaped from the new
+// point, so every new tet is positive and no protected facet is destroyed.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/status.hpp"
+#include "core/tet_mesh.hpp"
+
+namespace anitet {
+
+struct DelaunayOptions {
+  uint64_t seed = 0x5eed;  // randomization of the insertion order and of the walk
+  double brio_ratio = 0.25;  // each BRIO round holds this share of the points of the next one
+  size_t brio_min_round = 1024;  // the first round holds at most this many points
+};
+
+// An input point that was not inserted because an earlier point has the same coordinates.
+struct DuplicatePoint {
+  uint32_t point;    // input index of the duplicate
+  uint32_t same_as;  // input index of the inserted point with the same coordinates
+};
+
+struct DelaunayStats {
+  size_t num_points = 0;     // input points
+  size_t num_inserted = 0;   // points that are mesh vertices (num_points - duplicates)
+  size_t num_tets = 0;       // live tets, ghosts excluded
+  size_t num_ghost_tets = 0; // = number of convex hull triangles
+  std::vector<DuplicatePoint> duplicates;
+
+  double seconds_sort = 0;    // BRIO + Hilbert ordering
+  double seconds_insert = 0;  // walks and cavities, renumbering
+  double seconds_total = 0;
+
+  uint64_t walk_steps = 0;       // tets visited by the walks
+  uint64_t cavity_tets = 0;      // tets removed by cavities (sum over insertions)
+  uint64_t tets_created = 0;     // tets created by cavities (sum over insertions)
+  uint64_t walk_fallbacks = 0;  // walks that gave up and located the point by a full scan
+  // Predicate calls (the kernel's own static filter included) and how many reached the exact
+  // stages of src/predicates (from predicates::thread_counters()).
+  uint64_t orient3d_calls = 0, orient3d_exact = 0;
+  uint64_t insphere_calls = 0, insphere_exact = 0;
+  uint64_t sos_ties = 0;
+};
+
+// Replaces the contents of `mesh` with the Delaunay tetrahedralization of the n points
+// xyz[3i..3i+2]. Vertex i of the mesh is input point i (duplicates stay as unused vertices and are
+// listed in the stats). Ghost tets close the convex hull. Fails with InvalidArgument when fewer
+// than four points are affinely independent, NonFiniteCoordinate on NaN or infinity.
+Result<DelaunayStats> delaunay_tetrahedralize(TetMesh& mesh, const double* xyz, size_t n,
+                                              const DelaunayOptions& options = {});
+
+enum class InsertStatus {
+  kInserted = 0,
+  kDuplicate,        // the point coincides with an existing vertex (InsertResult::vertex)
+  kBlocked,          // the tet containing the point cannot join the cavity: the point lies on a
+                     // protected facet, or no star-shaped cavity around it exists
+  kOutsideMesh,      // the point lies beyond a facet without neighbour (a mesh without ghosts)
+  kInvalidMesh,      // the mesh has no live tet
+  kInvalidPoint,     // a coordinate is NaN or infinite
+};
+const char* insert_status_name(InsertStatus s);
+
+struct InsertOptions {
+  bool respect_protected = true;  // protected facets stop the cavity
+  uint8_t vertex_flags = 0;       // vflag bits of the new vertex
+};
+
+struct InsertResult {
+  InsertStatus status = InsertStatus::kInvalidMesh;
+  uint32_t vertex = TetMesh::kNone;  // kInserted: the new vertex; kDuplicate: the existing one
+  uint32_t tet = TetMesh::kNone;     // the tet where the point was located
+  bool ok() const { return status == InsertStatus::kInserted; }
+};
+
+namespace delaunay_detail {
+class CavityKernel;
+}
+
+// Inserts points one at a time into a mesh (modified Delaunay kernel). Keeps its scratch memory
+// between calls, so reuse one inserter for many points. The mesh must not be modified by others
+// between two inserts if the default hint (the last created tet) is used.
+class PointInserter {
+ public:
+  explicit PointInserter(TetMesh& mesh, uint64_t seed = 0x5eed);
+  ~PointInserter();
+  PointInserter(const PointInserter&) = delete;
+  PointInserter& operator=(const PointInserter&) = delete;
+
+  // Inserts p. The walk starts at `hint` when it is a live tet, else at the last created tet.
+  // On success the new vertex is mesh.num_vertices() - 1; on failure the mesh is unchanged.
+  InsertResult insert(const double p[3], uint32_t hint = TetMesh::kNone,
+                      const InsertOptions& options = {});
+
+  // The tets created by the last successful insert (all contain the new vertex).
+  const std::vector<uint32_t>& new_tets() const;
+  // Counters accumulated over all inserts (time fields unused).
+  DelaunayStats stats() const;
+
+ private:
+  TetMesh& mesh_;
+  std::unique_ptr<delaunay_detail::CavityKernel> kernel_;
+  uint32_t last_tet_ = TetMesh::kNone;
+};
+
+// One-shot insertion (allocates scratch memory on each call; prefer PointInserter in loops).
+// new_tets, when given, receives the created tets.
+InsertResult insert_point(TetMesh& mesh, const double p[3], uint32_t hint = TetMesh::kNone,
+                          const InsertOptions& options = {},
+                          std::vector<uint32_t>* new_tets = nullptr);
+
+}  // namespace anitet

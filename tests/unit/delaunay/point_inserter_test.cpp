@@ -1,0 +1,289 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "delaunay/delaunay.hpp"
+#include "test_points.hpp"
+
+namespace anitet {
+namespace {
+
+using test::kScale;
+using Triangle = std::array<uint32_t, 3>;
+
+Triangle sorted_facet(const TetMesh& m, uint32_t t, int i) {
+  Triangle f = {m.vertex(t, kFacetVertex[i][0]), m.vertex(t, kFacetVertex[i][1]), m.vertex(t, kFacetVertex[i][2])};
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+void protect(TetMesh& m, uint32_t t, int i) {
+  m.set_facet_protected(t, i, true);
+  m.set_facet_protected(m.neighbour(t, i), m.neighbour_facet(t, i), true);
+}
+
+// The protected facets of the mesh, as sorted vertex triples.
+std::set<Triangle> protected_facets(const TetMesh& m) {
+  std::set<Triangle> out;
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t)
+    if (!m.is_deleted(t))
+      for (int i = 0; i < 4; ++i)
+        if (m.facet_protected(t, i)) out.insert(sorted_facet(m, t, i));
+  return out;
+}
+
+// After an insertion: every new tet is live, has the new vertex, and is positive (exactly).
+void expect_new_tets_valid(const TetMesh& m, const std::vector<uint32_t>& tets, uint32_t v) {
+  ASSERT_FALSE(tets.empty());
+  for (uint32_t t : tets) {
+    ASSERT_FALSE(m.is_deleted(t));
+    bool has_v = false;
+    for (int k = 0; k < 4; ++k) has_v = has_v || m.vertex(t, k) == v;
+    ASSERT_TRUE(has_v) << "new tet " << t << " lacks the new vertex";
+    if (m.is_ghost(t)) continue;
+    ASSERT_GT(predicates::orient3d(m.point(m.vertex(t, 0)), m.point(m.vertex(t, 1)),
+                                   m.point(m.vertex(t, 2)), m.point(m.vertex(t, 3))),
+              0)
+        << "new tet " << t << " is not positive";
+  }
+}
+
+Status check_delaunay(const TetMesh& m) {
+  MeshCheckOptions o;
+  o.check_delaunay = true;
+  return check_mesh(m, o);
+}
+
+// Point by point from a few seeds, points outside the hull included: the same Delaunay mesh as
+// the bulk build.
+TEST(PointInserter, IncrementalInsertionIsDelaunay) {
+  const size_t n = 3000 / kScale;
+  const std::vector<double> xyz = test::random_cube(n, 11);
+  TetMesh mesh;
+  ASSERT_TRUE(delaunay_tetrahedralize(mesh, xyz.data(), 6).ok());
+  PointInserter inserter(mesh);
+  for (size_t i = 6; i < n; ++i) {
+    const InsertResult r = inserter.insert(&xyz[3 * i]);
+    ASSERT_EQ(r.status, InsertStatus::kInserted) << insert_status_name(r.status) << " at point " << i;
+    ASSERT_EQ(r.vertex, i);
+    expect_new_tets_valid(mesh, inserter.new_tets(), r.vertex);
+  }
+  const Status st = check_delaunay(mesh);
+  ASSERT_TRUE(st.ok()) << st.message();
+  TetMesh bulk;
+  ASSERT_TRUE(delaunay_tetrahedralize(bulk, xyz.data(), n).ok());
+  EXPECT_EQ(mesh.num_live_tets(), bulk.num_live_tets());
+}
+
+// Cospherical and coplanar points one at a time, including on the hull's planes.
+TEST(PointInserter, IncrementalGridIsDelaunay) {
+  const std::vector<double> xyz = test::grid(kScale == 1 ? 8 : 5);
+  const size_t n = xyz.size() / 3;
+  std::vector<double> shuffled = xyz;
+  std::mt19937_64 rng(3);
+  for (size_t i = n - 1; i > 0; --i) {
+    const size_t j = rng() % (i + 1);
+    for (int c = 0; c < 3; ++c) std::swap(shuffled[3 * i + c], shuffled[3 * j + c]);
+  }
+  TetMesh mesh;
+  auto r0 = delaunay_tetrahedralize(mesh, shuffled.data(), 5);
+  size_t start = 5;
+  while (!r0.ok() && start < n) r0 = delaunay_tetrahedralize(mesh, shuffled.data(), ++start);
+  ASSERT_TRUE(r0.ok());
+  PointInserter inserter(mesh);
+  for (size_t i = start; i < n; ++i) {
+    const InsertResult r = inserter.insert(&shuffled[3 * i]);
+    ASSERT_EQ(r.status, InsertStatus::kInserted) << insert_status_name(r.status) << " at point " << i;
+  }
+  const Status st = check_delaunay(mesh);
+  ASSERT_TRUE(st.ok()) << st.message();
+}
+
+TEST(PointInserter, DuplicateLeavesMeshUnchanged) {
+  const std::vector<double> xyz = test::random_cube(200, 12);
+  TetMesh mesh;
+  ASSERT_TRUE(delaunay_tetrahedralize(mesh, xyz.data(), 200).ok());
+  const TetMesh before = mesh;
+  std::vector<uint32_t> new_tets = {1, 2, 3};
+  // The point's own storage, which the insertion may reallocate.
+  const InsertResult r = insert_point(mesh, mesh.point(77), TetMesh::kNone, {}, &new_tets);
+  EXPECT_EQ(r.status, InsertStatus::kDuplicate);
+  EXPECT_EQ(r.vertex, 77u);
+  EXPECT_TRUE(new_tets.empty());
+  EXPECT_EQ(mesh.xyz, before.xyz);
+  EXPECT_EQ(mesh.tet_v, before.tet_v);
+  EXPECT_EQ(mesh.tet_flags, before.tet_flags);
+}
+
+TEST(PointInserter, InvalidInputs) {
+  TetMesh empty;
+  const double p[3] = {0.5, 0.5, 0.5};
+  EXPECT_EQ(insert_point(empty, p).status, InsertStatus::kInvalidMesh);
+  const std::vector<double> xyz = test::random_cube(50, 14);
+  TetMesh mesh;
+  ASSERT_TRUE(delaunay_tetrahedralize(mesh, xyz.data(), 50).ok());
+  const double nan[3] = {0.5, std::nan(""), 0.5};
+  EXPECT_EQ(insert_point(mesh, nan).status, InsertStatus::kInvalidPoint);
+  EXPECT_EQ(mesh.num_vertices(), 50u);
+  EXPECT_STREQ(insert_status_name(InsertStatus::kBlocked), "blocked");
+}
+
+// A 6^3 grid with every facet of the plane z = 2 protected: a wall splitting the box.
+class ProtectedWall : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    xyz_ = test::grid(6);
+    ASSERT_TRUE(delaunay_tetrahedralize(mesh_, xyz_.data(), xyz_.size() / 3).ok());
+    for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
+      if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
+      for (int i = 0; i < 4; ++i) {
+        bool on_wall = true;
+        for (int k = 0; k < 3; ++k) on_wall = on_wall && mesh_.point(mesh_.vertex(t, kFacetVertex[i][k]))[2] == 2.0;
+        if (on_wall && !mesh_.is_ghost(mesh_.neighbour(t, i))) protect(mesh_, t, i);
+      }
+    }
+    wall_ = protected_facets(mesh_);
+    ASSERT_EQ(wall_.size(), 5u * 5 * 2);
+  }
+  std::vector<double> xyz_;
+  TetMesh mesh_;
+  std::set<Triangle> wall_;
+};
+
+TEST_F(ProtectedWall, PointOnTheWallIsBlocked) {
+  const TetMesh before = mesh_;
+  const double on_wall[3] = {1.25, 2.5, 2.0};
+  std::vector<uint32_t> new_tets;
+  const InsertResult r = insert_point(mesh_, on_wall, TetMesh::kNone, {}, &new_tets);
+  EXPECT_EQ(r.status, InsertStatus::kBlocked);
+  EXPECT_EQ(mesh_.xyz, before.xyz);
+  EXPECT_EQ(mesh_.tet_v, before.tet_v);
+  EXPECT_EQ(mesh_.tet_adj, before.tet_adj);
+  EXPECT_EQ(mesh_.tet_flags, before.tet_flags);
+
+  // Without the protection the same point goes in and splits wall facets.
+  InsertOptions ignore;
+  ignore.respect_protected = false;
+  EXPECT_EQ(insert_point(mesh_, on_wall, TetMesh::kNone, ignore).status, InsertStatus::kInserted);
+}
+
+// Random points on both sides and on the wall: the wall survives, and each side stays Delaunay.
+// Regions and constrained-edge bits go with the new tets.
+TEST_F(ProtectedWall, WallSurvivesRandomInsertions) {
+  auto centroid_z = [this](uint32_t t) {
+    double z = 0;
+    for (int k = 0; k < 4; ++k) z += mesh_.point(mesh_.vertex(t, k))[2];
+    return z / 4;
+  };
+  auto on_wall = [this](uint32_t t, int k) { return mesh_.point(mesh_.vertex(t, k))[2] == 2.0; };
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
+    if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
+    mesh_.tet_region[t] = centroid_z(t) < 2.0 ? 1 : 2;
+    for (int e = 0; e < 6; ++e)  // every edge lying in the wall is constrained, in every tet
+      if (on_wall(t, kEdgeVertex[e][0]) && on_wall(t, kEdgeVertex[e][1]))
+        mesh_.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + e));
+  }
+  PointInserter inserter(mesh_, 5);
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0.0, 5.0);
+  size_t inserted = 0, blocked = 0;
+  for (int i = 0; i < 4000 / int(kScale); ++i) {
+    double p[3] = {u(rng), u(rng), u(rng)};
+    if (i % 8 == 0) p[2] = 2.0;
+    const InsertResult r = inserter.insert(p);
+    if (p[2] == 2.0) {
+      EXPECT_NE(r.status, InsertStatus::kInserted) << "point on the wall went in";
+      blocked += r.status == InsertStatus::kBlocked;
+    } else {
+      ASSERT_EQ(r.status, InsertStatus::kInserted) << insert_status_name(r.status);
+      expect_new_tets_valid(mesh_, inserter.new_tets(), r.vertex);
+      ++inserted;
+    }
+  }
+  EXPECT_GT(blocked, 0u);
+  EXPECT_EQ(protected_facets(mesh_), wall_);
+  const Status st = check_delaunay(mesh_);  // skips protected facets
+  ASSERT_TRUE(st.ok()) << st.message();
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
+    if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
+    ASSERT_EQ(mesh_.tet_region[t], centroid_z(t) < 2.0 ? 1 : 2) << "tet " << t << " crossed the wall";
+    for (int e = 0; e < 6; ++e) {
+      const bool in_wall = on_wall(t, kEdgeVertex[e][0]) && on_wall(t, kEdgeVertex[e][1]);
+      ASSERT_EQ(in_wall, bool((mesh_.tet_flags[t] >> (tflag::kEdgeConstrainedShift + e)) & 1u))
+          << "edge " << e << " of tet " << t;
+    }
+  }
+}
+
+// The property test: random protected facets, random points (many outside the initial hull):
+// no protected facet ever disappears and no tet is ever non-positive.
+TEST(PointInserter, ProtectedFacetsSurviveRandomInsertions) {
+  const int seeds = 5;
+  const int per_seed = 20000 / int(kScale);
+  for (int seed = 1; seed <= seeds; ++seed) {
+    std::mt19937_64 rng(seed);
+    const std::vector<double> xyz = test::random_cube(300, 100 + seed);
+    std::vector<double> shrunk = xyz;
+    for (double& c : shrunk) c = 0.25 + 0.5 * c;  // the hull is well inside the unit cube
+    TetMesh mesh;
+    ASSERT_TRUE(delaunay_tetrahedralize(mesh, shrunk.data(), 300).ok());
+    for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+      if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+      for (int i = 0; i < 4; ++i)
+        if (!mesh.is_ghost(mesh.neighbour(t, i)) && rng() % 10 == 0) protect(mesh, t, i);
+    }
+    const std::set<Triangle> wall = protected_facets(mesh);
+    ASSERT_GT(wall.size(), 50u);
+
+    PointInserter inserter(mesh, seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    size_t inserted = 0;
+    for (int i = 0; i < per_seed; ++i) {
+      const double p[3] = {u(rng), u(rng), u(rng)};
+      const InsertResult r = inserter.insert(p);
+      if (r.ok()) {
+        ++inserted;
+        expect_new_tets_valid(mesh, inserter.new_tets(), r.vertex);
+      }
+      if ((i + 1) % 5000 == 0 || i + 1 == per_seed) {
+        const Status st = check_mesh(mesh, MeshCheckOptions{false, false, true});
+        ASSERT_TRUE(st.ok()) << "seed " << seed << ", insertion " << i << ": " << st.message();
+        std::set<Triangle> now = protected_facets(mesh);
+        ASSERT_TRUE(std::includes(now.begin(), now.end(), wall.begin(), wall.end()))
+            << "seed " << seed << ": a protected facet was destroyed";
+      }
+    }
+    EXPECT_GT(inserted, size_t(per_seed) * 9 / 10);
+  }
+}
+
+// Meshes without ghost tets (read from a file, or cut to a domain): facets without neighbour
+// bound the cavity, and points beyond them are reported.
+TEST(PointInserter, MeshWithoutGhosts) {
+  const std::vector<double> xyz = test::random_cube(500, 13);
+  TetMesh full;
+  ASSERT_TRUE(delaunay_tetrahedralize(full, xyz.data(), 500).ok());
+  TetMesh mesh = TetMesh::from_volume_mesh(full.to_volume_mesh(false));
+  ASSERT_TRUE(mesh.build_adjacency().ok());
+  PointInserter inserter(mesh);
+  const double outside[3] = {2.0, 0.5, 0.5};
+  EXPECT_EQ(inserter.insert(outside).status, InsertStatus::kOutsideMesh);
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(0.2, 0.8);
+  for (int i = 0; i < 500; ++i) {
+    const double p[3] = {u(rng), u(rng), u(rng)};
+    const InsertResult r = inserter.insert(p);
+    ASSERT_EQ(r.status, InsertStatus::kInserted) << insert_status_name(r.status);
+    expect_new_tets_valid(mesh, inserter.new_tets(), r.vertex);
+  }
+  const Status st = check_mesh(mesh);
+  ASSERT_TRUE(st.ok()) << st.message();
+}
+
+}  // namespace
+}  // namespace anitet
