@@ -1,0 +1,108 @@
+// Internal: the state of one build_layers run (see layers.hpp for the algorithm and its
+// guarantees). layers.cpp holds the driver and the face step, push_step.cpp the push step.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/sizing.hpp"
+#include "core/status.hpp"
+#include "core/surface_mesh.hpp"
+#include "layers/front.hpp"
+#include "layers/layers.hpp"
+#include "layers/tet_fit.hpp"
+
+namespace anitet::layers {
+
+std::string point_text(const double* p);
+
+class LayerBuilder {
+ public:
+  LayerBuilder(const SurfaceMesh& s, const SizingField& sizing, const LayersOptions& options,
+               LayersOutput& out);
+
+  Status run();
+
+ private:
+  // ---- face step (layers.cpp) ----
+  Status face_tet(uint32_t f, int layer);
+
+  // ---- push step (push_step.cpp) ----
+  Status push_step(const std::vector<uint32_t>& vertices, int layer);
+  // Takes a off the front: one push of its whole star, or (when no direction sees the whole
+  // star) several pushes of visible parts of it.
+  Status push_vertex(uint32_t a, int layer);
+  // Joins a new point near a to the star triangles `part` of a, halving until it fits.
+  // Joins a new point a + s disp to the star triangles `part` of a, for s = 1, shrink, shrink^2,
+  // ... until it fits.
+  Status push_part(uint32_t a, const std::vector<uint32_t>& part, const double disp[3], int layer);
+  // Scales disp to the fraction that makes the best tets: the cone's own, and those the waiting
+  // neighbours will build on its outer faces from their planned points. When that is still poor
+  // (an edge-on triangle), a pattern search in space gives `searched` and returns true. Both
+  // still see every triangle of `part` (the cone's tets are positive in floating point).
+  bool best_apex(uint32_t a, const std::vector<uint32_t>& part, double disp[3],
+                 double searched[3]) const;
+  // Whether the cone of tets over `part` from a + scale d fits on the front now (all undone).
+  bool cone_fits_near(uint32_t a, const std::vector<uint32_t>& part, const double d[3],
+                      double scale);
+  // Unit normals (into the region) and corner angles at a of the given star triangles.
+  void star_normals(uint32_t a, const std::vector<uint32_t>& star, std::vector<double>& normals,
+                    std::vector<double>& weights) const;
+  // The longest run of consecutive star triangles of a that a push along d can take off (see
+  // push_step.cpp); scale: the local size. Empty when there is none.
+  std::vector<uint32_t> visible_run(uint32_t a, const std::vector<uint32_t>& star, double scale,
+                                    double d[3]);
+  bool keeps_plans_visible(int halvings);
+  // The push distance along d: the size, capped by the free distance to the front across.
+  double target_height(uint32_t a, const double d[3]) const;
+  // Smooths the planned points tangentially (see Plan).
+  void plan_targets(const std::vector<uint32_t>& vertices);
+  // The free distance from p along the unit direction d to the front (triangles with a corner
+  // in `skip` ignored), looked for up to max_dist; +inf when free.
+  double clearance(const double p[3], const double d[3], double max_dist,
+                   const std::vector<uint32_t>& skip) const;
+
+  // ---- shared (layers.cpp) ----
+  void commit_tet(const uint32_t v[4], const uint32_t closing[4]);
+  void truncate_tets(size_t n);
+  Status finish();
+
+  const SurfaceMesh& s_;
+  const SizingField& sizing_;
+  const LayersOptions& opt_;
+  LayersOutput& out_;
+  TetMesh& mesh_;
+  Front front_;
+  FitCounters fit_;
+
+  // The push step's plan for each vertex of the layer's starting front: a direction that sees
+  // its star, and the margin (min d . n over the star) that pushes of its neighbours must leave
+  // it. A push whose new triangles would leave a waiting neighbour without a direction that sees
+  // its star with that margin is shortened (halved) like one that does not fit: as the push
+  // distance tends to 0 the new triangles tend to the ones they replace, which respect the
+  // margin, so this terminates too. Vertices whose star no single direction sees get no plan and
+  // are pushed last, when their neighbours' pushes have often turned their star into a cup seen
+  // from the region; if not, their star is taken off in visible parts.
+  //
+  // Planned points a + height d are chosen for all the layer's vertices before the first push:
+  // heights from the sizing, capped by a share of the free distance to the front across, then the
+  // points smoothed tangentially, so that the next front is even.
+  struct Plan {
+    double d[3] = {0, 0, 0};
+    double height = 0.0;
+    double keep = 0.0;  // the margin to keep
+    bool valid = false;
+    bool waiting = false;
+  };
+  std::vector<Plan> plan_;
+  struct Replan {
+    uint32_t v;
+    double d[3];
+  };
+  std::vector<Replan> replans_;  // new plans the push being tried needs (applied on success)
+  std::vector<uint32_t> added_;  // front triangles added by the push being tried
+  int remaining_layers_ = 1;     // layers still to build, the current one included
+};
+
+}  // namespace anitet::layers

@@ -1,0 +1,148 @@
+// Stage 1: advancing-front layers that hide the input surface S (paper, section 3).
+//
+// Input: a validated surface S (closed, manifold, every shell oriented with its right-hand normals
+// pointing OUT of the material, no self-intersection; see validate/validate.hpp). Output: a tet
+// mesh T1 of a few layers along S, and its inner boundary S1 (the new front) such that no vertex,
+// edge or triangle of S is on S1. Every triangle of S is a facet of T1 and no point is added on S.
+//
+// Two tet-building steps, each validated by the exact test of tet_fit.hpp against the current
+// front (kept in a loose octree so that a test only touches nearby triangles):
+//  * face step (paper, Lemmas 3.1-3.2): on a front triangle ABC with centroid M and unit normal N
+//    into the region, the tet PABC with P = M + eps N. eps starts at the height that makes PABC
+//    most regular in the metric and is halved until the tet fits.
+//    Termination (Lemma 3.1): as eps -> 0 the tet shrinks to ABC. A front triangle disjoint from
+//    ABC is at a positive distance from it; one that shares an edge or corner with ABC leaves it at
+//    a positive angle inside the region (the front is a valid closed surface), while the tet's
+//    facets tilt from ABC by an angle that tends to 0. So some finite number of halvings makes the
+//    tet fit (Lemma 3.2 takes the smallest eps over all nearby triangles). In floating point P is
+//    rounded; the exact test judges the rounded P, and a cap on halvings (options.max_halvings)
+//    turns a pathological case into an error instead of a loop.
+//  * push step (the paper's edge push, done per vertex): a vertex A of the layer's starting front
+//    moves to A' = A + s disp, where disp sees every triangle of A's current star from the region
+//    (disp . n > 0 for each); A' is joined to every triangle of the star, one tet at a time, each
+//    validated on the front left by the previous ones (the later tets close the facets A A' u
+//    the earlier ones opened; a front transaction undoes a push that fails half-way). s starts
+//    at 1 and is multiplied by options.shrink (the paper halves) until the whole push fits.
+//    Termination: the star lies on the region side of A' (disp inside the visibility cone makes
+//    every tet of the cone positive), and as s -> 0 the cone of tets shrinks to the star: the
+//    argument above applies. Afterwards A is off the front, replaced by A'.
+//    Choices (push_step.cpp), all floating-point heuristics; validity is only ever decided by
+//    the exact test:
+//     - before a layer's first push every vertex gets a plan: the direction that sees its star
+//       best (angle-weighted mean normal, or the max-min direction for edge-on triangles), a
+//       height (options.push_height sizes, capped at 1 / (2 k + 1) of the free distance to the
+//       front across when k layers remain, so thin parts get evenly thin layers), and the
+//       planned points are smoothed tangentially so that the next front is even;
+//     - a push must leave each waiting neighbour a direction that sees its new star with a
+//       margin (else it is shortened like a push that does not fit);
+//     - the start height is chosen among fractions of the planned one by the radius ratio (in
+//       the metric) of the cone's tets and of the tets the neighbours will build on it;
+//     - a vertex whose star no direction sees (saddles on scanned surfaces, < 0.1% of vertices)
+//       is pushed last, and if its star is still not visible it is taken off in runs of
+//       consecutive triangles that one direction sees, each checked to fit very close to A.
+//
+// Schemes. kFacesThenPush is the paper's layer: face step on every triangle of the layer's
+// starting front, then push step on every vertex of it. It triples the front's triangle count per
+// layer, most of its tets (the push tets on the tents' flanks) have radius ratio ~0.35, and the
+// tents make many stars that no direction sees (slow partial pushes from the second layer on).
+// kPushOnly runs the push step alone: pushing every vertex of the front in turn sweeps each
+// triangle ABC into a prism ABC-A'B'C' cut into three tets (radius ratio ~0.75-0.8 at a height of
+// ~0.8 edge), keeps S1 an offset copy of the front (same connectivity, same triangle count), and
+// hides S just as well: S's triangles go at the first push of one of their corners, its edges and
+// vertices when every vertex has been pushed. kPushOnly is the default.
+//
+// Several layers: the same on the new front (each layer is a valid mesh before the next starts).
+//
+// Output conventions:
+//  * T1: input vertices first (vflag::kOnInputSurface, input order and ids), new vertices after;
+//    positive tets; adjacency built (facets on S and on S1 have no neighbour); facets on S are
+//    marked protected. No ghost tets; no deleted slots.
+//  * S1 (front_tri): triangles on T1's vertex ids, oriented like S: counter-clockwise seen from
+//    outside the region still to mesh, i.e. normals point away from that region (into T1).
+//    S1's vertices carry vflag::kOnFront. front_tet[i] is the T1 tet having S1 triangle i as its
+//    facet front_facet[i] (paper, Claim 5.2).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/sizing.hpp"
+#include "core/status.hpp"
+#include "core/surface_mesh.hpp"
+#include "core/tet_mesh.hpp"
+
+namespace anitet {
+
+enum class LayerScheme : int {
+  kPushOnly = 0,       // prism layers: vertex pushes only (default)
+  kFacesThenPush = 1,  // the paper's two steps: face tets, then vertex pushes
+};
+
+struct LayersOptions {
+  int layers = 2;  // 1 or more
+  LayerScheme scheme = LayerScheme::kPushOnly;
+  // Face step: initial apex height relative to the height of the regular tet on the base, both in
+  // the metric at the centroid (candidates around it are tried, the most regular one kept).
+  double face_height = 1.0;
+  // Push step: initial push distance, in metric units (sizes) along the push direction.
+  double push_height = 0.8;
+  int max_halvings = 40;  // per tet or push; hitting it is an error (Error::Internal)
+  // Factor applied to a push or apex height that does not fit (the paper halves: 0.5). Any
+  // factor in (0, 1) terminates; a larger one keeps heights closer to the largest that fits.
+  double shrink = 0.5;
+  // Push step: a push must leave every waiting neighbour a direction that sees its star with
+  // this fraction of its starting margin (min d . n, capped at 0.5).
+  double keep_margin = 0.5;
+  int smoothing_passes = 3;  // tangential smoothing of the planned points of a layer
+  // Push step: choose each push's height among fractions of the planned one by the quality of
+  // the tets it makes and of those the waiting neighbours will make on it.
+  bool choose_height = true;
+};
+
+struct LayerStats {
+  size_t front_triangles_before = 0;
+  size_t face_tets = 0;
+  size_t push_tets = 0;
+  double seconds = 0.0;
+};
+
+struct LayersStats {
+  size_t tets = 0;
+  size_t new_vertices = 0;
+  size_t face_tets = 0, push_tets = 0;
+  // Face step: tets tried, those that needed at least one halving, halvings in all, the most.
+  size_t faces = 0, faces_halved = 0, face_halvings = 0, max_face_halvings = 0;
+  // Push step: the same per pushed vertex.
+  size_t pushes = 0, pushes_halved = 0, push_halvings = 0, max_push_halvings = 0;
+  size_t direction_fixes = 0;  // pushes whose direction is not the mean normal (edge-on triangles)
+  size_t lookahead_halvings = 0;  // halvings made to keep a waiting neighbour's star visible
+  size_t replans = 0;             // waiting neighbours given a new direction by a push
+  size_t deferred_pushes = 0;     // vertices whose star no direction saw at the layer's start
+  size_t partial_pushes = 0;      // pushes of a visible part of a star no direction sees whole
+  uint64_t fit_tests = 0, fit_candidates = 0, tri_tests = 0;
+  std::vector<LayerStats> per_layer;
+  double seconds = 0.0;
+};
+
+struct LayersOutput {
+  TetMesh mesh;                     // T1
+  std::vector<uint32_t> front_tri;  // S1: 3 per triangle, T1 vertex ids
+  std::vector<uint32_t> front_tet;  // 1 per S1 triangle: the T1 tet that has it
+  std::vector<uint8_t> front_facet; // 1 per S1 triangle: its facet index in that tet
+  LayersStats stats;
+
+  size_t num_front_triangles() const { return front_tri.size() / 3; }
+};
+
+// Builds the layers. Errors: InvalidArgument (bad options, or S not closed and consistently
+// oriented, or a degenerate triangle), EmptyInput, BadIndex, Internal (halving cap reached, or no
+// direction sees a vertex's whole star; the message names the element and the layer).
+Result<LayersOutput> build_layers(const SurfaceMesh& surface, const SizingField& sizing,
+                                  const LayersOptions& options = {});
+
+// S1 as a compact SurfaceMesh (vertices renumbered 0..n-1 in T1 order; vertex_map[i] = the T1
+// id of S1 vertex i) for the stages that take a surface. Patch labels are 0.
+SurfaceMesh front_surface(const LayersOutput& out, std::vector<uint32_t>* vertex_map = nullptr);
+
+}  // namespace anitet

@@ -1,0 +1,478 @@
+// The push step of stage 1 (see layers.hpp): every vertex of the layer's starting front leaves
+// the front, replaced by a new point joined to its star.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "layers/geometry.hpp"
+#include "layers/layer_builder.hpp"
+#include "predicates/predicates.hpp"
+
+namespace anitet::layers {
+
+namespace {
+
+double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+double signed_volume(const double* a, const double* b, const double* c, const double* d) {
+  const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double e3[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  return e1[0] * (e2[1] * e3[2] - e2[2] * e3[1]) - e1[1] * (e2[0] * e3[2] - e2[2] * e3[0]) +
+         e1[2] * (e2[0] * e3[1] - e2[1] * e3[0]);
+}
+
+}  // namespace
+
+void LayerBuilder::star_normals(uint32_t a, const std::vector<uint32_t>& star,
+                                std::vector<double>& normals, std::vector<double>& weights) const {
+  normals.assign(3 * star.size(), 0.0);
+  weights.assign(star.size(), 0.0);
+  const double* pa = mesh_.point(a);
+  for (size_t i = 0; i < star.size(); ++i) {
+    const uint32_t* t = front_.tri(star[i]);
+    int k = 0;
+    while (t[k] != a) ++k;
+    const double* p1 = mesh_.point(t[(k + 1) % 3]);
+    const double* p2 = mesh_.point(t[(k + 2) % 3]);
+    unit_normal(pa, p1, p2, &normals[3 * i]);
+    for (int j = 0; j < 3; ++j) normals[3 * i + j] = -normals[3 * i + j];
+    weights[i] = corner_angle(pa, p1, p2);
+  }
+}
+
+double LayerBuilder::clearance(const double p[3], const double d[3], double max_dist,
+                               const std::vector<uint32_t>& skip) const {
+  Box3 box;
+  for (int k = 0; k < 3; ++k) {
+    box.lo[k] = std::min(p[k], p[k] + max_dist * d[k]);
+    box.hi[k] = std::max(p[k], p[k] + max_dist * d[k]);
+  }
+  double best = std::numeric_limits<double>::infinity();
+  front_.near(box, [&](uint32_t f) {
+    const uint32_t* t = front_.tri(f);
+    for (int k = 0; k < 3; ++k)
+      if (std::find(skip.begin(), skip.end(), t[k]) != skip.end()) return true;
+    best = std::min(best, ray_triangle(p, d, mesh_.point(t[0]), mesh_.point(t[1]),
+                                       mesh_.point(t[2])));
+    return true;
+  });
+  return best;
+}
+
+bool LayerBuilder::keeps_plans_visible(int halvings) {
+  // After a few halvings only plain visibility is required, so that a neighbour whose margin
+  // is exactly at its limit cannot stall the push.
+  constexpr int kStrictHalvings = 12;
+  replans_.clear();
+  std::vector<double> normals, weights;
+  for (uint32_t f : added_) {
+    if (!front_.alive(f)) continue;  // closed again within the push
+    const uint32_t* t = front_.tri(f);
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t u = t[k];
+      if (u >= plan_.size() || !plan_[u].valid || !plan_[u].waiting) continue;
+      const Plan& p = plan_[u];
+      const double need = halvings < kStrictHalvings ? p.keep : 0.0;
+      star_normals(u, front_.star(u), normals, weights);
+      if (star_margin(normals, p.d) > need) continue;
+      // The planned direction no longer sees u's new star well: look for another that does.
+      Replan r;
+      r.v = u;
+      bool improved = false;
+      if (!(visible_direction(normals, weights, r.d, &improved) > need)) return false;
+      replans_.push_back(r);
+    }
+  }
+  return true;
+}
+
+double LayerBuilder::target_height(uint32_t a, const double d[3]) const {
+  double m[6];
+  sizing_.metric(mesh_.point(a), m);
+  const double target = opt_.push_height / std::max(metric_norm(m, d), 1e-300);
+  // Share the free distance along d with the front across: both sides still have `remaining`
+  // layers to build (this one included) and the region left inside needs room too, so a layer
+  // takes at most 1 / (2 remaining + 1) of it. Thin parts get thinner layers from the first one
+  // on, instead of a last layer squeezed flat.
+  const double share = 1.0 / (2.0 * remaining_layers_ + 1.0);
+  // The front across, not the walls of a local dent: triangles touching a's neighbours are
+  // skipped (the exact test keeps the push off them).
+  std::vector<uint32_t> ring;
+  for (uint32_t f : front_.star(a)) ring.insert(ring.end(), front_.tri(f), front_.tri(f) + 3);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  return std::min(target, share * clearance(mesh_.point(a), d, target / share, ring));
+}
+
+Status LayerBuilder::push_step(const std::vector<uint32_t>& vertices, int layer) {
+  plan_.assign(mesh_.num_vertices(), Plan());
+  std::vector<uint32_t> order, deferred;
+  std::vector<double> normals, weights;
+  for (uint32_t v : vertices) {
+    star_normals(v, front_.star(v), normals, weights);
+    Plan& p = plan_[v];
+    bool improved = false;
+    const double margin = visible_direction(normals, weights, p.d, &improved);
+    p.valid = margin > 0.0;
+    p.waiting = true;
+    (p.valid ? order : deferred).push_back(v);
+    if (p.valid) p.height = target_height(v, p.d);
+  }
+  plan_targets(vertices);
+  for (uint32_t v : order) {
+    Plan& p = plan_[v];
+    star_normals(v, front_.star(v), normals, weights);
+    p.keep = opt_.keep_margin * std::min(star_margin(normals, p.d), 0.5);
+  }
+  out_.stats.deferred_pushes += deferred.size();
+  order.insert(order.end(), deferred.begin(), deferred.end());
+  for (uint32_t v : order) {
+    Status st = push_vertex(v, layer);
+    if (!st.ok()) return st;
+  }
+  return Status::success();
+}
+
+void LayerBuilder::plan_targets(const std::vector<uint32_t>& vertices) {
+  // The layer's front edges between planned vertices.
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  for (uint32_t v : vertices) {
+    if (!plan_[v].valid) continue;
+    for (uint32_t f : front_.star(v)) {
+      const uint32_t* t = front_.tri(f);
+      for (int k = 0; k < 3; ++k)
+        if (t[k] == v && t[(k + 1) % 3] > v && plan_[t[(k + 1) % 3]].valid)
+          edges.emplace_back(v, t[(k + 1) % 3]);
+    }
+  }
+  // Tangential smoothing of the target points v + height d over the edge graph: evens out the
+  // next front's triangles. A smoothed target is kept only if it still sees v's whole star.
+  const size_t n = plan_.size();
+  std::vector<double> target(3 * n, 0.0), sum(3 * n, 0.0);
+  std::vector<uint32_t> count(n, 0);
+  for (uint32_t v : vertices)
+    if (plan_[v].valid)
+      for (int k = 0; k < 3; ++k) target[3 * v + k] = mesh_.point(v)[k] + plan_[v].height * plan_[v].d[k];
+  std::vector<double> normals, weights;
+  for (int it = 0; it < opt_.smoothing_passes; ++it) {
+    std::fill(sum.begin(), sum.end(), 0.0);
+    std::fill(count.begin(), count.end(), 0u);
+    for (const auto& [u, v] : edges)
+      for (int k = 0; k < 3; ++k) {
+        sum[3 * u + k] += target[3 * v + k];
+        sum[3 * v + k] += target[3 * u + k];
+      }
+    for (const auto& [u, v] : edges) ++count[u], ++count[v];
+    for (uint32_t v : vertices) {
+      if (!plan_[v].valid || count[v] == 0) continue;
+      const double* d = plan_[v].d;
+      double move[3], along = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        move[k] = 0.5 * (sum[3 * v + k] / count[v] - target[3 * v + k]);
+        along += move[k] * d[k];
+      }
+      double next[3], disp[3];
+      for (int k = 0; k < 3; ++k) {
+        next[k] = target[3 * v + k] + move[k] - along * d[k];
+        disp[k] = next[k] - mesh_.point(v)[k];
+      }
+      const double len = std::sqrt(dot3(disp, disp));
+      if (!(len > 0.0)) continue;
+      const double dir[3] = {disp[0] / len, disp[1] / len, disp[2] / len};
+      star_normals(v, front_.star(v), normals, weights);
+      if (star_margin(normals, dir) < 0.5 * star_margin(normals, d)) continue;
+      std::copy_n(next, 3, &target[3 * v]);
+    }
+  }
+  for (uint32_t v : vertices) {
+    if (!plan_[v].valid) continue;
+    double disp[3];
+    for (int k = 0; k < 3; ++k) disp[k] = target[3 * v + k] - mesh_.point(v)[k];
+    const double len = std::sqrt(dot3(disp, disp));
+    if (!(len > 0.0)) continue;
+    for (int k = 0; k < 3; ++k) plan_[v].d[k] = disp[k] / len;
+    plan_[v].height = len;
+  }
+}
+
+bool LayerBuilder::cone_fits_near(uint32_t a, const std::vector<uint32_t>& part, const double d[3],
+                                  double scale) {
+  // A temporary vertex at a + scale d, joined to `part` tet by tet on the real front, then
+  // everything undone.
+  const double* pa = mesh_.point(a);
+  const double p[3] = {pa[0] + scale * d[0], pa[1] + scale * d[1], pa[2] + scale * d[2]};
+  const uint32_t probe = mesh_.add_vertex(p);
+  const size_t tets_before = mesh_.num_tet_slots();
+  front_.begin();
+  added_.clear();
+  bool fits = true;
+  for (uint32_t f : part) {
+    const uint32_t* t = front_.tri(f);
+    const uint32_t v[4] = {t[0], t[2], t[1], probe};
+    uint32_t closing[4];
+    if (!tet_fits(front_, mesh_.xyz, v, closing, fit_)) {
+      fits = false;
+      break;
+    }
+    commit_tet(v, closing);
+  }
+  front_.rollback();
+  truncate_tets(tets_before);
+  mesh_.xyz.resize(mesh_.xyz.size() - 3);
+  mesh_.vflags.pop_back();
+  return fits;
+}
+
+std::vector<uint32_t> LayerBuilder::visible_run(uint32_t a, const std::vector<uint32_t>& star,
+                                                double scale, double d[3]) {
+  // Order the star as a fan: triangle (a, x, y) is followed by the one starting with (a, y).
+  const size_t n = star.size();
+  std::vector<uint32_t> fan;
+  fan.reserve(n);
+  std::vector<char> used(n, 0);
+  auto corner_after = [&](uint32_t f, int step) {
+    const uint32_t* t = front_.tri(f);
+    int k = 0;
+    while (t[k] != a) ++k;
+    return t[(k + step) % 3];
+  };
+  fan.push_back(star[0]);
+  used[0] = 1;
+  while (fan.size() < n) {
+    const uint32_t y = corner_after(fan.back(), 2);
+    size_t next = n;
+    for (size_t i = 0; i < n && next == n; ++i)
+      if (!used[i] && corner_after(star[i], 1) == y) next = i;
+    if (next == n) break;  // not a single fan: keep what is ordered
+    used[next] = 1;
+    fan.push_back(star[next]);
+  }
+  const size_t m = fan.size();
+  std::vector<double> normals, weights;
+  // Longest runs first. A run is taken when one direction sees it (and, at an end edge where the
+  // region's dihedral angle is below pi, the neighbour across: the run's side walls contain the
+  // line from a along d and must stay in the region) and when the cone of tets over it, built
+  // very close to a, fits exactly: then the halvings of push_part end too. A single triangle is
+  // seen along its own normal.
+  // Lengths m-1, m-2, ... one by one for small fans, then shrinking geometrically (large CAD
+  // fans would otherwise cost m^2 direction searches).
+  for (size_t len = m - 1; len >= 1; len = len > 12 ? len * 7 / 8 : len - 1) {
+    std::vector<std::pair<double, size_t>> starts;
+    std::vector<double> dirs(3 * m);
+    for (size_t s = 0; s < m; ++s) {
+      std::vector<uint32_t> run;
+      for (size_t i = 0; i < len; ++i) run.push_back(fan[(s + i) % m]);
+      star_normals(a, run, normals, weights);
+      const uint32_t ends[2][2] = {{fan[s], fan[(s + m - 1) % m]},
+                                   {fan[(s + len - 1) % m], fan[(s + len) % m]}};
+      for (const auto& e : ends) {
+        const uint32_t* t = front_.tri(e[0]);
+        const uint32_t* o = front_.tri(e[1]);
+        uint32_t far = o[0];
+        for (int k = 0; k < 3; ++k)
+          if (o[k] != t[0] && o[k] != t[1] && o[k] != t[2]) far = o[k];
+        if (predicates::orient3d(mesh_.point(t[0]), mesh_.point(t[1]), mesh_.point(t[2]),
+                                 mesh_.point(far)) < 0) {
+          double nb[3];
+          unit_normal(mesh_.point(o[0]), mesh_.point(o[1]), mesh_.point(o[2]), nb);
+          for (int k = 0; k < 3; ++k) normals.push_back(-nb[k]);
+          weights.push_back(0.0);
+        }
+      }
+      bool improved = false;
+      const double margin = visible_direction(normals, weights, &dirs[3 * s], &improved);
+      if (margin > 0.0) starts.emplace_back(margin, s);
+    }
+    std::sort(starts.rbegin(), starts.rend());
+    for (const auto& [margin, s] : starts) {
+      std::vector<uint32_t> run;
+      for (size_t i = 0; i < len; ++i) run.push_back(fan[(s + i) % m]);
+      if (!cone_fits_near(a, run, &dirs[3 * s], 1e-6 * scale)) continue;
+      std::copy_n(&dirs[3 * s], 3, d);
+      return run;
+    }
+  }
+  return {};
+}
+
+Status LayerBuilder::push_vertex(uint32_t a, int layer) {
+  if (a < plan_.size()) plan_[a].waiting = false;
+  std::vector<double> normals, weights;
+  for (int round = 0;; ++round) {
+    const std::vector<uint32_t> star = front_.star(a);
+    if (star.empty()) return Status::success();
+    if (size_t(round) > 2 * star.size() + 8)
+      return Status(Error::Internal, "layers: layer " + std::to_string(layer) + ": vertex " +
+                                         std::to_string(a) + " at " + point_text(mesh_.point(a)) +
+                                         ": its front star could not be taken off in " +
+                                         std::to_string(round) + " partial pushes");
+    star_normals(a, star, normals, weights);
+    // The planned displacement, while it sees the star (the neighbours' pushes keep it so unless
+    // they had to re-plan); else the best direction of the star as it is now.
+    if (round == 0 && a < plan_.size() && plan_[a].valid && star_margin(normals, plan_[a].d) > 0.0) {
+      const Plan& p = plan_[a];
+      const double disp[3] = {p.height * p.d[0], p.height * p.d[1], p.height * p.d[2]};
+      return push_part(a, star, disp, layer);
+    }
+    double d[3];
+    bool improved = false;
+    const double margin = visible_direction(normals, weights, d, &improved);
+    if (improved) ++out_.stats.direction_fixes;
+    if (margin > 0.0) {
+      const double h = target_height(a, d);
+      const double disp[3] = {h * d[0], h * d[1], h * d[2]};
+      return push_part(a, star, disp, layer);
+    }
+    // No direction sees the whole star: take off the longest visible run of it, and go on.
+    double m[6];
+    sizing_.metric(mesh_.point(a), m);
+    const double size = 1.0 / std::max(metric_norm(m, d), 1e-300);
+    const std::vector<uint32_t> run = visible_run(a, star, size, d);
+    if (run.empty())
+      return Status(Error::Internal, "layers: layer " + std::to_string(layer) + ": vertex " +
+                                         std::to_string(a) + " at " + point_text(mesh_.point(a)) +
+                                         ": no part of its front star is visible");
+    ++out_.stats.partial_pushes;
+    const double h = target_height(a, d);
+    const double disp[3] = {h * d[0], h * d[1], h * d[2]};
+    Status st = push_part(a, run, disp, layer);
+    if (!st.ok()) return st;
+  }
+}
+
+bool LayerBuilder::best_apex(uint32_t a, const std::vector<uint32_t>& part, double disp[3],
+                             double searched[3]) const {
+  const double* pa = mesh_.point(a);
+  double m[6], u[9];
+  sizing_.metric(pa, m);
+  metric_factor(m, u);
+  // The cone's tets, and the tets that waiting neighbours will build on the cone's outer faces
+  // from their planned points: the apex is chosen for both.
+  std::vector<const double*> own;     // 3 per cone tet: its base, in positive-tet order
+  std::vector<const double*> future;  // 3 per future tet: x, y of the outer face, planned point
+  std::vector<double> planned;
+  planned.reserve(6 * part.size());
+  for (uint32_t f : part) {
+    const uint32_t* t = front_.tri(f);
+    own.insert(own.end(), {mesh_.point(t[0]), mesh_.point(t[2]), mesh_.point(t[1])});
+    int k = 0;
+    while (t[k] != a) ++k;
+    const uint32_t x = t[(k + 1) % 3], y = t[(k + 2) % 3];
+    for (uint32_t c : {x, y}) {
+      if (c >= plan_.size() || !plan_[c].valid || !plan_[c].waiting) continue;
+      const Plan& p = plan_[c];
+      for (int j = 0; j < 3; ++j) planned.push_back(mesh_.point(c)[j] + p.height * p.d[j]);
+      future.insert(future.end(), {mesh_.point(x), mesh_.point(y), nullptr});
+    }
+  }
+  for (size_t i = 0; 3 * i < future.size(); ++i) future[3 * i + 2] = &planned[3 * i];
+  // The smallest radius ratio (in the metric at a) over both sets; -1 when a cone tet is not
+  // positive (floating point: a choice only, the exact test decides), 0 for a future tet (its
+  // neighbour would have to re-plan or shorten this push: see keeps_plans_visible).
+  auto quality = [&](const double* p) {
+    double q = 1.0;
+    for (size_t i = 0; i < own.size(); i += 3)
+      q = std::min(q, signed_volume(own[i], own[i + 1], own[i + 2], p) > 0.0
+                          ? radius_ratio_in(u, own[i], own[i + 1], own[i + 2], p)
+                          : -1.0);
+    for (size_t i = 0; i < future.size(); i += 3) {
+      const double *x = future[i], *y = future[i + 1], *at = future[i + 2];
+      q = std::min(q, signed_volume(p, y, x, at) > 0.0 ? radius_ratio_in(u, p, y, x, at) : 0.0);
+    }
+    return q;
+  };
+  // Along disp first (a few fractions), then, for a poor result only (hard stars: an edge-on
+  // triangle), a small pattern search in space around the best point.
+  double best = -2.0, best_p[3] = {pa[0] + disp[0], pa[1] + disp[1], pa[2] + disp[2]};
+  for (double scale : {1.0, 0.8, 0.65, 0.5, 0.4, 0.3, 0.2}) {
+    const double p[3] = {pa[0] + scale * disp[0], pa[1] + scale * disp[1], pa[2] + scale * disp[2]};
+    const double q = quality(p);
+    if (q > best + 1e-9) {
+      best = q;
+      std::copy_n(p, 3, best_p);
+    }
+  }
+  for (int k = 0; k < 3; ++k) disp[k] = best_p[k] - pa[k];
+  constexpr double kPoor = 0.3;
+  bool moved_off = false;
+  if (best > 0.0 && best < kPoor) {
+    double step = 0.25 * std::sqrt(dot3(disp, disp));
+    const double stop = 0.02 * step;
+    for (int it = 0; it < 60 && step > stop; ++it) {
+      bool moved = false;
+      for (int k = 0; k < 3; ++k)
+        for (int sign = -1; sign <= 1; sign += 2) {
+          double p[3] = {best_p[0], best_p[1], best_p[2]};
+          p[k] += sign * step;
+          const double q = quality(p);
+          if (q > best + 1e-9) {
+            best = q;
+            std::copy_n(p, 3, best_p);
+            moved = moved_off = true;
+          }
+        }
+      if (!moved) step *= 0.5;
+    }
+  }
+  for (int k = 0; k < 3; ++k) searched[k] = best_p[k] - pa[k];
+  return moved_off;
+}
+
+Status LayerBuilder::push_part(uint32_t a, const std::vector<uint32_t>& part,
+                               const double disp[3], int layer) {
+  double pa[3];
+  std::copy_n(mesh_.point(a), 3, pa);
+  const uint32_t moved = mesh_.add_vertex(pa);
+  ++out_.stats.new_vertices;
+  ++out_.stats.pushes;
+  // Displacements to try: the searched apex first (when the search moved it off the line),
+  // then the best point along disp, shrunk until everything fits.
+  double start[3] = {disp[0], disp[1], disp[2]}, searched[3];
+  bool have_searched = false;
+  if (opt_.choose_height) have_searched = best_apex(a, part, start, searched);
+  double scale = 1.0;
+  for (int halvings = have_searched ? -1 : 0; halvings <= opt_.max_halvings; ++halvings) {
+    double* p = &mesh_.xyz[3 * size_t(moved)];
+    for (int k = 0; k < 3; ++k) p[k] = pa[k] + (halvings < 0 ? searched[k] : scale * start[k]);
+    if (halvings >= 0) scale *= opt_.shrink;
+    const size_t tets_before = mesh_.num_tet_slots();
+    front_.begin();
+    added_.clear();
+    bool fits = true;
+    for (uint32_t f : part) {
+      const uint32_t* t = front_.tri(f);
+      const uint32_t v[4] = {t[0], t[2], t[1], moved};
+      uint32_t closing[4];
+      if (!tet_fits(front_, mesh_.xyz, v, closing, fit_)) {
+        fits = false;
+        break;
+      }
+      commit_tet(v, closing);
+    }
+    if (fits && !keeps_plans_visible(std::max(halvings, 0))) {
+      fits = false;
+      ++out_.stats.lookahead_halvings;
+    }
+    if (fits) {
+      front_.commit();
+      for (const Replan& r : replans_) std::copy_n(r.d, 3, plan_[r.v].d);
+      auto& st = out_.stats;
+      st.replans += replans_.size();
+      st.push_tets += mesh_.num_tet_slots() - tets_before;
+      const size_t shrunk = size_t(std::max(halvings, 0));
+      st.push_halvings += shrunk;
+      if (shrunk > 0) ++st.pushes_halved;
+      st.max_push_halvings = std::max(st.max_push_halvings, shrunk);
+      return Status::success();
+    }
+    front_.rollback();
+    truncate_tets(tets_before);
+  }
+  return Status(Error::Internal, "layers: layer " + std::to_string(layer) + ": vertex " +
+                                     std::to_string(a) + " at " + point_text(pa) +
+                                     ": no pushed position fits after " +
+                                     std::to_string(opt_.max_halvings) + " halvings");
+}
+
+}  // namespace anitet::layers

@@ -1,0 +1,93 @@
+#include "layers/tet_fit.hpp"
+
+#include <algorithm>
+
+#include "core/tet_mesh.hpp"
+#include "predicates/predicates.hpp"
+#include "validate/tri_intersect.hpp"
+
+namespace anitet::layers {
+
+namespace {
+
+bool boxes_overlap(const Box3& a, const Box3& b) {
+  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
+         a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
+}
+
+Box3 box_of(const double* const* p, int n) {
+  Box3 b;
+  for (int k = 0; k < 3; ++k) {
+    b.lo[k] = b.hi[k] = p[0][k];
+    for (int i = 1; i < n; ++i) {
+      b.lo[k] = std::min(b.lo[k], p[i][k]);
+      b.hi[k] = std::max(b.hi[k], p[i][k]);
+    }
+  }
+  return b;
+}
+
+// (t0 t1 t2) is a cyclic rotation of (f0 f2 f1): the same triangle, opposite orientation.
+bool reversed(const uint32_t* t, const uint32_t f[3]) {
+  for (int r = 0; r < 3; ++r)
+    if (t[r] == f[0] && t[(r + 1) % 3] == f[2] && t[(r + 2) % 3] == f[1]) return true;
+  return false;
+}
+
+}  // namespace
+
+bool tet_fits(const Front& front, const std::vector<double>& xyz, const uint32_t v[4],
+              uint32_t closing[4], FitCounters& counters) {
+  ++counters.tests;
+  const double* p[4];
+  for (int i = 0; i < 4; ++i) p[i] = &xyz[3 * size_t(v[i])];
+  if (predicates::orient3d(p[0], p[1], p[2], p[3]) <= 0) return false;
+
+  const double* facet[4][3];
+  Box3 facet_box[4];
+  for (int i = 0; i < 4; ++i) {
+    uint32_t f[3];
+    for (int k = 0; k < 3; ++k) {
+      f[k] = v[kFacetVertex[i][k]];
+      facet[i][k] = p[kFacetVertex[i][k]];
+    }
+    closing[i] = front.find(f[0], f[1], f[2]);
+    // A closing facet must face the region: the front triangle is K's facet reversed.
+    if (closing[i] != Front::kNone && !reversed(front.tri(closing[i]), f)) return false;
+    facet_box[i] = box_of(facet[i], 3);
+  }
+
+  const Box3 tet_box = box_of(p, 4);
+  bool fits = true;
+  front.near(tet_box, [&](uint32_t f) {
+    if (f == closing[0] || f == closing[1] || f == closing[2] || f == closing[3]) return true;
+    ++counters.candidates;
+    const uint32_t* t = front.tri(f);
+    const double* q[3];
+    for (int k = 0; k < 3; ++k) {
+      q[k] = &xyz[3 * size_t(t[k])];
+      if (t[k] == v[0] || t[k] == v[1] || t[k] == v[2] || t[k] == v[3]) continue;
+      // A front vertex in the closed tet: the tet would swallow or touch front that it must not.
+      bool inside = true;
+      for (int i = 0; i < 4 && inside; ++i)
+        inside = predicates::orient3d(facet[i][0], facet[i][1], facet[i][2], q[k]) >= 0;
+      if (inside) {
+        fits = false;
+        return false;
+      }
+    }
+    const Box3 tb = front.box(f);
+    for (int i = 0; i < 4; ++i) {
+      if (closing[i] != Front::kNone || !boxes_overlap(facet_box[i], tb)) continue;
+      ++counters.tri_tests;
+      if (tri_intersect::triangles_intersect(facet[i], q)) {
+        fits = false;
+        return false;
+      }
+    }
+    return true;
+  });
+  return fits;
+}
+
+}  // namespace anitet::layers

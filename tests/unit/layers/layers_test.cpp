@@ -1,0 +1,485 @@
+// Stage 1 (advancing-front layers): the sizing interface, the dynamic front and its index, the
+// exact fit test, and build_layers on built-in shapes and shared surfaces, audited by
+// check_layers (validity, input faces kept, S1 closed and off S, volumes).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "core/sizing.hpp"
+#include "io/surface_io.hpp"
+#include "layers/front.hpp"
+#include "layers/layers.hpp"
+#include "layers/layers_check.hpp"
+#include "layers/loose_octree.hpp"
+#include "layers/tet_fit.hpp"
+#include "shapes.hpp"
+#include "validate/validate.hpp"
+
+namespace anitet {
+namespace {
+
+double signed_volume(const SurfaceMesh& s) {
+  double v = 0.0;
+  for (size_t t = 0; t < s.num_triangles(); ++t) {
+    const double* a = s.point(s.tri[3 * t]);
+    const double* b = s.point(s.tri[3 * t + 1]);
+    const double* c = s.point(s.tri[3 * t + 2]);
+    v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+         a[2] * (b[0] * c[1] - b[1] * c[0]);
+  }
+  return v / 6.0;
+}
+
+SurfaceMesh shared_surface(const std::string& name) {
+  Result<SurfaceMesh> read = read_surface(std::string(ANITET_SURFACES_DIR) + "/" + name);
+  EXPECT_TRUE(read.ok()) << read.status().message();
+  if (!read.ok()) return SurfaceMesh();
+  SurfaceMesh s = std::move(read).value();
+  // Orientation repair and structure checks; the exact self-intersection search is validate's
+  // own test (the shared clean surfaces have none).
+  ValidationOptions options;
+  options.check_self_intersections = false;
+  const ValidationReport report = validate_surface(s, options);
+  EXPECT_TRUE(report.ok()) << report.summary();
+  return s;
+}
+
+LayersOutput run_layers(const SurfaceMesh& s, int layers,
+                        LayerScheme scheme = LayerScheme::kPushOnly) {
+  IsotropicSurfaceSizing sizing(s);
+  LayersOptions options;
+  options.layers = layers;
+  options.scheme = scheme;
+  Result<LayersOutput> out = build_layers(s, sizing, options);
+  EXPECT_TRUE(out.ok()) << out.status().message();
+  return out.ok() ? std::move(out).value() : LayersOutput();
+}
+
+void expect_valid_layers(const SurfaceMesh& s, const LayersOutput& out, int layers) {
+  const LayersCheck c = check_layers(s, out);
+  EXPECT_TRUE(c.mesh_valid) << c.problems;
+  EXPECT_TRUE(c.input_vertices_kept) << c.problems;
+  EXPECT_TRUE(c.input_faces_present) << c.problems;
+  EXPECT_TRUE(c.boundary_is_s_and_s1) << c.problems;
+  EXPECT_TRUE(c.front_manifold) << c.problems;
+  EXPECT_TRUE(c.front_off_input) << c.problems;
+  EXPECT_TRUE(c.front_disjoint) << c.problems;
+  EXPECT_TRUE(c.front_tets_match) << c.problems;
+  EXPECT_LE(c.volume_rel_error, 1e-12) << "vol(T1) " << c.volume_t1 << " vol(S) " << c.volume_s
+                                       << " vol(S1) " << c.volume_s1;
+  EXPECT_GT(c.volume_t1, 0.0);
+  EXPECT_EQ(out.stats.per_layer.size(), size_t(layers));
+  EXPECT_EQ(out.stats.tets, out.mesh.num_tet_slots());
+}
+
+// ---- Sizing -------------------------------------------------------------------------------------
+
+TEST(Sizing, MetricHelpers) {
+  double m[6];
+  isotropic_metric(0.5, m);
+  const double e[3] = {1.0, 0.0, 0.0};
+  EXPECT_DOUBLE_EQ(metric_norm(m, e), 2.0);
+  const double a[3] = {0, 0, 0}, b[3] = {0, 3, 4};
+  EXPECT_DOUBLE_EQ(metric_edge_length(m, a, b), 10.0);
+  // An anisotropic metric: lengths along z count 3 times.
+  const double aniso[6] = {1, 0, 1, 0, 0, 9};
+  const double z[3] = {0, 0, 2}, xy[3] = {3, 4, 0};
+  EXPECT_DOUBLE_EQ(metric_norm(aniso, z), 6.0);
+  EXPECT_DOUBLE_EQ(metric_norm(aniso, xy), 5.0);
+}
+
+TEST(Sizing, SurfaceSizingIsTheNearestVertexsMeanEdge) {
+  const SurfaceMesh s = test::grid_cube(4);  // edges 0.25 and diagonals 0.25 sqrt(2)
+  IsotropicSurfaceSizing sizing(s);
+  // Vertex 0 is a cube corner: its incident edges, computed by hand from the triangles.
+  double sum = 0.0;
+  int count = 0;
+  for (size_t t = 0; t < s.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t x = s.tri[3 * t + k], y = s.tri[3 * t + (k + 1) % 3];
+      if (x != 0 && y != 0) continue;
+      const double* p = s.point(x);
+      const double* q = s.point(y);
+      sum += std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                       (p[2] - q[2]) * (p[2] - q[2]));
+      ++count;
+    }
+  EXPECT_NEAR(sizing.size(s.point(0)), sum / count, 1e-15);
+  // Near vertex 0 (inside the cube), the same size; every size is an incident-edge mean.
+  const double near0[3] = {s.point(0)[0] + 0.01, s.point(0)[1] + 0.02, s.point(0)[2] + 0.01};
+  EXPECT_DOUBLE_EQ(sizing.size(near0), sizing.size(s.point(0)));
+  const double centre[3] = {0.5, 0.5, 0.5};
+  EXPECT_GE(sizing.size(centre), 0.25);
+  EXPECT_LE(sizing.size(centre), 0.25 * std::sqrt(2.0));
+  double m[6];
+  sizing.metric(near0, m);
+  EXPECT_NEAR(m[0], 1.0 / (sizing.size(near0) * sizing.size(near0)), 1e-12);
+  EXPECT_EQ(m[1], 0.0);
+  IsotropicSurfaceSizing doubled(s, 2.0);
+  EXPECT_DOUBLE_EQ(doubled.size(near0), 2.0 * sizing.size(near0));
+}
+
+TEST(Sizing, NearestVertexMatchesBruteForce) {
+  const SurfaceMesh s = test::icosphere(2);
+  IsotropicSurfaceSizing sizing(s);
+  IsotropicSurfaceSizing reference(s);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  // Per-vertex sizes by brute force nearest vertex.
+  for (int i = 0; i < 200; ++i) {
+    const double p[3] = {u(rng), u(rng), u(rng)};
+    size_t best = 0;
+    double best_d2 = 1e300;
+    for (size_t v = 0; v < s.num_vertices(); ++v) {
+      const double* q = s.point(v);
+      const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                        (p[2] - q[2]) * (p[2] - q[2]);
+      if (d2 < best_d2) best_d2 = d2, best = v;
+    }
+    EXPECT_DOUBLE_EQ(sizing.size(p), reference.size(s.point(best)));
+  }
+}
+
+// ---- Loose octree and front ---------------------------------------------------------------------
+
+TEST(LooseOctree, QueriesFindEveryOverlappingBox) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> pos(0.0, 1.0), expo(-5.0, 0.0);
+  Box3 bounds{{0, 0, 0}, {1, 1, 1}};
+  layers::LooseOctree index;
+  index.reset(bounds);
+  std::vector<Box3> boxes;
+  std::vector<bool> alive;
+  for (uint32_t i = 0; i < 2000; ++i) {
+    Box3 b;
+    const double size = std::pow(10.0, expo(rng));  // 1e-5 .. 1: CAD-like spread
+    for (int k = 0; k < 3; ++k) {
+      b.lo[k] = pos(rng) * (1.0 - size);
+      b.hi[k] = b.lo[k] + size * pos(rng);
+    }
+    boxes.push_back(b);
+    alive.push_back(true);
+    index.insert(i, b);
+  }
+  for (uint32_t i = 0; i < 2000; i += 3) {
+    index.erase(i);
+    alive[i] = false;
+  }
+  EXPECT_EQ(index.size(), size_t(2000 - 667));
+  auto overlap = [](const Box3& a, const Box3& b) {
+    for (int k = 0; k < 3; ++k)
+      if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return false;
+    return true;
+  };
+  for (int q = 0; q < 300; ++q) {
+    Box3 query;
+    const double size = std::pow(10.0, expo(rng));
+    for (int k = 0; k < 3; ++k) {
+      query.lo[k] = pos(rng) * (1.0 - size);
+      query.hi[k] = query.lo[k] + size;
+    }
+    std::vector<uint32_t> found;
+    index.query(query, [&](uint32_t id) {
+      found.push_back(id);
+      return true;
+    });
+    std::sort(found.begin(), found.end());
+    for (uint32_t i = 0; i < boxes.size(); ++i) {
+      const bool listed = std::binary_search(found.begin(), found.end(), i);
+      if (alive[i] && overlap(boxes[i], query)) {
+        EXPECT_TRUE(listed) << "box " << i;
+      }
+      if (!alive[i]) {
+        EXPECT_FALSE(listed) << "erased box " << i;
+      }
+    }
+  }
+}
+
+TEST(Front, RollbackRestoresTheFrontExactly) {
+  const SurfaceMesh s = test::grid_cube(2);
+  std::vector<double> xyz = s.xyz;
+  Box3 bounds{{0, 0, 0}, {1, 1, 1}};
+  layers::Front front(xyz, bounds);
+  for (size_t t = 0; t < s.num_triangles(); ++t)
+    front.add(s.tri[3 * t], s.tri[3 * t + 1], s.tri[3 * t + 2], layers::Front::kNone);
+  front.remove(5);  // outside a transaction: slot 5 is free for reuse
+  const size_t alive_before = front.num_alive();
+  std::vector<std::vector<uint32_t>> stars;
+  for (uint32_t v = 0; v < s.num_vertices(); ++v) {
+    std::vector<uint32_t> st = front.star(v);
+    std::sort(st.begin(), st.end());
+    stars.push_back(st);
+  }
+  front.begin();
+  front.remove(0);
+  front.remove(1);
+  const uint32_t added = front.add(0, 1, 2, 7);
+  front.remove(added);
+  front.add(3, 4, 5, 8);
+  front.rollback();
+  EXPECT_EQ(front.num_alive(), alive_before);
+  EXPECT_TRUE(front.alive(0));
+  EXPECT_TRUE(front.alive(1));
+  EXPECT_FALSE(front.alive(5));
+  for (uint32_t v = 0; v < s.num_vertices(); ++v) {
+    std::vector<uint32_t> st = front.star(v);
+    std::sort(st.begin(), st.end());
+    EXPECT_EQ(st, stars[v]) << "vertex " << v;
+  }
+  EXPECT_EQ(front.find(s.tri[0], s.tri[2], s.tri[1]), 0u);
+  // After a commit, removed slots are reused.
+  front.begin();
+  front.remove(2);
+  front.commit();
+  EXPECT_FALSE(front.alive(2));
+  const uint32_t reused = front.add(0, 1, 2, 9);
+  EXPECT_TRUE(reused == 2 || reused == 5);
+}
+
+// ---- The exact fit test ---------------------------------------------------------------------------
+
+TEST(TetFit, AcceptsAFittingTetAndRejectsCrossingOnes) {
+  // Front: the grid cube with 2 cells per side (outward normals: the region is the cube).
+  const SurfaceMesh s = test::grid_cube(2);
+  std::vector<double> xyz = s.xyz;
+  Box3 bounds{{0, 0, 0}, {1, 1, 1}};
+  layers::Front front(xyz, bounds);
+  for (size_t t = 0; t < s.num_triangles(); ++t)
+    front.add(s.tri[3 * t], s.tri[3 * t + 1], s.tri[3 * t + 2], layers::Front::kNone);
+  // Base: front triangle 0; apex over its centroid, into the cube.
+  const uint32_t a = s.tri[0], b = s.tri[1], c = s.tri[2];
+  double n[3], mid[3];
+  const double *pa = s.point(a), *pb = s.point(b), *pc = s.point(c);
+  const double e1[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+  const double e2[3] = {pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2]};
+  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (int k = 0; k < 3; ++k) mid[k] = (pa[k] + pb[k] + pc[k]) / 3.0;
+  auto apex_at = [&](double h) {
+    xyz.resize(3 * s.num_vertices());
+    for (int k = 0; k < 3; ++k) xyz.push_back(mid[k] - h * n[k] / len);
+    return static_cast<uint32_t>(s.num_vertices());
+  };
+  layers::FitCounters counters;
+  uint32_t closing[4];
+  {
+    const uint32_t p = apex_at(0.2);
+    const uint32_t v[4] = {a, c, b, p};
+    EXPECT_TRUE(layers::tet_fits(front, xyz, v, closing, counters));
+    EXPECT_EQ(closing[3], 0u);  // the base
+    EXPECT_EQ(closing[0], layers::Front::kNone);
+  }
+  {
+    const uint32_t p = apex_at(1.5);  // through the opposite face
+    const uint32_t v[4] = {a, c, b, p};
+    EXPECT_FALSE(layers::tet_fits(front, xyz, v, closing, counters));
+  }
+  {
+    const uint32_t p = apex_at(-0.2);  // outside the region: negative tet
+    const uint32_t v[4] = {a, c, b, p};
+    EXPECT_FALSE(layers::tet_fits(front, xyz, v, closing, counters));
+    const uint32_t w[4] = {a, b, c, p};  // positive, but on the wrong side of its base
+    EXPECT_FALSE(layers::tet_fits(front, xyz, w, closing, counters));
+  }
+  EXPECT_GT(counters.tests, 0u);
+  EXPECT_GT(counters.tri_tests, 0u);
+}
+
+// ---- build_layers ---------------------------------------------------------------------------------
+
+struct ShapeCase {
+  const char* name;
+  SurfaceMesh (*make)();
+};
+
+SurfaceMesh make_coarse_cube() { return test::coarse_cube(); }
+SurfaceMesh make_grid_cube() { return test::grid_cube(6); }
+SurfaceMesh make_sphere() { return test::icosphere(3); }
+SurfaceMesh make_nested() { return test::nested_cubes(); }
+SurfaceMesh make_slab() { return test::thin_slab(); }
+
+const ShapeCase kShapes[] = {{"coarse_cube", make_coarse_cube},
+                             {"grid_cube", make_grid_cube},
+                             {"sphere", make_sphere},
+                             {"nested_cubes", make_nested},
+                             {"thin_slab", make_slab}};
+
+class LayersOnShapes : public ::testing::TestWithParam<std::tuple<int, int>> {};
+
+TEST_P(LayersOnShapes, AreValidAndHideTheSurface) {
+  const ShapeCase& shape = kShapes[std::get<0>(GetParam())];
+  const int layers = std::get<1>(GetParam());
+  const SurfaceMesh s = shape.make();
+  ASSERT_NE(signed_volume(s), 0.0);
+  const LayersOutput out = run_layers(s, layers);
+  SCOPED_TRACE(shape.name);
+  expect_valid_layers(s, out, layers);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, LayersOnShapes,
+                         ::testing::Combine(::testing::Range(0, 5), ::testing::Values(1, 2, 3)),
+                         [](const ::testing::TestParamInfo<std::tuple<int, int>>& p) {
+                           return std::string(kShapes[std::get<0>(p.param)].name) + "_" +
+                                  std::to_string(std::get<1>(p.param)) + "_layers";
+                         });
+
+class LayersOnSharedSurfaces
+    : public ::testing::TestWithParam<std::tuple<const char*, int>> {};
+
+TEST_P(LayersOnSharedSurfaces, AreValidAndHideTheSurface) {
+  const SurfaceMesh s = shared_surface(std::get<0>(GetParam()));
+  ASSERT_GT(s.num_triangles(), 0u);
+  const int layers = std::get<1>(GetParam());
+  const LayersOutput out = run_layers(s, layers);
+  expect_valid_layers(s, out, layers);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Shared, LayersOnSharedSurfaces,
+    ::testing::Combine(::testing::Values("fandisk.off", "decimated-knight.off", "tray_bottom.stl"),
+                       ::testing::Values(1, 2, 3)),
+    [](const ::testing::TestParamInfo<std::tuple<const char*, int>>& p) {
+      std::string name = std::get<0>(p.param);
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name + "_" + std::to_string(std::get<1>(p.param)) + "_layers";
+    });
+
+TEST(Layers, PaperSchemeIsValidToo) {
+  // (Two layers of it triple the front twice and need many partial pushes: slow, so only on
+  // the small shapes.)
+  for (const ShapeCase& shape : kShapes) {
+    const SurfaceMesh s = shape.make();
+    for (int layers : {1, 2}) {
+      if (layers == 2 && s.num_triangles() > 400) continue;
+      SCOPED_TRACE(std::string(shape.name) + " " + std::to_string(layers));
+      const LayersOutput out = run_layers(s, layers, LayerScheme::kFacesThenPush);
+      expect_valid_layers(s, out, layers);
+      EXPECT_GT(out.stats.face_tets, 0u);
+    }
+  }
+  const SurfaceMesh knight = shared_surface("decimated-knight.off");
+  const LayersOutput out = run_layers(knight, 1, LayerScheme::kFacesThenPush);
+  expect_valid_layers(knight, out, 1);
+  EXPECT_EQ(out.stats.face_tets, knight.num_triangles());
+}
+
+TEST(Layers, PrismLayersKeepTheFrontsConnectivityAndQuality) {
+  // On a smooth sphere every push sees its whole star: each layer is one prism (3 tets) per
+  // triangle, S1 has S's triangle count, and the tets are good.
+  const SurfaceMesh s = test::icosphere(3);
+  const LayersOutput out = run_layers(s, 2);
+  expect_valid_layers(s, out, 2);
+  EXPECT_EQ(out.num_front_triangles(), s.num_triangles());
+  EXPECT_EQ(out.stats.tets, 2 * 3 * s.num_triangles());
+  EXPECT_EQ(out.stats.partial_pushes, 0u);
+  const LayersQuality q = layers_quality(out);
+  EXPECT_GT(q.mean, 0.6);
+  EXPECT_GT(q.min, 0.2);
+}
+
+TEST(Layers, ThinPartsGetThinnerLayersButStayValid) {
+  const SurfaceMesh s = test::thin_slab();
+  const LayersOutput out = run_layers(s, 3);
+  expect_valid_layers(s, out, 3);
+  // The slab is 0.1 thick: S1 must lie strictly inside it.
+  for (uint32_t v : out.front_tri) {
+    EXPECT_GT(out.mesh.point(v)[2], 0.0);
+    EXPECT_LT(out.mesh.point(v)[2], 0.1);
+  }
+}
+
+TEST(Layers, OutputConventions) {
+  const SurfaceMesh s = test::nested_cubes();
+  const LayersOutput out = run_layers(s, 2);
+  const TetMesh& m = out.mesh;
+  // Input facets are protected, S1 vertices flagged, new vertices after the input ones.
+  size_t protected_facets = 0;
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t)
+    for (int i = 0; i < 4; ++i) protected_facets += m.facet_protected(t, i);
+  EXPECT_EQ(protected_facets, s.num_triangles());
+  for (uint32_t v : out.front_tri) EXPECT_TRUE(m.vflags[v] & vflag::kOnFront);
+  for (size_t v = 0; v < s.num_vertices(); ++v) EXPECT_FALSE(m.vflags[v] & vflag::kOnFront);
+  EXPECT_EQ(out.stats.new_vertices, m.num_vertices() - s.num_vertices());
+  // S1 has two shells here (outer and around the cavity): its volume is the region left.
+  std::vector<uint32_t> map;
+  const SurfaceMesh s1 = front_surface(out, &map);
+  EXPECT_EQ(s1.num_triangles(), out.num_front_triangles());
+  EXPECT_EQ(map.size(), s1.num_vertices());
+  for (size_t i = 0; i < s1.tri.size(); ++i) EXPECT_EQ(map[s1.tri[i]], out.front_tri[i]);
+  const LayersCheck c = check_layers(s, out);
+  EXPECT_NEAR(signed_volume(s1), c.volume_s1, 1e-9);
+  EXPECT_GT(c.volume_s1, 0.0);
+  EXPECT_LT(c.volume_s1, c.volume_s);
+}
+
+TEST(Layers, IsDeterministic) {
+  const SurfaceMesh s = shared_surface("decimated-knight.off");
+  const LayersOutput a = run_layers(s, 2);
+  const LayersOutput b = run_layers(s, 2);
+  EXPECT_EQ(a.mesh.xyz, b.mesh.xyz);
+  EXPECT_EQ(a.mesh.tet_v, b.mesh.tet_v);
+  EXPECT_EQ(a.front_tri, b.front_tri);
+}
+
+TEST(Layers, CheckerCatchesBrokenOutputs) {
+  const SurfaceMesh s = test::grid_cube(3);
+  const LayersOutput good = run_layers(s, 1);
+  ASSERT_TRUE(check_layers(s, good).ok());
+  {
+    LayersOutput bad = good;
+    std::swap(bad.mesh.tet_v[0], bad.mesh.tet_v[1]);  // an inverted tet
+    EXPECT_FALSE(check_layers(s, bad).ok());
+  }
+  {
+    LayersOutput bad = good;
+    std::swap(bad.front_tri[0], bad.front_tri[1]);  // an S1 triangle flipped
+    const LayersCheck c = check_layers(s, bad);
+    EXPECT_FALSE(c.front_manifold && c.boundary_is_s_and_s1);
+  }
+  {
+    LayersOutput bad = good;
+    bad.mesh.xyz[3 * (bad.mesh.num_vertices() - 1)] += 10.0;  // a vertex thrown far away
+    EXPECT_FALSE(check_layers(s, bad).ok());
+  }
+}
+
+TEST(Layers, RejectsBadInputAndOptions) {
+  IsotropicSurfaceSizing sizing(test::grid_cube(2));
+  SurfaceMesh cube = test::grid_cube(2);
+  LayersOptions options;
+  options.layers = 0;
+  EXPECT_EQ(build_layers(cube, sizing, options).status().code(), Error::InvalidArgument);
+  options = LayersOptions();
+  options.shrink = 1.0;
+  EXPECT_EQ(build_layers(cube, sizing, options).status().code(), Error::InvalidArgument);
+
+  EXPECT_EQ(build_layers(SurfaceMesh(), sizing).status().code(), Error::EmptyInput);
+
+  SurfaceMesh open = cube;
+  open.tri.resize(open.tri.size() - 3);
+  open.patch.pop_back();
+  const Result<LayersOutput> r = build_layers(open, sizing);
+  EXPECT_EQ(r.status().code(), Error::InvalidArgument);
+  EXPECT_NE(r.status().message().find("not closed"), std::string::npos) << r.status().message();
+
+  SurfaceMesh flipped = cube;
+  std::swap(flipped.tri[0], flipped.tri[1]);
+  EXPECT_EQ(build_layers(flipped, sizing).status().code(), Error::InvalidArgument);
+
+  SurfaceMesh bad_index = cube;
+  bad_index.tri[4] = 1000;
+  EXPECT_EQ(build_layers(bad_index, sizing).status().code(), Error::BadIndex);
+}
+
+}  // namespace
+}  // namespace anitet
