@@ -43,6 +43,10 @@ class LayerBuilder {
   // still see every triangle of `part` (the cone's tets are positive in floating point).
   bool best_apex(uint32_t a, const std::vector<uint32_t>& part, double disp[3],
                  double searched[3]) const;
+  // Opens a front transaction and joins `apex` to every triangle of `part`, tet by tet, each
+  // accepted only when it fits exactly; false at the first that does not. The caller commits or
+  // rolls back the transaction.
+  bool join_to_front(const std::vector<uint32_t>& part, uint32_t apex);
   // Whether the cone of tets over `part` from a + scale d fits on the front now (all undone).
   bool cone_fits_near(uint32_t a, const std::vector<uint32_t>& part, const double d[3],
                       double scale);

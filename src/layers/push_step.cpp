@@ -196,6 +196,19 @@ void LayerBuilder::plan_targets(const std::vector<uint32_t>& vertices) {
   }
 }
 
+bool LayerBuilder::join_to_front(const std::vector<uint32_t>& part, uint32_t apex) {
+  front_.begin();
+  added_.clear();
+  for (uint32_t f : part) {
+    const uint32_t* t = front_.tri(f);
+    const uint32_t v[4] = {t[0], t[2], t[1], apex};
+    uint32_t closing[4];
+    if (!tet_fits(front_, mesh_.xyz, v, closing, fit_)) return false;
+    commit_tet(v, closing);
+  }
+  return true;
+}
+
 bool LayerBuilder::cone_fits_near(uint32_t a, const std::vector<uint32_t>& part, const double d[3],
                                   double scale) {
   // A temporary vertex at a + scale d, joined to `part` tet by tet on the real front, then
@@ -204,19 +217,7 @@ bool LayerBuilder::cone_fits_near(uint32_t a, const std::vector<uint32_t>& part,
   const double p[3] = {pa[0] + scale * d[0], pa[1] + scale * d[1], pa[2] + scale * d[2]};
   const uint32_t probe = mesh_.add_vertex(p);
   const size_t tets_before = mesh_.num_tet_slots();
-  front_.begin();
-  added_.clear();
-  bool fits = true;
-  for (uint32_t f : part) {
-    const uint32_t* t = front_.tri(f);
-    const uint32_t v[4] = {t[0], t[2], t[1], probe};
-    uint32_t closing[4];
-    if (!tet_fits(front_, mesh_.xyz, v, closing, fit_)) {
-      fits = false;
-      break;
-    }
-    commit_tet(v, closing);
-  }
+  const bool fits = join_to_front(part, probe);
   front_.rollback();
   truncate_tets(tets_before);
   mesh_.xyz.resize(mesh_.xyz.size() - 3);
@@ -437,19 +438,7 @@ Status LayerBuilder::push_part(uint32_t a, const std::vector<uint32_t>& part,
     for (int k = 0; k < 3; ++k) p[k] = pa[k] + (halvings < 0 ? searched[k] : scale * start[k]);
     if (halvings >= 0) scale *= opt_.shrink;
     const size_t tets_before = mesh_.num_tet_slots();
-    front_.begin();
-    added_.clear();
-    bool fits = true;
-    for (uint32_t f : part) {
-      const uint32_t* t = front_.tri(f);
-      const uint32_t v[4] = {t[0], t[2], t[1], moved};
-      uint32_t closing[4];
-      if (!tet_fits(front_, mesh_.xyz, v, closing, fit_)) {
-        fits = false;
-        break;
-      }
-      commit_tet(v, closing);
-    }
+    bool fits = join_to_front(part, moved);
     if (fits && !keeps_plans_visible(std::max(halvings, 0))) {
       fits = false;
       ++out_.stats.lookahead_halvings;
