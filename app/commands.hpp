@@ -29,7 +29,13 @@ struct MeshArgs {
   std::string input;
   std::string output;
   bool quiet = false;
+  bool json = false;
+  std::string stop_after;               // "" (the whole pipeline) or "layers"
+  int layers = 2;                       // stage 1 layer count
+  std::string layer_scheme = "push";    // "push" (prism layers) or "faces" (the paper's)
 };
 int run_mesh(const MeshArgs& args);
+// `mesh --stop-after layers`: stage 1 alone (cmd_layers.cpp).
+int run_mesh_layers(const MeshArgs& args);
 
 }  // namespace anitet::cli

@@ -53,6 +53,19 @@ int run(int argc, char** argv) {
     cmd->add_option("-o,--output", args->output, "Output mesh (.mesh .msh .vtu)")->required();
     cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   }
+  mesh_cmd->add_option("--stop-after", mesh.stop_after,
+                       "Stop after a stage and write its result: 'layers' writes T1 (stage 1) to the "
+                       "output, with S1 as one more patch, and S1 to OUTSTEM.front.off")
+      ->check(CLI::IsMember({"layers"}));
+  mesh_cmd->add_option("--layers", mesh.layers, "Number of advancing-front layers (stage 1)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 50));
+  mesh_cmd->add_option("--layer-scheme", mesh.layer_scheme,
+                       "Stage 1 scheme: push (prism layers, each front vertex pushed off in turn) or "
+                       "faces (the paper's: a tet on every face, then vertex pushes)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"push", "faces"}));
+  mesh_cmd->add_flag("--json", mesh.json, "Print the report as JSON");
 
   try {
     app.parse(argc, argv);
@@ -69,7 +82,7 @@ int run(int argc, char** argv) {
 
   if (check_cmd->parsed()) return run_check_surface(check);
   if (quality_cmd->parsed()) return run_quality(quality);
-  if (mesh_cmd->parsed()) return run_mesh(mesh);
+  if (mesh_cmd->parsed()) return mesh.stop_after == "layers" ? run_mesh_layers(mesh) : run_mesh(mesh);
   if (recover_cmd->parsed()) return run_mesh(recover);
   std::cerr << app.help();
   return kExitUsage;

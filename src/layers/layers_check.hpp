@@ -1,4 +1,4 @@
-// An independent audit of stage 1's output, for tests and the layers_run driver: everything
+// An independent audit of stage 1's output, for tests and `anitet mesh --stop-after layers`: everything
 // layers.hpp promises, checked from the output alone (exact predicates where it matters).
 #pragma once
 

@@ -1,0 +1,136 @@
+// `anitet mesh IN --stop-after layers -o OUT`: stage 1 alone. Writes T1 (the layers) to OUT with
+// the input's triangles as boundary triangles under their own patch labels and S1 (the new
+// front) under one extra label, S1 also as its own surface file, and prints the layers' figures
+// and the quality report of T1 against the input.
+#include <algorithm>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "core/sizing.hpp"
+#include "exit_codes.hpp"
+#include "io/surface_io.hpp"
+#include "io/volume_io.hpp"
+#include "layers/layers.hpp"
+#include "layers/layers_check.hpp"
+#include "quality/quality_report.hpp"
+#include "surface_check.hpp"
+
+namespace anitet::cli {
+
+namespace {
+
+// "out/t1.mesh" -> "out/t1.front.off"
+std::string front_path(const std::string& output) {
+  const size_t slash = output.find_last_of('/');
+  const size_t dot = output.find_last_of('.');
+  const std::string stem = (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+                               ? output
+                               : output.substr(0, dot);
+  return stem + ".front.off";
+}
+
+nlohmann::json layers_json(const LayersOutput& r, const LayersCheck& check) {
+  const LayersStats& s = r.stats;
+  auto share = [](size_t part, size_t all) { return all ? double(part) / double(all) : 0.0; };
+  nlohmann::json per_layer = nlohmann::json::array();
+  for (const LayerStats& l : s.per_layer)
+    per_layer.push_back({{"front_triangles_before", l.front_triangles_before},
+                         {"face_tets", l.face_tets}, {"push_tets", l.push_tets},
+                         {"seconds", l.seconds}});
+  return {{"tets", s.tets},
+          {"s1_triangles", r.num_front_triangles()},
+          {"new_vertices", s.new_vertices},
+          {"face_tets", s.face_tets},
+          {"push_tets", s.push_tets},
+          {"faces", {{"tried", s.faces}, {"halved", s.faces_halved}, {"halvings", s.face_halvings},
+                     {"max_halvings", s.max_face_halvings}, {"halved_share", share(s.faces_halved, s.faces)}}},
+          {"pushes", {{"tried", s.pushes}, {"halved", s.pushes_halved}, {"halvings", s.push_halvings},
+                      {"max_halvings", s.max_push_halvings}, {"halved_share", share(s.pushes_halved, s.pushes)},
+                      {"deferred", s.deferred_pushes}, {"partial", s.partial_pushes}}},
+          {"seconds", s.seconds},
+          {"per_layer", per_layer},
+          {"check", {{"ok", check.ok()}, {"mesh_valid", check.mesh_valid},
+                     {"input_faces_present", check.input_faces_present},
+                     {"boundary_is_s_and_s1", check.boundary_is_s_and_s1},
+                     {"front_manifold", check.front_manifold}, {"front_off_input", check.front_off_input},
+                     {"front_disjoint", check.front_disjoint},
+                     {"volume_rel_error", check.volume_rel_error}, {"problems", check.problems}}}};
+}
+
+}  // namespace
+
+int run_mesh_layers(const MeshArgs& args) {
+  const std::string cmd = "anitet mesh";
+  CheckedSurface checked;
+  if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
+  const SurfaceMesh& surface = checked.surface;
+
+  LayersOptions options;
+  options.layers = args.layers;
+  options.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
+  IsotropicSurfaceSizing sizing(surface);
+  Result<LayersOutput> built = build_layers(surface, sizing, options);
+  if (!built.ok()) {
+    std::cerr << cmd << ": stage 1 (layers) failed on '" << args.input << "': " << built.status().message()
+              << " [" << error_name(built.status().code()) << "]\n";
+    return kExitInternal;
+  }
+  const LayersOutput& r = built.value();
+  // The audit is the library's own independent check; a failure is a bug, reported as such.
+  const LayersCheck check = check_layers(surface, r);
+  if (!check.ok()) {
+    std::cerr << cmd << ": internal error: the layers on '" << args.input
+              << "' fail their audit: " << check.problems << "\n";
+    return kExitInternal;
+  }
+
+  VolumeMesh vm = r.mesh.to_volume_mesh(false);
+  int32_t front_label = 1;
+  for (int32_t label : surface.patch) front_label = std::max(front_label, label + 1);
+  vm.bnd_tri = surface.tri;
+  vm.bnd_patch = surface.patch;
+  vm.bnd_tri.insert(vm.bnd_tri.end(), r.front_tri.begin(), r.front_tri.end());
+  vm.bnd_patch.insert(vm.bnd_patch.end(), r.num_front_triangles(), front_label);
+  if (Status st = write_volume_mesh(vm, args.output); !st.ok()) {
+    std::cerr << cmd << ": cannot write '" << args.output << "': " << st.message() << "\n";
+    return kExitReadError;
+  }
+  const std::string front_file = front_path(args.output);
+  if (Status st = write_surface(front_surface(r), front_file); !st.ok()) {
+    std::cerr << cmd << ": cannot write '" << front_file << "': " << st.message() << "\n";
+    return kExitReadError;
+  }
+
+  Result<QualityReport> quality = compute_quality_report(vm, &surface);
+  if (!quality.ok()) {
+    std::cerr << cmd << ": cannot measure T1: " << quality.status().message() << "\n";
+    return kExitInternal;
+  }
+  if (args.json) {
+    nlohmann::json out = {{"input", args.input}, {"output", args.output}, {"front", front_file},
+                          {"layers", options.layers}, {"scheme", args.layer_scheme},
+                          {"stage1", layers_json(r, check)},
+                          {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
+    std::cout << out.dump(1) << "\n";
+  } else if (!args.quiet) {
+    const LayersStats& s = r.stats;
+    std::cout << "stage 1 (layers): " << options.layers << " layer(s), scheme " << args.layer_scheme
+              << ", " << s.tets << " tets, S1 " << r.num_front_triangles() << " triangles, "
+              << s.seconds << " s\n"
+              << "  pushes halved: " << s.pushes_halved << " of " << s.pushes << " (" << s.push_halvings
+              << " halvings, at most " << s.max_push_halvings << ")";
+    if (s.faces)
+      std::cout << "; face tets halved: " << s.faces_halved << " of " << s.faces << " ("
+                << s.face_halvings << " halvings)";
+    std::cout << "\n  audit: valid, every input triangle a face of T1, S1 closed and off S, volume error "
+              << check.volume_rel_error << "\n"
+              << "wrote T1 to " << args.output << " (S1 as patch " << front_label << "), S1 to "
+              << front_file << "\n"
+              << quality_report_text(quality.value());
+  }
+  return kExitOk;
+}
+
+}  // namespace anitet::cli
