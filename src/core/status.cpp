@@ -10,6 +10,7 @@ const char* error_name(Error e) {
     case Error::Parse: return "parse_error";
     case Error::UnsupportedFormat: return "unsupported_format";
     case Error::EmptyInput: return "empty_input";
+    case Error::BufferTooSmall: return "buffer_too_small";
     case Error::NonFiniteCoordinate: return "non_finite_coordinate";
     case Error::DegenerateTriangle: return "degenerate_triangle";
     case Error::DuplicateTriangle: return "duplicate_triangle";

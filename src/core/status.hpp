@@ -16,6 +16,7 @@ enum class Error : int32_t {
   Parse = -3,              // malformed or truncated file contents
   UnsupportedFormat = -4,  // unknown extension or format variant
   EmptyInput = -5,         // no points or no triangles
+  BufferTooSmall = -6,     // a caller's buffer (C ABI) cannot hold the result
   // Surface validation (one code per defect kind).
   NonFiniteCoordinate = -10,
   DegenerateTriangle = -11,

@@ -1,0 +1,871 @@
+! Fortran module `anitet`: iso_c_binding interfaces to every entry point of include/anitet.h
+! (named c_<C name>, bound to the C name) and thin Fortran wrappers named like the C functions:
+! 1-based indices by default, arrays shaped (3, n) / (4, n), allocatable outputs, Fortran
+! strings for paths and messages. Handles are type(c_ptr); a destroy sets its argument to
+! c_null_ptr. tests/fortran/check_interfaces.cmake checks that every C function has an interface
+! here and that the error codes agree, so the two cannot drift.
+module anitet
+  use, intrinsic :: iso_c_binding
+  implicit none
+  private
+
+  ! ---- constants (equal to the header's macros) ------------------------------------------------
+  integer(c_int), parameter, public :: ANITET_VERSION_MAJOR = 0
+  integer(c_int), parameter, public :: ANITET_VERSION_MINOR = 1
+  integer(c_int), parameter, public :: ANITET_VERSION_PATCH = 0
+  integer(c_int), parameter, public :: ANITET_OK = 0
+  integer(c_int), parameter, public :: ANITET_ERR_INVALID_ARGUMENT = -1
+  integer(c_int), parameter, public :: ANITET_ERR_FILE_NOT_FOUND = -2
+  integer(c_int), parameter, public :: ANITET_ERR_PARSE = -3
+  integer(c_int), parameter, public :: ANITET_ERR_UNSUPPORTED_FORMAT = -4
+  integer(c_int), parameter, public :: ANITET_ERR_EMPTY_INPUT = -5
+  integer(c_int), parameter, public :: ANITET_ERR_BUFFER_TOO_SMALL = -6
+  integer(c_int), parameter, public :: ANITET_ERR_NON_FINITE_COORDINATE = -10
+  integer(c_int), parameter, public :: ANITET_ERR_DEGENERATE_TRIANGLE = -11
+  integer(c_int), parameter, public :: ANITET_ERR_DUPLICATE_TRIANGLE = -12
+  integer(c_int), parameter, public :: ANITET_ERR_OPEN_BOUNDARY = -13
+  integer(c_int), parameter, public :: ANITET_ERR_NON_MANIFOLD_EDGE = -14
+  integer(c_int), parameter, public :: ANITET_ERR_NON_MANIFOLD_VERTEX = -15
+  integer(c_int), parameter, public :: ANITET_ERR_INCONSISTENT_ORIENTATION = -16
+  integer(c_int), parameter, public :: ANITET_ERR_SELF_INTERSECTION = -17
+  integer(c_int), parameter, public :: ANITET_ERR_INTERSECTING_SHELLS = -18
+  integer(c_int), parameter, public :: ANITET_ERR_BAD_INDEX = -19
+  integer(c_int), parameter, public :: ANITET_ERR_NOT_IMPLEMENTED = -30
+  integer(c_int), parameter, public :: ANITET_ERR_CANCELLED = -31
+  integer(c_int), parameter, public :: ANITET_ERR_DUPLICATE_POINT = -32
+  integer(c_int), parameter, public :: ANITET_ERR_RECOVERY_FAILED = -33
+  integer(c_int), parameter, public :: ANITET_ERR_INVALID_MESH = -34
+  integer(c_int), parameter, public :: ANITET_ERR_OUT_OF_MEMORY = -40
+  integer(c_int), parameter, public :: ANITET_ERR_INTERNAL = -99
+  integer(c_int32_t), parameter, public :: ANITET_LOG_ERROR = 0
+  integer(c_int32_t), parameter, public :: ANITET_LOG_WARNING = 1
+  integer(c_int32_t), parameter, public :: ANITET_LOG_INFO = 2
+  integer(c_int32_t), parameter, public :: ANITET_LOG_DEBUG = 3
+  integer(c_int32_t), parameter, public :: ANITET_OPTIONS_VERSION = 1
+  integer(c_int32_t), parameter, public :: ANITET_QUALITY_VERSION = 1
+
+  ! ---- versioned structs (same layout as the C structs) -----------------------------------------
+  ! Set callbacks with c_funloc of a bind(c) procedure and user data with c_loc.
+  type, bind(c), public :: anitet_options_t
+    integer(c_int32_t) :: version
+    integer(c_int32_t) :: num_threads
+    integer(c_int32_t) :: merge_duplicate_vertices
+    integer(c_int32_t) :: orient_shells
+    integer(c_int32_t) :: check_self_intersections
+    integer(c_int32_t) :: reserved0
+    type(c_funptr) :: progress
+    type(c_ptr) :: progress_user_data
+    type(c_funptr) :: log
+    type(c_ptr) :: log_user_data
+  end type
+
+  type, bind(c), public :: anitet_quality_t
+    integer(c_int32_t) :: version
+    integer(c_int32_t) :: valid
+    integer(c_int32_t) :: boundary_constrained
+    integer(c_int32_t) :: reserved0
+    integer(c_int64_t) :: vertices
+    integer(c_int64_t) :: tets
+    integer(c_int64_t) :: nonpositive_tets
+    real(c_double) :: radius_ratio_mean
+    real(c_double) :: radius_ratio_min
+    real(c_double) :: mean_ratio_mean
+    real(c_double) :: mean_ratio_min
+    real(c_double) :: min_dihedral_deg
+    real(c_double) :: max_dihedral_deg
+    real(c_double) :: good_fraction
+    real(c_double) :: bad_fraction
+  end type
+
+  ! ---- raw C interfaces ---------------------------------------------------------------------------
+  public :: c_anitet_options_init, c_anitet_version, c_anitet_version_number
+  public :: c_anitet_last_error_message, c_anitet_error_name
+  public :: c_anitet_surface_create, c_anitet_surface_read, c_anitet_surface_destroy
+  public :: c_anitet_surface_get_counts, c_anitet_surface_get_points
+  public :: c_anitet_surface_get_triangles, c_anitet_surface_get_patches
+  public :: c_anitet_surface_validate, c_anitet_surface_problem_count
+  public :: c_anitet_surface_validation_json
+  public :: c_anitet_metric_create_uniform, c_anitet_metric_create_analytic, c_anitet_metric_read
+  public :: c_anitet_metric_create_from_points, c_anitet_metric_destroy, c_anitet_metric_evaluate
+  public :: c_anitet_mesher_run
+  public :: c_anitet_mesh_create, c_anitet_mesh_read, c_anitet_mesh_destroy, c_anitet_mesh_write
+  public :: c_anitet_mesh_write_metric, c_anitet_mesh_get_counts, c_anitet_mesh_get_points
+  public :: c_anitet_mesh_get_tets, c_anitet_mesh_get_regions
+  public :: c_anitet_mesh_get_boundary_triangles, c_anitet_mesh_get_boundary_patches
+  public :: c_anitet_mesh_get_metric_components, c_anitet_mesh_get_metric, c_anitet_mesh_set_metric
+  public :: c_anitet_mesh_quality, c_anitet_mesh_quality_json
+
+  interface
+    integer(c_int) function c_anitet_options_init(options, version) &
+        bind(c, name="anitet_options_init")
+      import :: c_int, c_int32_t, anitet_options_t
+      type(anitet_options_t), intent(out) :: options
+      integer(c_int32_t), value :: version
+    end function
+
+    type(c_ptr) function c_anitet_version() bind(c, name="anitet_version")
+      import :: c_ptr
+    end function
+
+    integer(c_int32_t) function c_anitet_version_number() bind(c, name="anitet_version_number")
+      import :: c_int32_t
+    end function
+
+    type(c_ptr) function c_anitet_last_error_message() bind(c, name="anitet_last_error_message")
+      import :: c_ptr
+    end function
+
+    type(c_ptr) function c_anitet_error_name(code) bind(c, name="anitet_error_name")
+      import :: c_ptr, c_int32_t
+      integer(c_int32_t), value :: code
+    end function
+
+    integer(c_int) function c_anitet_surface_create(xyz, num_points, tri, num_triangles, patch, &
+        index_base, out) bind(c, name="anitet_surface_create")
+      import :: c_int, c_int32_t, c_int64_t, c_double, c_ptr
+      real(c_double), intent(in) :: xyz(*)
+      integer(c_int64_t), value :: num_points
+      integer(c_int32_t), intent(in) :: tri(*)
+      integer(c_int64_t), value :: num_triangles
+      type(c_ptr), value :: patch
+      integer(c_int32_t), value :: index_base
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_surface_read(path, out) bind(c, name="anitet_surface_read")
+      import :: c_int, c_char, c_ptr
+      character(kind=c_char), intent(in) :: path(*)
+      type(c_ptr), intent(out) :: out
+    end function
+
+    subroutine c_anitet_surface_destroy(surface) bind(c, name="anitet_surface_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: surface
+    end subroutine
+
+    integer(c_int) function c_anitet_surface_get_counts(surface, num_points, num_triangles) &
+        bind(c, name="anitet_surface_get_counts")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: surface
+      integer(c_int64_t), intent(out) :: num_points, num_triangles
+    end function
+
+    integer(c_int) function c_anitet_surface_get_points(surface, xyz, xyz_len) &
+        bind(c, name="anitet_surface_get_points")
+      import :: c_int, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: surface
+      real(c_double), intent(out) :: xyz(*)
+      integer(c_int64_t), value :: xyz_len
+    end function
+
+    integer(c_int) function c_anitet_surface_get_triangles(surface, tri, tri_len, index_base) &
+        bind(c, name="anitet_surface_get_triangles")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: surface
+      integer(c_int32_t), intent(out) :: tri(*)
+      integer(c_int64_t), value :: tri_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    integer(c_int) function c_anitet_surface_get_patches(surface, patch, patch_len) &
+        bind(c, name="anitet_surface_get_patches")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: surface
+      integer(c_int32_t), intent(out) :: patch(*)
+      integer(c_int64_t), value :: patch_len
+    end function
+
+    integer(c_int) function c_anitet_surface_validate(surface, options) &
+        bind(c, name="anitet_surface_validate")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: surface
+      type(c_ptr), value :: options  ! const anitet_options*, may be c_null_ptr
+    end function
+
+    integer(c_int) function c_anitet_surface_problem_count(surface, code, count) &
+        bind(c, name="anitet_surface_problem_count")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: surface
+      integer(c_int32_t), value :: code
+      integer(c_int64_t), intent(out) :: count
+    end function
+
+    integer(c_int) function c_anitet_surface_validation_json(surface, buf, buf_len, needed) &
+        bind(c, name="anitet_surface_validation_json")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: surface
+      type(c_ptr), value :: buf
+      integer(c_int64_t), value :: buf_len
+      integer(c_int64_t), intent(out) :: needed
+    end function
+
+    integer(c_int) function c_anitet_metric_create_uniform(size, out) &
+        bind(c, name="anitet_metric_create_uniform")
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: size
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_metric_create_analytic(callback, user_data, out) &
+        bind(c, name="anitet_metric_create_analytic")
+      import :: c_int, c_funptr, c_ptr
+      type(c_funptr), value :: callback
+      type(c_ptr), value :: user_data
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_metric_read(path, background_mesh_path, out) &
+        bind(c, name="anitet_metric_read")
+      import :: c_int, c_char, c_ptr
+      character(kind=c_char), intent(in) :: path(*)
+      type(c_ptr), value :: background_mesh_path  ! may be c_null_ptr
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_metric_create_from_points(background, values, num_values, &
+        components, out) bind(c, name="anitet_metric_create_from_points")
+      import :: c_int, c_int32_t, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: background
+      real(c_double), intent(in) :: values(*)
+      integer(c_int64_t), value :: num_values
+      integer(c_int32_t), value :: components
+      type(c_ptr), intent(out) :: out
+    end function
+
+    subroutine c_anitet_metric_destroy(metric) bind(c, name="anitet_metric_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: metric
+    end subroutine
+
+    integer(c_int) function c_anitet_metric_evaluate(metric, x, y, z, m) &
+        bind(c, name="anitet_metric_evaluate")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: metric
+      real(c_double), value :: x, y, z
+      real(c_double), intent(out) :: m(6)
+    end function
+
+    integer(c_int) function c_anitet_mesher_run(surface, metric, options, out) &
+        bind(c, name="anitet_mesher_run")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: surface
+      type(c_ptr), value :: metric   ! may be c_null_ptr
+      type(c_ptr), value :: options  ! may be c_null_ptr
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_mesh_create(xyz, num_points, tets, num_tets, regions, &
+        bnd_tri, num_boundary_triangles, bnd_patch, index_base, out) &
+        bind(c, name="anitet_mesh_create")
+      import :: c_int, c_int32_t, c_int64_t, c_double, c_ptr
+      real(c_double), intent(in) :: xyz(*)
+      integer(c_int64_t), value :: num_points
+      integer(c_int32_t), intent(in) :: tets(*)
+      integer(c_int64_t), value :: num_tets
+      type(c_ptr), value :: regions, bnd_tri
+      integer(c_int64_t), value :: num_boundary_triangles
+      type(c_ptr), value :: bnd_patch
+      integer(c_int32_t), value :: index_base
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_mesh_read(path, out) bind(c, name="anitet_mesh_read")
+      import :: c_int, c_char, c_ptr
+      character(kind=c_char), intent(in) :: path(*)
+      type(c_ptr), intent(out) :: out
+    end function
+
+    subroutine c_anitet_mesh_destroy(mesh) bind(c, name="anitet_mesh_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: mesh
+    end subroutine
+
+    integer(c_int) function c_anitet_mesh_write(mesh, path) bind(c, name="anitet_mesh_write")
+      import :: c_int, c_char, c_ptr
+      type(c_ptr), value :: mesh
+      character(kind=c_char), intent(in) :: path(*)
+    end function
+
+    integer(c_int) function c_anitet_mesh_write_metric(mesh, path) &
+        bind(c, name="anitet_mesh_write_metric")
+      import :: c_int, c_char, c_ptr
+      type(c_ptr), value :: mesh
+      character(kind=c_char), intent(in) :: path(*)
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_counts(mesh, num_points, num_tets, &
+        num_boundary_triangles) bind(c, name="anitet_mesh_get_counts")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int64_t), intent(out) :: num_points, num_tets, num_boundary_triangles
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_points(mesh, xyz, xyz_len) &
+        bind(c, name="anitet_mesh_get_points")
+      import :: c_int, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: mesh
+      real(c_double), intent(out) :: xyz(*)
+      integer(c_int64_t), value :: xyz_len
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_tets(mesh, tets, tets_len, index_base) &
+        bind(c, name="anitet_mesh_get_tets")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), intent(out) :: tets(*)
+      integer(c_int64_t), value :: tets_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_regions(mesh, regions, regions_len) &
+        bind(c, name="anitet_mesh_get_regions")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), intent(out) :: regions(*)
+      integer(c_int64_t), value :: regions_len
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_boundary_triangles(mesh, tri, tri_len, &
+        index_base) bind(c, name="anitet_mesh_get_boundary_triangles")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), intent(out) :: tri(*)
+      integer(c_int64_t), value :: tri_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_boundary_patches(mesh, patch, patch_len) &
+        bind(c, name="anitet_mesh_get_boundary_patches")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), intent(out) :: patch(*)
+      integer(c_int64_t), value :: patch_len
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_metric_components(mesh, components) &
+        bind(c, name="anitet_mesh_get_metric_components")
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), intent(out) :: components
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_metric(mesh, values, values_len) &
+        bind(c, name="anitet_mesh_get_metric")
+      import :: c_int, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: mesh
+      real(c_double), intent(out) :: values(*)
+      integer(c_int64_t), value :: values_len
+    end function
+
+    integer(c_int) function c_anitet_mesh_set_metric(mesh, values, values_len, components) &
+        bind(c, name="anitet_mesh_set_metric")
+      import :: c_int, c_int32_t, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: mesh
+      real(c_double), intent(in) :: values(*)
+      integer(c_int64_t), value :: values_len
+      integer(c_int32_t), value :: components
+    end function
+
+    integer(c_int) function c_anitet_mesh_quality(mesh, input, out) &
+        bind(c, name="anitet_mesh_quality")
+      import :: c_int, c_ptr, anitet_quality_t
+      type(c_ptr), value :: mesh
+      type(c_ptr), value :: input  ! may be c_null_ptr
+      type(anitet_quality_t), intent(inout) :: out
+    end function
+
+    integer(c_int) function c_anitet_mesh_quality_json(mesh, input, buf, buf_len, needed) &
+        bind(c, name="anitet_mesh_quality_json")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      type(c_ptr), value :: input  ! may be c_null_ptr
+      type(c_ptr), value :: buf
+      integer(c_int64_t), value :: buf_len
+      integer(c_int64_t), intent(out) :: needed
+    end function
+
+    ! From the C library, to measure returned strings.
+    integer(c_size_t) function c_strlen(s) bind(c, name="strlen")
+      import :: c_size_t, c_ptr
+      type(c_ptr), value :: s
+    end function
+  end interface
+
+  ! ---- Fortran wrappers -----------------------------------------------------------------------------
+  public :: anitet_options_init, anitet_version, anitet_version_number
+  public :: anitet_last_error_message, anitet_error_name
+  public :: anitet_surface_create, anitet_surface_read, anitet_surface_destroy
+  public :: anitet_surface_get_counts, anitet_surface_get_points, anitet_surface_get_triangles
+  public :: anitet_surface_get_patches, anitet_surface_validate, anitet_surface_problem_count
+  public :: anitet_surface_validation_json
+  public :: anitet_metric_create_uniform, anitet_metric_create_analytic, anitet_metric_read
+  public :: anitet_metric_create_from_points, anitet_metric_destroy, anitet_metric_evaluate
+  public :: anitet_mesher_run
+  public :: anitet_mesh_create, anitet_mesh_read, anitet_mesh_destroy, anitet_mesh_write
+  public :: anitet_mesh_write_metric, anitet_mesh_get_counts, anitet_mesh_get_points
+  public :: anitet_mesh_get_tets, anitet_mesh_get_regions, anitet_mesh_get_boundary_triangles
+  public :: anitet_mesh_get_boundary_patches, anitet_mesh_get_metric_components
+  public :: anitet_mesh_get_metric, anitet_mesh_set_metric, anitet_mesh_quality
+  public :: anitet_mesh_quality_json
+
+contains
+
+  ! A NUL-terminated C string as a Fortran string ("" for NULL).
+  function from_c_string(p) result(s)
+    type(c_ptr), intent(in) :: p
+    character(len=:), allocatable :: s
+    character(kind=c_char), pointer :: chars(:)
+    integer :: i, n
+    if (.not. c_associated(p)) then
+      s = ""
+      return
+    end if
+    n = int(c_strlen(p))
+    call c_f_pointer(p, chars, [n])
+    allocate(character(len=n) :: s)
+    do i = 1, n
+      s(i:i) = chars(i)
+    end do
+  end function
+
+  function to_c_string(s) result(c)
+    character(len=*), intent(in) :: s
+    character(kind=c_char, len=:), allocatable :: c
+    c = trim(s) // c_null_char
+  end function
+
+  ! The index base to pass: 1 (Fortran's) unless given.
+  function base_of(index_base) result(b)
+    integer, intent(in), optional :: index_base
+    integer(c_int32_t) :: b
+    b = 1
+    if (present(index_base)) b = int(index_base, c_int32_t)
+  end function
+
+  ! An optional handle, or c_null_ptr.
+  function opt_ptr(h) result(p)
+    type(c_ptr), intent(in), optional :: h
+    type(c_ptr) :: p
+    p = c_null_ptr
+    if (present(h)) p = h
+  end function
+
+  ! Copies a NUL-terminated buffer into a Fortran string.
+  function buffer_text(buf, needed) result(s)
+    character(kind=c_char), intent(in) :: buf(:)
+    integer(c_int64_t), intent(in) :: needed
+    character(len=:), allocatable :: s
+    integer :: i
+    allocate(character(len=max(0, int(needed) - 1)) :: s)
+    do i = 1, len(s)
+      s(i:i) = buf(i)
+    end do
+  end function
+
+  ! ---- library ----------------------------------------------------------------------------------
+
+  integer function anitet_options_init(options, version) result(rc)
+    type(anitet_options_t), intent(out) :: options
+    integer, intent(in), optional :: version
+    integer(c_int32_t) :: v
+    v = ANITET_OPTIONS_VERSION
+    if (present(version)) v = int(version, c_int32_t)
+    rc = c_anitet_options_init(options, v)
+  end function
+
+  function anitet_version() result(s)
+    character(len=:), allocatable :: s
+    s = from_c_string(c_anitet_version())
+  end function
+
+  integer function anitet_version_number()
+    anitet_version_number = int(c_anitet_version_number())
+  end function
+
+  function anitet_last_error_message() result(s)
+    character(len=:), allocatable :: s
+    s = from_c_string(c_anitet_last_error_message())
+  end function
+
+  function anitet_error_name(code) result(s)
+    integer, intent(in) :: code
+    character(len=:), allocatable :: s
+    s = from_c_string(c_anitet_error_name(int(code, c_int32_t)))
+  end function
+
+  ! ---- surfaces ---------------------------------------------------------------------------------
+
+  ! xyz(3, num_points), tri(3, num_triangles) counted from index_base (default 1).
+  integer function anitet_surface_create(xyz, tri, surface, patch, index_base) result(rc)
+    real(c_double), intent(in) :: xyz(:, :)
+    integer(c_int32_t), intent(in) :: tri(:, :)
+    type(c_ptr), intent(out) :: surface
+    integer(c_int32_t), intent(in), optional :: patch(:)
+    integer, intent(in), optional :: index_base
+    integer(c_int32_t), allocatable, target :: labels(:)
+    type(c_ptr) :: p
+    ! A wrong leading dimension would be misread silently by C (the last error message is not
+    ! updated for this Fortran-only check).
+    surface = c_null_ptr
+    rc = ANITET_ERR_INVALID_ARGUMENT
+    if (size(xyz, 1) /= 3 .or. size(tri, 1) /= 3) return
+    if (present(patch)) then
+      if (size(patch) /= size(tri, 2)) return
+    end if
+    p = c_null_ptr
+    if (present(patch)) then
+      allocate(labels(size(patch)))
+      labels(:) = patch
+      p = c_loc(labels)
+    end if
+    rc = c_anitet_surface_create(xyz, size(xyz, 2, c_int64_t), tri, size(tri, 2, c_int64_t), p, &
+                                 base_of(index_base), surface)
+  end function
+
+  integer function anitet_surface_read(path, surface) result(rc)
+    character(len=*), intent(in) :: path
+    type(c_ptr), intent(out) :: surface
+    rc = c_anitet_surface_read(to_c_string(path), surface)
+  end function
+
+  subroutine anitet_surface_destroy(surface)
+    type(c_ptr), intent(inout) :: surface
+    call c_anitet_surface_destroy(surface)
+    surface = c_null_ptr
+  end subroutine
+
+  integer function anitet_surface_get_counts(surface, num_points, num_triangles) result(rc)
+    type(c_ptr), intent(in) :: surface
+    integer(c_int64_t), intent(out) :: num_points, num_triangles
+    rc = c_anitet_surface_get_counts(surface, num_points, num_triangles)
+  end function
+
+  integer function anitet_surface_get_points(surface, xyz) result(rc)
+    type(c_ptr), intent(in) :: surface
+    real(c_double), allocatable, intent(out) :: xyz(:, :)
+    integer(c_int64_t) :: np, nt
+    rc = c_anitet_surface_get_counts(surface, np, nt)
+    if (rc /= ANITET_OK) return
+    allocate(xyz(3, np))
+    rc = c_anitet_surface_get_points(surface, xyz, size(xyz, kind=c_int64_t))
+  end function
+
+  integer function anitet_surface_get_triangles(surface, tri, index_base) result(rc)
+    type(c_ptr), intent(in) :: surface
+    integer(c_int32_t), allocatable, intent(out) :: tri(:, :)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: np, nt
+    rc = c_anitet_surface_get_counts(surface, np, nt)
+    if (rc /= ANITET_OK) return
+    allocate(tri(3, nt))
+    rc = c_anitet_surface_get_triangles(surface, tri, size(tri, kind=c_int64_t), base_of(index_base))
+  end function
+
+  integer function anitet_surface_get_patches(surface, patch) result(rc)
+    type(c_ptr), intent(in) :: surface
+    integer(c_int32_t), allocatable, intent(out) :: patch(:)
+    integer(c_int64_t) :: np, nt
+    rc = c_anitet_surface_get_counts(surface, np, nt)
+    if (rc /= ANITET_OK) return
+    allocate(patch(nt))
+    rc = c_anitet_surface_get_patches(surface, patch, size(patch, kind=c_int64_t))
+  end function
+
+  integer function anitet_surface_validate(surface, options) result(rc)
+    type(c_ptr), intent(in) :: surface
+    type(anitet_options_t), intent(in), optional, target :: options
+    if (present(options)) then
+      rc = c_anitet_surface_validate(surface, c_loc(options))
+    else
+      rc = c_anitet_surface_validate(surface, c_null_ptr)
+    end if
+  end function
+
+  integer function anitet_surface_problem_count(surface, code, count) result(rc)
+    type(c_ptr), intent(in) :: surface
+    integer, intent(in) :: code
+    integer(c_int64_t), intent(out) :: count
+    rc = c_anitet_surface_problem_count(surface, int(code, c_int32_t), count)
+  end function
+
+  integer function anitet_surface_validation_json(surface, text) result(rc)
+    type(c_ptr), intent(in) :: surface
+    character(len=:), allocatable, intent(out) :: text
+    character(kind=c_char), allocatable, target :: buf(:)
+    integer(c_int64_t) :: needed, written
+    text = ""
+    needed = 0
+    rc = c_anitet_surface_validation_json(surface, c_null_ptr, 0_c_int64_t, needed)
+    if (rc /= ANITET_OK) return
+    allocate(buf(needed))
+    rc = c_anitet_surface_validation_json(surface, c_loc(buf), needed, written)
+    if (rc == ANITET_OK) text = buffer_text(buf, needed)
+  end function
+
+  ! ---- metrics ----------------------------------------------------------------------------------
+
+  integer function anitet_metric_create_uniform(size, metric) result(rc)
+    real(c_double), intent(in) :: size
+    type(c_ptr), intent(out) :: metric
+    rc = c_anitet_metric_create_uniform(size, metric)
+  end function
+
+  ! callback: c_funloc of a bind(c) function
+  !   integer(c_int) function f(x, y, z, m, user_data) bind(c)
+  !     real(c_double), value :: x, y, z;  real(c_double) :: m(6);  type(c_ptr), value :: user_data
+  integer function anitet_metric_create_analytic(callback, user_data, metric) result(rc)
+    type(c_funptr), intent(in) :: callback
+    type(c_ptr), intent(in) :: user_data
+    type(c_ptr), intent(out) :: metric
+    rc = c_anitet_metric_create_analytic(callback, user_data, metric)
+  end function
+
+  integer function anitet_metric_read(path, metric, background_mesh_path) result(rc)
+    character(len=*), intent(in) :: path
+    type(c_ptr), intent(out) :: metric
+    character(len=*), intent(in), optional :: background_mesh_path
+    character(kind=c_char, len=:), allocatable, target :: background
+    if (present(background_mesh_path)) then
+      background = to_c_string(background_mesh_path)
+      rc = c_anitet_metric_read(to_c_string(path), c_loc(background), metric)
+    else
+      rc = c_anitet_metric_read(to_c_string(path), c_null_ptr, metric)
+    end if
+  end function
+
+  ! values(components, num_points of background)
+  integer function anitet_metric_create_from_points(background, values, metric) result(rc)
+    type(c_ptr), intent(in) :: background
+    real(c_double), intent(in) :: values(:, :)
+    type(c_ptr), intent(out) :: metric
+    metric = c_null_ptr
+    rc = ANITET_ERR_INVALID_ARGUMENT  ! a (0, n) array: no component (Fortran-only check)
+    if (size(values, 1) == 0) return
+    rc = c_anitet_metric_create_from_points(background, values, size(values, kind=c_int64_t), &
+                                            size(values, 1, c_int32_t), metric)
+  end function
+
+  subroutine anitet_metric_destroy(metric)
+    type(c_ptr), intent(inout) :: metric
+    call c_anitet_metric_destroy(metric)
+    metric = c_null_ptr
+  end subroutine
+
+  integer function anitet_metric_evaluate(metric, point, m) result(rc)
+    type(c_ptr), intent(in) :: metric
+    real(c_double), intent(in) :: point(3)
+    real(c_double), intent(out) :: m(6)
+    rc = c_anitet_metric_evaluate(metric, point(1), point(2), point(3), m)
+  end function
+
+  ! ---- meshing ----------------------------------------------------------------------------------
+
+  integer function anitet_mesher_run(surface, mesh, metric, options) result(rc)
+    type(c_ptr), intent(in) :: surface
+    type(c_ptr), intent(out) :: mesh
+    type(c_ptr), intent(in), optional :: metric
+    type(anitet_options_t), intent(in), optional, target :: options
+    if (present(options)) then
+      rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_loc(options), mesh)
+    else
+      rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_null_ptr, mesh)
+    end if
+  end function
+
+  ! ---- volume meshes ----------------------------------------------------------------------------
+
+  ! xyz(3, np), tets(4, nt), regions(nt), bnd_tri(3, nb), bnd_patch(nb); index_base default 1.
+  integer function anitet_mesh_create(xyz, tets, mesh, regions, bnd_tri, bnd_patch, index_base) &
+      result(rc)
+    real(c_double), intent(in) :: xyz(:, :)
+    integer(c_int32_t), intent(in) :: tets(:, :)
+    type(c_ptr), intent(out) :: mesh
+    integer(c_int32_t), intent(in), optional :: regions(:), bnd_tri(:, :), bnd_patch(:)
+    integer, intent(in), optional :: index_base
+    integer(c_int32_t), allocatable, target :: r(:), t(:, :), p(:)
+    type(c_ptr) :: rp, tp, pp
+    integer(c_int64_t) :: nb
+    ! Wrong shapes would be misread silently by C (Fortran-only check: no last error message).
+    mesh = c_null_ptr
+    rc = ANITET_ERR_INVALID_ARGUMENT
+    if (size(xyz, 1) /= 3 .or. size(tets, 1) /= 4) return
+    if (present(regions)) then
+      if (size(regions) /= size(tets, 2)) return
+    end if
+    if (present(bnd_tri)) then
+      if (size(bnd_tri, 1) /= 3) return
+      if (present(bnd_patch)) then
+        if (size(bnd_patch) /= size(bnd_tri, 2)) return
+      end if
+    else if (present(bnd_patch)) then
+      return
+    end if
+    rp = c_null_ptr
+    tp = c_null_ptr
+    pp = c_null_ptr
+    nb = 0
+    if (present(regions)) then
+      allocate(r(size(regions)))
+      r(:) = regions
+      rp = c_loc(r)
+    end if
+    if (present(bnd_tri)) then
+      allocate(t(size(bnd_tri, 1), size(bnd_tri, 2)))
+      t(:, :) = bnd_tri
+      tp = c_loc(t)
+      nb = size(bnd_tri, 2, c_int64_t)
+    end if
+    if (present(bnd_patch)) then
+      allocate(p(size(bnd_patch)))
+      p(:) = bnd_patch
+      pp = c_loc(p)
+    end if
+    rc = c_anitet_mesh_create(xyz, size(xyz, 2, c_int64_t), tets, size(tets, 2, c_int64_t), rp, &
+                              tp, nb, pp, base_of(index_base), mesh)
+  end function
+
+  integer function anitet_mesh_read(path, mesh) result(rc)
+    character(len=*), intent(in) :: path
+    type(c_ptr), intent(out) :: mesh
+    rc = c_anitet_mesh_read(to_c_string(path), mesh)
+  end function
+
+  subroutine anitet_mesh_destroy(mesh)
+    type(c_ptr), intent(inout) :: mesh
+    call c_anitet_mesh_destroy(mesh)
+    mesh = c_null_ptr
+  end subroutine
+
+  integer function anitet_mesh_write(mesh, path) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    character(len=*), intent(in) :: path
+    rc = c_anitet_mesh_write(mesh, to_c_string(path))
+  end function
+
+  integer function anitet_mesh_write_metric(mesh, path) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    character(len=*), intent(in) :: path
+    rc = c_anitet_mesh_write_metric(mesh, to_c_string(path))
+  end function
+
+  integer function anitet_mesh_get_counts(mesh, num_points, num_tets, num_boundary_triangles) &
+      result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int64_t), intent(out) :: num_points, num_tets, num_boundary_triangles
+    rc = c_anitet_mesh_get_counts(mesh, num_points, num_tets, num_boundary_triangles)
+  end function
+
+  integer function anitet_mesh_get_points(mesh, xyz) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    real(c_double), allocatable, intent(out) :: xyz(:, :)
+    integer(c_int64_t) :: np, nt, nb
+    rc = c_anitet_mesh_get_counts(mesh, np, nt, nb)
+    if (rc /= ANITET_OK) return
+    allocate(xyz(3, np))
+    rc = c_anitet_mesh_get_points(mesh, xyz, size(xyz, kind=c_int64_t))
+  end function
+
+  integer function anitet_mesh_get_tets(mesh, tets, index_base) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: tets(:, :)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: np, nt, nb
+    rc = c_anitet_mesh_get_counts(mesh, np, nt, nb)
+    if (rc /= ANITET_OK) return
+    allocate(tets(4, nt))
+    rc = c_anitet_mesh_get_tets(mesh, tets, size(tets, kind=c_int64_t), base_of(index_base))
+  end function
+
+  integer function anitet_mesh_get_regions(mesh, regions) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: regions(:)
+    integer(c_int64_t) :: np, nt, nb
+    rc = c_anitet_mesh_get_counts(mesh, np, nt, nb)
+    if (rc /= ANITET_OK) return
+    allocate(regions(nt))
+    rc = c_anitet_mesh_get_regions(mesh, regions, size(regions, kind=c_int64_t))
+  end function
+
+  integer function anitet_mesh_get_boundary_triangles(mesh, tri, index_base) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: tri(:, :)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: np, nt, nb
+    rc = c_anitet_mesh_get_counts(mesh, np, nt, nb)
+    if (rc /= ANITET_OK) return
+    allocate(tri(3, nb))
+    rc = c_anitet_mesh_get_boundary_triangles(mesh, tri, size(tri, kind=c_int64_t), &
+                                              base_of(index_base))
+  end function
+
+  integer function anitet_mesh_get_boundary_patches(mesh, patch) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: patch(:)
+    integer(c_int64_t) :: np, nt, nb
+    rc = c_anitet_mesh_get_counts(mesh, np, nt, nb)
+    if (rc /= ANITET_OK) return
+    allocate(patch(nb))
+    rc = c_anitet_mesh_get_boundary_patches(mesh, patch, size(patch, kind=c_int64_t))
+  end function
+
+  integer function anitet_mesh_get_metric_components(mesh, components) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer, intent(out) :: components
+    integer(c_int32_t) :: c
+    rc = c_anitet_mesh_get_metric_components(mesh, c)
+    components = int(c)
+  end function
+
+  ! values(components, num_points); components 0 gives a (0, num_points) array.
+  integer function anitet_mesh_get_metric(mesh, values) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    real(c_double), allocatable, intent(out) :: values(:, :)
+    integer(c_int64_t) :: np, nt, nb
+    integer(c_int32_t) :: c
+    rc = c_anitet_mesh_get_counts(mesh, np, nt, nb)
+    if (rc /= ANITET_OK) return
+    rc = c_anitet_mesh_get_metric_components(mesh, c)
+    if (rc /= ANITET_OK) return
+    allocate(values(c, np))
+    if (c == 0) return
+    rc = c_anitet_mesh_get_metric(mesh, values, size(values, kind=c_int64_t))
+  end function
+
+  ! values(components, num_points) with components 1 or 6; a (0, n) array removes the metric.
+  integer function anitet_mesh_set_metric(mesh, values) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    real(c_double), intent(in) :: values(:, :)
+    real(c_double) :: none(1)
+    if (size(values, 1) == 0) then
+      none = 0
+      rc = c_anitet_mesh_set_metric(mesh, none, 0_c_int64_t, 0_c_int32_t)
+    else
+      rc = c_anitet_mesh_set_metric(mesh, values, size(values, kind=c_int64_t), &
+                                    size(values, 1, c_int32_t))
+    end if
+  end function
+
+  integer function anitet_mesh_quality(mesh, quality, input) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    type(anitet_quality_t), intent(out) :: quality
+    type(c_ptr), intent(in), optional :: input
+    quality%version = ANITET_QUALITY_VERSION
+    rc = c_anitet_mesh_quality(mesh, opt_ptr(input), quality)
+  end function
+
+  integer function anitet_mesh_quality_json(mesh, text, input) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    character(len=:), allocatable, intent(out) :: text
+    type(c_ptr), intent(in), optional :: input
+    character(kind=c_char), allocatable, target :: buf(:)
+    integer(c_int64_t) :: needed, written
+    text = ""
+    needed = 0
+    rc = c_anitet_mesh_quality_json(mesh, opt_ptr(input), c_null_ptr, 0_c_int64_t, needed)
+    if (rc /= ANITET_OK) return
+    allocate(buf(needed))
+    rc = c_anitet_mesh_quality_json(mesh, opt_ptr(input), c_loc(buf), needed, written)
+    if (rc == ANITET_OK) text = buffer_text(buf, needed)
+  end function
+
+end module anitet

@@ -1,0 +1,52 @@
+// Internal helpers of the C ABI shims: the thread-local last error, the try/catch wrapper every
+// entry point goes through, and argument checks that set a message naming the function.
+#pragma once
+
+#include <cstdint>
+#include <exception>
+#include <new>
+#include <string>
+
+#include "anitet.h"
+#include "core/status.hpp"
+
+namespace anitet::capi {
+
+// Stores the message of the last call on this thread and returns its code.
+int set_error(int code, const std::string& message);
+int set_status(const char* function, const Status& status);
+inline int ok() { return set_error(ANITET_OK, std::string()); }
+const char* last_error_c_str();
+
+// Options after the version check; NULL gives the defaults.
+int read_options(const char* function, const anitet_options* given, anitet_options& out);
+
+// Runs body() (returning int) and turns any escaping exception into an error code: no exception
+// ever crosses the C ABI.
+template <class F>
+int guard(const char* function, F&& body) noexcept {
+  try {
+    return body();
+  } catch (const std::bad_alloc&) {
+    return set_error(ANITET_ERR_OUT_OF_MEMORY, std::string(function) + ": out of memory");
+  } catch (const std::exception& e) {
+    try {
+      return set_error(ANITET_ERR_INTERNAL, std::string(function) + ": internal error: " + e.what());
+    } catch (...) {
+      return ANITET_ERR_INTERNAL;
+    }
+  } catch (...) {
+    return set_error(ANITET_ERR_INTERNAL, std::string(function) + ": internal error");
+  }
+}
+
+int null_argument(const char* function, const char* argument);
+int bad_index_base(const char* function, int32_t index_base);
+// ANITET_ERR_BUFFER_TOO_SMALL naming the sizes.
+int too_small(const char* function, const char* argument, int64_t given, uint64_t needed);
+
+// Copies a string into a caller buffer (NUL included), with the size query rule of the header.
+int copy_text(const char* function, const std::string& text, char* buf, int64_t buf_len,
+              int64_t* needed);
+
+}  // namespace anitet::capi

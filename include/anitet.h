@@ -1,0 +1,313 @@
+/*
+ * anitet.h - the stable C ABI of anitet (C99; also valid C++).
+ *
+ * Conventions (docs/c-api.md has the long form and an example):
+ *  - Opaque handles: anitet_surface, anitet_mesh, anitet_metric. Create with a *_create / *_read
+ *    function (the handle is returned through the last argument), free with *_destroy (NULL is
+ *    accepted). A handle is used by one thread at a time; distinct handles may be used by
+ *    different threads at the same time. The library has no global state.
+ *  - Every fallible function returns int: ANITET_OK (0) or a negative ANITET_ERR_* code. The codes
+ *    are never renumbered; new ones are only added. anitet_last_error_message() gives the message
+ *    of the last call made on the calling thread (thread-local; "" after a success).
+ *  - Only fixed-width types cross the boundary: int32_t, int64_t, double, const char*.
+ *  - Caller arrays: indices are int32_t with an explicit index_base (0 for C, 1 for Fortran).
+ *    Outputs go to caller-owned buffers: ask for the counts, then pass a buffer and its length in
+ *    elements; a short buffer gives ANITET_ERR_BUFFER_TOO_SMALL and nothing is written.
+ *  - Versioned structs (anitet_options, anitet_quality): the first field is the version; set it
+ *    with the *_INIT macro or the *_init function. New fields are only appended, and the library
+ *    reads or writes only the fields of the version the caller declares.
+ *  - Callbacks take a trailing void* user_data that the library passes through untouched.
+ *  - Strings are NUL-terminated UTF-8; paths are file-system paths.
+ */
+#ifndef ANITET_H
+#define ANITET_H
+
+#include <stdint.h>
+
+/* Version of this header; anitet_version() gives the library's at run time. */
+#define ANITET_VERSION_MAJOR 0
+#define ANITET_VERSION_MINOR 1
+#define ANITET_VERSION_PATCH 0
+#define ANITET_VERSION_STRING "0.1.0"
+/* major*10000 + minor*100 + patch, comparable with anitet_version_number(). */
+#define ANITET_VERSION_NUMBER \
+  (ANITET_VERSION_MAJOR * 10000 + ANITET_VERSION_MINOR * 100 + ANITET_VERSION_PATCH)
+
+#if defined(ANITET_STATIC)
+#define ANITET_API
+#elif defined(_WIN32)
+#if defined(ANITET_BUILDING_LIBRARY)
+#define ANITET_API __declspec(dllexport)
+#else
+#define ANITET_API __declspec(dllimport)
+#endif
+#elif defined(__GNUC__) && __GNUC__ >= 4
+#define ANITET_API __attribute__((visibility("default")))
+#else
+#define ANITET_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------------------------------------
+ * Error codes. Equal to anitet::Error in src/core/status.hpp. Never renumbered.
+ * ------------------------------------------------------------------------------------------- */
+#define ANITET_OK 0
+#define ANITET_ERR_INVALID_ARGUMENT (-1)     /* NULL handle/pointer, bad size, bad option */
+#define ANITET_ERR_FILE_NOT_FOUND (-2)       /* cannot open a file for reading or writing */
+#define ANITET_ERR_PARSE (-3)                /* malformed or truncated file contents */
+#define ANITET_ERR_UNSUPPORTED_FORMAT (-4)   /* unknown extension or format variant */
+#define ANITET_ERR_EMPTY_INPUT (-5)          /* no points, triangles or tets */
+#define ANITET_ERR_BUFFER_TOO_SMALL (-6)     /* a caller buffer is shorter than needed */
+#define ANITET_ERR_NON_FINITE_COORDINATE (-10)
+#define ANITET_ERR_DEGENERATE_TRIANGLE (-11)
+#define ANITET_ERR_DUPLICATE_TRIANGLE (-12)
+#define ANITET_ERR_OPEN_BOUNDARY (-13)
+#define ANITET_ERR_NON_MANIFOLD_EDGE (-14)
+#define ANITET_ERR_NON_MANIFOLD_VERTEX (-15)
+#define ANITET_ERR_INCONSISTENT_ORIENTATION (-16)
+#define ANITET_ERR_SELF_INTERSECTION (-17)
+#define ANITET_ERR_INTERSECTING_SHELLS (-18)
+#define ANITET_ERR_BAD_INDEX (-19)           /* an index that is not a vertex */
+#define ANITET_ERR_NOT_IMPLEMENTED (-30)     /* declared, not available in this version */
+#define ANITET_ERR_CANCELLED (-31)           /* a progress callback returned non-zero */
+#define ANITET_ERR_DUPLICATE_POINT (-32)
+#define ANITET_ERR_RECOVERY_FAILED (-33)
+#define ANITET_ERR_INVALID_MESH (-34)
+#define ANITET_ERR_OUT_OF_MEMORY (-40)
+#define ANITET_ERR_INTERNAL (-99)
+
+/* Log levels passed to anitet_log_fn. */
+#define ANITET_LOG_ERROR 0
+#define ANITET_LOG_WARNING 1
+#define ANITET_LOG_INFO 2
+#define ANITET_LOG_DEBUG 3
+
+/* ---------------------------------------------------------------------------------------------
+ * Opaque handles and callbacks.
+ * ------------------------------------------------------------------------------------------- */
+typedef struct anitet_surface anitet_surface; /* a triangulated closed surface (the input) */
+typedef struct anitet_mesh anitet_mesh;       /* a tetrahedral mesh (read, given or meshed) */
+typedef struct anitet_metric anitet_metric;   /* a metric (sizing) field */
+
+/* Progress: fraction in [0, 1] of the named stage ("validate", ...). Return 0 to continue,
+ * non-zero to cancel: the running call then returns ANITET_ERR_CANCELLED. */
+typedef int (*anitet_progress_fn)(double fraction, const char* stage, void* user_data);
+/* Log: one message (valid only during the call) at an ANITET_LOG_* level. */
+typedef void (*anitet_log_fn)(int32_t level, const char* message, void* user_data);
+/* Analytic metric at (x, y, z): fill m with the symmetric positive-definite tensor in the order
+ * xx xy yy xz yz zz (Medit's); return 0, or non-zero when the point cannot be evaluated. */
+typedef int (*anitet_metric_fn)(double x, double y, double z, double m[6], void* user_data);
+
+/* ---------------------------------------------------------------------------------------------
+ * Versioned options.
+ * ------------------------------------------------------------------------------------------- */
+#define ANITET_OPTIONS_VERSION 1
+
+typedef struct anitet_options {
+  int32_t version;                   /* ANITET_OPTIONS_VERSION (1) */
+  int32_t num_threads;               /* 0: the library's default */
+  int32_t merge_duplicate_vertices;  /* validation repair: merge equal vertices (default 1) */
+  int32_t orient_shells;             /* validation repair: flip inward shells (default 1) */
+  int32_t check_self_intersections;  /* exact self-intersection search (default 1) */
+  int32_t reserved0;                 /* keep 0 (alignment; may gain a meaning in a later version) */
+  anitet_progress_fn progress;       /* may be NULL */
+  void* progress_user_data;
+  anitet_log_fn log;                 /* may be NULL */
+  void* log_user_data;
+  /* Version 2 and later append fields here. */
+} anitet_options;
+
+#define ANITET_OPTIONS_INIT { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0 }
+
+/* Fills *options with the defaults of `version` (1 .. ANITET_OPTIONS_VERSION).
+ * Errors: INVALID_ARGUMENT (NULL options, unknown version). */
+ANITET_API int anitet_options_init(anitet_options* options, int32_t version);
+
+/* ---------------------------------------------------------------------------------------------
+ * Library information and errors.
+ * ------------------------------------------------------------------------------------------- */
+
+/* The library's version, "major.minor.patch" (static storage). */
+ANITET_API const char* anitet_version(void);
+/* The library's version as major*10000 + minor*100 + patch. */
+ANITET_API int32_t anitet_version_number(void);
+/* Message of the last int-returning call on this thread; "" after a success. The pointer stays
+ * valid until the next anitet_* call on the same thread. Never NULL. */
+ANITET_API const char* anitet_last_error_message(void);
+/* Stable short name of an error code ("open_boundary"); "unknown_error" for other values. */
+ANITET_API const char* anitet_error_name(int32_t code);
+
+/* ---------------------------------------------------------------------------------------------
+ * Surfaces.
+ * ------------------------------------------------------------------------------------------- */
+
+/* A surface from caller arrays, copied: xyz (3*num_points), tri (3*num_triangles, vertex
+ * indices counter-clockwise seen from outside, counted from index_base), patch (num_triangles
+ * labels, or NULL for all 0). Errors: INVALID_ARGUMENT (NULL pointer, negative count,
+ * index_base not 0 or 1), EMPTY_INPUT (no point or no triangle), BAD_INDEX. */
+ANITET_API int anitet_surface_create(const double* xyz, int64_t num_points, const int32_t* tri,
+                                     int64_t num_triangles, const int32_t* patch,
+                                     int32_t index_base, anitet_surface** out);
+/* A surface from a file (.off .obj .stl .ply .mesh .msh by extension).
+ * Errors: INVALID_ARGUMENT, FILE_NOT_FOUND, PARSE, UNSUPPORTED_FORMAT, EMPTY_INPUT, BAD_INDEX. */
+ANITET_API int anitet_surface_read(const char* path, anitet_surface** out);
+ANITET_API void anitet_surface_destroy(anitet_surface* surface);
+
+/* Numbers of points and triangles (after repairs when it was validated). */
+ANITET_API int anitet_surface_get_counts(const anitet_surface* surface, int64_t* num_points,
+                                         int64_t* num_triangles);
+/* Fills xyz (xyz_len >= 3*num_points). */
+ANITET_API int anitet_surface_get_points(const anitet_surface* surface, double* xyz,
+                                         int64_t xyz_len);
+/* Fills tri (tri_len >= 3*num_triangles) with indices counted from index_base. */
+ANITET_API int anitet_surface_get_triangles(const anitet_surface* surface, int32_t* tri,
+                                            int64_t tri_len, int32_t index_base);
+/* Fills patch (patch_len >= num_triangles). */
+ANITET_API int anitet_surface_get_patches(const anitet_surface* surface, int32_t* patch,
+                                          int64_t patch_len);
+
+/* Validates the surface and applies the safe repairs (merging equal vertices, flipping inward
+ * shells) to it; options may be NULL for the defaults. Returns ANITET_OK for a clean closed
+ * oriented surface, else the first problem's code (OPEN_BOUNDARY, SELF_INTERSECTION, ...) with
+ * a message naming the elements. The report is kept in the surface for the queries below.
+ * Calls options->progress ("validate", 0 then 1) and options->log (repairs, problems). */
+ANITET_API int anitet_surface_validate(anitet_surface* surface, const anitet_options* options);
+/* Instances of the problem `code` found by the last validation (0 when absent). Errors:
+ * INVALID_ARGUMENT (NULL, or the surface was not validated). */
+ANITET_API int anitet_surface_problem_count(const anitet_surface* surface, int32_t code,
+                                            int64_t* count);
+/* The last validation report as JSON text into buf (buf_len bytes, NUL included); *needed gets
+ * the size needed. buf == NULL with buf_len == 0 asks for the size only and succeeds. */
+ANITET_API int anitet_surface_validation_json(const anitet_surface* surface, char* buf,
+                                              int64_t buf_len, int64_t* needed);
+
+/* ---------------------------------------------------------------------------------------------
+ * Metric fields.
+ * ------------------------------------------------------------------------------------------- */
+
+/* The isotropic metric of edge length `size` (> 0, finite) everywhere. */
+ANITET_API int anitet_metric_create_uniform(double size, anitet_metric** out);
+/* An analytic metric: callback is called (possibly from several threads at once) with
+ * user_data, which must stay valid while the metric is in use. */
+ANITET_API int anitet_metric_create_analytic(anitet_metric_fn callback, void* user_data,
+                                             anitet_metric** out);
+/* A metric from a file: an OpenVDB .vdb (scalar size or tensor grids), or a Medit .sol with
+ * background_mesh_path (NULL otherwise). NOT_IMPLEMENTED in this version. */
+ANITET_API int anitet_metric_read(const char* path, const char* background_mesh_path,
+                                  anitet_metric** out);
+/* Per-point values on a background mesh: components 1 (size) or 6 (xx xy yy xz yz zz) per
+ * point of `background`. NOT_IMPLEMENTED in this version. */
+ANITET_API int anitet_metric_create_from_points(const anitet_mesh* background,
+                                                const double* values, int64_t num_values,
+                                                int32_t components, anitet_metric** out);
+ANITET_API void anitet_metric_destroy(anitet_metric* metric);
+/* The tensor at (x, y, z) into m[6] (xx xy yy xz yz zz). Errors: INVALID_ARGUMENT, and the
+ * analytic callback's failure as INVALID_ARGUMENT naming its return value. */
+ANITET_API int anitet_metric_evaluate(const anitet_metric* metric, double x, double y, double z,
+                                      double m[6]);
+
+/* ---------------------------------------------------------------------------------------------
+ * Meshing.
+ * ------------------------------------------------------------------------------------------- */
+
+/* Meshes the inside of `surface` (validated by this call) with `metric` (NULL: sizes from the
+ * surface) into a new mesh *out. Returns NOT_IMPLEMENTED in this version (*out is set to NULL):
+ * the meshing pipeline is not part of the library yet. */
+ANITET_API int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric,
+                                 const anitet_options* options, anitet_mesh** out);
+
+/* ---------------------------------------------------------------------------------------------
+ * Volume meshes.
+ * ------------------------------------------------------------------------------------------- */
+
+/* A mesh from caller arrays, copied: xyz (3*num_points), tets (4*num_tets, positively oriented),
+ * regions (num_tets, or NULL for 0), boundary triangles bnd_tri (3*num_boundary_triangles, NULL
+ * when 0) with bnd_patch (num_boundary_triangles, or NULL for 0); indices counted from
+ * index_base. Errors: INVALID_ARGUMENT, EMPTY_INPUT (no tet), BAD_INDEX. */
+ANITET_API int anitet_mesh_create(const double* xyz, int64_t num_points, const int32_t* tets,
+                                  int64_t num_tets, const int32_t* regions,
+                                  const int32_t* bnd_tri, int64_t num_boundary_triangles,
+                                  const int32_t* bnd_patch, int32_t index_base,
+                                  anitet_mesh** out);
+/* A mesh from a file (.mesh .msh .node/.ele .vtu by extension). */
+ANITET_API int anitet_mesh_read(const char* path, anitet_mesh** out);
+ANITET_API void anitet_mesh_destroy(anitet_mesh* mesh);
+/* Writes .mesh (Medit), .msh (Gmsh 4.1) or .vtu by extension. */
+ANITET_API int anitet_mesh_write(const anitet_mesh* mesh, const char* path);
+/* Writes the per-vertex metric as a Medit .sol. INVALID_ARGUMENT when the mesh has none. */
+ANITET_API int anitet_mesh_write_metric(const anitet_mesh* mesh, const char* path);
+
+/* Counts; any output pointer may be NULL. */
+ANITET_API int anitet_mesh_get_counts(const anitet_mesh* mesh, int64_t* num_points,
+                                      int64_t* num_tets, int64_t* num_boundary_triangles);
+/* Fills xyz (xyz_len >= 3*num_points). */
+ANITET_API int anitet_mesh_get_points(const anitet_mesh* mesh, double* xyz, int64_t xyz_len);
+/* Fills tets (tets_len >= 4*num_tets) with indices counted from index_base. */
+ANITET_API int anitet_mesh_get_tets(const anitet_mesh* mesh, int32_t* tets, int64_t tets_len,
+                                    int32_t index_base);
+/* Fills regions (regions_len >= num_tets). */
+ANITET_API int anitet_mesh_get_regions(const anitet_mesh* mesh, int32_t* regions,
+                                       int64_t regions_len);
+/* Fills tri (tri_len >= 3*num_boundary_triangles) with indices counted from index_base. */
+ANITET_API int anitet_mesh_get_boundary_triangles(const anitet_mesh* mesh, int32_t* tri,
+                                                  int64_t tri_len, int32_t index_base);
+/* Fills patch (patch_len >= num_boundary_triangles). */
+ANITET_API int anitet_mesh_get_boundary_patches(const anitet_mesh* mesh, int32_t* patch,
+                                                int64_t patch_len);
+/* Values per vertex of the mesh's metric: 0 (none), 1 (size) or 6 (xx xy yy xz yz zz). */
+ANITET_API int anitet_mesh_get_metric_components(const anitet_mesh* mesh, int32_t* components);
+/* Fills values (values_len >= components*num_points). */
+ANITET_API int anitet_mesh_get_metric(const anitet_mesh* mesh, double* values,
+                                      int64_t values_len);
+/* Replaces the per-vertex metric: components 1 (size, > 0) or 6 (xx xy yy xz yz zz) values per
+ * point, values_len == components*num_points, all finite; components 0 removes it (values may
+ * be NULL). Errors: INVALID_ARGUMENT. */
+ANITET_API int anitet_mesh_set_metric(anitet_mesh* mesh, const double* values, int64_t values_len,
+                                      int32_t components);
+
+/* ---------------------------------------------------------------------------------------------
+ * Quality report.
+ * ------------------------------------------------------------------------------------------- */
+#define ANITET_QUALITY_VERSION 1
+
+typedef struct anitet_quality {
+  int32_t version;              /* ANITET_QUALITY_VERSION (1), set by the caller */
+  int32_t valid;                /* 1: no non-positive tet, no face shared by more than 2 tets */
+  int32_t boundary_constrained; /* 1: every input triangle is a boundary face, no Steiner point
+                                   on the boundary (0 when no input surface was given) */
+  int32_t reserved0;            /* 0 */
+  int64_t vertices;
+  int64_t tets;
+  int64_t nonpositive_tets;     /* exact orient3d <= 0 */
+  double radius_ratio_mean;     /* 3 * inradius / circumradius: 1 regular, 0 flat */
+  double radius_ratio_min;
+  double mean_ratio_mean;       /* 12 (3|V|)^(2/3) / sum of squared edge lengths */
+  double mean_ratio_min;
+  double min_dihedral_deg;
+  double max_dihedral_deg;
+  double good_fraction;         /* share of tets with radius ratio > 0.4 */
+  double bad_fraction;          /* share of tets with radius ratio < 0.1 */
+  /* Version 2 and later append fields here. */
+} anitet_quality;
+
+#define ANITET_QUALITY_INIT { ANITET_QUALITY_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 }
+
+/* The quality of `mesh`, against `input` (may be NULL) for boundary_constrained. out->version
+ * must be 1 .. ANITET_QUALITY_VERSION; the fields of that version are filled.
+ * Errors: INVALID_ARGUMENT, BAD_INDEX, NON_FINITE_COORDINATE. */
+ANITET_API int anitet_mesh_quality(const anitet_mesh* mesh, const anitet_surface* input,
+                                   anitet_quality* out);
+/* The full quality report as JSON text into buf (buf_len bytes, NUL included); *needed gets the
+ * size needed. buf == NULL with buf_len == 0 asks for the size only and succeeds. The text is
+ * the same for the same inputs (its "seconds" field is 0), so a size query then a fill agree. */
+ANITET_API int anitet_mesh_quality_json(const anitet_mesh* mesh, const anitet_surface* input,
+                                        char* buf, int64_t buf_len, int64_t* needed);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ANITET_H */

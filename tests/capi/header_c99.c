@@ -1,0 +1,17 @@
+/* Compiled with -std=c99 -pedantic -Wall -Wextra -Werror by a ctest case: the header must be
+ * plain C99, and its INIT macros must initialise the structs completely. */
+#include "anitet.h"
+
+int anitet_header_check(void);
+
+int anitet_header_check(void) {
+  anitet_options options = ANITET_OPTIONS_INIT;
+  anitet_quality quality = ANITET_QUALITY_INIT;
+  anitet_progress_fn progress = 0;
+  anitet_log_fn log = 0;
+  anitet_metric_fn metric = 0;
+  (void)progress;
+  (void)log;
+  (void)metric;
+  return options.version + quality.version + ANITET_VERSION_NUMBER + ANITET_ERR_INTERNAL;
+}

@@ -1,0 +1,58 @@
+# ctest -P script: the Fortran module mirrors include/anitet.h (HEADER=..., FORTRAN=...).
+# Every function declared with ANITET_API must have an interface bound to its name, and every
+# ANITET_ERR_* / version / struct-version constant must have the same value in the module.
+file(READ "${HEADER}" header)
+file(READ "${FORTRAN}" fortran)
+string(TOLOWER "${fortran}" fortran_lower)
+
+string(REGEX MATCHALL "ANITET_API[^;(]*[ *](anitet_[a-z0-9_]+)\\(" decls "${header}")
+set(functions "")
+foreach(decl IN LISTS decls)
+  string(REGEX MATCH "(anitet_[a-z0-9_]+)\\($" m "${decl}")
+  list(APPEND functions "${CMAKE_MATCH_1}")
+endforeach()
+list(LENGTH functions n)
+if(n LESS 30)
+  message(FATAL_ERROR "found only ${n} functions in ${HEADER}: the parser is out of date")
+endif()
+
+set(missing "")
+foreach(f IN LISTS functions)
+  string(FIND "${fortran_lower}" "bind(c, name=\"${f}\")" pos)
+  if(pos EQUAL -1)
+    list(APPEND missing "${f}")
+  endif()
+endforeach()
+
+# Interfaces in the module that the header no longer declares.
+string(REGEX MATCHALL "bind\\(c, name=\"anitet_[a-z0-9_]+\"\\)" binds "${fortran_lower}")
+set(stale "")
+foreach(b IN LISTS binds)
+  string(REGEX MATCH "anitet_[a-z0-9_]+" name "${b}")
+  list(FIND functions "${name}" idx)
+  if(idx EQUAL -1)
+    list(APPEND stale "${name}")
+  endif()
+endforeach()
+
+# Integer constants: "#define ANITET_X (-n)" or "#define ANITET_X n".
+string(REGEX MATCHALL "#define (ANITET_(ERR_[A-Z_]+|OK|LOG_[A-Z]+|VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION)) \\(?-?[0-9]+\\)?" defines "${header}")
+set(mismatched "")
+foreach(d IN LISTS defines)
+  string(REGEX MATCH "#define (ANITET_[A-Z_]+) \\(?(-?[0-9]+)\\)?" m "${d}")
+  set(name "${CMAKE_MATCH_1}")
+  set(value "${CMAKE_MATCH_2}")
+  string(REGEX MATCH "::[ ]*${name}[ ]*=[ ]*(-?[0-9]+)" fm "${fortran}")
+  if(NOT fm OR NOT CMAKE_MATCH_1 STREQUAL value)
+    list(APPEND mismatched "${name}=${value}")
+  endif()
+endforeach()
+list(LENGTH defines nd)
+
+if(missing OR stale OR mismatched)
+  message(FATAL_ERROR "Fortran module and C header differ:\n"
+    "  functions without a Fortran interface: ${missing}\n"
+    "  Fortran interfaces to no header function: ${stale}\n"
+    "  constants missing or different in Fortran: ${mismatched}")
+endif()
+message(STATUS "${n} functions and ${nd} constants match")

@@ -1,0 +1,204 @@
+! The Fortran module over the C ABI: a cube surface built in memory (1-based), validated and read
+! back; a volume mesh read from the tests' data and filled into allocatable arrays; the error
+! paths a Fortran caller meets. Argument 1: the tests' data directory (tests/data).
+program test_fortran
+  use, intrinsic :: iso_c_binding
+  use anitet
+  implicit none
+
+  integer :: failures = 0
+  character(len=1024) :: data_dir
+
+  call get_command_argument(1, data_dir)
+  if (len_trim(data_dir) == 0) error stop "usage: test_fortran <tests/data directory>"
+
+  call check_library()
+  call check_cube_surface()
+  call check_volume_mesh(trim(data_dir) // "/io/box.mesh")
+  call check_mesh_from_arrays()
+  call check_metric_and_mesher()
+
+  if (failures > 0) then
+    print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
+    error stop 1
+  end if
+  print '(a)', "test_fortran: all checks passed"
+
+contains
+
+  subroutine check(ok, what)
+    logical, intent(in) :: ok
+    character(len=*), intent(in) :: what
+    if (.not. ok) then
+      failures = failures + 1
+      print '(a, a, a, a)', "FAILED: ", what, "; last error: ", anitet_last_error_message()
+    end if
+  end subroutine
+
+  subroutine check_library()
+    type(anitet_options_t) :: options
+    call check(anitet_version() == "0.1.0", "version string")
+    call check(anitet_version_number() == ANITET_VERSION_MAJOR * 10000 + &
+               ANITET_VERSION_MINOR * 100 + ANITET_VERSION_PATCH, "version number")
+    call check(anitet_error_name(ANITET_ERR_OPEN_BOUNDARY) == "open_boundary", "error name")
+    call check(anitet_options_init(options) == ANITET_OK, "options init")
+    call check(options%version == ANITET_OPTIONS_VERSION .and. options%orient_shells == 1, &
+               "options defaults")
+    call check(anitet_options_init(options, 42) == ANITET_ERR_INVALID_ARGUMENT, "bad options version")
+    call check(index(anitet_last_error_message(), "version 42") > 0, "options error message")
+  end subroutine
+
+  subroutine check_cube_surface()
+    real(c_double) :: xyz(3, 8)
+    integer(c_int32_t) :: tri(3, 12), patch(12)
+    real(c_double), allocatable :: xyz_back(:, :)
+    integer(c_int32_t), allocatable :: tri_back(:, :), tri0(:, :), patch_back(:)
+    type(c_ptr) :: surface, open_surface
+    type(anitet_options_t) :: options
+    integer(c_int64_t) :: np, nt, count
+    character(len=:), allocatable :: json
+    integer :: rc
+
+    xyz = reshape([0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 1d0, 1d0, 0d0, 0d0, 1d0, 0d0, &
+                   0d0, 0d0, 1d0, 1d0, 0d0, 1d0, 1d0, 1d0, 1d0, 0d0, 1d0, 1d0], [3, 8])
+    ! 1-based, counter-clockwise seen from outside.
+    tri = reshape([1, 3, 2, 1, 4, 3, 5, 6, 7, 5, 7, 8, 1, 2, 6, 1, 6, 5, &
+                   4, 8, 7, 4, 7, 3, 1, 5, 8, 1, 8, 4, 2, 3, 7, 2, 7, 6], [3, 12])
+    patch = [1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6]
+
+    call check(anitet_surface_create(xyz, tri, surface, patch) == ANITET_OK, "cube surface")
+    call check(anitet_surface_get_counts(surface, np, nt) == ANITET_OK, "surface counts")
+    call check(np == 8 .and. nt == 12, "cube counts 8 / 12")
+    call check(anitet_surface_validate(surface) == ANITET_OK, "cube validates")
+    rc = anitet_surface_problem_count(surface, ANITET_ERR_OPEN_BOUNDARY, count)
+    call check(rc == ANITET_OK .and. count == 0, "no open edge")
+    call check(anitet_surface_validation_json(surface, json) == ANITET_OK, "validation json")
+    call check(len(json) > 2 .and. json(1:1) == "{", "validation json text")
+    call check(anitet_surface_get_points(surface, xyz_back) == ANITET_OK, "surface points")
+    call check(all(shape(xyz_back) == [3, 8]) .and. all(xyz_back == xyz), "points round trip")
+    call check(anitet_surface_get_triangles(surface, tri_back) == ANITET_OK, "surface triangles")
+    call check(all(tri_back == tri), "1-based triangles round trip")
+    call check(anitet_surface_get_triangles(surface, tri0, index_base=0) == ANITET_OK, "0-based")
+    call check(all(tri0 == tri - 1), "0-based triangles")
+    call check(anitet_surface_get_patches(surface, patch_back) == ANITET_OK, "surface patches")
+    call check(all(patch_back == patch), "patches round trip")
+
+    ! Options with cancellation would need a callback; here: a bad version is refused.
+    call check(anitet_options_init(options) == ANITET_OK, "options")
+    options%version = 0
+    call check(anitet_surface_validate(surface, options) == ANITET_ERR_INVALID_ARGUMENT, &
+               "validate with bad options version")
+    call anitet_surface_destroy(surface)
+    call check(.not. c_associated(surface), "destroy clears the handle")
+
+    ! The cube without its last triangle.
+    call check(anitet_surface_create(xyz, tri(:, 1:11), open_surface) == ANITET_OK, "open cube")
+    call check(anitet_surface_validate(open_surface) == ANITET_ERR_OPEN_BOUNDARY, "open boundary")
+    call check(len(anitet_last_error_message()) > 0, "open boundary message")
+    rc = anitet_surface_problem_count(open_surface, ANITET_ERR_OPEN_BOUNDARY, count)
+    call check(rc == ANITET_OK .and. count == 3, "three open edges")
+    call anitet_surface_destroy(open_surface)
+
+    ! 1-based data passed as 0-based is fine (all < 8), but index 9 is not.
+    tri(1, 1) = 9
+    call check(anitet_surface_create(xyz, tri, surface) == ANITET_ERR_BAD_INDEX, "bad index")
+    call check(.not. c_associated(surface), "no handle on error")
+  end subroutine
+
+  subroutine check_volume_mesh(path)
+    character(len=*), intent(in) :: path
+    type(c_ptr) :: mesh
+    integer(c_int64_t) :: np, nt, nb
+    real(c_double), allocatable :: xyz(:, :), metric(:, :)
+    integer(c_int32_t), allocatable :: tets(:, :), regions(:), tri(:, :), patch(:)
+    integer :: components
+    type(anitet_quality_t) :: q
+    character(len=:), allocatable :: json
+    integer :: rc, i
+
+    call check(anitet_mesh_read(path, mesh) == ANITET_OK, "read " // path)
+    call check(anitet_mesh_get_counts(mesh, np, nt, nb) == ANITET_OK, "mesh counts")
+    call check(np == 8 .and. nt == 6 .and. nb == 12, "box counts 8 / 6 / 12")
+    call check(anitet_mesh_get_points(mesh, xyz) == ANITET_OK, "mesh points")
+    call check(all(shape(xyz) == [3, 8]) .and. xyz(1, 2) == 1.5d0 .and. xyz(3, 1) == -0.25d0, &
+               "box points")
+    call check(anitet_mesh_get_tets(mesh, tets) == ANITET_OK, "mesh tets")
+    ! The file's first tet is "1 2 4 8" (1-based, as Fortran gets it).
+    call check(all(tets(:, 1) == [1, 2, 4, 8]), "first tet, 1-based")
+    call check(minval(tets) == 1 .and. maxval(tets) == 8, "tet index range")
+    call check(anitet_mesh_get_regions(mesh, regions) == ANITET_OK, "regions")
+    call check(size(regions) == 6 .and. regions(1) == 1 .and. regions(6) == 2, "region labels")
+    call check(anitet_mesh_get_boundary_triangles(mesh, tri) == ANITET_OK, "boundary triangles")
+    call check(all(shape(tri) == [3, 12]) .and. all(tri(:, 1) == [1, 7, 3]), "first triangle")
+    call check(anitet_mesh_get_boundary_patches(mesh, patch) == ANITET_OK, "boundary patches")
+    call check(size(patch) == 12 .and. patch(1) == 1, "patch labels")
+    rc = anitet_mesh_get_metric_components(mesh, components)
+    call check(rc == ANITET_OK .and. components == 0, "no metric")
+    rc = anitet_mesh_get_metric(mesh, metric)
+    call check(rc == ANITET_OK .and. size(metric) == 0, "empty metric")
+    call check(anitet_mesh_set_metric(mesh, reshape([(real(i, c_double), i = 1, 8)], [1, 8])) &
+               == ANITET_OK, "set sizes")
+    rc = anitet_mesh_get_metric(mesh, metric)
+    call check(rc == ANITET_OK .and. all(shape(metric) == [1, 8]), "metric shape")
+    call check(metric(1, 8) == 8d0, "metric values")
+    call check(anitet_mesh_write_metric(mesh, "fortran_box.sol") == ANITET_OK, "write .sol")
+    call check(anitet_mesh_quality(mesh, q) == ANITET_OK, "quality")
+    call check(q%tets == 6 .and. q%nonpositive_tets == 0 .and. q%valid == 1, "quality numbers")
+    call check(q%radius_ratio_min > 0d0 .and. q%radius_ratio_min <= q%radius_ratio_mean, &
+               "radius ratio")
+    call check(anitet_mesh_quality_json(mesh, json) == ANITET_OK, "quality json")
+    call check(index(json, '"tets"') > 0, "quality json text")
+    call check(anitet_mesh_write(mesh, "fortran_box.vtu") == ANITET_OK, "write vtu")
+    call check(anitet_mesh_write(mesh, "fortran_box.unknown") == ANITET_ERR_UNSUPPORTED_FORMAT, &
+               "write unknown format")
+    call anitet_mesh_destroy(mesh)
+    call check(anitet_mesh_read(path // "-missing.mesh", mesh) == ANITET_ERR_FILE_NOT_FOUND, &
+               "missing file")
+    call check(index(anitet_last_error_message(), "-missing.mesh") > 0, "missing file message")
+  end subroutine
+
+  subroutine check_mesh_from_arrays()
+    real(c_double) :: xyz(3, 4)
+    integer(c_int32_t) :: tet(4, 1), faces(3, 4)
+    integer(c_int32_t), allocatable :: tets0(:, :)
+    type(c_ptr) :: mesh, faces_surface
+    type(anitet_quality_t) :: q
+    xyz = reshape([0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 0d0, 1d0], [3, 4])
+    tet(:, 1) = [1, 2, 3, 4]
+    faces = reshape([1, 3, 2, 1, 2, 4, 2, 3, 4, 1, 4, 3], [3, 4])
+    call check(anitet_mesh_create(xyz, tet, mesh, bnd_tri=faces) == ANITET_OK, "mesh from arrays")
+    call check(anitet_mesh_get_tets(mesh, tets0, index_base=0) == ANITET_OK, "tets 0-based")
+    call check(all(tets0(:, 1) == [0, 1, 2, 3]), "tet 0-based values")
+    call check(anitet_surface_create(xyz, faces, faces_surface) == ANITET_OK, "faces surface")
+    call check(anitet_mesh_quality(mesh, q, faces_surface) == ANITET_OK, "quality with input")
+    call check(q%boundary_constrained == 1 .and. q%tets == 1, "boundary constrained")
+    call anitet_surface_destroy(faces_surface)
+    call anitet_mesh_destroy(mesh)
+    call check(anitet_mesh_create(xyz, reshape(tet, [2, 2]), mesh) == ANITET_ERR_INVALID_ARGUMENT, &
+               "tets not shaped (4, n)")
+    tet(4, 1) = 5
+    call check(anitet_mesh_create(xyz, tet, mesh) == ANITET_ERR_BAD_INDEX, "tet bad index")
+  end subroutine
+
+  subroutine check_metric_and_mesher()
+    type(c_ptr) :: metric, other, surface, mesh
+    real(c_double) :: m(6)
+    real(c_double) :: xyz(3, 4)
+    integer(c_int32_t) :: faces(3, 4)
+    call check(anitet_metric_create_uniform(0.5d0, metric) == ANITET_OK, "uniform metric")
+    call check(anitet_metric_evaluate(metric, [0d0, 0d0, 0d0], m) == ANITET_OK, "evaluate")
+    call check(m(1) == 4d0 .and. m(3) == 4d0 .and. m(6) == 4d0 .and. m(2) == 0d0, "uniform tensor")
+    xyz = reshape([0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 0d0, 1d0], [3, 4])
+    faces = reshape([1, 3, 2, 1, 2, 4, 2, 3, 4, 1, 4, 3], [3, 4])
+    call check(anitet_surface_create(xyz, faces, surface) == ANITET_OK, "tet surface")
+    call check(anitet_mesher_run(surface, mesh, metric) == ANITET_ERR_NOT_IMPLEMENTED, &
+               "mesher says not implemented")
+    call check(.not. c_associated(mesh), "no mesh")
+    call check(index(anitet_last_error_message(), "not implemented") > 0, "mesher message")
+    call check(anitet_metric_read("size.vdb", other) == ANITET_ERR_NOT_IMPLEMENTED, "metric read")
+    call check(.not. c_associated(other), "no metric handle")
+    call anitet_metric_destroy(metric)
+    call anitet_surface_destroy(surface)
+  end subroutine
+
+end program test_fortran
