@@ -1,0 +1,289 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "io/surface_io.hpp"
+#include "metric/metric_field.hpp"
+#include "metric/surface_sizing.hpp"
+
+namespace anitet {
+namespace metric {
+namespace {
+
+TEST(TriangleBox, CutsAndMisses) {
+  const double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0};
+  const double inside[3] = {0.2, 0.2, 0.0}, above[3] = {0.2, 0.2, 0.6};
+  const double touching[3] = {0.2, 0.2, 0.5}, beyond_hyp[3] = {0.9, 0.9, 0.0};
+  EXPECT_TRUE(triangle_cuts_box(a, b, c, inside, 0.1));
+  EXPECT_FALSE(triangle_cuts_box(a, b, c, above, 0.5 - 1e-3));
+  EXPECT_TRUE(triangle_cuts_box(a, b, c, touching, 0.5));
+  // Separated only by the hypotenuse's edge-cross axis, not by the face normals.
+  EXPECT_FALSE(triangle_cuts_box(a, b, c, beyond_hyp, 0.3));
+  EXPECT_TRUE(triangle_cuts_box(a, b, c, beyond_hyp, 0.45));
+  // A huge triangle through a small box.
+  const double A[3] = {-100, -100, 0.01}, B[3] = {100, -100, 0.01}, C[3] = {0, 100, 0.01};
+  const double o[3] = {0, 0, 0};
+  EXPECT_TRUE(triangle_cuts_box(A, B, C, o, 0.02));
+  EXPECT_FALSE(triangle_cuts_box(A, B, C, o, 0.005));
+}
+
+// The pinned values an independent pass computes: min triangle size over the triangles cutting
+// each voxel (infinity where none does).
+std::vector<double> expected_pinned(const SurfaceMesh& s, const Lattice& lat, TriangleSize kind) {
+  std::vector<double> v(lat.num_nodes(), std::numeric_limits<double>::infinity());
+  for (size_t t = 0; t < s.num_triangles(); ++t) {
+    const double* p[3] = {s.point(s.tri[3 * t]), s.point(s.tri[3 * t + 1]), s.point(s.tri[3 * t + 2])};
+    double l[3];
+    for (int e = 0; e < 3; ++e)
+      l[e] = std::sqrt(std::pow(p[e][0] - p[(e + 1) % 3][0], 2) +
+                       std::pow(p[e][1] - p[(e + 1) % 3][1], 2) +
+                       std::pow(p[e][2] - p[(e + 1) % 3][2], 2));
+    const double size = kind == TriangleSize::Shortest ? std::min({l[0], l[1], l[2]})
+                                                       : (l[0] + l[1] + l[2]) / 3.0;
+    int lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      const double mn = std::min({p[0][k], p[1][k], p[2][k]}), mx = std::max({p[0][k], p[1][k], p[2][k]});
+      lo[k] = std::max(0, int(std::floor((mn - lat.origin[k]) / lat.spacing)) - 1);
+      hi[k] = std::min(lat.dims[k] - 1, int(std::ceil((mx - lat.origin[k]) / lat.spacing)) + 1);
+    }
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i) {
+          double c[3];
+          lat.position(i, j, k, c);
+          if (triangle_cuts_box(p[0], p[1], p[2], c, 0.5 * lat.spacing))
+            v[lat.node(i, j, k)] = std::min(v[lat.node(i, j, k)], size);
+        }
+  }
+  return v;
+}
+
+void check_surface(const std::string& file, const SurfaceSizingOptions& opt) {
+  Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/" + file);
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  SurfaceSizingStats st;
+  const auto t0 = std::chrono::steady_clock::now();
+  Result<Lattice> lat = surface_sizing(s.value(), opt, &st);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(lat.ok()) << lat.status().message();
+  EXPECT_TRUE(st.converged) << "last change " << st.last_change;
+  EXPECT_LE(st.voxels, opt.max_voxels);
+  EXPECT_GT(st.pinned, 0u);
+  // Pinned voxels hold exactly their triangle size; the others lie between the pinned extremes
+  // (the smoothing is an averaging: maximum principle).
+  const std::vector<double> want = expected_pinned(s.value(), lat.value(), opt.triangle_size);
+  double pmin = HUGE_VAL, pmax = 0.0;
+  size_t pinned = 0;
+  for (size_t n = 0; n < want.size(); ++n)
+    if (std::isfinite(want[n])) {
+      // Equal up to the rounding of the edge lengths (computed here in another order).
+      ASSERT_NEAR(lat->values[n], want[n], 1e-14 * want[n]) << "pinned voxel " << n;
+      pmin = std::min(pmin, want[n]);
+      pmax = std::max(pmax, want[n]);
+      ++pinned;
+    }
+  EXPECT_EQ(pinned, st.pinned);
+  for (size_t n = 0; n < want.size(); ++n) {
+    ASSERT_GE(lat->values[n], pmin * (1 - 1e-12));
+    ASSERT_LE(lat->values[n], pmax * (1 + 1e-12));
+  }
+  const auto t1 = std::chrono::steady_clock::now();
+  Result<MetricField> f = MetricField::from_lattice(lat.value(), opt.prune_tolerance);
+  const double vdb_secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  ASSERT_TRUE(f.ok()) << f.status().message();
+  // The sparse field keeps the pinned values where no leaf was collapsed, and stays within the
+  // prune tolerance of the lattice everywhere.
+  MetricField::Sampler sampler(f.value());
+  size_t stored = 0;
+  for (int k = 0; k < lat->dims[2]; ++k)
+    for (int j = 0; j < lat->dims[1]; ++j)
+      for (int i = 0; i < lat->dims[0]; ++i) {
+        const size_t n = lat->node(i, j, k);
+        if (!lat->active.empty() && !lat->active[n]) continue;  // dropped outside voxel
+        double p[3], m[6];
+        lat->position(i, j, k, p);
+        sampler.metric(p, m);
+        ASSERT_NEAR(1.0 / std::sqrt(m[0]), lat->values[n],
+                    opt.prune_tolerance * lat->values[n] * 1.01);
+        ++stored;
+      }
+  EXPECT_EQ(stored, st.voxels - st.dropped);
+  EXPECT_EQ(f->active_voxels(), stored);
+  if (opt.drop_outside) {
+    EXPECT_GT(st.dropped, st.voxels / 10);
+  }
+  std::printf(
+      "[sizing] %s (%s, %s): %zu triangles, lattice %dx%dx%d = %zu voxels (h %.4g), %zu pinned, %zu dropped outside, "
+      "%d iterations, last change %.2e, %.3f s, working memory %.1f MB; OpenVDB field (prune %g): "
+      "%zu leaves, %.1f MB (dense doubles %.1f MB), built in %.3f s\n",
+      file.c_str(), opt.smoothing == Smoothing::Laplacian ? "Laplacian" : "Gaussian",
+      opt.triangle_size == TriangleSize::Shortest ? "shortest edge" : "mean edge",
+      s->num_triangles(), lat->dims[0], lat->dims[1], lat->dims[2], st.voxels, st.voxel_size,
+      st.pinned, st.dropped, st.iterations, st.last_change, secs, st.working_bytes / 1048576.0,
+      opt.prune_tolerance, f->leaf_count(), f->memory_bytes() / 1048576.0, st.voxels * 8.0 / 1048576.0, vdb_secs);
+  ::testing::Test::RecordProperty("iterations", st.iterations);
+}
+
+TEST(SurfaceSizing, FandiskConverges) {
+  SurfaceSizingOptions opt;
+  check_surface("fandisk.off", opt);
+}
+
+TEST(SurfaceSizing, FandiskWholeBoxConverges) {
+  SurfaceSizingOptions opt;
+  opt.drop_outside = false;
+  check_surface("fandisk.off", opt);
+}
+
+TEST(SurfaceSizing, FandiskGaussianMeanEdgeConverges) {
+  SurfaceSizingOptions opt;
+  opt.smoothing = Smoothing::Gaussian;
+  opt.triangle_size = TriangleSize::Mean;
+  check_surface("fandisk.off", opt);
+}
+
+TEST(SurfaceSizing, ArmadilloConverges) {
+  SurfaceSizingOptions opt;
+  check_surface("armadillo.obj", opt);
+}
+
+TEST(SurfaceSizing, DefaultFieldOnFandisk) {
+  Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/fandisk.off");
+  ASSERT_TRUE(s.ok());
+  SurfaceSizingStats st;
+  Result<MetricField> f = surface_sizing_field(s.value(), {}, &st);
+  ASSERT_TRUE(f.ok()) << f.status().message();
+  // Every value lies between the smallest and largest triangle size (maximum principle), up to
+  // the 1% prune tolerance.
+  double lo = HUGE_VAL, hi = 0.0;
+  for (size_t t = 0; t < s->num_triangles(); ++t) {
+    double shortest = HUGE_VAL;
+    for (int e = 0; e < 3; ++e) {
+      const double* a = s->point(s->tri[3 * t + e]);
+      const double* b = s->point(s->tri[3 * t + (e + 1) % 3]);
+      shortest = std::min(shortest, std::sqrt((a[0] - b[0]) * (a[0] - b[0]) +
+                                              (a[1] - b[1]) * (a[1] - b[1]) +
+                                              (a[2] - b[2]) * (a[2] - b[2])));
+    }
+    lo = std::min(lo, shortest);
+    hi = std::max(hi, shortest);
+  }
+  for (size_t v = 0; v < s->num_vertices(); ++v) {
+    double m[6];
+    f->metric(s->point(v), m);
+    const double h = 1.0 / std::sqrt(m[0]);
+    ASSERT_GE(h, lo * 0.99);
+    ASSERT_LE(h, hi * 1.01);
+  }
+}
+
+TEST(SurfaceSizing, DropsOnlyTheOutsideOfACube) {
+  // The unit cube, 12 triangles of shortest edge 1, voxel 0.1: the flood fill stops at the cut
+  // voxels, so the inside is kept and smoothed, and exactly the far outside is dropped.
+  SurfaceMesh cube;
+  for (int v = 0; v < 8; ++v) cube.add_vertex(v & 1, (v >> 1) & 1, (v >> 2) & 1);
+  const uint32_t f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                             {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  for (const auto& t : f) cube.add_triangle(t[0], t[1], t[2]);
+  SurfaceSizingOptions opt;
+  opt.voxel_size = 0.1;
+  opt.padding = 3;
+  SurfaceSizingStats st;
+  Result<Lattice> lat = surface_sizing(cube, opt, &st);
+  ASSERT_TRUE(lat.ok()) << lat.status().message();
+  ASSERT_EQ(lat->dims[0], 17);  // 11 nodes across the cube + 2 * 3 padding
+  // Cut: the nodes within half a voxel of a face (x = 0 or 1 exactly at nodes 3 and 13).
+  size_t inside = 0, kept = 0;
+  for (int k = 0; k < 17; ++k)
+    for (int j = 0; j < 17; ++j)
+      for (int i = 0; i < 17; ++i) {
+        const bool in = i > 3 && i < 13 && j > 3 && j < 13 && k > 3 && k < 13;
+        const bool near = i >= 2 && i <= 14 && j >= 2 && j <= 14 && k >= 2 && k <= 14;
+        const uint8_t a = lat->active[lat->node(i, j, k)];
+        if (in) {
+          ++inside;
+          EXPECT_EQ(a, 1);
+          EXPECT_NEAR(lat->values[lat->node(i, j, k)], 1.0, 1e-12);  // all pinned values are 1
+        }
+        EXPECT_EQ(a, near ? 1 : 0) << i << " " << j << " " << k;
+        kept += a;
+      }
+  EXPECT_EQ(inside, 9u * 9u * 9u);
+  EXPECT_EQ(st.dropped, 17u * 17u * 17u - kept);
+}
+
+TEST(SurfaceSizing, GradedFandiskFieldAndVdbRoundTrip) {
+  Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/fandisk.off");
+  ASSERT_TRUE(s.ok());
+  Result<MetricField> f = surface_sizing_field(s.value());
+  ASSERT_TRUE(f.ok()) << f.status().message();
+  const double hgrad = 1.1;
+  GradationStats gs;
+  Result<MetricField> g = bound_and_grade(f.value(), 0.0, 0.0, hgrad, &gs);
+  ASSERT_TRUE(g.ok()) << g.status().message();
+  EXPECT_TRUE(gs.converged);
+  EXPECT_EQ(g->active_voxels(), f->active_voxels());
+  Result<Lattice> lat = g->to_lattice();
+  ASSERT_TRUE(lat.ok());
+  const double dx = lat->spacing;
+  size_t pairs = 0;
+  for (int k = 0; k + 1 < lat->dims[2]; ++k)
+    for (int j = 0; j + 1 < lat->dims[1]; ++j)
+      for (int i = 0; i + 1 < lat->dims[0]; ++i) {
+        const size_t a = lat->node(i, j, k);
+        const size_t nb[3] = {lat->node(i + 1, j, k), lat->node(i, j + 1, k), lat->node(i, j, k + 1)};
+        for (size_t b : nb) {
+          if (!lat->active.empty() && (!lat->active[a] || !lat->active[b])) continue;
+          const double ha = lat->values[a], hb = lat->values[b];
+          ASSERT_LE(hb, ha * std::pow(hgrad, dx / ha) * (1 + 1e-9));
+          ASSERT_LE(ha, hb * std::pow(hgrad, dx / hb) * (1 + 1e-9));
+          ++pairs;
+        }
+      }
+  EXPECT_GT(pairs, 0u);
+  const std::string path = std::string(::testing::TempDir()) + "anitet_metric_fandisk_sizing.vdb";
+  ASSERT_TRUE(write_metric_vdb(g.value(), path).ok());
+  Result<MetricField> r = read_metric_vdb(path);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(r->active_voxels(), g->active_voxels());
+  for (size_t v = 0; v < s->num_vertices(); v += 7) {
+    double m1[6], m2[6];
+    g->metric(s->point(v), m1);
+    r->metric(s->point(v), m2);
+    ASSERT_NEAR(m1[0], m2[0], 1e-6 * m1[0]);  // float grids in the file
+  }
+  std::remove(path.c_str());
+}
+
+TEST(SurfaceSizing, MemoryBoundGrowsTheVoxel) {
+  Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/fandisk.off");
+  ASSERT_TRUE(s.ok());
+  SurfaceSizingOptions opt;
+  opt.max_voxels = 20000;
+  SurfaceSizingStats st;
+  Result<Lattice> lat = surface_sizing(s.value(), opt, &st);
+  ASSERT_TRUE(lat.ok());
+  EXPECT_LE(lat->num_nodes(), 20000u);
+  EXPECT_TRUE(st.converged);
+}
+
+TEST(SurfaceSizing, Errors) {
+  SurfaceMesh empty;
+  EXPECT_EQ(surface_sizing(empty).status().code(), Error::EmptyInput);
+  SurfaceMesh bad;
+  bad.add_vertex(0, 0, 0);
+  bad.add_vertex(1, 0, 0);
+  bad.add_vertex(0, NAN, 0);
+  bad.add_triangle(0, 1, 2);
+  EXPECT_EQ(surface_sizing(bad).status().code(), Error::InvalidArgument);
+}
+
+}  // namespace
+}  // namespace metric
+}  // namespace anitet
