@@ -317,6 +317,7 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
         removed = true;
       }
     }
+    if (!removed && respect_protected && defend_constrained_edges(t0, pid)) removed = true;
     if (!removed || marks_.get(t0) != TetMarks::kIn) break;
     cavity_.erase(std::remove_if(cavity_.begin(), cavity_.end(),
                                  [this](uint32_t t) { return marks_.get(t) != TetMarks::kIn; }),
@@ -325,6 +326,74 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
   if (marks_.get(t0) != TetMarks::kIn) return false;
   fill_cavity(pid, true);
   return true;
+}
+
+// A constrained edge must keep a tet outside the cavity (else coning would delete it): when all
+// the tets around one are in the cavity, one of them other than t0 leaves. True when one left.
+bool CavityKernel::closure_contains(uint32_t t, const double* p) {
+  const uint32_t* v = store_->verts(t);
+  if (v[3] == kGhost) return orient3d(pt(v[0]), pt(v[1]), pt(v[2]), p) >= 0;
+  for (int i = 0; i < 4; ++i) {
+    const int* f = kFacetVertex[i];
+    if (orient3d(pt(v[f[0]]), pt(v[f[1]]), pt(v[f[2]]), p) < 0) return false;
+  }
+  return true;
+}
+
+// A tet whose closure holds the new point must stay (or the point would end on the cavity's
+// boundary), so another tet of the edge's ring is chosen.
+bool CavityKernel::defend_constrained_edges(uint32_t t0, uint32_t pid) {
+  bool removed = false;
+  for (uint32_t c : cavity_) {
+    if (marks_.get(c) != TetMarks::kIn) continue;
+    const uint16_t f = store_->flags(c);
+    if (!(f & tflag::kEdgeConstrainedMask)) continue;
+    for (int k = 0; k < 6 && marks_.get(c) == TetMarks::kIn; ++k) {
+      if (!((f >> (tflag::kEdgeConstrainedShift + k)) & 1u)) continue;
+      const uint32_t* cv = store_->verts(c);
+      const uint32_t a = cv[kEdgeVertex[k][0]], b = cv[kEdgeVertex[k][1]];
+      // Walk around edge ab: leave each tet through the facet (a b y) opposite its vertex x.
+      uint32_t t = c, x = kGhost, y = kGhost;
+      for (int i = 0, n = 0; i < 4; ++i)
+        if (i != kEdgeVertex[k][0] && i != kEdgeVertex[k][1]) (n++ == 0 ? x : y) = cv[i];
+      bool all_in = true;
+      uint32_t eject = TetMesh::kNone;
+      for (size_t steps = 0; steps < 1024; ++steps) {
+        if (marks_.get(t) != TetMarks::kIn) {
+          all_in = false;
+          break;
+        }
+        if (t != t0 && eject == TetMesh::kNone && !closure_contains(t, pt(pid))) eject = t;
+        const uint32_t* tv = store_->verts(t);
+        int ix = -1;
+        for (int i = 0; i < 4; ++i)
+          if (tv[i] == x) ix = i;
+        const uint64_t adj = ix < 0 ? kNoNeighbour : store_->adj(t, ix);
+        if (adj == kNoNeighbour) {
+          all_in = false;
+          break;
+        }
+        const auto n = static_cast<uint32_t>(adj >> 2);
+        const uint32_t* nv = store_->verts(n);
+        uint32_t z = kGhost;
+        for (int i = 0; i < 4; ++i)
+          if (nv[i] != a && nv[i] != b && nv[i] != y) z = nv[i];
+        x = y;
+        y = z;
+        t = n;
+        if (t == c) break;
+      }
+      if (all_in && eject != TetMesh::kNone) {
+        marks_.set(eject, TetMarks::kOut);
+        removed = true;
+      }
+    }
+  }
+  if (removed)
+    cavity_.erase(std::remove_if(cavity_.begin(), cavity_.end(),
+                                 [this](uint32_t t) { return marks_.get(t) != TetMarks::kIn; }),
+                  cavity_.end());
+  return removed;
 }
 
 void CavityKernel::take_slots(size_t count) {

@@ -147,6 +147,8 @@ class CavityKernel {
   template <bool kCarry>
   void add_boundary(uint32_t c, int i, uint64_t outside);
   void collect_boundary(bool respect_protected);
+  bool defend_constrained_edges(uint32_t t0, uint32_t pid);
+  bool closure_contains(uint32_t t, const double* p);
   bool boundary_facet_ok(const BoundaryFacet& b, const double* p);
   // carry: copy protected / constrained-edge bits and regions from the cavity to the new tets.
   void fill_cavity(uint32_t pid, bool carry);

@@ -9,8 +9,9 @@
 // core/tet_mesh.hpp). Same input, same options: same mesh, bit for bit.
 //
 // PointInserter (and the insert_point() shorthand) inserts one point into an existing mesh: the
-// cavity never crosses a protected facet, and is then shrunk until it is star-shaped from the new
-// point, so every new tet is positive and no protected facet is destroyed.
+// cavity never crosses a protected facet, keeps a tet of every constrained edge out, and is then
+// shrunk until it is star-shaped from the new point, so every new tet is positive and no protected
+// facet or constrained edge is destroyed.
 #pragma once
 
 #include <cstddef>
@@ -76,7 +77,9 @@ enum class InsertStatus {
 const char* insert_status_name(InsertStatus s);
 
 struct InsertOptions {
-  bool respect_protected = true;  // protected facets stop the cavity
+  // Protected facets stop the cavity, and constrained edges (tflag edge bits) keep at least one
+  // of their tets out of it, so both survive the insertion.
+  bool respect_protected = true;
   uint8_t vertex_flags = 0;       // vflag bits of the new vertex
 };
 

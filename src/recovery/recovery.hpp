@@ -1,0 +1,79 @@
+// Conforming boundary recovery (paper, section 4): the Delaunay tetrahedralization of a closed
+// surface's points, with Steiner points inserted ON the surface's edges and faces through the
+// modified Delaunay kernel (PointInserter) until every input edge is a chain of mesh edges and
+// every input face a union of protected mesh facets; then the tets outside the domain are removed.
+//
+// Exactness. A Steiner point is computed in floating point (a point of an input segment, or of an
+// input triangle) and is in general not exactly on the segment or the plane. The recovery is
+// therefore combinatorial: the subfaces of an input face F are the mesh triangles whose three
+// vertices are all F's corners or Steiner points hosted by F or its edges, and F is recovered when
+// they triangulate F's boundary chain plus its Steiner points (a disk whose boundary is exactly the
+// chain of F's subsegments). Every tet is positive by the exact orient3d (the kernel guarantees it),
+// so the recovered surface S2 is a valid closed polyhedral surface lying within rounding of S.
+//
+// Claim 5.1 of the paper: every subface of S2 carries the id of the one input face it lies in.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/status.hpp"
+#include "core/surface_mesh.hpp"
+#include "core/tet_mesh.hpp"
+
+namespace anitet {
+
+struct RecoveryOptions {
+  uint64_t seed = 0x5eed;
+  size_t max_passes = 400;          // sweeps over the missing constraints before giving up
+  double max_seconds = 20;          // and the time budget of the recovery loop
+  double max_steiner_per_face = 24; // Steiner cap: this many per input triangle (+ 1000)
+  bool remove_outside = true;
+  // Mark each subsegment constrained as soon as it is present, so that the kernel keeps it. Off
+  // by default: on the shared surfaces the face phase then stalls on flat stacks of tets (see
+  // the report of issue 4); with it off, destroyed subsegments are found and split again.
+  bool defend_edges = false;
+  // A boundary subsegment of a face that no subface uses gets a face point just inside it even
+  // when no coplanar vertex explains the gap.
+  bool apex_always = true;       // false: keep the whole convex hull and the ghost tets
+};
+
+// Where a vertex of the result lies on the input surface.
+enum class SteinerHost : uint8_t { kEdge = 0, kFace = 1 };
+
+struct SteinerPoint {
+  uint32_t vertex;    // mesh vertex id (>= number of input vertices)
+  SteinerHost host;
+  uint32_t host_id;   // kEdge: index into RecoveryOutput::input_edges / 2; kFace: input triangle id
+};
+
+struct RecoveryStats {
+  size_t input_vertices = 0, input_triangles = 0;
+  size_t steiner_on_edges = 0, steiner_on_faces = 0;
+  size_t passes = 0;
+  size_t blocked_insertions = 0;  // insertions the kernel refused (another point was tried)
+  size_t tets = 0;                // tets of the result
+  size_t regions = 0;
+  double seconds_delaunay = 0, seconds_recovery = 0, seconds_carve = 0, seconds_total = 0;
+};
+
+struct RecoveryOutput {
+  // Vertices 0..n-1 are the input vertices, then the Steiner points. After remove_outside: no
+  // ghost tets; the facets on S2 are protected and have no neighbour; tet_region holds the body
+  // (0, 1, ...: inside components numbered by the smallest input face bounding them).
+  TetMesh mesh;
+  // S2: 3 vertex ids per subface, oriented like the input face (outward from the material).
+  std::vector<uint32_t> s2_tri;
+  std::vector<uint32_t> s2_face;   // per subface: the input triangle it lies in (Claim 5.1)
+  std::vector<int32_t> s2_patch;   // per subface: that triangle's patch label
+  std::vector<uint32_t> input_edges;  // 2 per input edge (sorted vertex ids)
+  std::vector<SteinerPoint> steiner;
+  RecoveryStats stats;
+};
+
+// S must be a valid closed, consistently oriented surface (validate_surface()); duplicate points
+// are refused. Fails with RecoveryFailed naming the constraint that could not be recovered.
+Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOptions& options = {});
+
+}  // namespace anitet
