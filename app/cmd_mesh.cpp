@@ -3,9 +3,44 @@
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "io/volume_io.hpp"
+#include "recovery/recovery.hpp"
 #include "surface_check.hpp"
 
 namespace anitet::cli {
+
+namespace {
+
+// `anitet recover`: the conforming Delaunay tetrahedralization of the surface (stage 2 alone);
+// the boundary triangles written are the recovered surface S2 with the input's patch labels.
+int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
+  Result<RecoveryOutput> r = recover_boundary(checked.surface);
+  if (!r.ok()) {
+    std::cerr << "anitet recover: '" << args.input << "': " << r.status().message() << "\n";
+    return kExitInternal;
+  }
+  const RecoveryOutput& out = r.value();
+  VolumeMesh vm = out.mesh.to_volume_mesh(/*drop_unused_vertices=*/false);
+  vm.bnd_tri = out.s2_tri;
+  vm.bnd_patch = out.s2_patch;
+  if (Status s = write_volume_mesh(vm, args.output); !s.ok()) {
+    std::cerr << "anitet recover: cannot write '" << args.output << "': " << s.message() << "\n";
+    return kExitReadError;
+  }
+  if (!args.quiet) {
+    const RecoveryStats& st = out.stats;
+    std::cout << "anitet recover: wrote '" << args.output << "': " << vm.num_vertices() << " vertices, "
+              << vm.num_tets() << " tets, " << vm.num_boundary_triangles() << " boundary triangles, "
+              << st.regions << " regions\n"
+              << "  steiner points: " << st.steiner_on_edges + st.steiner_on_faces << " ("
+              << st.steiner_on_edges << " on edges, " << st.steiner_on_faces << " on faces), "
+              << st.passes << " passes\n"
+              << "  time: " << st.seconds_total << " s (delaunay " << st.seconds_delaunay
+              << " s, recovery " << st.seconds_recovery << " s, carving " << st.seconds_carve << " s)\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace
 
 int run_mesh(const MeshArgs& args) {
   // A bad output name is a usage error, found before any work.
@@ -28,6 +63,7 @@ int run_mesh(const MeshArgs& args) {
               << " triangles, " << checked.report.shells.size() << " shells)\n";
     for (const Repair& rep : checked.report.repairs) std::cout << "  repaired: " << rep.message << "\n";
   }
+  if (args.command == "recover") return run_recover(args, checked);
   std::cerr << "anitet " << args.command << ": not implemented yet; '" << args.output
             << "' was not written\n";
   return kExitNotImplemented;

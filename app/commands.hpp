@@ -35,6 +35,8 @@ struct MeshArgs {
   std::string layer_scheme = "push";    // "push" (prism layers) or "faces" (the paper's)
 };
 int run_mesh(const MeshArgs& args);
+// `mesh`: the whole pipeline (cmd_pipeline.cpp).
+int run_mesh_pipeline(const MeshArgs& args);
 // `mesh --stop-after layers`: stage 1 alone (cmd_layers.cpp).
 int run_mesh_layers(const MeshArgs& args);
 

@@ -45,7 +45,9 @@ int run(int argc, char** argv) {
   MeshArgs mesh, recover;
   mesh.command = "mesh";
   recover.command = "recover";
-  CLI::App* mesh_cmd = app.add_subcommand("mesh", "Mesh the volume inside a closed surface (not implemented yet)");
+  CLI::App* mesh_cmd = app.add_subcommand(
+      "mesh", "Mesh the volume inside a closed surface, keeping it exactly (refinement and "
+              "optimization: not implemented yet)");
   CLI::App* recover_cmd = app.add_subcommand(
       "recover", "Delaunay mesh of the surface's points with the surface recovered (not implemented yet)");
   for (auto [cmd, args] : {std::pair{mesh_cmd, &mesh}, std::pair{recover_cmd, &recover}}) {
@@ -82,7 +84,7 @@ int run(int argc, char** argv) {
 
   if (check_cmd->parsed()) return run_check_surface(check);
   if (quality_cmd->parsed()) return run_quality(quality);
-  if (mesh_cmd->parsed()) return mesh.stop_after == "layers" ? run_mesh_layers(mesh) : run_mesh(mesh);
+  if (mesh_cmd->parsed()) return mesh.stop_after == "layers" ? run_mesh_layers(mesh) : run_mesh_pipeline(mesh);
   if (recover_cmd->parsed()) return run_mesh(recover);
   std::cerr << app.help();
   return kExitUsage;

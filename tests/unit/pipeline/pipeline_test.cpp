@@ -1,0 +1,114 @@
+// The whole pipeline (validate, layers, recovery, coupling) on closed surfaces, checked with the
+// independent quality report: valid (exact orientation, conformity), boundary constrained (every
+// input triangle a boundary face, no other boundary face, no Steiner point on the surface), and the
+// enclosed volume kept.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/tet_mesh.hpp"
+#include "io/surface_io.hpp"
+#include "layers/shapes.hpp"
+#include "pipeline/mesher.hpp"
+#include "quality/quality_report.hpp"
+
+using namespace anitet;
+
+namespace {
+
+void expect_boundary_constrained(const SurfaceMesh& surface, const MesherResult& r, const std::string& what) {
+  Result<QualityReport> q = compute_quality_report(r.mesh, &surface);
+  ASSERT_TRUE(q.ok()) << what << ": " << q.status().message();
+  EXPECT_TRUE(q->valid) << what << ": " << q->nonpositive_tets << " non-positive tets, "
+                        << q->faces_shared_by_more_than_two << " faces shared by more than two tets";
+  EXPECT_EQ(q->surface.input_triangles_missing, 0u) << what;
+  EXPECT_EQ(q->surface.boundary_faces_not_in_input, 0u) << what;
+  EXPECT_EQ(q->surface.steiner_points_on_boundary, 0u) << what;
+  EXPECT_EQ(q->surface.vertices_on_input_surface, 0u) << what;
+  EXPECT_TRUE(q->surface.boundary_constrained) << what;
+  EXPECT_LT(q->surface.volume_rel_error, 1e-9) << what;
+  EXPECT_EQ(q->unused_vertices, 0u) << what;
+  // The input's vertices come first, unchanged.
+  for (size_t i = 0; i < surface.xyz.size(); ++i) ASSERT_EQ(r.mesh.xyz[i], surface.xyz[i]) << what;
+  // And the mesh's own audit agrees.
+  TetMesh tm = TetMesh::from_volume_mesh(r.mesh);
+  ASSERT_TRUE(tm.build_adjacency().ok()) << what;
+  Status st = check_mesh(tm, {});
+  EXPECT_TRUE(st.ok()) << what << ": " << st.message();
+}
+
+Result<MesherResult> mesh(const SurfaceMesh& s, int layers = 2) {
+  MesherOptions options;
+  options.layers.layers = layers;
+  return Mesher(options).run(s);
+}
+
+}  // namespace
+
+TEST(Pipeline, CoarseCube) {
+  const SurfaceMesh s = test::coarse_cube();
+  for (int layers : {1, 2}) {
+    Result<MesherResult> r = mesh(s, layers);
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    expect_boundary_constrained(s, r.value(), "coarse cube, layers " + std::to_string(layers));
+  }
+}
+
+TEST(Pipeline, GridCubeAndSphere) {
+  for (const auto& [name, s] : {std::pair{std::string("grid cube"), test::grid_cube(4)},
+                                std::pair{std::string("icosphere"), test::icosphere(2)}}) {
+    Result<MesherResult> r = mesh(s);
+    ASSERT_TRUE(r.ok()) << name << ": " << r.status().message();
+    expect_boundary_constrained(s, r.value(), name);
+    EXPECT_EQ(r->stages.size(), 4u);
+  }
+}
+
+TEST(Pipeline, NestedCubesLeaveTheCavityEmpty) {
+  const SurfaceMesh s = test::nested_cubes();
+  Result<MesherResult> r = mesh(s);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  expect_boundary_constrained(s, r.value(), "nested cubes");  // the volume check sees a filled cavity
+}
+
+TEST(Pipeline, SharedKnight) {
+  Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/decimated-knight.off");
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  Result<MesherResult> r = mesh(s.value());
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  expect_boundary_constrained(s.value(), r.value(), "decimated-knight.off");
+}
+
+TEST(Pipeline, SameInputSameMeshBitForBit) {
+  const SurfaceMesh s = test::icosphere(2);
+  Result<MesherResult> a = mesh(s), b = mesh(s);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(a->mesh.xyz, b->mesh.xyz);
+  EXPECT_EQ(a->mesh.tet, b->mesh.tet);
+  EXPECT_EQ(a->mesh.region, b->mesh.region);
+}
+
+TEST(Pipeline, ProgressReportsStagesAndCancels) {
+  const SurfaceMesh s = test::coarse_cube();
+  std::vector<std::string> seen;
+  MesherOptions options;
+  options.progress = [&](const std::string& stage, double fraction) {
+    EXPECT_GE(fraction, 0.0);
+    EXPECT_LE(fraction, 1.0);
+    seen.push_back(stage);
+    return stage != "recovery";
+  };
+  Result<MesherResult> r = Mesher(options).run(s);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), Error::Cancelled);
+  EXPECT_EQ(seen, (std::vector<std::string>{"validate", "layers", "recovery"}));
+}
+
+TEST(Pipeline, InvalidSurfaceGivesItsValidationError) {
+  SurfaceMesh s = test::coarse_cube();
+  s.tri.resize(s.tri.size() - 3);  // an open box
+  s.patch.pop_back();
+  Result<MesherResult> r = mesh(s);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), Error::OpenBoundary);
+}
