@@ -49,7 +49,7 @@ int run(int argc, char** argv) {
       "mesh", "Mesh the volume inside a closed surface, keeping it exactly (refinement and "
               "optimization: not implemented yet)");
   CLI::App* recover_cmd = app.add_subcommand(
-      "recover", "Delaunay mesh of the surface's points with the surface recovered (not implemented yet)");
+      "recover", "Delaunay mesh of the surface's points with the surface recovered conformingly (Steiner points on it)");
   for (auto [cmd, args] : {std::pair{mesh_cmd, &mesh}, std::pair{recover_cmd, &recover}}) {
     cmd->add_option("IN", args->input, "Closed surface file")->required();
     cmd->add_option("-o,--output", args->output, "Output mesh (.mesh .msh .vtu)")->required();

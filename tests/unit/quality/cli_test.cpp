@@ -147,15 +147,15 @@ TEST_F(Cli, QualityOfAWrittenMesh) {
   EXPECT_NE(text.out.find("radius ratio histogram"), std::string::npos) << text.out;
 }
 
-TEST_F(Cli, MeshIsNotImplementedButValidatesFirst) {
+TEST_F(Cli, MeshWritesTheMeshAndRefusesBadInputFirst) {
   const std::string out = dir_ + "/out.mesh";
-  RunResult r = run("mesh '" + kSurfaces + "/decimated-knight.off' -o '" + out + "'");
-  EXPECT_EQ(r.code, 5);
-  EXPECT_NE(r.err.find("not implemented"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::ifstream(out).good());
-  r = run("recover '" + kSurfaces + "/stanford-bunny.obj' -o '" + out + "' --quiet");
+  RunResult r = run("mesh '" + kSurfaces + "/decimated-knight.off' --layers 1 -o '" + out + "' --quiet");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::ifstream(out).good());
+  const std::string bad = dir_ + "/bad.mesh";
+  r = run("recover '" + kSurfaces + "/stanford-bunny.obj' -o '" + bad + "' --quiet");
   EXPECT_EQ(r.code, 4) << r.err;  // the real error first
-  EXPECT_FALSE(std::ifstream(out).good());
+  EXPECT_FALSE(std::ifstream(bad).good());
 }
 
 }  // namespace
