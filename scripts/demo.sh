@@ -5,5 +5,6 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh" -DANITET_BUILD_TESTS=OFF
 anitet=${BUILD_DIR:-$root/build}/app/anitet
-# Until the mesher lands, the main job is the surface check; `anitet mesh` then says "not implemented yet".
-"$anitet" check-surface "$root/examples/fandisk.off"
+# The main job: mesh the example (validate, layers, recovery, coupling) and print the quality report.
+mkdir -p "$root/out"
+"$anitet" mesh "$root/examples/fandisk.off" -o "$root/out/fandisk.mesh"
