@@ -57,6 +57,26 @@ double dist2(const double* a, const double* b) {
   return dot(d, d);
 }
 
+// Whether the line PQ passes strictly through the interior of triangle ABC (exact test); if so, x
+// gets the crossing point with ABC's plane (in floating point, so only near the triangle).
+bool line_crosses_triangle(const double* P, const double* Q, const double* A, const double* B,
+                           const double* C, double x[3]) {
+  const int s0 = predicates::orient3d(P, Q, A, B);
+  const int s1 = predicates::orient3d(P, Q, B, C);
+  const int s2 = predicates::orient3d(P, Q, C, A);
+  if (!((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0))) return false;
+  double n[3], ab[3], ac[3], ap[3], aq[3];
+  sub(B, A, ab);
+  sub(C, A, ac);
+  cross(ab, ac, n);
+  sub(P, A, ap);
+  sub(Q, A, aq);
+  const double dp = dot(n, ap), dq = dot(n, aq);
+  const double s = dp / (dp - dq);
+  for (int d = 0; d < 3; ++d) x[d] = P[d] + s * (Q[d] - P[d]);
+  return true;
+}
+
 // The recovery of one surface: state shared by the edge and face phases.
 class Recoverer {
  public:
@@ -472,21 +492,8 @@ bool Recoverer::insert_on_face(uint32_t f) {
       if (side[i] * side[j] >= 0) continue;
       const uint32_t p = mesh_.vertex(t, i), q = mesh_.vertex(t, j);
       if (!seen_edges.emplace(edge_key(p, q), 1).second) continue;
-      const double *P = mesh_.point(p), *Q = mesh_.point(q);
-      const int s0 = predicates::orient3d(P, Q, A, B);
-      const int s1 = predicates::orient3d(P, Q, B, C);
-      const int s2 = predicates::orient3d(P, Q, C, A);
-      if (!((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0))) continue;
-      double n[3], ab[3], ac[3], ap[3], aq[3];
-      sub(B, A, ab);
-      sub(C, A, ac);
-      cross(ab, ac, n);
-      sub(P, A, ap);
-      sub(Q, A, aq);
-      const double dp = dot(n, ap), dq = dot(n, aq);
-      const double s = dp / (dp - dq);
       double x[3];
-      for (int d = 0; d < 3; ++d) x[d] = P[d] + s * (Q[d] - P[d]);
+      if (!line_crosses_triangle(mesh_.point(p), mesh_.point(q), A, B, C, x)) continue;
       const double c = clearance(x);
       if (c > best_clear) {
         best_clear = c;
@@ -553,20 +560,8 @@ bool Recoverer::repair_boundary_segment(uint32_t f) {
       continue;
     const double *P = mesh_.point(xy[0]), *Q = mesh_.point(xy[1]);
     if (predicates::orient3d(A, B, C, P) * predicates::orient3d(A, B, C, Q) >= 0) continue;
-    const int s0 = predicates::orient3d(P, Q, A, B);
-    const int s1 = predicates::orient3d(P, Q, B, C);
-    const int s2 = predicates::orient3d(P, Q, C, A);
-    if (!((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0))) continue;
-    double nrm[3], ab[3], ac[3], ap[3], aq[3];
-    sub(B, A, ab);
-    sub(C, A, ac);
-    cross(ab, ac, nrm);
-    sub(P, A, ap);
-    sub(Q, A, aq);
-    const double dp = dot(nrm, ap), dq = dot(nrm, aq);
-    const double sp = dp / (dp - dq);
     double x[3];
-    for (int d = 0; d < 3; ++d) x[d] = P[d] + sp * (Q[d] - P[d]);
+    if (!line_crosses_triangle(P, Q, A, B, C, x)) continue;
     if (insert_face_point(f, x, t)) {
       face_points_[f].push_back(uint32_t(mesh_.num_vertices() - 1));
       return true;
