@@ -6,8 +6,9 @@
 // bare determinant and one comparison. When it cannot decide, the caller falls back to the
 // module's predicates (semi-static filter, exact arithmetic, SoS).
 //
-// The bounds reuse the derivation in predicates/filters.hpp (first-order error, monotone in the
-// column maxima X, Y, Z and the largest lift L): orient3d error <= 46 eps XYZ, insphere error
+// The determinants are predicates/filters.hpp's own (orient3d_det, insphere_det), so the bounds
+// reuse its derivation (first-order error, monotone in the column maxima X, Y, Z and the largest
+// lift L): orient3d error <= 46 eps XYZ, insphere error
 // <= 376 eps L XYZ, with eps = 2^-53. With X, Y, Z <= D and L <= 3 D^2, and a relative margin for
 // the rounding of the bound itself, they become the constants below. They are valid while D lies
 // in [2^-150, 2^150]: then no intermediate overflows, and underflow errors (at most ~2^-1070 per
@@ -15,6 +16,8 @@
 #pragma once
 
 #include <cmath>
+
+#include "predicates/predicates.hpp"
 
 namespace anitet::delaunay_detail {
 
@@ -43,10 +46,7 @@ inline int orient3d_static(const double* a, const double* b, const double* c, co
   const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
   const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
   const double wx = d[0] - a[0], wy = d[1] - a[1], wz = d[2] - a[2];
-  const double m_vw = vx * wy - wx * vy;
-  const double m_uw = ux * wy - wx * uy;
-  const double m_uv = ux * vy - vx * uy;
-  const double det = (uz * m_vw - vz * m_uw) + wz * m_uv;
+  const double det = predicates::detail::orient3d_det(ux, uy, uz, vx, vy, vz, wx, wy, wz);
   if (det > bound) return 1;
   if (-det > bound) return -1;
   return kUnknown;
@@ -60,17 +60,8 @@ inline int insphere_static(const double* a, const double* b, const double* c, co
   const double bx = b[0] - e[0], by = b[1] - e[1], bz = b[2] - e[2];
   const double cx = c[0] - e[0], cy = c[1] - e[1], cz = c[2] - e[2];
   const double dx = d[0] - e[0], dy = d[1] - e[1], dz = d[2] - e[2];
-  const double m_ab = ax * by - bx * ay, m_ac = ax * cy - cx * ay, m_ad = ax * dy - dx * ay;
-  const double m_bc = bx * cy - cx * by, m_bd = bx * dy - dx * by, m_cd = cx * dy - dx * cy;
-  const double d_bcd = (bz * m_cd - cz * m_bd) + dz * m_bc;
-  const double d_acd = (az * m_cd - cz * m_ad) + dz * m_ac;
-  const double d_abd = (az * m_bd - bz * m_ad) + dz * m_ab;
-  const double d_abc = (az * m_bc - bz * m_ac) + cz * m_ab;
-  const double la = (ax * ax + ay * ay) + az * az;
-  const double lb = (bx * bx + by * by) + bz * bz;
-  const double lc = (cx * cx + cy * cy) + cz * cz;
-  const double ld = (dx * dx + dy * dy) + dz * dz;
-  const double det = (la * d_bcd - lb * d_acd) + (lc * d_abd - ld * d_abc);
+  double lmax;  // unused: the static bound covers every call
+  const double det = predicates::detail::insphere_det(ax, ay, az, bx, by, bz, cx, cy, cz, dx, dy, dz, lmax);
   if (det > bound) return 1;
   if (-det > bound) return -1;
   return kUnknown;

@@ -80,6 +80,34 @@ inline bool in_range(double lo, double hi, double a, double b, double c) {
   return lo <= std::min(std::min(a, b), c) && max3(a, b, c) <= hi;
 }
 
+// The floating-point determinants the filter bounds are derived for, in one evaluation order.
+// The Delaunay kernel's static filters (delaunay/static_filters.hpp) call the same functions, so
+// the bounds hold for them too.
+inline double orient3d_det(double ux, double uy, double uz, double vx, double vy, double vz,
+                           double wx, double wy, double wz) {
+  const double m_vw = vx * wy - wx * vy;
+  const double m_uw = ux * wy - wx * uy;
+  const double m_uv = ux * vy - vx * uy;
+  return (uz * m_vw - vz * m_uw) + wz * m_uv;
+}
+// a..d relative to the query point e; lmax gets the largest lift |a - e|^2 ... |d - e|^2.
+inline double insphere_det(double ax, double ay, double az, double bx, double by, double bz,
+                           double cx, double cy, double cz, double dx, double dy, double dz,
+                           double& lmax) {
+  const double m_ab = ax * by - bx * ay, m_ac = ax * cy - cx * ay, m_ad = ax * dy - dx * ay;
+  const double m_bc = bx * cy - cx * by, m_bd = bx * dy - dx * by, m_cd = cx * dy - dx * cy;
+  const double d_bcd = (bz * m_cd - cz * m_bd) + dz * m_bc;
+  const double d_acd = (az * m_cd - cz * m_ad) + dz * m_ac;
+  const double d_abd = (az * m_bd - bz * m_ad) + dz * m_ab;
+  const double d_abc = (az * m_bc - bz * m_ac) + cz * m_ab;
+  const double la = (ax * ax + ay * ay) + az * az;
+  const double lb = (bx * bx + by * by) + bz * bz;
+  const double lc = (cx * cx + cy * cy) + cz * cz;
+  const double ld = (dx * dx + dy * dy) + dz * dz;
+  lmax = max4(la, lb, lc, ld);
+  return (la * d_bcd - lb * d_acd) + (lc * d_abd - ld * d_abc);
+}
+
 // Out of line: exact evaluation (counted as an exact call) and the SoS tie break.
 int orient2d_exact(const double* a, const double* b, const double* c);
 int orient3d_exact(const double* a, const double* b, const double* c, const double* d);
@@ -113,10 +141,7 @@ inline int orient3d(const double* a, const double* b, const double* c, const dou
   const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
   const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
   const double wx = d[0] - a[0], wy = d[1] - a[1], wz = d[2] - a[2];
-  const double m_vw = vx * wy - wx * vy;
-  const double m_uw = ux * wy - wx * uy;
-  const double m_uv = ux * vy - vx * uy;
-  const double det = (uz * m_vw - vz * m_uw) + wz * m_uv;
+  const double det = detail::orient3d_det(ux, uy, uz, vx, vy, vz, wx, wy, wz);
   const double mx = detail::absmax3(ux, vx, wx);
   const double my = detail::absmax3(uy, vy, wy);
   const double mz = detail::absmax3(uz, vz, wz);
@@ -135,22 +160,12 @@ inline int insphere(const double* a, const double* b, const double* c, const dou
   const double bx = b[0] - e[0], by = b[1] - e[1], bz = b[2] - e[2];
   const double cx = c[0] - e[0], cy = c[1] - e[1], cz = c[2] - e[2];
   const double dx = d[0] - e[0], dy = d[1] - e[1], dz = d[2] - e[2];
-  const double m_ab = ax * by - bx * ay, m_ac = ax * cy - cx * ay, m_ad = ax * dy - dx * ay;
-  const double m_bc = bx * cy - cx * by, m_bd = bx * dy - dx * by, m_cd = cx * dy - dx * cy;
-  const double d_bcd = (bz * m_cd - cz * m_bd) + dz * m_bc;
-  const double d_acd = (az * m_cd - cz * m_ad) + dz * m_ac;
-  const double d_abd = (az * m_bd - bz * m_ad) + dz * m_ab;
-  const double d_abc = (az * m_bc - bz * m_ac) + cz * m_ab;
-  const double la = (ax * ax + ay * ay) + az * az;
-  const double lb = (bx * bx + by * by) + bz * bz;
-  const double lc = (cx * cx + cy * cy) + cz * cz;
-  const double ld = (dx * dx + dy * dy) + dz * dz;
-  const double det = (la * d_bcd - lb * d_acd) + (lc * d_abd - ld * d_abc);
+  double lmax;
+  const double det = detail::insphere_det(ax, ay, az, bx, by, bz, cx, cy, cz, dx, dy, dz, lmax);
   const double mx = detail::absmax4(ax, bx, cx, dx);
   const double my = detail::absmax4(ay, by, cy, dy);
   const double mz = detail::absmax4(az, bz, cz, dz);
   if (detail::in_range(detail::kInsphereMin, detail::kInsphereMax, mx, my, mz)) {
-    const double lmax = detail::max4(la, lb, lc, ld);
     const double bound = detail::kInsphereBound * mx * my * mz * lmax;
     if (det > bound) return 1;
     if (det < -bound) return -1;
