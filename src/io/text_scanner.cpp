@@ -143,14 +143,26 @@ Status TextScanner::expected(const std::string& what) {
   return error(Error::Parse, "expected " + what + ", found " + found);
 }
 
-bool parse_double(std::string_view token, double& out) {
+namespace {
+
+// The digits of a number token: std::from_chars takes no leading '+', so it is skipped here
+// ("+-1" and a lone "+" are refused). False for an empty or malformed token.
+bool number_span(std::string_view token, const char*& first, const char*& last) {
   if (token.empty()) return false;
-  const char* first = token.data();
-  const char* last = first + token.size();
+  first = token.data();
+  last = first + token.size();
   if (*first == '+') {
     ++first;
     if (first == last || *first == '-') return false;
   }
+  return true;
+}
+
+}  // namespace
+
+bool parse_double(std::string_view token, double& out) {
+  const char *first, *last;
+  if (!number_span(token, first, last)) return false;
   auto [ptr, ec] = std::from_chars(first, last, out);
   if (ptr != last) return false;
   if (ec == std::errc()) return true;
@@ -162,13 +174,8 @@ bool parse_double(std::string_view token, double& out) {
 }
 
 bool parse_int(std::string_view token, int64_t& out) {
-  if (token.empty()) return false;
-  const char* first = token.data();
-  const char* last = first + token.size();
-  if (*first == '+') {
-    ++first;
-    if (first == last || *first == '-') return false;
-  }
+  const char *first, *last;
+  if (!number_span(token, first, last)) return false;
   auto [ptr, ec] = std::from_chars(first, last, out);
   return ec == std::errc() && ptr == last;
 }
