@@ -306,26 +306,62 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
       }
     }
   }
-  // Shrink until every boundary facet sees p strictly from the cavity side: then the cavity is
-  // star-shaped from p and coning its boundary to p gives positive tets only.
-  for (;;) {
-    collect_boundary(respect_protected);
-    bool removed = false;
-    for (const BoundaryFacet& b : boundary_) {
-      if (marks_.get(b.ctet) == TetMarks::kIn && !boundary_facet_ok(b, p)) {
-        marks_.set(b.ctet, TetMarks::kOut);
-        removed = true;
-      }
+  if (!shrink_to_star(t0, pid, respect_protected)) return false;
+  collect_boundary(respect_protected);
+  fill_cavity(pid, true);
+  return true;
+}
+
+bool CavityKernel::is_boundary_facet(uint32_t c, int i, bool respect_protected) const {
+  const uint64_t adj = store_->adj(c, i);
+  // A protected facet bounds the cavity even when its other side is in the cavity too.
+  return adj == kNoNeighbour || marks_.get(static_cast<uint32_t>(adj >> 2)) != TetMarks::kIn ||
+         (respect_protected && ((store_->flags(c) >> i) & 1u));
+}
+
+// Shrinks the cavity until every boundary facet sees p strictly from the cavity side: then it is
+// star-shaped from p and coning its boundary to p gives positive tets only. A work list of facets:
+// when a tet leaves, only its facets shared with cavity tets become new boundary facets to test,
+// so the cost is linear in the cavity (re-collecting the whole boundary after each round was
+// quadratic on the huge cavities of sliver regions). False when t0 has to leave.
+bool CavityKernel::shrink_to_star(uint32_t t0, uint32_t pid, bool respect_protected) {
+  const double* p = pt(pid);
+  shrink_queue_.clear();
+  for (uint32_t c : cavity_)
+    for (int i = 0; i < 4; ++i)
+      if (is_boundary_facet(c, i, respect_protected)) shrink_queue_.push_back({c, i});
+  auto take_out = [&](uint32_t c) {
+    marks_.set(c, TetMarks::kOut);
+    for (int j = 0; j < 4; ++j) {
+      const uint64_t adj = store_->adj(c, j);
+      if (adj == kNoNeighbour) continue;
+      const auto n = static_cast<uint32_t>(adj >> 2);
+      if (marks_.get(n) == TetMarks::kIn) shrink_queue_.push_back({n, static_cast<int>(adj & 3)});
     }
-    if (!removed && respect_protected && defend_constrained_edges(t0, pid)) removed = true;
-    if (!removed || marks_.get(t0) != TetMarks::kIn) break;
+  };
+  for (;;) {
+    while (!shrink_queue_.empty()) {
+      const auto [c, i] = shrink_queue_.back();
+      shrink_queue_.pop_back();
+      if (marks_.get(c) != TetMarks::kIn || !is_boundary_facet(c, i, respect_protected)) continue;
+      boundary_.clear();
+      add_boundary<true>(c, i, store_->adj(c, i));
+      if (boundary_facet_ok(boundary_[0], p)) continue;
+      take_out(c);
+      if (marks_.get(t0) != TetMarks::kIn) return false;
+    }
     cavity_.erase(std::remove_if(cavity_.begin(), cavity_.end(),
                                  [this](uint32_t t) { return marks_.get(t) != TetMarks::kIn; }),
                   cavity_.end());
+    if (!respect_protected) return true;
+    ejected_.clear();
+    if (!defend_constrained_edges(t0, pid)) return true;
+    for (uint32_t c : ejected_) {
+      marks_.set(c, TetMarks::kIn);  // take_out() sets it again and queues its cavity neighbours
+      take_out(c);
+    }
+    if (marks_.get(t0) != TetMarks::kIn) return false;
   }
-  if (marks_.get(t0) != TetMarks::kIn) return false;
-  fill_cavity(pid, true);
-  return true;
 }
 
 // A constrained edge must keep a tet outside the cavity (else coning would delete it): when all
@@ -385,6 +421,7 @@ bool CavityKernel::defend_constrained_edges(uint32_t t0, uint32_t pid) {
       }
       if (all_in && eject != TetMesh::kNone) {
         marks_.set(eject, TetMarks::kOut);
+        ejected_.push_back(eject);
         removed = true;
       }
     }

@@ -148,6 +148,8 @@ class CavityKernel {
   void add_boundary(uint32_t c, int i, uint64_t outside);
   void collect_boundary(bool respect_protected);
   bool defend_constrained_edges(uint32_t t0, uint32_t pid);
+  bool shrink_to_star(uint32_t t0, uint32_t pid, bool respect_protected);
+  bool is_boundary_facet(uint32_t c, int i, bool respect_protected) const;
   bool closure_contains(uint32_t t, const double* p);
   bool boundary_facet_ok(const BoundaryFacet& b, const double* p);
   // carry: copy protected / constrained-edge bits and regions from the cavity to the new tets.
@@ -164,6 +166,8 @@ class CavityKernel {
   StaticFilters filters_;
 
   std::vector<uint32_t> cavity_;
+  std::vector<std::pair<uint32_t, int>> shrink_queue_;  // cavity facets to test for visibility
+  std::vector<uint32_t> ejected_;                      // tets defend_constrained_edges() took out
   std::vector<BoundaryFacet> boundary_;
   TetMarks marks_;  // the constrained path's marks (the storage's marks serve the bulk build)
   std::vector<uint32_t> new_tets_;

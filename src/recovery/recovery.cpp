@@ -9,6 +9,7 @@
 
 #include "delaunay/delaunay.hpp"
 #include "predicates/predicates.hpp"
+#include "recovery/local_flips.hpp"
 
 namespace anitet {
 
@@ -102,6 +103,10 @@ class Recoverer {
   bool insert(const double p[3], SteinerHost host, uint32_t host_id, uint32_t hint);
   size_t recover_edges_once(bool& failed_insert);
   bool split_segment(uint32_t e, size_t k);
+  bool flip_edge(uint32_t u, uint32_t w);
+  bool flip_face(uint32_t a, uint32_t b, uint32_t c);
+  void note_tets(const std::vector<uint32_t>& tets);
+  bool crossing_parameter(uint32_t e, const ChainPoint& u, const ChainPoint& w, double& t);
   bool face_subfaces(uint32_t f, std::vector<Tri>& subfaces);
   bool insert_on_face(uint32_t f);
   void collect_face_vertices(uint32_t f, std::vector<uint32_t>& vs);
@@ -292,7 +297,10 @@ bool Recoverer::split_segment(uint32_t e, size_t k) {
   const double len = (w.t - u.t) * full;
   double t = 0.5 * (u.t + w.t);
   const bool u_input = u.v < n_in_, w_input = w.v < n_in_;
-  if (u_input != w_input && len > 0) {
+  double tc;
+  if (opt_.split_at_crossings && crossing_parameter(e, u, w, tc)) {
+    t = tc;  // the paper's rule: the point where the segment leaves the tets around u
+  } else if (u_input != w_input && len > 0) {
     double d = std::exp2(std::floor(std::log2(len * 2.0 / 3.0)));
     if (d < len / 3.0) d *= 2.0;
     t = u_input ? u.t + d / full : w.t - d / full;
@@ -312,6 +320,129 @@ bool Recoverer::split_segment(uint32_t e, size_t k) {
   return false;
 }
 
+// Where the subsegment (u w) of input edge e leaves the tets around u (the paper's intersection
+// point), as a parameter of e. The exit is found in floating point, barycentric coordinates with a
+// tolerance: on the planar parts of CAD surfaces the segment leaves through an edge of the ball's
+// boundary more often than through a facet's interior. False when it leaves near a vertex (a
+// vertex almost on the segment) or the exit is not well inside (u w): the caller then splits at a
+// fixed parameter instead.
+bool Recoverer::crossing_parameter(uint32_t e, const ChainPoint& u, const ChainPoint& w, double& t) {
+  const double* U = mesh_.point(u.v);
+  const double* W = mesh_.point(w.v);
+  const double* a = S_.point(edge_v_[2 * e]);
+  const double* b = S_.point(edge_v_[2 * e + 1]);
+  double uw[3];
+  sub(W, U, uw);
+  double best_s = -1, best_margin = -INFINITY;
+  ball(u.v, scratch_);
+  for (uint32_t tet : scratch_) {
+    if (mesh_.is_ghost(tet)) continue;
+    int i = 0;
+    while (mesh_.vertex(tet, i) != u.v) ++i;
+    const double* P = mesh_.point(mesh_.vertex(tet, kFacetVertex[i][0]));
+    const double* Q = mesh_.point(mesh_.vertex(tet, kFacetVertex[i][1]));
+    const double* R = mesh_.point(mesh_.vertex(tet, kFacetVertex[i][2]));
+    // Ray U + s uw against the plane of PQR: Cramer's rule on [uw, P-Q, P-R] (s, beta, gamma).
+    double pq[3], pr[3], pu[3], n[3];
+    sub(P, Q, pq);
+    sub(P, R, pr);
+    sub(P, U, pu);
+    cross(pq, pr, n);
+    const double det = dot(uw, n);
+    if (!(std::fabs(det) > 0)) continue;
+    const double s = dot(pu, n) / det;
+    double c1[3], c2[3];
+    cross(pu, pr, c1);
+    cross(pq, pu, c2);
+    const double beta = dot(uw, c1) / det, gamma = dot(uw, c2) / det;
+    const double margin = std::min({1.0 - beta - gamma, beta, gamma});
+    if (s > 0 && margin > best_margin) {
+      best_margin = margin;
+      best_s = s;
+    }
+  }
+  if (best_s <= 0 || best_margin < -1e-9) return false;
+  double x[3], ab[3], ax[3];
+  for (int d = 0; d < 3; ++d) x[d] = U[d] + best_s * uw[d];
+  sub(b, a, ab);
+  sub(x, a, ax);
+  const double tx = dot(ax, ab) / dot(ab, ab);
+  const double lo = u.t + opt_.crossing_margin * (w.t - u.t), hi = w.t - opt_.crossing_margin * (w.t - u.t);
+  if (!(tx > lo && tx < hi)) return false;
+  t = tx;
+  return true;
+}
+
+void Recoverer::note_tets(const std::vector<uint32_t>& tets) {
+  for (uint32_t t : tets)
+    for (int k = 0; k < 4; ++k) vert_tet_[mesh_.vertex(t, k)] = t;
+}
+
+// Makes (u w) an edge by one flip, when one does it: a 2-3 flip of the facet opposite u in a tet
+// whose neighbour there has apex w, or the removal of an edge of such a facet whose ring holds w.
+bool Recoverer::flip_edge(uint32_t u, uint32_t w) {
+  ball(u, scratch_);
+  const std::vector<uint32_t> tets = scratch_;
+  EdgeRing ring;
+  std::vector<uint32_t> created;
+  const uint32_t want[2] = {u, w};
+  for (uint32_t t : tets) {
+    if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
+    int i = 0;
+    while (mesh_.vertex(t, i) != u) ++i;
+    const uint64_t adj = mesh_.tet_adj[4 * size_t(t) + i];
+    if (adj == kNoNeighbour) continue;
+    const uint32_t n = static_cast<uint32_t>(adj >> 2);
+    if (!mesh_.is_ghost(n) && mesh_.vertex(n, static_cast<int>(adj & 3)) == w) {
+      if (flip23(mesh_, t, i, &created)) {
+        note_tets(created);
+        ++out_.stats.flips;
+        return true;
+      }
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t p = mesh_.vertex(t, kFacetVertex[i][k]), q = mesh_.vertex(t, kFacetVertex[i][(k + 1) % 3]);
+      if (!edge_ring(mesh_, t, p, q, ring)) continue;
+      if (std::find(ring.link.begin(), ring.link.end(), w) == ring.link.end()) continue;
+      if (remove_edge(mesh_, ring, want, 2, &created)) {
+        note_tets(created);
+        ++out_.stats.flips;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// Makes triangle (a b c), whose edges are present, a facet by removing one edge whose ring holds
+// all three (the 3-2 flip when the ring is just a b c).
+bool Recoverer::flip_face(uint32_t a, uint32_t b, uint32_t c) {
+  ball(a, scratch_);
+  const std::vector<uint32_t> tets = scratch_;
+  EdgeRing ring;
+  std::vector<uint32_t> created;
+  const uint32_t want[3] = {a, b, c};
+  for (uint32_t t : tets) {
+    if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
+    int i = 0;
+    while (mesh_.vertex(t, i) != a) ++i;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t p = mesh_.vertex(t, kFacetVertex[i][k]), q = mesh_.vertex(t, kFacetVertex[i][(k + 1) % 3]);
+      if (p == b || p == c || q == b || q == c) continue;
+      if (!edge_ring(mesh_, t, p, q, ring)) continue;
+      const auto has = [&](uint32_t v) { return std::find(ring.link.begin(), ring.link.end(), v) != ring.link.end(); };
+      if (!has(b) || !has(c)) continue;
+      if (remove_edge(mesh_, ring, want, 3, &created)) {
+        note_tets(created);
+        ++out_.stats.flips;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 // One sweep over all subsegments; returns how many were missing.
 size_t Recoverer::recover_edges_once(bool& failed_insert) {
   size_t missing = 0;
@@ -321,6 +452,10 @@ size_t Recoverer::recover_edges_once(bool& failed_insert) {
       if (opt_.defend_edges ? mark_edge(chain_[e][k].v, chain_[e][k + 1].v, true)
                             : has_edge(chain_[e][k].v, chain_[e][k + 1].v))
         continue;
+      if (opt_.use_flips && flip_edge(chain_[e][k].v, chain_[e][k + 1].v)) {
+        if (opt_.defend_edges) mark_edge(chain_[e][k].v, chain_[e][k + 1].v, true);
+        continue;
+      }
       ++missing;
       if (split_segment(e, k)) ++k;  // the new right half is checked next sweep
       else failed_insert = true;
@@ -661,6 +796,14 @@ Status Recoverer::run() {
     for (uint32_t f = 0; f < nf; ++f) {
       if (face_done_[f]) continue;
       if (face_subfaces(f, subfaces)) {
+        protect(subfaces);
+        face_subs[f] = subfaces;
+        face_done_[f] = 1;
+        continue;
+      }
+      if (opt_.use_flips && chain_[face_edge_[3 * f]].size() == 2 && chain_[face_edge_[3 * f + 1]].size() == 2 &&
+          chain_[face_edge_[3 * f + 2]].size() == 2 && face_points_[f].empty() &&
+          flip_face(S_.tri[3 * f], S_.tri[3 * f + 1], S_.tri[3 * f + 2]) && face_subfaces(f, subfaces)) {
         protect(subfaces);
         face_subs[f] = subfaces;
         face_done_[f] = 1;

@@ -34,6 +34,16 @@ struct RecoveryOptions {
   // by default: on the shared surfaces the face phase then stalls on flat stacks of tets (see
   // the report of issue 4); with it off, destroyed subsegments are found and split again.
   bool defend_edges = false;
+  // Split a missing subsegment where it leaves the tets around its first end (the paper's
+  // intersection points) rather than at its middle; a crossing closer to an end than this share
+  // of the subsegment is not used.
+  bool split_at_crossings = false;
+  // Try flips (2-3, edge removal) before Steiner points for a missing edge or an unsplit face.
+  // Off by default: on the shared corpus it recovers airplane with no Steiner point and casting,
+  // but without defended subsegments a flip can remove a present one and the face phase then
+  // stalls on bimba_low, femur, armadillo (measurements in the session note of 2026-11-23).
+  bool use_flips = false;
+  double crossing_margin = 0.1;
   // A boundary subsegment of a face that no subface uses gets a face point just inside it even
   // when no coplanar vertex explains the gap.
   bool apex_always = true;       // false: keep the whole convex hull and the ghost tets
@@ -52,6 +62,7 @@ struct RecoveryStats {
   size_t input_vertices = 0, input_triangles = 0;
   size_t steiner_on_edges = 0, steiner_on_faces = 0;
   size_t passes = 0;
+  size_t flips = 0;               // constraints recovered by a flip instead of a point
   size_t blocked_insertions = 0;  // insertions the kernel refused (another point was tried)
   size_t tets = 0;                // tets of the result
   size_t regions = 0;

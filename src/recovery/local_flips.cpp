@@ -1,0 +1,278 @@
+#include "recovery/local_flips.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "predicates/predicates.hpp"
+
+namespace anitet {
+
+namespace {
+
+constexpr uint64_t kNoNeighbour = TetMesh::kNoNeighbour;
+using Key = std::array<uint32_t, 3>;
+
+Key facet_key(const uint32_t* v, int i) {
+  Key k = {v[kFacetVertex[i][0]], v[kFacetVertex[i][1]], v[kFacetVertex[i][2]]};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+uint64_t pair_key(uint32_t a, uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (uint64_t(a) << 32) | b;
+}
+
+int orient(const TetMesh& m, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
+  return predicates::orient3d(m.point(a), m.point(b), m.point(c), m.point(d));
+}
+
+}  // namespace
+
+bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old, const std::vector<uint32_t>& fresh,
+                  std::vector<uint32_t>* created) {
+  if (old.empty() || fresh.empty() || fresh.size() % 4 != 0) return false;
+  const size_t n_new = fresh.size() / 4;
+  auto is_old = [&](uint32_t t) { return std::find(old.begin(), old.end(), t) != old.end(); };
+  for (size_t k = 0; k < n_new; ++k) {
+    const uint32_t* v = &fresh[4 * k];
+    for (int i = 0; i < 4; ++i)
+      if (v[i] == TetMesh::kGhost) return false;
+    if (orient(mesh, v[0], v[1], v[2], v[3]) <= 0) return false;
+  }
+  struct Outer {
+    Key key;
+    uint64_t adj;
+    bool prot;
+    bool used;
+  };
+  std::vector<Outer> outer;
+  std::vector<uint64_t> constrained;
+  for (uint32_t o : old) {
+    if (mesh.is_deleted(o) || mesh.is_ghost(o)) return false;
+    const uint32_t* v = &mesh.tet_v[4 * size_t(o)];
+    for (int i = 0; i < 4; ++i) {
+      const uint64_t adj = mesh.tet_adj[4 * size_t(o) + i];
+      if (adj != kNoNeighbour && is_old(static_cast<uint32_t>(adj >> 2))) continue;
+      outer.push_back({facet_key(v, i), adj, mesh.facet_protected(o, i), false});
+    }
+    for (int k = 0; k < 6; ++k)
+      if ((mesh.tet_flags[o] >> (tflag::kEdgeConstrainedShift + k)) & 1u)
+        constrained.push_back(pair_key(v[kEdgeVertex[k][0]], v[kEdgeVertex[k][1]]));
+  }
+  // Facets of the new tets: pairs among themselves, the rest on outer facets.
+  struct NewFacet {
+    Key key;
+    uint32_t tet;
+    int facet;
+  };
+  std::vector<NewFacet> facets;
+  for (size_t k = 0; k < n_new; ++k)
+    for (int i = 0; i < 4; ++i) facets.push_back({facet_key(&fresh[4 * k], i), uint32_t(k), i});
+  std::sort(facets.begin(), facets.end(), [](const NewFacet& a, const NewFacet& b) { return a.key < b.key; });
+  struct Match {
+    uint32_t a_tet;
+    int a_facet;
+    uint32_t b_tet;  // kNone: outer facet index in b_facet
+    int b_facet;
+  };
+  std::vector<Match> matches;
+  for (size_t k = 0; k < facets.size();) {
+    if (k + 1 < facets.size() && facets[k + 1].key == facets[k].key) {
+      if (k + 2 < facets.size() && facets[k + 2].key == facets[k].key) return false;
+      matches.push_back({facets[k].tet, facets[k].facet, facets[k + 1].tet, facets[k + 1].facet});
+      k += 2;
+      continue;
+    }
+    size_t hit = outer.size();
+    for (size_t o = 0; o < outer.size(); ++o)
+      if (!outer[o].used && outer[o].key == facets[k].key) hit = o;
+    if (hit == outer.size()) return false;
+    outer[hit].used = true;
+    matches.push_back({facets[k].tet, facets[k].facet, TetMesh::kNone, static_cast<int>(hit)});
+    ++k;
+  }
+  for (const Outer& o : outer)
+    if (!o.used) return false;
+
+  // The check passed: rewrite.
+  const int32_t region = mesh.tet_region[old[0]];
+  for (uint32_t o : old) mesh.delete_tet(o);
+  std::vector<uint32_t> ids(n_new);
+  for (size_t k = 0; k < n_new; ++k)
+    ids[k] = mesh.new_tet(fresh[4 * k], fresh[4 * k + 1], fresh[4 * k + 2], fresh[4 * k + 3], region);
+  for (const Match& m : matches) {
+    const uint32_t t = ids[m.a_tet];
+    if (m.b_tet != TetMesh::kNone) {
+      mesh.link(t, m.a_facet, ids[m.b_tet], m.b_facet);
+      continue;
+    }
+    const Outer& o = outer[size_t(m.b_facet)];
+    if (o.adj == kNoNeighbour) mesh.tet_adj[4 * size_t(t) + m.a_facet] = kNoNeighbour;
+    else mesh.link(t, m.a_facet, static_cast<uint32_t>(o.adj >> 2), static_cast<int>(o.adj & 3));
+    mesh.set_facet_protected(t, m.a_facet, o.prot);
+  }
+  if (!constrained.empty()) {
+    std::sort(constrained.begin(), constrained.end());
+    for (uint32_t t : ids)
+      for (int k = 0; k < 6; ++k)
+        if (std::binary_search(constrained.begin(), constrained.end(),
+                               pair_key(mesh.vertex(t, kEdgeVertex[k][0]), mesh.vertex(t, kEdgeVertex[k][1]))))
+          mesh.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
+  }
+  if (created) *created = ids;
+  return true;
+}
+
+bool edge_ring(const TetMesh& mesh, uint32_t t, uint32_t p, uint32_t q, EdgeRing& ring, size_t max_size) {
+  ring.p = p;
+  ring.q = q;
+  ring.link.clear();
+  ring.tets.clear();
+  uint32_t x = TetMesh::kNone, y = TetMesh::kNone;
+  for (int i = 0; i < 4; ++i) {
+    const uint32_t v = mesh.vertex(t, i);
+    if (v == p || v == q) continue;
+    (x == TetMesh::kNone ? x : y) = v;
+  }
+  if (y == TetMesh::kNone) return false;  // t does not have edge pq
+  const uint32_t start = t;
+  for (;;) {
+    if (mesh.is_ghost(t) || ring.tets.size() >= max_size) return false;
+    ring.tets.push_back(t);
+    ring.link.push_back(x);
+    // Leave t through the facet (p q y), the one opposite x.
+    int ix = 0;
+    while (mesh.vertex(t, ix) != x) ++ix;
+    const uint64_t adj = mesh.tet_adj[4 * size_t(t) + ix];
+    if (adj == kNoNeighbour) return false;
+    const auto n = static_cast<uint32_t>(adj >> 2);
+    uint32_t z = TetMesh::kNone;
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t v = mesh.vertex(n, i);
+      if (v != p && v != q && v != y) z = v;
+    }
+    x = y;
+    y = z;
+    t = n;
+    if (t == start) break;
+  }
+  if (ring.tets.size() < 3) return false;
+  if (orient(mesh, p, q, ring.link[0], ring.link[1]) < 0) {
+    // Walked the other way round: reverse so that tets[i] holds link[i], link[i+1].
+    std::reverse(ring.link.begin(), ring.link.end());
+    std::reverse(ring.tets.begin(), ring.tets.end());
+    std::rotate(ring.tets.begin(), ring.tets.begin() + 1, ring.tets.end());
+  }
+  return true;
+}
+
+bool flip23(TetMesh& mesh, uint32_t t, int facet, std::vector<uint32_t>* created) {
+  if (mesh.is_ghost(t) || mesh.facet_protected(t, facet)) return false;
+  const uint64_t adj = mesh.tet_adj[4 * size_t(t) + facet];
+  if (adj == kNoNeighbour) return false;
+  const auto n = static_cast<uint32_t>(adj >> 2);
+  if (mesh.is_ghost(n)) return false;
+  const uint32_t a = mesh.vertex(t, facet), b = mesh.vertex(n, static_cast<int>(adj & 3));
+  uint32_t f[3];
+  for (int k = 0; k < 3; ++k) f[k] = mesh.vertex(t, kFacetVertex[facet][k]);
+  // f's normal points into t (towards a): the new tets (f_k f_k+1 b a) are positive exactly when
+  // segment ab crosses f's interior.
+  std::vector<uint32_t> fresh;
+  for (int k = 0; k < 3; ++k) {
+    const uint32_t u = f[k], w = f[(k + 1) % 3];
+    for (uint32_t v : {u, w, b, a}) fresh.push_back(v);
+  }
+  return replace_tets(mesh, {t, n}, fresh, created);
+}
+
+bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int want_n,
+                 std::vector<uint32_t>* created) {
+  const size_t n = ring.link.size();
+  if (n < 3) return false;
+  // Edge pq must not be a constraint and no facet (p q link[i]) protected.
+  for (uint32_t t : ring.tets) {
+    for (int k = 0; k < 6; ++k) {
+      const uint32_t a = mesh.vertex(t, kEdgeVertex[k][0]), b = mesh.vertex(t, kEdgeVertex[k][1]);
+      if (pair_key(a, b) == pair_key(ring.p, ring.q) &&
+          ((mesh.tet_flags[t] >> (tflag::kEdgeConstrainedShift + k)) & 1u))
+        return false;
+    }
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t opp = mesh.vertex(t, i);
+      if (opp != ring.p && opp != ring.q && mesh.facet_protected(t, i)) return false;
+    }
+  }
+  // Rotate the link so that want[0] is vertex 0; positions of the other wanted vertices.
+  size_t rot = 0;
+  int pos[3] = {0, 0, 0};
+  if (want_n > 0) {
+    const auto it = std::find(ring.link.begin(), ring.link.end(), want[0]);
+    if (it == ring.link.end()) return false;
+    rot = static_cast<size_t>(it - ring.link.begin());
+    for (int k = 1; k < want_n; ++k) {
+      const auto jt = std::find(ring.link.begin(), ring.link.end(), want[k]);
+      if (jt == ring.link.end()) return false;
+      pos[k] = static_cast<int>((static_cast<size_t>(jt - ring.link.begin()) + n - rot) % n);
+    }
+    if (want_n == 3 && pos[1] > pos[2]) std::swap(pos[1], pos[2]);
+  }
+  // Vertex of extended index i (0..n, index n is vertex 0 again).
+  auto V = [&](int i) { return ring.link[(rot + static_cast<size_t>(i)) % n]; };
+  auto tri_ok = [&](int i, int k, int j) {
+    return orient(mesh, V(i), V(k), V(j), ring.q) > 0 && orient(mesh, V(i), V(j), V(k), ring.p) > 0;
+  };
+  // ok[i][j]: the sub-polygon i..j (closed by the chord j-i) has a valid triangulation; split[i][j]
+  // its apex on the chord.
+  const int N = static_cast<int>(n);
+  std::vector<int8_t> ok((n + 1) * (n + 1), 0);
+  std::vector<int8_t> split((n + 1) * (n + 1), -1);
+  auto OK = [&](int i, int j) -> int8_t& { return ok[size_t(i) * (n + 1) + size_t(j)]; };
+  auto SPLIT = [&](int i, int j) -> int8_t& { return split[size_t(i) * (n + 1) + size_t(j)]; };
+  for (int i = 0; i < N; ++i) OK(i, i + 1) = 1;
+  for (int len = 2; len <= N; ++len)
+    for (int i = 0; i + len <= N; ++i) {
+      const int j = i + len;
+      if (i == 0 && j == N) continue;  // not a polygon: vertex 0 twice
+      for (int k = i + 1; k < j && !OK(i, j); ++k)
+        if (OK(i, k) && OK(k, j) && tri_ok(i, k, j)) {
+          OK(i, j) = 1;
+          SPLIT(i, j) = static_cast<int8_t>(k);
+        }
+    }
+  std::vector<std::array<int, 3>> tris;
+  std::vector<std::array<int, 2>> todo;
+  if (want_n == 0) {
+    if (!OK(0, N - 1)) return false;
+    todo.push_back({0, N - 1});
+  } else if (want_n == 2) {
+    const int m = pos[1];
+    if (m <= 1 || m >= N - 1 || !OK(0, m) || !OK(m, N)) return false;  // a side is no new edge
+    todo.push_back({0, m});
+    todo.push_back({m, N});
+  } else {
+    const int b = pos[1], c = pos[2];
+    if (!(0 < b && b < c && c < N) || !tri_ok(0, b, c) || !OK(0, b) || !OK(b, c) || !OK(c, N)) return false;
+    tris.push_back({0, b, c});
+    todo.push_back({0, b});
+    todo.push_back({b, c});
+    todo.push_back({c, N});
+  }
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    if (j - i < 2) continue;
+    const int k = SPLIT(i, j);
+    tris.push_back({i, k, j});
+    todo.push_back({i, k});
+    todo.push_back({k, j});
+  }
+  std::vector<uint32_t> fresh;
+  for (const auto& tr : tris) {
+    for (uint32_t v : {V(tr[0]), V(tr[1]), V(tr[2]), ring.q}) fresh.push_back(v);
+    for (uint32_t v : {V(tr[0]), V(tr[2]), V(tr[1]), ring.p}) fresh.push_back(v);
+  }
+  return replace_tets(mesh, ring.tets, fresh, created);
+}
+
+}  // namespace anitet
