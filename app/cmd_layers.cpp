@@ -38,7 +38,8 @@ nlohmann::json layers_json(const LayersOutput& r, const LayersCheck& check) {
   for (const LayerStats& l : s.per_layer)
     per_layer.push_back({{"front_triangles_before", l.front_triangles_before},
                          {"face_tets", l.face_tets}, {"push_tets", l.push_tets},
-                         {"seconds", l.seconds}});
+                         {"halvings", l.halvings}, {"halved_columns", l.halved_columns},
+                         {"boundary_layer", l.boundary_layer}, {"seconds", l.seconds}});
   return {{"tets", s.tets},
           {"s1_triangles", r.num_front_triangles()},
           {"new_vertices", s.new_vertices},
@@ -48,7 +49,18 @@ nlohmann::json layers_json(const LayersOutput& r, const LayersCheck& check) {
                      {"max_halvings", s.max_face_halvings}, {"halved_share", share(s.faces_halved, s.faces)}}},
           {"pushes", {{"tried", s.pushes}, {"halved", s.pushes_halved}, {"halvings", s.push_halvings},
                       {"max_halvings", s.max_push_halvings}, {"halved_share", share(s.pushes_halved, s.pushes)},
-                      {"deferred", s.deferred_pushes}, {"partial", s.partial_pushes}}},
+                      {"deferred", s.deferred_pushes}, {"partial", s.partial_pushes},
+                      {"fallbacks", s.push_fallbacks}, {"stopped_vertices", s.stopped_vertices},
+                      {"improved_vertices", s.improved_vertices}}},
+          {"epsilon_halving", {{"loops", s.halving_loops}, {"halved_columns", s.halved_columns},
+                               {"halved_column_share", s.halved_column_share}}},
+          {"boundary_layer", {{"layers", s.bl_layers}, {"wall_vertices", s.bl_wall_vertices},
+                              {"pushes", s.bl_pushes}, {"reduced_pushes", s.bl_reduced_pushes},
+                              {"reduced_vertices", s.bl_reduced_vertices},
+                              {"reduced_share", s.bl_reduced_share},
+                              {"max_height_error", s.bl_max_height_error},
+                              {"min_height_ratio", s.bl_min_height_ratio},
+                              {"seconds", s.bl_seconds}}},
           {"seconds", s.seconds},
           {"per_layer", per_layer},
           {"check", {{"ok", check.ok()}, {"mesh_valid", check.mesh_valid},
@@ -57,6 +69,16 @@ nlohmann::json layers_json(const LayersOutput& r, const LayersCheck& check) {
                      {"front_manifold", check.front_manifold}, {"front_off_input", check.front_off_input},
                      {"front_disjoint", check.front_disjoint},
                      {"volume_rel_error", check.volume_rel_error}, {"problems", check.problems}}}};
+}
+
+nlohmann::json worst_json(const WorstTets& w) {
+  nlohmann::json tets = nlohmann::json::array();
+  for (const WorstTet& t : w.tets)
+    tets.push_back({{"tet", t.tet}, {"radius_ratio", t.radius_ratio}, {"layer", t.layer},
+                    {"input_triangle", t.column}, {"input_triangle_quality", t.column_quality},
+                    {"input_triangle_rank", t.column_rank}});
+  return {{"tets", tets}, {"input_quality_min", w.input_quality_min},
+          {"input_quality_median", w.input_quality_median}, {"median_rank", w.median_rank}};
 }
 
 }  // namespace
@@ -70,12 +92,24 @@ int run_mesh_layers(const MeshArgs& args) {
   LayersOptions options;
   options.layers = args.layers;
   options.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
+  if (!args.bl_patches.empty()) {
+    if (!(args.bl_first_height > 0.0)) {
+      std::cerr << cmd << ": --bl-patches needs --bl-first-height\n";
+      return kExitUsage;
+    }
+    options.boundary_layer.wall_patches.assign(args.bl_patches.begin(), args.bl_patches.end());
+    options.boundary_layer.first_height = args.bl_first_height;
+    options.boundary_layer.growth = args.bl_growth;
+    options.boundary_layer.layers = args.bl_layers;
+  }
   IsotropicSurfaceSizing sizing(surface);
   Result<LayersOutput> built = build_layers(surface, sizing, options);
   if (!built.ok()) {
     std::cerr << cmd << ": stage 1 (layers) failed on '" << args.input << "': " << built.status().message()
               << " [" << error_name(built.status().code()) << "]\n";
-    return kExitInternal;
+    return built.status().code() == Error::NotImplemented || built.status().code() == Error::InvalidArgument
+               ? kExitUsage
+               : kExitInternal;
   }
   const LayersOutput& r = built.value();
   // The audit is the library's own independent check; a failure is a bug, reported as such.
@@ -112,6 +146,7 @@ int run_mesh_layers(const MeshArgs& args) {
     nlohmann::json out = {{"input", args.input}, {"output", args.output}, {"front", front_file},
                           {"layers", options.layers}, {"scheme", args.layer_scheme},
                           {"stage1", layers_json(r, check)},
+                          {"worst_tets", worst_json(worst_tets(surface, r, 10))},
                           {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
     std::cout << out.dump(1) << "\n";
   } else if (!args.quiet) {
@@ -120,10 +155,28 @@ int run_mesh_layers(const MeshArgs& args) {
               << ", " << s.tets << " tets, S1 " << r.num_front_triangles() << " triangles, "
               << s.seconds << " s\n"
               << "  pushes halved: " << s.pushes_halved << " of " << s.pushes << " (" << s.push_halvings
-              << " halvings, at most " << s.max_push_halvings << ")";
+              << " halvings, at most " << s.max_push_halvings << "); vertices moved after their layer: "
+              << s.improved_vertices << ", left in place: " << s.stopped_vertices;
     if (s.faces)
       std::cout << "; face tets halved: " << s.faces_halved << " of " << s.faces << " ("
                 << s.face_halvings << " halvings)";
+    std::cout << "\n  epsilon halving: " << s.halving_loops << " loops; columns (input triangles) "
+              << "that needed it: " << s.halved_columns << " over " << s.per_layer.size()
+              << " layer(s), " << 100.0 * s.halved_column_share << "%";
+    if (s.bl_layers > 0)
+      std::cout << "\n  boundary layer: " << s.bl_layers << " layers on " << s.bl_wall_vertices
+                << " wall vertices (region " << options.boundary_layer.region << "), reduced vertices "
+                << s.bl_reduced_vertices << " (" << 100.0 * s.bl_reduced_share << "%), reduced pushes "
+                << s.bl_reduced_pushes << " of " << s.bl_pushes << ", max height error where not reduced "
+                << s.bl_max_height_error << ", " << s.bl_seconds << " s";
+    const WorstTets worst = worst_tets(surface, r, 10);
+    if (!worst.tets.empty())
+      std::cout << "\n  worst T1 tets: radius ratio " << worst.tets.front().radius_ratio << " (layer "
+                << worst.tets.front().layer << ") on input triangle " << worst.tets.front().column
+                << " of quality " << worst.tets.front().column_quality << " (input min "
+                << worst.input_quality_min << ", median " << worst.input_quality_median
+                << "); the 10 worst stand on input triangles of median quality rank "
+                << 100.0 * worst.median_rank << "%";
     std::cout << "\n  audit: valid, every input triangle a face of T1, S1 closed and off S, volume error "
               << check.volume_rel_error << "\n"
               << "wrote T1 to " << args.output << " (S1 as patch " << front_label << "), S1 to "

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/sizing.hpp"
@@ -60,8 +61,40 @@ class LayerBuilder {
   bool keeps_plans_visible(int halvings);
   // The push distance along d: the size, capped by the free distance to the front across.
   double target_height(uint32_t a, const double d[3]) const;
+  // The push distance along d from the sizing alone (BL: h0 r^i).
+  double sized_height(uint32_t a, const double d[3]) const;
   // Smooths the planned points tangentially (see Plan).
   void plan_targets(const std::vector<uint32_t>& vertices);
+  // Lowers planned heights so that neighbours differ by at most the factor g, up to `rings`
+  // edges away from a low vertex.
+  void limit_gradation(const std::vector<std::pair<uint32_t, uint32_t>>& edges, double g,
+                       int rings);
+  // The layer's front edges between planned vertices (each once).
+  std::vector<std::pair<uint32_t, uint32_t>> planned_edges(const std::vector<uint32_t>& vertices) const;
+
+  // ---- after a layer (improve_step.cpp) ----
+  // Moves the layer's new front vertices whose worst tet is below `below`, when valid (see the
+  // file).
+  void improve_layer(uint32_t first_new_vertex, double below);
+  // The worst radius ratio of `tets` with v placed at `at` (-1 when one is not positive).
+  double worst_tet_with(uint32_t v, const double* at, const std::vector<uint32_t>& tets) const;
+  bool relocate_if_valid(uint32_t v, const double to[3], const std::vector<uint32_t>& tets);
+  // No front triangle outside v's ring comes within `gap` of `to`.
+  bool keeps_clear(uint32_t v, const double to[3], double gap) const;
+  // The distance from `at` to the front outside v's ring, looked for up to `within`.
+  double clear_distance(uint32_t v, const double at[3], double within) const;
+
+  // ---- boundary-layer mode (bl_step.cpp) ----
+  // Wall flags, the number of BL layers; NotImplemented for a wall shell that is not whole.
+  Status setup_boundary_layer();
+  // Smoothed normals and BL heights (h0 r^i, reduced where needed) for the wall vertices.
+  void plan_boundary_layer(const std::vector<uint32_t>& vertices);
+  // h0 r^i along d, capped by the share of the free distance across (fronts colliding).
+  double bl_height(uint32_t a, const double d[3]) const;
+  void record_bl_push(uint32_t a, uint32_t moved);
+  // The wall vertex below v (its column) had a reduced or stopped BL layer.
+  void mark_bl_reduced(uint32_t v);
+  double bl_nominal() const;
   // The free distance from p along the unit direction d to the front (triangles with a corner
   // in `skip` ignored), looked for up to max_dist; +inf when free.
   double clearance(const double p[3], const double d[3], double max_dist,
@@ -69,6 +102,8 @@ class LayerBuilder {
 
   // ---- shared (layers.cpp) ----
   void commit_tet(const uint32_t v[4], const uint32_t closing[4]);
+  // The input triangle below front triangle f (input triangles occupy slots 0..n-1 at the start).
+  uint32_t column_of(uint32_t f) const;
   void truncate_tets(size_t n);
   Status finish();
 
@@ -95,6 +130,7 @@ class LayerBuilder {
   struct Plan {
     double d[3] = {0, 0, 0};
     double height = 0.0;
+    double size = 0.0;  // the height from the sizing alone, before any cap
     double keep = 0.0;  // the margin to keep
     bool valid = false;
     bool waiting = false;
@@ -107,6 +143,12 @@ class LayerBuilder {
   std::vector<Replan> replans_;  // new plans the push being tried needs (applied on success)
   std::vector<uint32_t> added_;  // front triangles added by the push being tried
   int remaining_layers_ = 1;     // layers still to build, the current one included
+  int layer_ = 0;                // the layer being built (1-based)
+  int bl_index_ = -1;            // the BL layer being built (0-based), -1: an ordinary layer
+  int bl_layers_ = 0;
+  std::vector<uint8_t> wall_;    // 1 per vertex: on a wall shell (or pushed from one)
+  std::vector<uint8_t> bl_reduced_root_;  // 1 per input vertex: some BL layer was reduced
+  std::vector<uint8_t> column_halved_;    // 1 per input triangle, for the current layer
 };
 
 }  // namespace anitet::layers

@@ -85,8 +85,18 @@ LayerBuilder::LayerBuilder(const SurfaceMesh& s, const SizingField& sizing,
     : s_(s), sizing_(sizing), opt_(options), out_(out), mesh_(out.mesh),
       front_(out.mesh.xyz, surface_bounds(s)) {}
 
+uint32_t LayerBuilder::column_of(uint32_t f) const {
+  const uint32_t owner = front_.owner(f);
+  return owner == Front::kNone ? f : out_.tet_column[owner];
+}
+
 void LayerBuilder::commit_tet(const uint32_t v[4], const uint32_t closing[4]) {
-  const uint32_t t = mesh_.new_tet(v[0], v[1], v[2], v[3]);
+  // Facet 3 is the base: the front triangle the tet is built on (face step and push step).
+  const uint32_t column = closing[3] == Front::kNone ? 0u : column_of(closing[3]);
+  const uint32_t t = mesh_.new_tet(v[0], v[1], v[2], v[3],
+                                   bl_index_ >= 0 ? opt_.boundary_layer.region : 0);
+  out_.tet_layer.push_back(uint16_t(layer_));
+  out_.tet_column.push_back(column);
   for (int i = 0; i < 4; ++i) {
     if (closing[i] != Front::kNone) {
       // An input triangle leaving the front: it is a facet of T1's boundary, a constraint.
@@ -106,6 +116,8 @@ void LayerBuilder::truncate_tets(size_t n) {
   mesh_.tet_adj.resize(4 * n);
   mesh_.tet_flags.resize(n);
   mesh_.tet_region.resize(n);
+  out_.tet_layer.resize(n);
+  out_.tet_column.resize(n);
 }
 
 Status LayerBuilder::face_tet(uint32_t f, int layer) {
@@ -150,6 +162,7 @@ Status LayerBuilder::face_tet(uint32_t f, int layer) {
     const uint32_t v[4] = {a, c, b, apex};
     uint32_t closing[4];
     if (tet_fits(front_, mesh_.xyz, v, closing, fit_)) {
+      if (halvings > 0) column_halved_[column_of(f)] = 1;
       commit_tet(v, closing);
       auto& st = out_.stats;
       ++st.face_tets;
@@ -174,17 +187,26 @@ Status LayerBuilder::run() {
   for (size_t t = 0; t < s_.num_triangles(); ++t)
     front_.add(s_.tri[3 * t], s_.tri[3 * t + 1], s_.tri[3 * t + 2], Front::kNone);
 
-  for (int layer = 1; layer <= opt_.layers; ++layer) {
+  column_halved_.assign(s_.num_triangles(), 0);
+  if (Status st = setup_boundary_layer(); !st.ok()) return st;
+  const int total_layers = bl_layers_ + opt_.layers;
+  for (int layer = 1; layer <= total_layers; ++layer) {
+    layer_ = layer;
+    bl_index_ = layer <= bl_layers_ ? layer - 1 : -1;
     const auto layer_start = std::chrono::steady_clock::now();
-    remaining_layers_ = opt_.layers - layer + 1;
+    remaining_layers_ = total_layers - layer + 1;
     LayerStats ls;
+    ls.boundary_layer = bl_index_ >= 0;
     ls.front_triangles_before = front_.num_alive();
     const size_t face_tets_before = out_.stats.face_tets, push_tets_before = out_.stats.push_tets;
-    // The layer works on the front as it is now: its vertices and (face step) its triangles.
+    const size_t halvings_before = out_.stats.face_halvings + out_.stats.push_halvings;
+    // The layer works on the front as it is now: its vertices and (face step) its triangles; a
+    // BL layer on the wall vertices only.
     std::vector<uint32_t> vertices;
     for (uint32_t v = 0; v < mesh_.num_vertices(); ++v)
-      if (!front_.star(v).empty()) vertices.push_back(v);
-    if (opt_.scheme == LayerScheme::kFacesThenPush) {
+      if (!front_.star(v).empty() && (bl_index_ < 0 || (v < wall_.size() && wall_[v])))
+        vertices.push_back(v);
+    if (opt_.scheme == LayerScheme::kFacesThenPush && bl_index_ < 0) {
       std::vector<uint32_t> faces;
       for (uint32_t f = 0; f < front_.num_slots(); ++f)
         if (front_.alive(f)) faces.push_back(f);
@@ -193,11 +215,22 @@ Status LayerBuilder::run() {
         if (!st.ok()) return st;
       }
     }
+    const uint32_t first_new_vertex = uint32_t(mesh_.num_vertices());
     Status st = push_step(vertices, layer);
     if (!st.ok()) return st;
+    // Every move into the region takes room from the next layer (a cliff usually marks a tight
+    // spot), so before the last layer only the really flat tets are worth it.
+    if (bl_index_ < 0)
+      improve_layer(first_new_vertex,
+                    layer == total_layers ? opt_.improve_below : opt_.improve_below_inner);
     ls.face_tets = out_.stats.face_tets - face_tets_before;
     ls.push_tets = out_.stats.push_tets - push_tets_before;
+    ls.halvings = out_.stats.face_halvings + out_.stats.push_halvings - halvings_before;
+    ls.halved_columns = size_t(std::count(column_halved_.begin(), column_halved_.end(), 1));
+    std::fill(column_halved_.begin(), column_halved_.end(), 0);
+    out_.stats.halved_columns += ls.halved_columns;
     ls.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - layer_start).count();
+    if (ls.boundary_layer) out_.stats.bl_seconds += ls.seconds;
     out_.stats.per_layer.push_back(ls);
   }
   Status st = finish();
@@ -211,6 +244,15 @@ Status LayerBuilder::finish() {
   st.fit_tests = fit_.tests;
   st.fit_candidates = fit_.candidates;
   st.tri_tests = fit_.tri_tests;
+  out_.vertex_origin.resize(mesh_.num_vertices(), TetMesh::kNone);
+  st.halving_loops = st.face_halvings + st.push_halvings;
+  const size_t column_layers = s_.num_triangles() * st.per_layer.size();
+  st.halved_column_share = column_layers ? double(st.halved_columns) / double(column_layers) : 0.0;
+  st.bl_layers = bl_layers_;
+  st.bl_reduced_vertices =
+      size_t(std::count(bl_reduced_root_.begin(), bl_reduced_root_.end(), 1));
+  st.bl_reduced_share =
+      st.bl_wall_vertices ? double(st.bl_reduced_vertices) / double(st.bl_wall_vertices) : 0.0;
   out_.front_tri.reserve(3 * front_.num_alive());
   for (uint32_t f = 0; f < front_.num_slots(); ++f) {
     if (!front_.alive(f)) continue;
@@ -251,6 +293,20 @@ Result<LayersOutput> build_layers(const SurfaceMesh& surface, const SizingField&
     return Result<LayersOutput>(Error::InvalidArgument,
                                 "layers: heights must be > 0, max_halvings in [0, 200], shrink in "
                                 "(0, 1), keep_margin in [0, 1), smoothing_passes >= 0");
+  const BoundaryLayerOptions& bl = options.boundary_layer;
+  if (bl.enabled() &&
+      (!(bl.first_height > 0.0) || !(bl.growth >= 1.0) || bl.layers < 0 || bl.layers > 1000 ||
+       (bl.layers == 0 && !(bl.total_thickness > 0.0)) || bl.normal_smoothing < 0 ||
+       !(bl.grazing_margin > 0.0 && bl.grazing_margin <= 1.0) || !(bl.gradation >= 1.0) ||
+       !(bl.gap_share > 0.0 && bl.gap_share < 0.5)))
+    return Result<LayersOutput>(Error::InvalidArgument,
+                                "layers: boundary layer: first_height > 0, growth >= 1, layers in "
+                                "[1, 1000] or total_thickness > 0, grazing_margin in (0, 1], "
+                                "gradation >= 1, gap_share in (0, 0.5)");
+  if (!(options.height_gradation > 0.0) || options.improve_passes < 0 ||
+      !(options.min_height_fraction > 0.0 && options.min_height_fraction <= 1.0))
+    return Result<LayersOutput>(Error::InvalidArgument,
+                                "layers: height_gradation > 0, min_height_fraction in (0, 1]");
   Status st = layers::check_input(surface);
   if (!st.ok()) return st;
   LayersOutput out;

@@ -52,6 +52,15 @@
 // vertices when every vertex has been pushed. kPushOnly is the default.
 //
 // Several layers: the same on the new front (each layer is a valid mesh before the next starts).
+// After each layer, the new front vertices whose worst tet is poor are moved further into the
+// region when that helps and is valid (improve_step.cpp: the cone from the new position must fit
+// exactly and every tet of the vertex stay positive). A push that never fits falls back to partial
+// pushes; a non-input vertex that no push can take off stays on the front for that layer
+// (stats.stopped_vertices), so a layer never fails for it.
+//
+// Boundary-layer mode (BoundaryLayerOptions): n thin prism layers on the wall patches first (the
+// same push step with smoothed normals and heights h0 r^i, reduced where needed), then the
+// ordinary layers on the whole front. BL tets carry options.boundary_layer.region.
 //
 // Output conventions:
 //  * T1: input vertices first (vflag::kOnInputSurface, input order and ids), new vertices after;
@@ -79,6 +88,32 @@ enum class LayerScheme : int {
   kFacesThenPush = 1,  // the paper's two steps: face tets, then vertex pushes
 };
 
+// Boundary-layer mode (CFD): on the wall patches, n layers of thin prisms (each split into three
+// tets by the push order, so every quad side has one diagonal shared by both prisms) normal to
+// the surface, layer i of height first_height * growth^i along the smoothed vertex normal. The
+// height is reduced locally, never left invalid: where the fronts would collide (the free
+// distance along the normal, shared with the front across), where the smoothed normal sees the
+// star's triangles only at a grazing angle, next to a reduced neighbour (gradation), and where a
+// push does not fit (shrunk like any push). Such vertices are counted as reduced. The ordinary
+// layers (LayersOptions::layers) follow on the whole front, wall and other patches alike. BL tets
+// carry `region` in TetMesh::tet_region (all other T1 tets: 0).
+// Wall shells must be whole: a vertex shared by a wall triangle and another is NotImplemented.
+struct BoundaryLayerOptions {
+  std::vector<int32_t> wall_patches;  // patch labels of the input; empty: no boundary layer
+  double first_height = 0.0;          // h0, in length units (> 0 when walls are given)
+  double growth = 1.2;                // r >= 1
+  int layers = 0;                     // n; 0: from total_thickness
+  double total_thickness = 0.0;       // used when layers == 0: the least n reaching it
+  int normal_smoothing = 10;          // passes of vertex-normal smoothing
+  double grazing_margin = 0.25;       // below this min d.n over the star, the height shrinks
+  double gradation = 1.5;             // neighbours' heights differ by at most this factor,
+  int gradation_rings = 3;            // up to this many edges away from a reduced vertex
+  double gap_share = 0.4;             // the BL may fill this share of the free distance across
+  int32_t region = 1;                 // tet_region of BL tets
+
+  bool enabled() const { return !wall_patches.empty(); }
+};
+
 struct LayersOptions {
   int layers = 2;  // 1 or more
   LayerScheme scheme = LayerScheme::kPushOnly;
@@ -98,12 +133,29 @@ struct LayersOptions {
   // Push step: choose each push's height among fractions of the planned one by the quality of
   // the tets it makes and of those the waiting neighbours will make on it.
   bool choose_height = true;
+  // Push step: planned heights of neighbouring vertices differ by at most this factor (heights
+  // are only lowered); <= 1 turns the limit off.
+  double height_gradation = 1.25;
+  int gradation_rings = 2;  // how far (in edges) the limit reaches from a low vertex
+  // Push step: the chosen height is at least this fraction of the planned one (before a push that
+  // does not fit is shrunk).
+  double min_height_fraction = 0.5;
+  // After each ordinary layer: passes moving the new front vertices whose worst tet has a radius
+  // ratio below improve_below (last layer) or improve_below_inner (the layers before: a move
+  // into the region takes room from the next layer) further in, each checked exactly (0: off).
+  int improve_passes = 3;
+  double improve_below = 0.3;
+  double improve_below_inner = 0.06;
+  BoundaryLayerOptions boundary_layer;
 };
 
 struct LayerStats {
   size_t front_triangles_before = 0;
   size_t face_tets = 0;
   size_t push_tets = 0;
+  size_t halvings = 0;         // epsilon halvings in this layer (faces and pushes)
+  size_t halved_columns = 0;   // columns with a tet from a halved apex or push
+  bool boundary_layer = false; // a BL layer (wall patches only)
   double seconds = 0.0;
 };
 
@@ -120,8 +172,26 @@ struct LayersStats {
   size_t replans = 0;             // waiting neighbours given a new direction by a push
   size_t deferred_pushes = 0;     // vertices whose star no direction saw at the layer's start
   size_t partial_pushes = 0;      // pushes of a visible part of a star no direction sees whole
+  size_t stopped_vertices = 0;    // front vertices left in place by a layer (no push fitted)
+  size_t push_fallbacks = 0;      // whole-star pushes that never fit, redone as partial pushes
+  size_t improved_vertices = 0;   // front vertices moved after their layer (improve_passes)
   uint64_t fit_tests = 0, fit_candidates = 0, tri_tests = 0;
+  // The epsilon-halving loop: halvings made in all (faces and pushes), and per layer the share of
+  // the front's columns (input triangles) where some tet came from a halved apex or push.
+  size_t halving_loops = 0;
+  size_t halved_columns = 0;  // summed over layers
+  double halved_column_share = 0.0;  // halved_columns / (columns * layers)
   std::vector<LayerStats> per_layer;
+  // Boundary-layer mode.
+  int bl_layers = 0;
+  size_t bl_wall_vertices = 0;      // input vertices on wall patches
+  size_t bl_pushes = 0;
+  size_t bl_reduced_pushes = 0;     // pushes below 90% of h0 r^i
+  size_t bl_reduced_vertices = 0;   // wall vertices with at least one reduced layer
+  double bl_reduced_share = 0.0;    // bl_reduced_vertices / bl_wall_vertices
+  double bl_max_height_error = 0.0; // max |h / (h0 r^i) - 1| over the pushes not reduced
+  double bl_min_height_ratio = 1.0; // min h / (h0 r^i) over all pushes
+  double bl_seconds = 0.0;
   double seconds = 0.0;
 };
 
@@ -130,6 +200,12 @@ struct LayersOutput {
   std::vector<uint32_t> front_tri;  // S1: 3 per triangle, T1 vertex ids
   std::vector<uint32_t> front_tet;  // 1 per S1 triangle: the T1 tet that has it
   std::vector<uint8_t> front_facet; // 1 per S1 triangle: its facet index in that tet
+  // Provenance, for diagnostics and quality reports:
+  std::vector<uint16_t> tet_layer;    // 1 per T1 tet: the layer that built it (1-based; BL
+                                      // layers first, then the ordinary ones)
+  std::vector<uint32_t> tet_column;   // 1 per T1 tet: the input triangle it stands above
+  std::vector<uint32_t> vertex_origin; // 1 per T1 vertex: the vertex it was pushed from (kNone:
+                                       // an input vertex or a face apex)
   LayersStats stats;
 
   size_t num_front_triangles() const { return front_tri.size() / 3; }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <map>
 #include <unordered_map>
 #include <vector>
@@ -232,6 +234,59 @@ LayersQuality layers_quality(const LayersOutput& out) {
   q.mean = q.tets ? sum / double(q.tets) : 0.0;
   if (q.tets == 0) q.min = 0.0;
   return q;
+}
+
+double triangle_quality(const double* a, const double* b, const double* c) {
+  double n[3];
+  const double area = 0.5 * layers::unit_normal(a, b, c, n);
+  double sq = 0.0;
+  for (int k = 0; k < 3; ++k)
+    sq += (b[k] - a[k]) * (b[k] - a[k]) + (c[k] - b[k]) * (c[k] - b[k]) + (a[k] - c[k]) * (a[k] - c[k]);
+  return sq > 0.0 ? 4.0 * std::sqrt(3.0) * area / sq : 0.0;
+}
+
+WorstTets worst_tets(const SurfaceMesh& surface, const LayersOutput& out, size_t k) {
+  WorstTets w;
+  const size_t nt = surface.num_triangles();
+  if (nt == 0) return w;
+  std::vector<double> tq(nt);
+  for (size_t t = 0; t < nt; ++t)
+    tq[t] = triangle_quality(surface.point(surface.tri[3 * t]), surface.point(surface.tri[3 * t + 1]),
+                             surface.point(surface.tri[3 * t + 2]));
+  std::vector<double> sorted = tq;
+  std::sort(sorted.begin(), sorted.end());
+  w.input_quality_min = sorted.front();
+  w.input_quality_median = sorted[nt / 2];
+  const TetMesh& m = out.mesh;
+  std::vector<std::pair<double, uint32_t>> q;
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
+    if (m.is_deleted(t)) continue;
+    q.emplace_back(layers::radius_ratio(m.point(m.vertex(t, 0)), m.point(m.vertex(t, 1)),
+                                        m.point(m.vertex(t, 2)), m.point(m.vertex(t, 3))),
+                   t);
+  }
+  k = std::min(k, q.size());
+  std::partial_sort(q.begin(), q.begin() + ptrdiff_t(k), q.end());
+  std::vector<double> ranks;
+  for (size_t i = 0; i < k; ++i) {
+    WorstTet x;
+    x.tet = q[i].second;
+    x.radius_ratio = q[i].first;
+    x.layer = x.tet < out.tet_layer.size() ? out.tet_layer[x.tet] : 0;
+    x.column = x.tet < out.tet_column.size() ? out.tet_column[x.tet] : 0;
+    if (x.column < nt) {
+      x.column_quality = tq[x.column];
+      x.column_rank = double(std::lower_bound(sorted.begin(), sorted.end(), tq[x.column]) -
+                             sorted.begin()) / double(nt);
+    }
+    ranks.push_back(x.column_rank);
+    w.tets.push_back(x);
+  }
+  if (!ranks.empty()) {
+    std::sort(ranks.begin(), ranks.end());
+    w.median_rank = ranks[ranks.size() / 2];
+  }
+  return w;
 }
 
 }  // namespace anitet

@@ -40,4 +40,23 @@ struct LayersQuality {
 };
 LayersQuality layers_quality(const LayersOutput& out);
 
+// The worst T1 tets and the input triangles they stand on (LayersOutput::tet_column): does a poor
+// tet come from a poor input triangle (sliver triangles) or from the construction?
+struct WorstTet {
+  uint32_t tet = 0;
+  double radius_ratio = 0.0;
+  int layer = 0;
+  uint32_t column = 0;               // input triangle below the tet
+  double column_quality = 0.0;       // its shape quality (1 equilateral, 0 flat)
+  double column_rank = 0.0;          // share of input triangles of lower quality (0: the worst)
+};
+struct WorstTets {
+  std::vector<WorstTet> tets;        // the k worst, worst first
+  double input_quality_min = 0.0, input_quality_median = 0.0;
+  double median_rank = 0.0;          // median column_rank over the k worst tets
+};
+// Triangle shape quality: 4 sqrt(3) area / (sum of squared edge lengths).
+double triangle_quality(const double* a, const double* b, const double* c);
+WorstTets worst_tets(const SurfaceMesh& surface, const LayersOutput& out, size_t k);
+
 }  // namespace anitet

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "layers/geometry.hpp"
 #include "layers/layer_builder.hpp"
@@ -87,10 +88,16 @@ bool LayerBuilder::keeps_plans_visible(int halvings) {
   return true;
 }
 
-double LayerBuilder::target_height(uint32_t a, const double d[3]) const {
+double LayerBuilder::sized_height(uint32_t a, const double d[3]) const {
+  if (bl_index_ >= 0) return bl_nominal();
   double m[6];
   sizing_.metric(mesh_.point(a), m);
-  const double target = opt_.push_height / std::max(metric_norm(m, d), 1e-300);
+  return opt_.push_height / std::max(metric_norm(m, d), 1e-300);
+}
+
+double LayerBuilder::target_height(uint32_t a, const double d[3]) const {
+  if (bl_index_ >= 0) return bl_height(a, d);
+  const double target = sized_height(a, d);
   // Share the free distance along d with the front across: both sides still have `remaining`
   // layers to build (this one included) and the region left inside needs room too, so a layer
   // takes at most 1 / (2 remaining + 1) of it. Thin parts get thinner layers from the first one
@@ -117,9 +124,15 @@ Status LayerBuilder::push_step(const std::vector<uint32_t>& vertices, int layer)
     p.valid = margin > 0.0;
     p.waiting = true;
     (p.valid ? order : deferred).push_back(v);
-    if (p.valid) p.height = target_height(v, p.d);
+    if (p.valid) {
+      p.height = target_height(v, p.d);
+      p.size = sized_height(v, p.d);
+    }
   }
-  plan_targets(vertices);
+  if (bl_index_ >= 0)
+    plan_boundary_layer(vertices);
+  else
+    plan_targets(vertices);
   for (uint32_t v : order) {
     Plan& p = plan_[v];
     star_normals(v, front_.star(v), normals, weights);
@@ -129,13 +142,19 @@ Status LayerBuilder::push_step(const std::vector<uint32_t>& vertices, int layer)
   order.insert(order.end(), deferred.begin(), deferred.end());
   for (uint32_t v : order) {
     Status st = push_vertex(v, layer);
-    if (!st.ok()) return st;
+    if (st.ok()) continue;
+    // An input vertex must leave the front (S hidden). A later front vertex whose star no push
+    // can take off stays on the front for this layer: its neighbours' tets join it, every tet
+    // already built was checked, so the front stays valid. Reported (BL: as reduced).
+    if (v < s_.num_vertices()) return st;
+    ++out_.stats.stopped_vertices;
+    if (bl_index_ >= 0) mark_bl_reduced(v);
   }
   return Status::success();
 }
 
-void LayerBuilder::plan_targets(const std::vector<uint32_t>& vertices) {
-  // The layer's front edges between planned vertices.
+std::vector<std::pair<uint32_t, uint32_t>> LayerBuilder::planned_edges(
+    const std::vector<uint32_t>& vertices) const {
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   for (uint32_t v : vertices) {
     if (!plan_[v].valid) continue;
@@ -146,6 +165,13 @@ void LayerBuilder::plan_targets(const std::vector<uint32_t>& vertices) {
           edges.emplace_back(v, t[(k + 1) % 3]);
     }
   }
+  return edges;
+}
+
+void LayerBuilder::plan_targets(const std::vector<uint32_t>& vertices) {
+  // The layer's front edges between planned vertices.
+  const std::vector<std::pair<uint32_t, uint32_t>> edges = planned_edges(vertices);
+  limit_gradation(edges, opt_.height_gradation, opt_.gradation_rings);
   // Tangential smoothing of the target points v + height d over the edge graph: evens out the
   // next front's triangles. A smoothed target is kept only if it still sees v's whole star.
   const size_t n = plan_.size();
@@ -193,6 +219,27 @@ void LayerBuilder::plan_targets(const std::vector<uint32_t>& vertices) {
     if (!(len > 0.0)) continue;
     for (int k = 0; k < 3; ++k) plan_[v].d[k] = disp[k] / len;
     plan_[v].height = len;
+  }
+}
+
+void LayerBuilder::limit_gradation(const std::vector<std::pair<uint32_t, uint32_t>>& edges,
+                                   double g, int rings) {
+  // Heights only go down: h_u <= g h_v across the edges, propagated `rings` edges away from a
+  // low vertex, so that a neighbour capped by the front across or by a dent does not leave a
+  // cliff in the next front (the flattest prism tets). Not further: one vertex capped very low
+  // (a fold of the front just beside it) would otherwise flatten a whole region.
+  if (!(g > 1.0) || edges.empty()) return;
+  std::vector<double> next(plan_.size());
+  for (int pass = 0; pass < rings; ++pass) {
+    for (size_t v = 0; v < plan_.size(); ++v) next[v] = plan_[v].height;
+    // A vertex capped far below its own size (a fold of the front right beside it) is a
+    // local defect: it limits its neighbours only down to a quarter of its size.
+    auto source = [&](uint32_t v) { return std::max(plan_[v].height, 0.25 * plan_[v].size); };
+    for (const auto& [u, v] : edges) {
+      next[u] = std::min(next[u], g * source(v));
+      next[v] = std::min(next[v], g * source(u));
+    }
+    for (size_t v = 0; v < plan_.size(); ++v) plan_[v].height = next[v];
   }
 }
 
@@ -300,6 +347,10 @@ std::vector<uint32_t> LayerBuilder::visible_run(uint32_t a, const std::vector<ui
 Status LayerBuilder::push_vertex(uint32_t a, int layer) {
   if (a < plan_.size()) plan_[a].waiting = false;
   std::vector<double> normals, weights;
+  // A whole-star push that does not fit even after max_halvings (a front across touching a's
+  // cone at every height, in floating point) falls back to partial pushes of visible runs,
+  // each checked to fit very close to a first.
+  bool whole_failed = false;
   for (int round = 0;; ++round) {
     const std::vector<uint32_t> star = front_.star(a);
     if (star.empty()) return Status::success();
@@ -311,19 +362,26 @@ Status LayerBuilder::push_vertex(uint32_t a, int layer) {
     star_normals(a, star, normals, weights);
     // The planned displacement, while it sees the star (the neighbours' pushes keep it so unless
     // they had to re-plan); else the best direction of the star as it is now.
-    if (round == 0 && a < plan_.size() && plan_[a].valid && star_margin(normals, plan_[a].d) > 0.0) {
+    if (!whole_failed && round == 0 && a < plan_.size() && plan_[a].valid &&
+        star_margin(normals, plan_[a].d) > 0.0) {
       const Plan& p = plan_[a];
       const double disp[3] = {p.height * p.d[0], p.height * p.d[1], p.height * p.d[2]};
-      return push_part(a, star, disp, layer);
+      if (push_part(a, star, disp, layer).ok()) return Status::success();
+      whole_failed = true;
+      ++out_.stats.push_fallbacks;
+      continue;
     }
     double d[3];
     bool improved = false;
     const double margin = visible_direction(normals, weights, d, &improved);
     if (improved) ++out_.stats.direction_fixes;
-    if (margin > 0.0) {
+    if (!whole_failed && margin > 0.0) {
       const double h = target_height(a, d);
       const double disp[3] = {h * d[0], h * d[1], h * d[2]};
-      return push_part(a, star, disp, layer);
+      if (push_part(a, star, disp, layer).ok()) return Status::success();
+      whole_failed = true;
+      ++out_.stats.push_fallbacks;
+      continue;
     }
     // No direction sees the whole star: take off the longest visible run of it, and go on.
     double m[6];
@@ -387,6 +445,9 @@ bool LayerBuilder::best_apex(uint32_t a, const std::vector<uint32_t>& part, doub
   // triangle), a small pattern search in space around the best point.
   double best = -2.0, best_p[3] = {pa[0] + disp[0], pa[1] + disp[1], pa[2] + disp[2]};
   for (double scale : {1.0, 0.8, 0.65, 0.5, 0.4, 0.3, 0.2}) {
+    // Far below the plan the cone may suit a poor neighbour better, but the height jump it
+    // leaves makes flat tets in this layer's prisms and the next.
+    if (scale < opt_.min_height_fraction) break;
     const double p[3] = {pa[0] + scale * disp[0], pa[1] + scale * disp[1], pa[2] + scale * disp[2]};
     const double q = quality(p);
     if (q > best + 1e-9) {
@@ -397,8 +458,20 @@ bool LayerBuilder::best_apex(uint32_t a, const std::vector<uint32_t>& part, doub
   for (int k = 0; k < 3; ++k) disp[k] = best_p[k] - pa[k];
   constexpr double kPoor = 0.3;
   bool moved_off = false;
+  // The search stays near the plan: a point far beyond or beside it may suit this cone and the
+  // planned neighbours, but it makes the next front uneven and the next layer's tets flat.
+  const double plan_len = std::sqrt(dot3(disp, disp));
+  const double axis[3] = {disp[0] / std::max(plan_len, 1e-300), disp[1] / std::max(plan_len, 1e-300),
+                          disp[2] / std::max(plan_len, 1e-300)};
+  auto near_plan = [&](const double* p) {
+    const double rel[3] = {p[0] - pa[0], p[1] - pa[1], p[2] - pa[2]};
+    const double along = dot3(rel, axis);
+    const double side2 = std::max(dot3(rel, rel) - along * along, 0.0);
+    return along <= 1.25 * plan_len && along >= 0.3 * plan_len &&
+           side2 <= 0.35 * 0.35 * plan_len * plan_len;
+  };
   if (best > 0.0 && best < kPoor) {
-    double step = 0.25 * std::sqrt(dot3(disp, disp));
+    double step = 0.25 * plan_len;
     const double stop = 0.02 * step;
     for (int it = 0; it < 60 && step > stop; ++it) {
       bool moved = false;
@@ -406,6 +479,7 @@ bool LayerBuilder::best_apex(uint32_t a, const std::vector<uint32_t>& part, doub
         for (int sign = -1; sign <= 1; sign += 2) {
           double p[3] = {best_p[0], best_p[1], best_p[2]};
           p[k] += sign * step;
+          if (!near_plan(p)) continue;
           const double q = quality(p);
           if (q > best + 1e-9) {
             best = q;
@@ -425,13 +499,17 @@ Status LayerBuilder::push_part(uint32_t a, const std::vector<uint32_t>& part,
   double pa[3];
   std::copy_n(mesh_.point(a), 3, pa);
   const uint32_t moved = mesh_.add_vertex(pa);
+  out_.vertex_origin.resize(mesh_.num_vertices(), TetMesh::kNone);
+  out_.vertex_origin[moved] = a;
   ++out_.stats.new_vertices;
   ++out_.stats.pushes;
   // Displacements to try: the searched apex first (when the search moved it off the line),
   // then the best point along disp, shrunk until everything fits.
   double start[3] = {disp[0], disp[1], disp[2]}, searched[3];
   bool have_searched = false;
-  if (opt_.choose_height) have_searched = best_apex(a, part, start, searched);
+  if (opt_.choose_height && bl_index_ < 0) have_searched = best_apex(a, part, start, searched);
+  std::vector<uint32_t> columns;
+  for (uint32_t f : part) columns.push_back(column_of(f));
   double scale = 1.0;
   for (int halvings = have_searched ? -1 : 0; halvings <= opt_.max_halvings; ++halvings) {
     double* p = &mesh_.xyz[3 * size_t(moved)];
@@ -451,13 +529,27 @@ Status LayerBuilder::push_part(uint32_t a, const std::vector<uint32_t>& part,
       st.push_tets += mesh_.num_tet_slots() - tets_before;
       const size_t shrunk = size_t(std::max(halvings, 0));
       st.push_halvings += shrunk;
-      if (shrunk > 0) ++st.pushes_halved;
+      if (shrunk > 0) {
+        ++st.pushes_halved;
+        for (uint32_t c : columns) column_halved_[c] = 1;
+      }
+      if (bl_index_ >= 0) record_bl_push(a, moved);
+      if (a < wall_.size() && wall_[a]) {
+        wall_.resize(mesh_.num_vertices(), 0);
+        wall_[moved] = 1;
+      }
       st.max_push_halvings = std::max(st.max_push_halvings, shrunk);
       return Status::success();
     }
     front_.rollback();
     truncate_tets(tets_before);
   }
+  // The new vertex is the last one (probes are removed after use): take it back.
+  mesh_.xyz.resize(mesh_.xyz.size() - 3);
+  mesh_.vflags.pop_back();
+  out_.vertex_origin.resize(mesh_.num_vertices());
+  --out_.stats.new_vertices;
+  --out_.stats.pushes;
   return Status(Error::Internal, "layers: layer " + std::to_string(layer) + ": vertex " +
                                      std::to_string(a) + " at " + point_text(pa) +
                                      ": no pushed position fits after " +

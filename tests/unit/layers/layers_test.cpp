@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 #include <tuple>
@@ -450,6 +451,80 @@ TEST(Layers, CheckerCatchesBrokenOutputs) {
     LayersOutput bad = good;
     bad.mesh.xyz[3 * (bad.mesh.num_vertices() - 1)] += 10.0;  // a vertex thrown far away
     EXPECT_FALSE(check_layers(s, bad).ok());
+  }
+}
+
+TEST(Layers, ReportsHalvingsAndProvenance) {
+  // tray_bottom.stl has sliver triangles: pushes get halved there.
+  const SurfaceMesh s = shared_surface("tray_bottom.stl");
+  const LayersOutput out = run_layers(s, 1);
+  expect_valid_layers(s, out, 1);
+  const LayersStats& st = out.stats;
+  EXPECT_EQ(st.halving_loops, st.face_halvings + st.push_halvings);
+  EXPECT_GT(st.halving_loops, 0u);
+  EXPECT_GT(st.halved_columns, 0u);
+  EXPECT_LE(st.halved_columns, s.num_triangles());
+  EXPECT_EQ(st.halved_columns, st.per_layer[0].halved_columns);
+  EXPECT_EQ(st.per_layer[0].halvings, st.halving_loops);
+  EXPECT_NEAR(st.halved_column_share, double(st.halved_columns) / double(s.num_triangles()), 1e-12);
+  // Every tet stands on its column: one of its vertices is a corner of that input triangle or
+  // was pushed from one.
+  const TetMesh& m = out.mesh;
+  ASSERT_EQ(out.tet_layer.size(), m.num_tet_slots());
+  ASSERT_EQ(out.tet_column.size(), m.num_tet_slots());
+  ASSERT_EQ(out.vertex_origin.size(), m.num_vertices());
+  auto root = [&](uint32_t v) {
+    while (v >= s.num_vertices() && out.vertex_origin[v] != TetMesh::kNone) v = out.vertex_origin[v];
+    return v;
+  };
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
+    EXPECT_EQ(out.tet_layer[t], 1);
+    const uint32_t c = out.tet_column[t];
+    ASSERT_LT(c, s.num_triangles());
+    bool stands = false;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) stands = stands || root(m.vertex(t, i)) == s.tri[3 * c + k];
+    EXPECT_TRUE(stands) << "tet " << t << " column " << c;
+  }
+}
+
+TEST(Layers, WorstTetsStandOnPoorInputTriangles) {
+  // On a surface with sliver triangles the worst T1 tets come from them, not from the
+  // construction: the 10 worst stand on input triangles among the poorest fifth.
+  for (const char* name : {"tray_bottom.stl", "turbine.off"}) {
+    SCOPED_TRACE(name);
+    const SurfaceMesh s = shared_surface(name);
+    const LayersOutput out = run_layers(s, 1);
+    const WorstTets w = worst_tets(s, out, 10);
+    ASSERT_EQ(w.tets.size(), 10u);
+    EXPECT_LT(w.input_quality_min, 0.01);
+    EXPECT_LT(w.median_rank, 0.2);
+    for (size_t i = 1; i < w.tets.size(); ++i)
+      EXPECT_LE(w.tets[i - 1].radius_ratio, w.tets[i].radius_ratio);
+    std::printf("[%s] worst T1 radius ratio %.2e; the 10 worst on input triangles of median "
+                "quality rank %.1f%% (input quality min %.2e, median %.2f)\n",
+                name, w.tets[0].radius_ratio, 100.0 * w.median_rank, w.input_quality_min,
+                w.input_quality_median);
+  }
+}
+
+TEST(Layers, IsotropicQualityOnGoodSurfaces) {
+  // Input triangles of good shape: one layer. (Measured: see the issue 5 report; the minimum
+  // on airplane.obj is set by its trailing-edge wedges, where no prism can be good.)
+  const struct {
+    const char* name;
+    double min, mean;
+  } cases[] = {{"elephant.obj", 0.2, 0.6}, {"fandisk.off", 0.1, 0.6}, {"airplane.obj", 0.015, 0.65}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const SurfaceMesh s = shared_surface(c.name);
+    const LayersOutput out = run_layers(s, 1);
+    expect_valid_layers(s, out, 1);
+    const LayersQuality q = layers_quality(out);
+    EXPECT_GT(q.min, c.min);
+    EXPECT_GT(q.mean, c.mean);
+    std::printf("[%s] 1 layer: radius ratio min %.4f mean %.4f, %zu below 0.05\n", c.name, q.min,
+                q.mean, q.below_0_05);
   }
 }
 

@@ -1,0 +1,286 @@
+// After a layer: the new front vertices that carry a poor tet are moved further into the region
+// when that improves their worst tet (height jumps between neighbours, pushes shrunk to fit and
+// grazing stars are the usual causes).
+//
+// Why a move stays valid: moving v from p to p' is done only when (1) the cone of tets from p'
+// over v's front star fits on the front now (the exact test of every push: the cone lies in the
+// region and the front beyond it is a valid closed surface), and (2) every tet of v stays positive
+// (exact) with v at p'. Then T1 plus the cone is valid, and collapsing the edge v p' onto p' (the
+// cone's tets vanish, v's other tets take p' with a positive orientation) leaves a valid mesh
+// whose inner boundary is the cone's outer boundary, already checked. The audit (layers_check)
+// checks the result independently anyway.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "layers/geometry.hpp"
+#include "layers/layer_builder.hpp"
+#include "predicates/predicates.hpp"
+
+namespace anitet::layers {
+
+namespace {
+
+double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Distance from p to the triangle abc (closest point by regions of the triangle's plane).
+double point_triangle_distance(const double* p, const double* a, const double* b, const double* c) {
+  const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double ap[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+  auto at = [&](double u, double v) {
+    double q[3];
+    for (int k = 0; k < 3; ++k) q[k] = a[k] + u * ab[k] + v * ac[k] - p[k];
+    return std::sqrt(dot3(q, q));
+  };
+  const double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return at(0, 0);
+  const double bp[3] = {p[0] - b[0], p[1] - b[1], p[2] - b[2]};
+  const double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return at(1, 0);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return at(d1 / (d1 - d3), 0);
+  const double cp[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+  const double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return at(0, 1);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return at(0, d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return at(1 - w, w);
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  return at(vb * denom, vc * denom);
+}
+
+}  // namespace
+
+double LayerBuilder::clear_distance(uint32_t v, const double at[3], double within) const {
+  std::vector<uint32_t> ring;
+  for (uint32_t f : front_.star(v)) ring.insert(ring.end(), front_.tri(f), front_.tri(f) + 3);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  Box3 box;
+  for (int k = 0; k < 3; ++k) {
+    box.lo[k] = at[k] - within;
+    box.hi[k] = at[k] + within;
+  }
+  double best = within;
+  front_.near(box, [&](uint32_t f) {
+    const uint32_t* t = front_.tri(f);
+    for (int k = 0; k < 3; ++k)
+      if (std::binary_search(ring.begin(), ring.end(), t[k])) return true;
+    best = std::min(best, point_triangle_distance(at, mesh_.point(t[0]), mesh_.point(t[1]),
+                                                  mesh_.point(t[2])));
+    return true;
+  });
+  return best;
+}
+
+bool LayerBuilder::keeps_clear(uint32_t v, const double to[3], double gap) const {
+  // The front beyond v's ring must stay `gap` away from v's new position: a move that brings
+  // the front close to touching itself would leave the next layer no room there.
+  std::vector<uint32_t> ring;
+  for (uint32_t f : front_.star(v)) ring.insert(ring.end(), front_.tri(f), front_.tri(f) + 3);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  Box3 box;
+  for (int k = 0; k < 3; ++k) {
+    box.lo[k] = to[k] - gap;
+    box.hi[k] = to[k] + gap;
+  }
+  bool clear = true;
+  front_.near(box, [&](uint32_t f) {
+    const uint32_t* t = front_.tri(f);
+    for (int k = 0; k < 3; ++k)
+      if (std::binary_search(ring.begin(), ring.end(), t[k])) return true;
+    if (point_triangle_distance(to, mesh_.point(t[0]), mesh_.point(t[1]), mesh_.point(t[2])) < gap)
+      clear = false;
+    return clear;
+  });
+  return clear;
+}
+
+double LayerBuilder::worst_tet_with(uint32_t v, const double* at,
+                                    const std::vector<uint32_t>& tets) const {
+  double worst = 1.0;
+  for (uint32_t t : tets) {
+    const double* p[4];
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t u = mesh_.vertex(t, i);
+      p[i] = u == v ? at : mesh_.point(u);
+    }
+    const double e1[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double e2[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const double e3[3] = {p[3][0] - p[0][0], p[3][1] - p[0][1], p[3][2] - p[0][2]};
+    const double vol = e1[0] * (e2[1] * e3[2] - e2[2] * e3[1]) -
+                       e1[1] * (e2[0] * e3[2] - e2[2] * e3[0]) +
+                       e1[2] * (e2[0] * e3[1] - e2[1] * e3[0]);
+    if (!(vol > 0.0)) return -1.0;
+    worst = std::min(worst, radius_ratio(p[0], p[1], p[2], p[3]));
+  }
+  return worst;
+}
+
+bool LayerBuilder::relocate_if_valid(uint32_t v, const double to[3],
+                                     const std::vector<uint32_t>& tets) {
+  for (uint32_t t : tets) {
+    const double* p[4];
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t u = mesh_.vertex(t, i);
+      p[i] = u == v ? to : mesh_.point(u);
+    }
+    if (predicates::orient3d(p[0], p[1], p[2], p[3]) <= 0) return false;
+  }
+  const std::vector<uint32_t> star = front_.star(v);
+  const double* pv = mesh_.point(v);
+  const double d[3] = {to[0] - pv[0], to[1] - pv[1], to[2] - pv[2]};
+  if (!cone_fits_near(v, star, d, 1.0)) return false;
+  // Re-index v's front triangles around the new position (the octree holds their boxes).
+  struct Saved {
+    uint32_t a, b, c, owner;
+  };
+  std::vector<Saved> saved;
+  for (uint32_t f : star) {
+    const uint32_t* t = front_.tri(f);
+    saved.push_back({t[0], t[1], t[2], front_.owner(f)});
+  }
+  for (uint32_t f : star) front_.remove(f);
+  std::copy_n(to, 3, &mesh_.xyz[3 * size_t(v)]);
+  for (const Saved& s : saved) front_.add(s.a, s.b, s.c, s.owner);
+  return true;
+}
+
+void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
+  if (opt_.improve_passes <= 0 || first_new_vertex >= mesh_.num_vertices()) return;
+  const uint32_t n = uint32_t(mesh_.num_vertices()) - first_new_vertex;
+  std::vector<std::vector<uint32_t>> tets(n);
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
+    if (out_.tet_layer[t] != layer_) continue;
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t u = mesh_.vertex(t, i);
+      if (u >= first_new_vertex) tets[u - first_new_vertex].push_back(t);
+    }
+  }
+  std::vector<double> normals, weights;
+  for (int pass = 0; pass < opt_.improve_passes; ++pass) {
+    size_t moved = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t v = first_new_vertex + i;
+      const std::vector<uint32_t>& star = front_.star(v);
+      if (star.empty() || tets[i].empty()) continue;
+      const double* p = mesh_.point(v);
+      const double now = worst_tet_with(v, p, tets[i]);
+      if (now >= below) continue;
+      // Candidates: along the direction that sees the star best, at fractions of the mean front
+      // edge at v, and towards the mean of the front neighbours lifted by that edge.
+      star_normals(v, star, normals, weights);
+      double d[3];
+      bool improved = false;
+      if (!(visible_direction(normals, weights, d, &improved) > 0.0)) continue;
+      double edge = 0.0, mean[3] = {0, 0, 0};
+      size_t count = 0;
+      for (uint32_t f : star) {
+        const uint32_t* t = front_.tri(f);
+        for (int k = 0; k < 3; ++k)
+          if (t[k] == v) {
+            const double* q = mesh_.point(t[(k + 1) % 3]);
+            const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+            edge += std::sqrt(dot3(e, e));
+            for (int j = 0; j < 3; ++j) mean[j] += q[j];
+            ++count;
+          }
+      }
+      if (count == 0) continue;
+      edge /= double(count);
+      for (double& x : mean) x /= double(count);
+      std::vector<std::array<double, 3>> candidates;
+      // A cliff: v pushed much less than its neighbours (shrunk to fit): its own push line, at
+      // fractions of their mean push height.
+      const uint32_t o = out_.vertex_origin[v];
+      double nb_height = 0.0;
+      size_t nb_count = 0;
+      for (uint32_t f : star) {
+        const uint32_t* t = front_.tri(f);
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t u = t[k];
+          if (u == v || u >= out_.vertex_origin.size() || out_.vertex_origin[u] == TetMesh::kNone)
+            continue;
+          const double* q = mesh_.point(u);
+          const double* qo = mesh_.point(out_.vertex_origin[u]);
+          const double e[3] = {q[0] - qo[0], q[1] - qo[1], q[2] - qo[2]};
+          nb_height += std::sqrt(dot3(e, e));
+          ++nb_count;
+        }
+      }
+      if (o != TetMesh::kNone && nb_count > 0) {
+        const double* po = mesh_.point(o);
+        double u[3] = {p[0] - po[0], p[1] - po[1], p[2] - po[2]};
+        const double len = std::sqrt(dot3(u, u));
+        nb_height /= double(nb_count);
+        if (len > 0.0 && nb_height > len)
+          for (double w : {0.25, 0.5, 0.75, 1.0}) {
+            const double h = len + w * (nb_height - len);
+            candidates.push_back({po[0] + h * u[0] / len, po[1] + h * u[1] / len, po[2] + h * u[2] / len});
+          }
+      }
+      for (double s : {0.02, 0.05, 0.1, 0.2, 0.35, 0.5})
+        candidates.push_back({p[0] + s * edge * d[0], p[1] + s * edge * d[1], p[2] + s * edge * d[2]});
+      for (double s : {0.0, 0.1, 0.25}) {
+        const double rel[3] = {mean[0] - p[0], mean[1] - p[1], mean[2] - p[2]};
+        const double along = dot3(rel, d);
+        for (double w : {0.5, 1.0})
+          candidates.push_back({p[0] + w * (rel[0] - along * d[0]) + s * edge * d[0],
+                                p[1] + w * (rel[1] - along * d[1]) + s * edge * d[1],
+                                p[2] + w * (rel[2] - along * d[2]) + s * edge * d[2]});
+      }
+      // And a compass search on the worst tet from the best of them.
+      {
+        std::array<double, 3> best = {p[0], p[1], p[2]};
+        double best_q = now;
+        for (const auto& c : candidates) {
+          const double q = worst_tet_with(v, c.data(), tets[i]);
+          if (q > best_q) {
+            best_q = q;
+            best = c;
+          }
+        }
+        for (double step = 0.1 * edge; step > 0.005 * edge;) {
+          bool moved_here = false;
+          for (int k = 0; k < 3; ++k)
+            for (double sign : {-1.0, 1.0}) {
+              std::array<double, 3> c = best;
+              c[k] += sign * step;
+              const double q = worst_tet_with(v, c.data(), tets[i]);
+              if (q > best_q + 1e-6) {
+                best_q = q;
+                best = c;
+                moved_here = true;
+              }
+            }
+          if (!moved_here) step *= 0.5;
+        }
+        candidates.push_back(best);
+      }
+      const double clear_now = clear_distance(v, p, edge);
+      std::sort(candidates.begin(), candidates.end(),
+                [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+                  return worst_tet_with(v, a.data(), tets[i]) > worst_tet_with(v, b.data(), tets[i]);
+                });
+      for (const auto& c : candidates) {
+        if (!(worst_tet_with(v, c.data(), tets[i]) > now + 0.01)) break;
+        if (!keeps_clear(v, c.data(), std::min(0.5 * edge, 0.7 * clear_now))) continue;
+        if (relocate_if_valid(v, c.data(), tets[i])) {
+          ++moved;
+          ++out_.stats.improved_vertices;
+          break;
+        }
+      }
+    }
+    if (moved == 0) break;
+  }
+}
+
+}  // namespace anitet::layers
