@@ -14,6 +14,13 @@
 
 #include "spd.hpp"
 
+// The per-point helpers of the batched loops: GCC would otherwise call them out of line.
+#if defined(__GNUC__)
+#define ANITET_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define ANITET_ALWAYS_INLINE inline
+#endif
+
 namespace anitet {
 namespace metric {
 
@@ -136,7 +143,7 @@ struct MetricField::Sampler::State {
         off(field.off->tree()) {}
 
   // Base voxel and fractions of p, clamped to the active box.
-  inline Coord locate(const double p[3], double frac[3]) const {
+  ANITET_ALWAYS_INLINE Coord locate(const double p[3], double frac[3]) const {
     int base[3];
     for (int k = 0; k < 3; ++k) {
       double x = (p[k] - f.origin[k]) * f.inv_dx;
@@ -154,9 +161,7 @@ struct MetricField::Sampler::State {
     double t[3];
     const Coord c = locate(p, t);
     if (f.kind == Kind::Isotropic) {
-      double v[8];
-      gather(size, c, v);
-      const double h = trilinear(v, t[0], t[1], t[2]);
+      const double h = size_at(c, t);
       l[0] = l[2] = l[5] = -2.0 * std::log(h);
       l[1] = l[3] = l[4] = 0.0;
       return;
@@ -191,27 +196,106 @@ struct MetricField::Sampler::State {
     for (size_t i = 0; i < n; ++i) {
       double t[3];
       const Coord c = locate(points + 3 * i, t);
-      keys[i] = morton(uint32_t(c.x() - f.bmin[0]) >> 3, uint32_t(c.y() - f.bmin[1]) >> 3,
-                       uint32_t(c.z() - f.bmin[2]) >> 3);
+      // The leaf's index in the box (leaves sit at multiples of 8): one key per leaf.
+      keys[i] = morton(uint32_t((c.x() >> 3) - (f.bmin[0] >> 3)),
+                       uint32_t((c.y() >> 3) - (f.bmin[1] >> 3)),
+                       uint32_t((c.z() >> 3) - (f.bmin[2] >> 3)));
       order[i] = uint32_t(i);
       all_or |= keys[i];
     }
     radix_sort(all_or);
+    if (f.kind == Kind::Isotropic) {
+      // One double per point: read each point where it is, write h to its slot (8 random bytes
+      // instead of 48), then expand to metrics in a sequential pass.
+      gather_points(points, n);
+      sorted_out.resize(n);
+      // The leaves come from memory in key order: a few points ahead of the one evaluated, the
+      // first point of the next leaf has its leaf prefetched, so its misses overlap our work.
+      constexpr size_t kAhead = 16;
+      for (size_t k = 0; k < n; ++k) {
+        const size_t a = k + kAhead;
+        if (a < n && keys[a] != keys[a - 1]) prefetch_size_leaf(&sorted_pts[3 * a]);
+        double t[3];
+        const Coord c = locate(&sorted_pts[3 * k], t);
+        sorted_out[k] = size_at(c, t);
+      }
+      sizes.resize(n);
+      for (size_t k = 0; k < n; ++k) sizes[order[k]] = sorted_out[k];
+      for (size_t i = 0; i < n; ++i) {
+        double* m = out + 6 * i;
+        const double d = log_only ? -2.0 * std::log(sizes[i]) : 1.0 / (sizes[i] * sizes[i]);
+        m[0] = m[2] = m[5] = d;
+        m[1] = m[3] = m[4] = 0.0;
+      }
+      return;
+    }
     // Gather, evaluate in order, scatter: the gather and scatter loops have independent
     // iterations, so their cache misses overlap instead of stalling the evaluation.
-    sorted_pts.resize(3 * n);
+    gather_points(points, n);
     sorted_out.resize(6 * n);
+    for (size_t k = 0; k < n; ++k) {
+      if (log_only) log_metric(&sorted_pts[3 * k], &sorted_out[6 * k]);
+      else metric(&sorted_pts[3 * k], &sorted_out[6 * k]);
+    }
+    for (size_t k = 0; k < n; ++k) {
+      const double* src = &sorted_out[6 * k];
+      double* dst = out + 6 * size_t(order[k]);
+      for (int c = 0; c < 6; ++c) dst[c] = src[c];
+    }
+  }
+
+  void gather_points(const double* points, size_t n) {
+    sorted_pts.resize(3 * n);
     for (size_t k = 0; k < n; ++k) {
       const double* p = points + 3 * size_t(order[k]);
       sorted_pts[3 * k] = p[0];
       sorted_pts[3 * k + 1] = p[1];
       sorted_pts[3 * k + 2] = p[2];
     }
-    for (size_t k = 0; k < n; ++k) {
-      if (log_only) log_metric(&sorted_pts[3 * k], &sorted_out[6 * k]);
-      else metric(&sorted_pts[3 * k], &sorted_out[6 * k]);
+  }
+
+  void prefetch_size_leaf(const double p[3]) {
+    double t[3];
+    const DoubleTree::LeafNodeType* leaf = size.probeConstLeaf(locate(p, t));
+    if (!leaf) return;
+    const char* d = reinterpret_cast<const char*>(leaf->buffer().data());
+    for (size_t b = 0; b < 512 * sizeof(double); b += 64) __builtin_prefetch(d + b);
+  }
+
+  // The size at base voxel c and fractions t. Reads the leaves' buffers directly, keeping the
+  // data pointers of the base voxel's leaf and of its 7 neighbours on the + sides (fetched on
+  // first use): batched points come leaf by leaf, and neither the accessor's probe nor
+  // LeafBuffer::data() is free. A block touching a tile or the background goes through gather.
+  ANITET_ALWAYS_INLINE double size_at(const Coord& c, const double t[3]) {
+    const Coord o(c.x() & ~7, c.y() & ~7, c.z() & ~7);
+    if (o != leaf_origin) {
+      leaf_origin = o;
+      leaves_known = 0;
     }
-    for (size_t k = 0; k < n; ++k) std::copy_n(&sorted_out[6 * k], 6, out + 6 * size_t(order[k]));
+    const int cx = (c.x() & 7) == 7, cy = (c.y() & 7) == 7, cz = (c.z() & 7) == 7;
+    bool direct = true;
+    for (int l = 0; l < 8; ++l) {
+      if (((l & 1) && !cx) || ((l & 2) && !cy) || ((l & 4) && !cz)) continue;
+      if (!(leaves_known & (1u << l))) {
+        const auto* leaf = size.probeConstLeaf(
+            Coord(o.x() + 8 * (l & 1), o.y() + 4 * (l & 2), o.z() + 2 * (l & 4)));
+        leaf_data[l] = leaf ? leaf->buffer().data() : nullptr;
+        leaves_known |= 1u << l;
+      }
+      direct &= leaf_data[l] != nullptr;
+    }
+    double v[8];
+    if (direct) {
+      for (int i = 0; i < 8; ++i) {
+        const int ix = i & 1, iy = (i >> 1) & 1, iz = (i >> 2) & 1;
+        const int l = (ix & cx) | ((iy & cy) << 1) | ((iz & cz) << 2);
+        const int at = (((c.x() + ix) & 7) << 6) | (((c.y() + iy) & 7) << 3) | ((c.z() + iz) & 7);
+        v[i] = leaf_data[l][at];
+      }
+    } else {
+      gather(size, c, v);
+    }
+    return trilinear(v, t[0], t[1], t[2]);
   }
 
   static uint64_t spread(uint32_t v) {  // bits of v at every third position
@@ -248,14 +332,16 @@ struct MetricField::Sampler::State {
 
   std::vector<uint64_t> keys, keys2;
   std::vector<uint32_t> order, order2;
-  std::vector<double> sorted_pts, sorted_out;
+  std::vector<double> sorted_pts, sorted_out, sizes;
+  Coord leaf_origin{std::numeric_limits<int32_t>::max()};  // size_at's leaf (none yet)
+  const double* leaf_data[8] = {};  // its buffer and its + neighbours' (bit 0: +x, 1: +y, 2: +z)
+  unsigned leaves_known = 0;        // which of leaf_data are fetched
 
   inline void metric(const double p[3], double m[6]) {
     if (f.kind == Kind::Isotropic) {
-      double t[3], v[8];
+      double t[3];
       const Coord c = locate(p, t);
-      gather(size, c, v);
-      isotropic_metric(trilinear(v, t[0], t[1], t[2]), m);
+      isotropic_metric(size_at(c, t), m);
       return;
     }
     double l[6];

@@ -6,7 +6,8 @@
 //                           the interpolation alone: the criterion
 //   Dense_Metric        vs  Vdb_Metric (batched; and Vdb_Metric_PerPoint)   plus exp() back to M
 //   Dense_Size          vs  Vdb_Size (batched)   an isotropic size grid (one double per voxel)
-// Batched Vdb calls sort their points by leaf (inside the timed region).
+// Batched Vdb calls sort their points by leaf (inside the timed region). The machine is shared:
+// compare CPU times of the same run (wall times swing with the other jobs).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>

@@ -274,6 +274,27 @@ TEST(MetricField, PruningMakesFarRegionsSparse) {
   }
 }
 
+TEST(MetricField, BatchedSizesOverTilesMatchSingleQueries) {
+  // Leaves next to tiles: the batched path's direct leaf reads and its gather fallback.
+  const Lattice lat = size_lattice(40, 0.1, [](const double* p) { return p[0] < 2.0 ? 1.0 : p[0] - 1.0; });
+  Result<MetricField> sparse = MetricField::from_lattice(lat, 1e-6);
+  Result<MetricField> dense = MetricField::from_lattice(lat);
+  ASSERT_TRUE(sparse.ok() && dense.ok());
+  std::mt19937_64 rng(12);
+  const size_t n = 5000;
+  std::vector<double> pts(3 * n), batched(6 * n), logs(6 * n);
+  for (size_t i = 0; i < n; ++i) random_point(rng, lat, 0.1, &pts[3 * i]);
+  MetricField::Sampler s(sparse.value());
+  s.metrics(pts.data(), n, batched.data());
+  s.log_metrics(pts.data(), n, logs.data());
+  for (size_t i = 0; i < n; ++i) {
+    double m[6];
+    dense->metric(&pts[3 * i], m);
+    for (int c = 0; c < 6; ++c) ASSERT_NEAR(batched[6 * i + c], m[c], 1e-12 * m[0]) << i;
+    ASSERT_NEAR(logs[6 * i], std::log(m[0]), 1e-12);
+  }
+}
+
 TEST(Gradation, BoundsIsotropicGrowthBetweenNeighbours) {
   // A small size at one node in a coarse field: after grading, h_b <= h_a hgrad^(dx / h_a) for
   // every pair of neighbours, in every direction.
