@@ -1,6 +1,6 @@
 // The Mesher: the stages in order, behind one class.
 //   validate -> stage 1 (layers) -> stage 2 (Delaunay of S1 + conforming recovery) -> coupling
-//   -> (refinement and optimization: not implemented yet) -> a VolumeMesh.
+//   -> refinement/coarsening (refine/) -> optimization (optimize/) -> a VolumeMesh.
 // Same input and options, same mesh, bit for bit (every stage is deterministic and sequential).
 #pragma once
 
@@ -13,8 +13,12 @@
 #include "core/surface_mesh.hpp"
 #include "core/volume_mesh.hpp"
 #include "couple/couple.hpp"
+#include "core/sizing.hpp"
 #include "layers/layers.hpp"
+#include "metric/surface_sizing.hpp"
+#include "optimize/optimize.hpp"
 #include "recovery/recovery.hpp"
+#include "refine/refine.hpp"
 #include "validate/validate.hpp"
 
 namespace anitet {
@@ -29,6 +33,21 @@ struct MesherOptions {
   RecoveryOptions recovery;
   ValidationOptions validation;
   ProgressCallback progress;  // may be empty
+  // Stage 3b/3c. The sizing field they follow: `sizing` when given (a user metric; it must
+  // outlive the run), else the paper's grid built from the surface (metric::surface_sizing_field
+  // with `surface_sizing`). refine.size_scale scales it (2 = twice as coarse).
+  RefineOptions refine;
+  OptimizeOptions optimize;
+  bool run_refine = true;
+  bool run_optimize = true;
+  const SizingField* sizing = nullptr;
+  metric::SurfaceSizingOptions surface_sizing = default_surface_sizing();
+
+  static metric::SurfaceSizingOptions default_surface_sizing() {
+    metric::SurfaceSizingOptions o;
+    o.triangle_size = metric::TriangleSize::Mean;  // S's edges then measure about 1
+    return o;
+  }
 };
 
 struct StageReport {
@@ -45,6 +64,8 @@ struct MesherResult {
   LayersStats layers;
   RecoveryStats recovery;
   CoupleStats couple;
+  RefineStats refine;      // zero when the stage did not run
+  OptimizeStats optimize;  // zero when the stage did not run
   double seconds = 0.0;
 };
 

@@ -60,7 +60,7 @@ TEST(Pipeline, GridCubeAndSphere) {
     Result<MesherResult> r = mesh(s);
     ASSERT_TRUE(r.ok()) << name << ": " << r.status().message();
     expect_boundary_constrained(s, r.value(), name);
-    EXPECT_EQ(r->stages.size(), 4u);
+    EXPECT_EQ(r->stages.size(), 7u);  // layers recovery coupling sizing refine optimize output
   }
 }
 

@@ -1,0 +1,136 @@
+#include "optimize/flips.hpp"
+
+#include <algorithm>
+
+#include "predicates/predicates.hpp"
+
+namespace anitet::optimize_detail {
+
+using meshops::shape_quality;
+
+bool try_flip23(FlipContext& c, uint32_t t, int i) {
+  TetMesh& m = c.mesh;
+  if (m.is_deleted(t) || m.facet_protected(t, i) || m.tet_adj[4 * size_t(t) + i] == TetMesh::kNoNeighbour)
+    return false;
+  const uint32_t n = m.neighbour(t, i);
+  const int j = m.neighbour_facet(t, i);
+  if (m.facet_protected(n, j)) return false;
+  const uint32_t d = m.vertex(t, i), e = m.vertex(n, j);
+  const uint32_t f[3] = {m.vertex(t, kFacetVertex[i][0]), m.vertex(t, kFacetVertex[i][1]),
+                         m.vertex(t, kFacetVertex[i][2])};
+  const double before = std::min(meshops::tet_shape_quality(m, t), meshops::tet_shape_quality(m, n));
+  double after = 1.0;
+  c.fresh.clear();
+  for (int k = 0; k < 3; ++k) {
+    const meshops::TetVerts v = {f[k], f[(k + 1) % 3], e, d};
+    after = std::min(after, shape_quality(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3])));
+    if (after <= before + c.gain) return false;
+    c.fresh.push_back(v);
+  }
+  c.old = {t, n};
+  if (!meshops::replace_tets(m, c.old, c.fresh, c.vt, c.scratch)) return false;
+  ++c.flips23;
+  return true;
+}
+
+bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
+  TetMesh& m = c.mesh;
+  if (m.is_deleted(t)) return false;
+  const uint32_t a = m.vertex(t, kEdgeVertex[k][0]), b = m.vertex(t, kEdgeVertex[k][1]);
+  if (!meshops::edge_ring(m, a, b, t, c.ring_tets, c.ring)) return false;
+  const int n = static_cast<int>(c.ring.size());
+  if (n < 3 || n > 7) return false;
+  double before = 1.0;
+  for (uint32_t s : c.ring_tets) before = std::min(before, meshops::tet_shape_quality(m, s));
+  // Orient the ring so that (r_i r_j r_k a) and (r_j r_i r_k b) are positive for i < j < k.
+  if (predicates::orient3d(m.point(a), m.point(b), m.point(c.ring[0]), m.point(c.ring[1])) > 0)
+    std::reverse(c.ring.begin(), c.ring.end());
+  const uint32_t* r = c.ring.data();
+  auto tri_quality = [&](int i, int j, int l) {
+    return std::min(shape_quality(m.point(r[i]), m.point(r[j]), m.point(r[l]), m.point(a)),
+                    shape_quality(m.point(r[j]), m.point(r[i]), m.point(r[l]), m.point(b)));
+  };
+  // best[i][j]: the best worst quality of a triangulation of the sub-polygon r_i .. r_j.
+  double best[7][7];
+  int split[7][7];
+  for (int len = 1; len < n; ++len)
+    for (int i = 0; i + len < n; ++i) {
+      const int j = i + len;
+      if (len == 1) {
+        best[i][j] = 2.0;
+        split[i][j] = -1;
+        continue;
+      }
+      best[i][j] = -2.0;
+      split[i][j] = -1;
+      for (int l = i + 1; l < j; ++l) {
+        const double q = std::min({best[i][l], best[l][j], tri_quality(i, l, j)});
+        if (q > best[i][j]) {
+          best[i][j] = q;
+          split[i][j] = l;
+        }
+      }
+    }
+  if (best[0][n - 1] <= before + c.gain) return false;
+  c.fresh.clear();
+  int stack[16][2], top = 0;
+  stack[top][0] = 0;
+  stack[top][1] = n - 1;
+  ++top;
+  while (top > 0) {
+    --top;
+    const int i = stack[top][0], j = stack[top][1];
+    const int l = split[i][j];
+    if (l < 0) continue;
+    c.fresh.push_back({r[i], r[l], r[j], a});
+    c.fresh.push_back({r[l], r[i], r[j], b});
+    stack[top][0] = i;
+    stack[top][1] = l;
+    ++top;
+    stack[top][0] = l;
+    stack[top][1] = j;
+    ++top;
+  }
+  c.old = c.ring_tets;
+  if (!meshops::replace_tets(m, c.old, c.fresh, c.vt, c.scratch)) return false;
+  ++c.edge_removals;
+  return true;
+}
+
+size_t flip_sweep(FlipContext& c, double quality, int rounds) {
+  TetMesh& m = c.mesh;
+  size_t total = 0;
+  std::vector<uint32_t> bad, fresh_bad;
+  // The first round scans the mesh; later ones only revisit the tets the flips created.
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t)
+    if (!m.is_deleted(t) && meshops::tet_shape_quality(m, t) < quality) bad.push_back(t);
+  for (int round = 0; round < rounds && !bad.empty(); ++round) {
+    fresh_bad.clear();
+    size_t flips = 0;
+    auto note_created = [&] {
+      for (uint32_t s : c.scratch.created)
+        if (meshops::tet_shape_quality(m, s) < quality) fresh_bad.push_back(s);
+    };
+    for (uint32_t t : bad) {
+      bool done = false;
+      for (int k = 0; k < 6 && !done; ++k) {
+        if (m.is_deleted(t) || meshops::tet_shape_quality(m, t) >= quality) break;
+        done = try_remove_edge(c, t, k);
+      }
+      for (int i = 0; i < 4 && !done; ++i) {
+        if (m.is_deleted(t) || meshops::tet_shape_quality(m, t) >= quality) break;
+        done = try_flip23(c, t, i);
+      }
+      if (done) {
+        ++flips;
+        note_created();
+      }
+    }
+    total += flips;
+    if (flips == 0) break;
+    bad.swap(fresh_bad);
+  }
+  return total;
+}
+
+}  // namespace anitet::optimize_detail

@@ -1,0 +1,34 @@
+// Quality-driven flips (internal to optimize/): 2-3 on a facet, and edge removal (3-2, 4-4, and
+// up to a ring of 7 tets) with the triangulation of the edge's ring that maximizes the worst
+// radius ratio (dynamic programming over the ring polygon). A flip is applied only when it raises
+// the worst radius ratio of the tets it replaces by more than `gain`.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/tet_mesh.hpp"
+#include "refine/mesh_ops.hpp"
+
+namespace anitet::optimize_detail {
+
+struct FlipContext {
+  TetMesh& mesh;
+  meshops::VertexTets& vt;
+  meshops::ReplaceScratch scratch;
+  std::vector<uint32_t> ring_tets, ring;
+  std::vector<uint32_t> old;
+  std::vector<meshops::TetVerts> fresh;
+  double gain = 1e-6;
+  size_t flips23 = 0, edge_removals = 0;
+};
+
+// 2-3 flip of facet i of tet t (not protected, with a neighbour).
+bool try_flip23(FlipContext& c, uint32_t t, int i);
+// Removes edge k (kEdgeVertex order) of tet t.
+bool try_remove_edge(FlipContext& c, uint32_t t, int k);
+// Tries edge removals then 2-3 flips on every live tet below `quality`, then for at most
+// `rounds` - 1 more rounds on the new tets still below it. Returns the number of flips.
+size_t flip_sweep(FlipContext& c, double quality, int rounds);
+
+}  // namespace anitet::optimize_detail

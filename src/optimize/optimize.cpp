@@ -1,0 +1,278 @@
+#include "optimize/optimize.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "optimize/flips.hpp"
+#include "predicates/predicates.hpp"
+#include "refine/mesh_ops.hpp"
+#include "refine/refine.hpp"
+
+namespace anitet {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class Optimizer {
+ public:
+  Optimizer(TetMesh& mesh, const SizingField& field, const OptimizeOptions& options)
+      : mesh_(mesh), field_(field), options_(options), flips_{mesh, vt_, {}, {}, {}, {}, {}} {
+    rng_ = options.seed | 1u;
+  }
+  Result<OptimizeStats> run();
+
+ private:
+  bool movable(uint32_t v) const {
+    return !(mesh_.vflags[v] & (vflag::kOnInputSurface | vflag::kLocked)) && !vt_.removed(v);
+  }
+  double size_at(uint32_t v) {
+    if (sizes_.size() < mesh_.num_vertices()) sizes_.resize(mesh_.num_vertices(), -1.0);
+    if (sizes_[v] < 0.0) {
+      double m[6];
+      field_.metric(mesh_.point(v), m);
+      sizes_[v] = metric_size(m);
+    }
+    return sizes_[v];
+  }
+  // Qualities of ball_'s tets before a move (old_q_, old_min_).
+  void measure_ball();
+  // Tries v at p: accepted when the ball stays positive (exact) and no tet falls below
+  // min(its quality in old_q_, floor); with quality_out, the worst one must also rise. Leaves v
+  // where it was otherwise. The ball is ball_; call measure_ball() first.
+  bool try_move(uint32_t v, const double p[3], double floor, double* quality_out);
+  void cvt_target(uint32_t v, double target[3]);
+  size_t cvt_pass();
+  size_t perturb_pass();
+  double next_unit() {
+    rng_ ^= rng_ << 13;
+    rng_ ^= rng_ >> 7;
+    rng_ ^= rng_ << 17;
+    return double(rng_ >> 11) * (1.0 / 9007199254740992.0);
+  }
+
+  TetMesh& mesh_;
+  const SizingField& field_;
+  const OptimizeOptions& options_;
+  meshops::VertexTets vt_;
+  optimize_detail::FlipContext flips_;
+  std::vector<double> sizes_;  // lazily computed scalar size per vertex (-1: unknown)
+  std::vector<uint32_t> ball_;
+  std::vector<double> old_q_;
+  double old_min_ = 1.0;
+  OptimizeStats stats_;
+  uint64_t rng_;
+};
+
+void Optimizer::measure_ball() {
+  old_q_.resize(ball_.size());
+  old_min_ = 1.0;
+  for (size_t k = 0; k < ball_.size(); ++k) {
+    old_q_[k] = meshops::tet_shape_quality(mesh_, ball_[k]);
+    old_min_ = std::min(old_min_, old_q_[k]);
+  }
+}
+
+bool Optimizer::try_move(uint32_t v, const double p[3], double floor, double* quality_out) {
+  // Per tet: no tet may end below min(its old quality, floor). A max-min test on the ball alone
+  // would let every tet but the worst one decay down to the worst one's level.
+  double* x = &mesh_.xyz[3 * size_t(v)];
+  const double saved[3] = {x[0], x[1], x[2]};
+  std::copy_n(p, 3, x);
+  double q_min = 1.0;
+  bool ok = true;
+  for (size_t k = 0; k < ball_.size() && ok; ++k) {
+    const double q = meshops::tet_shape_quality(mesh_, ball_[k]);
+    q_min = std::min(q_min, q);
+    ok = q > 0.0 && q >= std::min(old_q_[k], floor);
+  }
+  // quality_out asks for a strict gain of the worst tet (perturbation).
+  if (ok && quality_out) ok = q_min > old_min_ + 1e-9;
+  if (ok && meshops::all_positive(mesh_, ball_)) {
+    if (quality_out) *quality_out = q_min;
+    if (quality_out) measure_ball();  // the new position is the next trial's reference
+    return true;
+  }
+  std::copy_n(saved, 3, x);
+  return false;
+}
+
+void Optimizer::cvt_target(uint32_t v, double target[3]) {
+  double sum_w = 0.0, acc[3] = {0.0, 0.0, 0.0};
+  for (uint32_t t : ball_) {
+    const double* P[4];
+    double h = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      P[i] = mesh_.point(mesh_.vertex(t, i));
+      h += 0.25 * size_at(mesh_.vertex(t, i));
+    }
+    const double ab[3] = {P[1][0] - P[0][0], P[1][1] - P[0][1], P[1][2] - P[0][2]};
+    const double ac[3] = {P[2][0] - P[0][0], P[2][1] - P[0][1], P[2][2] - P[0][2]};
+    const double ad[3] = {P[3][0] - P[0][0], P[3][1] - P[0][1], P[3][2] - P[0][2]};
+    const double cx = ac[1] * ad[2] - ac[2] * ad[1], cy = ac[2] * ad[0] - ac[0] * ad[2],
+                 cz = ac[0] * ad[1] - ac[1] * ad[0];
+    const double v6 = ab[0] * cx + ab[1] * cy + ab[2] * cz;
+    if (!(v6 > 0.0)) continue;
+    const double rho = 1.0 / (h * h * h * h * h);
+    const double w = rho * v6;
+    double c[3];
+    if (options_.centroid == CentroidKind::kOdt) {
+      // Circumcentre: a + (|ab|^2 (ac x ad) + |ac|^2 (ad x ab) + |ad|^2 (ab x ac)) / (2 v6).
+      const double lab = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+      const double lac = ac[0] * ac[0] + ac[1] * ac[1] + ac[2] * ac[2];
+      const double lad = ad[0] * ad[0] + ad[1] * ad[1] + ad[2] * ad[2];
+      const double db[3] = {ad[1] * ab[2] - ad[2] * ab[1], ad[2] * ab[0] - ad[0] * ab[2], ad[0] * ab[1] - ad[1] * ab[0]};
+      const double bc[3] = {ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0]};
+      const double cd[3] = {cx, cy, cz};
+      for (int k = 0; k < 3; ++k) c[k] = P[0][k] + (lab * cd[k] + lac * db[k] + lad * bc[k]) / (2.0 * v6);
+    } else {
+      for (int k = 0; k < 3; ++k) c[k] = 0.25 * (P[0][k] + P[1][k] + P[2][k] + P[3][k]);
+    }
+    for (int k = 0; k < 3; ++k) acc[k] += w * c[k];
+    sum_w += w;
+  }
+  const double* p = mesh_.point(v);
+  for (int k = 0; k < 3; ++k) target[k] = sum_w > 0.0 ? acc[k] / sum_w : p[k];
+}
+
+size_t Optimizer::cvt_pass() {
+  size_t moved = 0;
+  const auto nv = static_cast<uint32_t>(mesh_.num_vertices());
+  for (uint32_t v = 0; v < nv; ++v) {
+    if (!movable(v)) continue;
+    const uint32_t t = vt_.tet_of(mesh_, v);
+    if (t == TetMesh::kNone) continue;
+    meshops::vertex_ball(mesh_, v, t, ball_);
+    double target[3];
+    cvt_target(v, target);
+    measure_ball();
+    const double floor = options_.accept_floor;
+    const double p[3] = {mesh_.point(v)[0], mesh_.point(v)[1], mesh_.point(v)[2]};
+    bool ok = false;
+    for (double step = 1.0; step > 0.2 && !ok; step *= 0.5) {
+      const double q[3] = {p[0] + step * (target[0] - p[0]), p[1] + step * (target[1] - p[1]),
+                           p[2] + step * (target[2] - p[2])};
+      ok = try_move(v, q, floor, nullptr);
+    }
+    if (ok) {
+      ++moved;
+      if (v < sizes_.size()) sizes_[v] = -1.0;
+    } else {
+      ++stats_.moves_rejected;
+    }
+  }
+  return moved;
+}
+
+size_t Optimizer::perturb_pass() {
+  std::vector<uint32_t> bad;
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
+    if (!mesh_.is_deleted(t) && meshops::tet_shape_quality(mesh_, t) < options_.sliver_quality) bad.push_back(t);
+  size_t moved = 0;
+  for (uint32_t t : bad) {
+    for (int i = 0; i < 4; ++i) {
+      if (mesh_.is_deleted(t) || meshops::tet_shape_quality(mesh_, t) >= options_.sliver_quality) break;
+      const uint32_t v = mesh_.vertex(t, i);
+      if (!movable(v)) continue;
+      meshops::vertex_ball(mesh_, v, t, ball_);
+      measure_ball();
+      const double* x = mesh_.point(v);
+      const double start[3] = {x[0], x[1], x[2]};
+      double best[3] = {x[0], x[1], x[2]};
+      // Away from the opposite facet (the direction that opens the tet), then random ones.
+      const int* f = kFacetVertex[i];
+      const double* A = mesh_.point(mesh_.vertex(t, f[0]));
+      const double* B = mesh_.point(mesh_.vertex(t, f[1]));
+      const double* C = mesh_.point(mesh_.vertex(t, f[2]));
+      const double u[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
+      const double w[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+      double nrm[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+      const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+      if (len > 0.0)
+        for (double& c : nrm) c /= len;
+      double scale = 0.0;
+      for (uint32_t s : ball_)
+        for (int k = 0; k < 4; ++k) {
+          const double* y = mesh_.point(mesh_.vertex(s, k));
+          scale = std::max(scale, std::fabs(y[0] - start[0]) + std::fabs(y[1] - start[1]) + std::fabs(y[2] - start[2]));
+        }
+      scale *= 0.2;
+      for (int trial = 0; trial < options_.perturb_trials; ++trial) {
+        double d[3];
+        const double r = scale * std::ldexp(1.0, -(trial % 4));
+        if (trial < 4) {
+          for (int k = 0; k < 3; ++k) d[k] = r * nrm[k];
+        } else {
+          for (int k = 0; k < 3; ++k) d[k] = r * (2.0 * next_unit() - 1.0);
+        }
+        const double q[3] = {best[0] + d[0], best[1] + d[1], best[2] + d[2]};
+        double got = 0.0;
+        if (try_move(v, q, 0.5 * (old_min_ + options_.sliver_quality), &got)) {
+          std::copy_n(q, 3, best);
+        }
+      }
+      if (best[0] != start[0] || best[1] != start[1] || best[2] != start[2]) {
+        ++moved;
+        if (v < sizes_.size()) sizes_[v] = -1.0;
+      }
+    }
+  }
+  return moved;
+}
+
+Result<OptimizeStats> Optimizer::run() {
+  const auto start = Clock::now();
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
+    if (!mesh_.is_deleted(t) && mesh_.is_ghost(t))
+      return Status(Error::InvalidArgument, "optimize: the mesh has ghost tets");
+  stats_.before = summarize_quality(mesh_);
+  vt_.build(mesh_);
+  sizes_.assign(mesh_.num_vertices(), -1.0);
+  for (int it = 0; it < options_.cvt_iterations; ++it) {
+    stats_.moves += cvt_pass();
+    optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
+  }
+  for (int round = 0; round < options_.sliver_rounds; ++round) {
+    optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
+    const size_t moved = perturb_pass();
+    stats_.perturbations += moved;
+    if (moved == 0) break;
+  }
+  optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
+  stats_.flips23 = flips_.flips23;
+  stats_.edge_removals = flips_.edge_removals;
+  stats_.after = summarize_quality(mesh_);
+  stats_.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return stats_;
+}
+
+}  // namespace
+
+QualitySummary summarize_quality(const TetMesh& mesh) {
+  QualitySummary s;
+  s.min = 1.0;
+  double sum = 0.0;
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+    const double q = meshops::tet_radius_ratio(mesh, t);
+    ++s.tets;
+    sum += q;
+    s.min = std::min(s.min, q);
+    s.below_01 += q < 0.1 ? 1 : 0;
+    s.below_04 += q < 0.4 ? 1 : 0;
+  }
+  s.mean = s.tets ? sum / double(s.tets) : 0.0;
+  if (s.tets == 0) s.min = 0.0;
+  return s;
+}
+
+Result<OptimizeStats> optimize_mesh(TetMesh& mesh, const SizingField& field, const OptimizeOptions& options) {
+  if (options.cvt_iterations < 0 || options.sliver_rounds < 0 || options.perturb_trials < 0)
+    return Status(Error::InvalidArgument, "optimize: iteration counts must be >= 0");
+  Optimizer optimizer(mesh, field, options);
+  return optimizer.run();
+}
+
+}  // namespace anitet

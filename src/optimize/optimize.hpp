@@ -1,0 +1,66 @@
+// Stage 3c (paper, section 5.3, and what the best meshers add): mesh optimization that never
+// touches S.
+//   - CVT/Lloyd: every vertex not on S (layer vertices included) moves towards the centroid of
+//     its cell with density rho = 1/h^5 (h = det(M)^(-1/6) for a metric M). The cell is
+//     approximated by the vertex's ball: the target is the rho-weighted centroid of the ball's
+//     tets (CentroidKind::kBall), or the ODT variant, the volume-weighted mean of their
+//     circumcentres (kOdt). A move is accepted only when every tet of the ball stays positive by
+//     the exact orient3d and no tet of the ball ends below min(its old quality, accept_floor)
+//     (a per-tet test: a max-min test on the ball would let all but its worst tet decay);
+//     otherwise half and quarter steps are tried. Quality here is meshops::shape_quality.
+//   - Topology: quality-driven flips (2-3 on facets, 3-2 / 4-4 / n-2(n-2) edge removal with the
+//     best triangulation of the edge's ring, n <= 7) around tets whose radius ratio is below
+//     flip_quality; a flip is applied only when it raises the worst radius ratio of the tets it
+//     replaces. Protected facets (S) are never flipped and edges of S never removed.
+//   - Slivers: each free vertex of a tet below sliver_quality is perturbed (a hill climb over
+//     trial positions: away from the opposite facet, then pseudo-random directions) to raise the
+//     worst quality of its ball (no tet ending below min(its old quality, the midpoint of the
+//     ball's old worst quality and sliver_quality)), interleaved with flips, for sliver_rounds
+//     rounds.
+// Deterministic: same mesh and options, same result.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/sizing.hpp"
+#include "core/status.hpp"
+#include "core/tet_mesh.hpp"
+
+namespace anitet {
+
+enum class CentroidKind { kBall, kOdt };
+
+struct OptimizeOptions {
+  int cvt_iterations = 6;         // Lloyd iterations, each followed by a flip sweep
+  CentroidKind centroid = CentroidKind::kBall;
+  double accept_floor = 0.3;      // a move may lower a ball's worst quality down to this
+  double flip_quality = 0.4;      // flips are tried around tets below this radius ratio
+  double sliver_quality = 0.3;    // perturbation targets tets below this radius ratio
+  int sliver_rounds = 6;
+  int perturb_trials = 24;        // trial positions per vertex and round
+  uint64_t seed = 0x5eed;
+};
+
+struct QualitySummary {
+  size_t tets = 0;
+  double mean = 0.0, min = 0.0;
+  size_t below_01 = 0, below_04 = 0;  // radius ratio < 0.1, < 0.4
+};
+
+struct OptimizeStats {
+  size_t moves = 0, moves_rejected = 0;
+  size_t flips23 = 0, edge_removals = 0;
+  size_t perturbations = 0;
+  QualitySummary before, after;
+  double seconds = 0.0;
+};
+
+// Radius ratio statistics of the live non-ghost tets.
+QualitySummary summarize_quality(const TetMesh& mesh);
+
+// Optimizes `mesh` (no ghosts, adjacency built, S = protected facets, vflag::kOnInputSurface and
+// kLocked vertices fixed). Regions and protected facets are kept.
+Result<OptimizeStats> optimize_mesh(TetMesh& mesh, const SizingField& field, const OptimizeOptions& options = {});
+
+}  // namespace anitet

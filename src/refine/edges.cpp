@@ -1,0 +1,79 @@
+#include "refine/edges.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/sizing.hpp"
+
+namespace anitet::refine_detail {
+
+void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std::vector<Edge>& edges,
+                   EdgeScratch& scratch) {
+  // Bucketed by the lower end (a counting sort), then deduplicated per bucket: linear in the
+  // tets, where one global sort of every tet's six edges dominated refinement.
+  const size_t nv = mesh.num_vertices();
+  std::vector<uint32_t>& start = scratch.start;
+  start.assign(nv + 1, 0);
+  auto for_each_edge = [&mesh](auto&& f) {
+    for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+      if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+      // Edge k of the tet lies on facet i when neither end is vertex i.
+      uint8_t on_facet = 0;
+      for (int i = 0; i < 4; ++i) {
+        if (!mesh.facet_protected(t, i)) continue;
+        for (int k = 0; k < 6; ++k)
+          if (kEdgeVertex[k][0] != i && kEdgeVertex[k][1] != i) on_facet |= uint8_t(1u << k);
+      }
+      for (int k = 0; k < 6; ++k) {
+        uint32_t a = mesh.vertex(t, kEdgeVertex[k][0]), b = mesh.vertex(t, kEdgeVertex[k][1]);
+        if (a > b) std::swap(a, b);
+        f(a, b, t, ((on_facet >> k) & 1u) != 0);
+      }
+    }
+  };
+  for_each_edge([&](uint32_t a, uint32_t, uint32_t, bool) { ++start[a + 1]; });
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<Edge>& all = scratch.all;
+  all.resize(start[nv]);
+  std::vector<uint32_t>& fill = scratch.fill;
+  fill.assign(start.begin(), start.end() - 1);
+  for_each_edge([&](uint32_t a, uint32_t b, uint32_t t, bool s) { all[fill[a]++] = {a, b, t, s, 0.0}; });
+  // Duplicates within a bucket found with a per-vertex mark (no sort): seen[b] holds 1 + the
+  // index in `edges` of the copy kept for (a, b) while bucket a is scanned.
+  edges.clear();
+  std::vector<uint32_t>& seen = scratch.seen;
+  std::vector<uint32_t>& owner = scratch.owner;
+  seen.assign(nv, 0);
+  owner.assign(nv, TetMesh::kNone);
+  for (size_t v = 0; v < nv; ++v) {
+    for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
+      const Edge& e = all[k];
+      if (owner[e.b] == v) {
+        edges[seen[e.b] - 1].on_surface |= e.on_surface;
+        continue;
+      }
+      owner[e.b] = static_cast<uint32_t>(v);
+      edges.push_back(e);
+      seen[e.b] = static_cast<uint32_t>(edges.size());
+    }
+  }
+  for (Edge& e : edges) {
+    const double* pa = mesh.point(e.a);
+    const double* pb = mesh.point(e.b);
+    const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+    e.length = std::sqrt(metric_norm(&metrics[6 * size_t(e.a)], d) * metric_norm(&metrics[6 * size_t(e.b)], d));
+  }
+}
+
+size_t live_vertex_count(const TetMesh& mesh) {
+  std::vector<uint8_t> used(mesh.num_vertices(), 0);
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+    for (int i = 0; i < 4; ++i) used[mesh.vertex(t, i)] = 1;
+  }
+  size_t n = 0;
+  for (uint8_t u : used) n += u;
+  return n;
+}
+
+}  // namespace anitet::refine_detail

@@ -1,0 +1,33 @@
+// The edges of a TetMesh with their normalized lengths (shared by refinement and the reports).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/tet_mesh.hpp"
+
+namespace anitet::refine_detail {
+
+struct Edge {
+  uint32_t a, b;      // a < b
+  uint32_t tet;       // a live tet holding the edge (when collected)
+  bool on_surface;    // on a protected facet (an edge of S)
+  double length;      // normalized: sqrt(|e|_Ma * |e|_Mb)
+};
+
+// Working memory of collect_edges, kept between calls (large meshes: page faults dominated).
+struct EdgeScratch {
+  std::vector<uint32_t> start, fill, seen, owner;
+  std::vector<Edge> all;
+};
+
+// Every edge of the live tets once, a < b, grouped by a (ascending); within a group the order
+// follows the tets (deterministic). metrics: 6 per vertex.
+void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std::vector<Edge>& edges,
+                   EdgeScratch& scratch);
+
+// Vertices used by a live tet.
+size_t live_vertex_count(const TetMesh& mesh);
+
+}  // namespace anitet::refine_detail

@@ -1,0 +1,403 @@
+#include "refine/refine.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "delaunay/delaunay.hpp"
+#include "refine/edges.hpp"
+#include "refine/mesh_ops.hpp"
+
+namespace anitet {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Points inserted in the current batch, in a hash grid per size level so that a query only
+// looks at 27 cells per level: a point q of radius r_q = spacing * h_q sits at the level whose
+// cell is at least r_q, and two points conflict when closer than spacing * min(h_p, h_q).
+class SpacingGrid {
+ public:
+  SpacingGrid(const double origin[3], double base) : base_(base) { std::copy_n(origin, 3, origin_); }
+  void clear() {
+    cells_.clear();
+    pts_.clear();
+    radius_.clear();
+    next_.clear();
+    levels_used_ = 0;
+  }
+  bool conflicts(const double p[3], double r) const {
+    for (int level = 0; level < kLevels; ++level) {
+      if (!(levels_used_ & (1u << level))) continue;
+      int64_t c[3];
+      cell_of(p, level, c);
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            auto it = cells_.find(key(level, c[0] + dx, c[1] + dy, c[2] + dz));
+            if (it == cells_.end()) continue;
+            for (uint32_t q = it->second; q != kEnd; q = next_[q]) {
+              const double* x = &pts_[3 * size_t(q)];
+              const double d2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
+                                (x[2] - p[2]) * (x[2] - p[2]);
+              const double rr = std::min(r, radius_[q]);
+              if (d2 < rr * rr) return true;
+            }
+          }
+    }
+    return false;
+  }
+  void add(const double p[3], double r) {
+    const int level = level_of(r);
+    int64_t c[3];
+    cell_of(p, level, c);
+    const auto id = static_cast<uint32_t>(radius_.size());
+    pts_.insert(pts_.end(), p, p + 3);
+    radius_.push_back(r);
+    auto [it, fresh] = cells_.try_emplace(key(level, c[0], c[1], c[2]), id);
+    next_.push_back(fresh ? kEnd : it->second);
+    if (!fresh) it->second = id;
+    levels_used_ |= 1u << level;
+  }
+
+ private:
+  static constexpr int kLevels = 24;
+  static constexpr uint32_t kEnd = ~0u;
+  int level_of(double r) const {
+    int level = 0;
+    double cell = base_;
+    while (cell < r && level < kLevels - 1) {
+      cell *= 2.0;
+      ++level;
+    }
+    return level;
+  }
+  void cell_of(const double p[3], int level, int64_t c[3]) const {
+    const double cell = std::ldexp(base_, level);
+    for (int k = 0; k < 3; ++k) c[k] = static_cast<int64_t>(std::floor((p[k] - origin_[k]) / cell));
+  }
+  static uint64_t key(int level, int64_t i, int64_t j, int64_t k) {
+    const uint64_t m = (uint64_t(1) << 19) - 1;
+    return (uint64_t(level) << 57) | ((uint64_t(i) & m) << 38) | ((uint64_t(j) & m) << 19) | (uint64_t(k) & m);
+  }
+  double origin_[3];
+  double base_;
+  std::unordered_map<uint64_t, uint32_t> cells_;
+  std::vector<double> pts_;
+  std::vector<double> radius_;
+  std::vector<uint32_t> next_;
+  uint32_t levels_used_ = 0;
+};
+
+class Refiner {
+ public:
+  Refiner(TetMesh& mesh, const SizingField& field, const RefineOptions& options)
+      : mesh_(mesh), field_(field), options_(options), inserter_(mesh) {}
+
+  Result<RefineStats> run();
+
+ private:
+  bool fixed(uint32_t v) const { return (mesh_.vflags[v] & (vflag::kOnInputSurface | vflag::kLocked)) != 0; }
+  void update_metric(uint32_t v) {
+    if (metrics_.size() < 6 * mesh_.num_vertices()) {
+      metrics_.resize(6 * mesh_.num_vertices());
+      size_.resize(mesh_.num_vertices());
+    }
+    field_.metric(mesh_.point(v), &metrics_[6 * size_t(v)]);
+    size_[v] = metric_size(&metrics_[6 * size_t(v)]);
+  }
+  void metric_midpoint(uint32_t a, uint32_t b, double m[3]) const;
+  size_t split_pass(const std::vector<refine_detail::Edge>& edges);
+  size_t collapse_pass(const std::vector<refine_detail::Edge>& edges);
+  bool collapse(uint32_t v, uint32_t w, const double q[3]);
+  Status check(const char* when) const;
+
+  TetMesh& mesh_;
+  const SizingField& field_;
+  const RefineOptions& options_;
+  PointInserter inserter_;
+  meshops::VertexTets vt_;
+  meshops::ReplaceScratch scratch_;
+  refine_detail::EdgeScratch edge_scratch_;
+  std::vector<double> metrics_;  // 6 per vertex
+  std::vector<double> size_;     // scalar size per vertex
+  std::vector<uint8_t> touched_;
+  std::unordered_set<uint64_t> refused_;  // edges (a << 32 | b) whose collapse was refused
+  std::vector<uint32_t> ball_v_, ball_w_, old_, ring_tets_, ring_;
+  std::vector<meshops::TetVerts> fresh_;
+  RefineStats stats_;
+  size_t protected_facets_ = 0;
+};
+
+void Refiner::metric_midpoint(uint32_t a, uint32_t b, double m[3]) const {
+  const double ha = size_[a], hb = size_[b];
+  double t = 0.5;
+  if (std::fabs(hb - ha) > 1e-9 * (ha + hb)) t = (std::sqrt(ha * hb) - ha) / (hb - ha);
+  t = std::clamp(t, 0.2, 0.8);
+  const double* pa = mesh_.point(a);
+  const double* pb = mesh_.point(b);
+  for (int k = 0; k < 3; ++k) m[k] = pa[k] + t * (pb[k] - pa[k]);
+}
+
+size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
+  std::vector<const refine_detail::Edge*> longs;
+  for (const refine_detail::Edge& e : edges)
+    if (!e.on_surface && e.length > options_.split_length) longs.push_back(&e);
+  std::sort(longs.begin(), longs.end(), [](const refine_detail::Edge* x, const refine_detail::Edge* y) {
+    return x->length != y->length ? x->length > y->length : (x->a != y->a ? x->a < y->a : x->b < y->b);
+  });
+  if (longs.empty()) return 0;
+  double lo[3] = {mesh_.xyz[0], mesh_.xyz[1], mesh_.xyz[2]};
+  double hmin = size_[longs.front()->a];
+  for (size_t v = 0; v < mesh_.num_vertices(); ++v) {
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], mesh_.xyz[3 * v + k]);
+    hmin = std::min(hmin, size_[v]);
+  }
+  SpacingGrid grid(lo, std::max(options_.spacing * hmin, 1e-300));
+  size_t done = 0;
+  for (const refine_detail::Edge* e : longs) {
+    double m[3];
+    metric_midpoint(e->a, e->b, m);
+    double mm[6];
+    field_.metric(m, mm);
+    const double r = options_.spacing * metric_size(mm);
+    if (grid.conflicts(m, r)) {
+      ++stats_.split_rejected;
+      continue;
+    }
+    uint32_t hint = e->tet;
+    if (!meshops::tet_has_vertex(mesh_, hint, e->a) || !meshops::tet_has_vertex(mesh_, hint, e->b))
+      hint = vt_.tet_of(mesh_, e->a);
+    // A midpoint that would sit closer than collapse_length to a vertex of the edge's ring would
+    // only be collapsed again (split/collapse ping-pong): such an edge is left to the flips.
+    if (meshops::tet_has_vertex(mesh_, hint, e->b) &&
+        meshops::edge_ring(mesh_, e->a, e->b, hint, ring_tets_, ring_)) {
+      bool crowded = false;
+      for (uint32_t c : ring_) {
+        const double* pc = mesh_.point(c);
+        const double d[3] = {pc[0] - m[0], pc[1] - m[1], pc[2] - m[2]};
+        crowded |= std::sqrt(metric_norm(mm, d) * metric_norm(&metrics_[6 * size_t(c)], d)) < options_.collapse_length;
+      }
+      if (crowded) {
+        ++stats_.split_rejected;
+        continue;
+      }
+    }
+    const InsertResult res = inserter_.insert(m, hint);
+    if (!res.ok()) {
+      ++stats_.split_rejected;
+      continue;
+    }
+    update_metric(res.vertex);
+    touched_.resize(mesh_.num_vertices(), 0);
+    for (uint32_t t : inserter_.new_tets()) {
+      vt_.note(mesh_, t);
+      for (int i = 0; i < 4; ++i) touched_[mesh_.vertex(t, i)] = 1;
+    }
+    grid.add(m, r);
+    ++done;
+  }
+  return done;
+}
+
+bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
+  const uint32_t tv = vt_.tet_of(mesh_, v);
+  if (tv == TetMesh::kNone) return false;
+  meshops::vertex_ball(mesh_, v, tv, ball_v_);
+  bool adjacent = false;
+  for (uint32_t t : ball_v_)
+    if (meshops::tet_has_vertex(mesh_, t, w)) adjacent = true;
+  if (!adjacent) return false;
+  const double* pw = mesh_.point(w);
+  const bool moves = q[0] != pw[0] || q[1] != pw[1] || q[2] != pw[2];
+  old_ = ball_v_;
+  if (moves) {
+    meshops::vertex_ball(mesh_, w, vt_.tet_of(mesh_, w), ball_w_);
+    for (uint32_t t : ball_w_)
+      if (!meshops::tet_has_vertex(mesh_, t, v)) old_.push_back(t);
+  }
+  fresh_.clear();
+  for (uint32_t t : old_) {
+    meshops::TetVerts tv4;
+    bool dies = false;
+    for (int i = 0; i < 4; ++i) {
+      tv4[i] = mesh_.vertex(t, i);
+      if (tv4[i] == w && meshops::tet_has_vertex(mesh_, t, v)) dies = true;
+    }
+    if (dies) continue;
+    for (uint32_t& x : tv4)
+      if (x == v) x = w;
+    fresh_.push_back(tv4);
+  }
+  // Try w at q; put it back on failure.
+  const double saved[3] = {pw[0], pw[1], pw[2]};
+  double* xw = &mesh_.xyz[3 * size_t(w)];
+  std::copy_n(q, 3, xw);
+  double mq[6];
+  if (moves) field_.metric(q, mq);
+  else std::copy_n(&metrics_[6 * size_t(w)], 6, mq);
+  // A collapse must not make the worst changed tet worse than min_collapse_quality, or than the
+  // worst one it replaces when that was already below (so that bad regions can still coarsen).
+  double floor = options_.min_collapse_quality;
+  if (floor > 0.0) {
+    std::copy_n(saved, 3, xw);
+    floor = std::min(floor, meshops::min_quality(mesh_, old_));
+    std::copy_n(q, 3, xw);
+  }
+  bool ok = true;
+  for (const meshops::TetVerts& f : fresh_) {
+    if (meshops::shape_quality(mesh_.point(f[0]), mesh_.point(f[1]), mesh_.point(f[2]), mesh_.point(f[3])) <
+        floor) {
+      ok = false;
+      break;
+    }
+    for (uint32_t x : f) {
+      if (x == w) continue;
+      const double* px = mesh_.point(x);
+      const double d[3] = {px[0] - q[0], px[1] - q[1], px[2] - q[2]};
+      const double len = std::sqrt(metric_norm(mq, d) * metric_norm(&metrics_[6 * size_t(x)], d));
+      bool has_w = false;
+      for (uint32_t y : f) has_w |= y == w;
+      if (has_w && len > options_.max_collapse_result) ok = false;
+    }
+    if (!ok) break;
+  }
+  if (ok) ok = meshops::replace_tets(mesh_, old_, fresh_, vt_, scratch_);
+  if (!ok) {
+    std::copy_n(saved, 3, xw);
+    return false;
+  }
+  vt_.forget(v);
+  if (moves) update_metric(w);
+  for (const meshops::TetVerts& f : fresh_)
+    for (uint32_t x : f) touched_[x] = 1;
+  touched_[v] = 1;
+  return true;
+}
+
+size_t Refiner::collapse_pass(const std::vector<refine_detail::Edge>& edges) {
+  std::vector<const refine_detail::Edge*> shorts;
+  for (const refine_detail::Edge& e : edges)
+    if (e.length < options_.collapse_length && !(fixed(e.a) && fixed(e.b))) shorts.push_back(&e);
+  std::sort(shorts.begin(), shorts.end(), [](const refine_detail::Edge* x, const refine_detail::Edge* y) {
+    return x->length != y->length ? x->length < y->length : (x->a != y->a ? x->a < y->a : x->b < y->b);
+  });
+  touched_.resize(mesh_.num_vertices(), 0);
+  size_t done = 0;
+  for (const refine_detail::Edge* e : shorts) {
+    const uint32_t a = e->a, b = e->b;
+    if (touched_[a] || touched_[b] || vt_.removed(a) || vt_.removed(b)) continue;
+    const uint64_t key = (uint64_t(a) << 32) | b;
+    if (refused_.count(key)) continue;  // refused in an earlier pass: not retried
+    bool ok = false;
+    if (fixed(a)) {
+      ok = collapse(b, a, mesh_.point(a));
+    } else if (fixed(b)) {
+      ok = collapse(a, b, mesh_.point(b));
+    } else {
+      double m[3];
+      metric_midpoint(a, b, m);
+      ok = collapse(a, b, m) || collapse(a, b, mesh_.point(b)) || collapse(b, a, mesh_.point(a));
+    }
+    if (ok) {
+      ++done;
+    } else {
+      ++stats_.collapse_rejected;
+      refused_.insert(key);
+    }
+  }
+  return done;
+}
+
+Status Refiner::check(const char* when) const {
+  if (!options_.check_each_pass) return Status::success();
+  Status st = check_mesh(mesh_);
+  if (!st.ok()) return Status(Error::Internal, std::string("refine: mesh broken ") + when + ": " + st.message());
+  const size_t pf = count_protected_facets(mesh_);
+  if (pf != protected_facets_)
+    return Status(Error::Internal, std::string("refine: protected facets changed ") + when + ": " +
+                                       std::to_string(protected_facets_) + " -> " + std::to_string(pf));
+  return Status::success();
+}
+
+Result<RefineStats> Refiner::run() {
+  const auto start = Clock::now();
+  if (!(options_.size_scale > 0.0) || !(options_.split_length > options_.collapse_length) ||
+      !(options_.collapse_length > 0.0))
+    return Status(Error::InvalidArgument, "refine: need size_scale > 0 and split_length > collapse_length > 0");
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
+    if (!mesh_.is_deleted(t) && mesh_.is_ghost(t))
+      return Status(Error::InvalidArgument, "refine: the mesh has ghost tets");
+  vt_.build(mesh_);
+  metrics_.resize(6 * mesh_.num_vertices());
+  size_.resize(mesh_.num_vertices());
+  for (uint32_t v = 0; v < mesh_.num_vertices(); ++v) update_metric(v);
+  protected_facets_ = count_protected_facets(mesh_);
+  stats_.vertices_before = refine_detail::live_vertex_count(mesh_);
+  stats_.tets_before = mesh_.num_live_tets();
+  if (Status st = check("before refinement"); !st.ok()) return st;
+
+  std::vector<refine_detail::Edge> edges;
+  for (int pass = 0; pass < options_.max_passes; ++pass) {
+    // One edge list serves both halves of the pass: the splits mark the vertices whose edges
+    // they changed, and the collapses skip those edges (they are measured again next pass).
+    refine_detail::collect_edges(mesh_, metrics_, edges, edge_scratch_);
+    touched_.assign(mesh_.num_vertices(), 0);
+    const size_t splits = split_pass(edges);
+    if (Status st = check("after a split pass"); !st.ok()) return st;
+    size_t collapses = 0;
+    if (options_.collapse) {
+      collapses = collapse_pass(edges);
+      if (Status st = check("after a collapse pass"); !st.ok()) return st;
+    }
+    stats_.splits += splits;
+    stats_.collapses += collapses;
+    stats_.passes = pass + 1;
+    if (double(splits + collapses) < options_.stop_fraction * double(edges.size())) break;
+  }
+  refine_detail::collect_edges(mesh_, metrics_, edges, edge_scratch_);
+  size_t counted = 0, in_range = 0;
+  double sum = 0.0;
+  for (const refine_detail::Edge& e : edges) {
+    if (e.on_surface) continue;
+    ++counted;
+    sum += e.length;
+    if (e.length >= options_.collapse_length && e.length <= options_.split_length) ++in_range;
+  }
+  stats_.length_mean = counted ? sum / double(counted) : 0.0;
+  stats_.length_in_range = counted ? double(in_range) / double(counted) : 1.0;
+  stats_.vertices_after = refine_detail::live_vertex_count(mesh_);
+  stats_.tets_after = mesh_.num_live_tets();
+  stats_.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return stats_;
+}
+
+}  // namespace
+
+double metric_size(const double m[6]) {
+  const double det = m[0] * (m[2] * m[5] - m[4] * m[4]) - m[1] * (m[1] * m[5] - m[4] * m[3]) +
+                     m[3] * (m[1] * m[4] - m[2] * m[3]);
+  return det > 0.0 ? std::pow(det, -1.0 / 6.0) : 1.0;
+}
+
+size_t count_protected_facets(const TetMesh& mesh) {
+  size_t n = 0;
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    if (mesh.is_deleted(t)) continue;
+    for (int i = 0; i < 4; ++i) n += mesh.facet_protected(t, i) ? 1 : 0;
+  }
+  return n;
+}
+
+Result<RefineStats> refine_mesh(TetMesh& mesh, const SizingField& field, const RefineOptions& options) {
+  const ScaledSizing scaled(field, options.size_scale > 0.0 ? options.size_scale : 1.0);
+  Refiner refiner(mesh, scaled, options);
+  return refiner.run();
+}
+
+}  // namespace anitet

@@ -1,0 +1,87 @@
+// Stage 3b (paper, section 5.2): refinement and coarsening by normalized edge length.
+//
+// Each pass measures every edge in the metric (the geometric mean of its length in the metrics
+// at its two ends), then
+//   - splits the edges longer than split_length (sqrt 2), longest first, by inserting their metric
+//     midpoint through the modified Delaunay kernel (PointInserter: cavities stop at protected
+//     facets, so S is never cut). A midpoint closer than spacing * h to a point inserted earlier
+//     in the same pass is put off to the next pass (a multi-level hash grid), so a batch does not
+//     crowd points together;
+//   - collapses the edges shorter than collapse_length (1/sqrt 2), shortest first: both ends onto
+//     the midpoint when neither is on S, the free end onto the other when one is (a vertex of S
+//     never moves and is never removed). A collapse is applied only when every changed tet is
+//     positive by the exact orient3d, no protected facet is lost, no new edge is longer than
+//     max_collapse_result and no changed tet falls below min_collapse_quality (the shape measure
+//     of refine/mesh_ops.hpp), or below the worst tet it replaces when that one was worse.
+// Passes repeat until fewer than stop_fraction of the edges change or max_passes is reached.
+// Edges of S (on a protected facet, both ends on S) are never split: no point is added on S.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/sizing.hpp"
+#include "core/status.hpp"
+#include "core/tet_mesh.hpp"
+
+namespace anitet {
+
+struct RefineOptions {
+  // Global size scale: every target length is multiplied by it (2 = a mesh twice as coarse).
+  double size_scale = 1.0;
+  double split_length = 1.4142135623730951;
+  double collapse_length = 0.7071067811865476;
+  double spacing = 0.7;                // min distance between points of one batch, times h
+  double max_collapse_result = 1.3;    // longest edge a collapse may create (normalized)
+  double min_collapse_quality = 0.05;  // lowest meshops::shape_quality a collapse may create
+  int max_passes = 30;
+  double stop_fraction = 1e-3;  // stop when a pass changes fewer than this share of the edges
+  bool collapse = true;
+  // check_mesh() and the protected-facet count after every pass (on by default in debug builds).
+#ifdef NDEBUG
+  bool check_each_pass = false;
+#else
+  bool check_each_pass = true;
+#endif
+};
+
+struct RefineStats {
+  int passes = 0;
+  size_t splits = 0;
+  size_t split_rejected = 0;  // midpoints the kernel refused (blocked, outside) or spacing put off
+  size_t collapses = 0;
+  size_t collapse_rejected = 0;
+  size_t vertices_before = 0, vertices_after = 0;  // live vertices
+  size_t tets_before = 0, tets_after = 0;
+  // Normalized edge lengths after the last pass.
+  double length_mean = 0.0;
+  double length_in_range = 0.0;  // share of edges (not on S) in [collapse_length, split_length]
+  double seconds = 0.0;
+};
+
+// Scales a field's lengths: metric(p) = base.metric(p) / scale^2.
+class ScaledSizing final : public SizingField {
+ public:
+  ScaledSizing(const SizingField& base, double scale) : base_(base), inv2_(1.0 / (scale * scale)) {}
+  void metric(const double p[3], double m[6]) const override {
+    base_.metric(p, m);
+    for (int k = 0; k < 6; ++k) m[k] *= inv2_;
+  }
+
+ private:
+  const SizingField& base_;
+  double inv2_;
+};
+
+// The scalar size of a metric: det(M)^(-1/6) (h for I/h^2).
+double metric_size(const double m[6]);
+
+// Refines and coarsens `mesh` (no ghost tets; adjacency built; S = the protected facets, whose
+// vertices carry vflag::kOnInputSurface) towards unit edge lengths in `field`. Vertices removed
+// by collapses stay in mesh.xyz but belong to no tet (TetMesh::to_volume_mesh(true) drops them).
+Result<RefineStats> refine_mesh(TetMesh& mesh, const SizingField& field, const RefineOptions& options = {});
+
+// Counts the protected facets of live tets (each S triangle once: it has no neighbour).
+size_t count_protected_facets(const TetMesh& mesh);
+
+}  // namespace anitet
