@@ -1,4 +1,5 @@
-// `anitet mesh IN -o OUT`: the whole pipeline (validate, layers, recovery, coupling), then the
+// `anitet mesh IN -o OUT`: the whole pipeline (validate, layers, recovery, coupling, refinement,
+// optimization), then the
 // mesh written and its quality report printed (the same as `anitet quality OUT --surface IN`).
 #include <unistd.h>
 
@@ -49,6 +50,9 @@ int run_mesh_pipeline(const MeshArgs& args) {
   MesherOptions options;
   options.layers.layers = args.layers;
   options.layers.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
+  options.refine.size_scale = args.size;
+  options.run_refine = !args.no_refine;
+  options.run_optimize = !args.no_optimize;
   ProgressBar bar(!args.quiet && !args.json && isatty(STDERR_FILENO));
   options.progress = [&bar](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
   Result<MesherResult> run = Mesher(options).run_validated(checked.surface);
@@ -76,6 +80,10 @@ int run_mesh_pipeline(const MeshArgs& args) {
         {"recovery", {{"steiner_on_s1_edges", r.recovery.steiner_on_edges},
                       {"steiner_on_s1_faces", r.recovery.steiner_on_faces}}},
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
+        {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
+                    {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range}}},
+        {"optimize", {{"moves", r.optimize.moves}, {"flips23", r.optimize.flips23},
+                      {"edge_removals", r.optimize.edge_removals}, {"perturbations", r.optimize.perturbations}}},
         {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
     std::cout << out.dump(1) << "\n";
   } else if (!args.quiet) {
@@ -87,7 +95,15 @@ int run_mesh_pipeline(const MeshArgs& args) {
     std::cout << "  stage 2 Steiner points on S1: " << r.recovery.steiner_on_edges << " on edges, "
               << r.recovery.steiner_on_faces << " in faces; coupling split " << r.couple.edge_split_tets
               << " T1 tets and re-coned " << r.couple.faces_reconed << " S1 faces\n"
-              << "  refinement and optimization: not implemented yet (sizes come from the surface)\n"
+              << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits, "
+              << r.refine.collapses << " collapses (" << r.refine.split_rejected << " splits put off, "
+              << r.refine.collapse_rejected << " collapses refused); normalized edge length mean " << r.refine.length_mean
+              << ", " << 100.0 * r.refine.length_in_range << "% in [1/sqrt2, sqrt2]\n"
+              << "  optimization: " << r.optimize.moves << " CVT moves, " << r.optimize.flips23 << " 2-3 flips, "
+              << r.optimize.edge_removals << " edge removals, " << r.optimize.perturbations
+              << " sliver perturbations; radius ratio min " << r.optimize.before.min << " -> "
+              << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
+              << "\n"
               << quality_report_text(quality.value());
   }
   return kExitOk;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace anitet::cli {
 
@@ -33,6 +34,13 @@ struct MeshArgs {
   std::string stop_after;               // "" (the whole pipeline) or "layers"
   int layers = 2;                       // stage 1 layer count
   std::string layer_scheme = "push";    // "push" (prism layers) or "faces" (the paper's)
+  std::vector<int> bl_patches;          // boundary-layer walls (patch labels); empty: none
+  double bl_first_height = 0.0;         // h0
+  double bl_growth = 1.2;               // r
+  int bl_layers = 10;                   // n
+  double size = 1.0;                    // global scale of the sizing field (2: twice as coarse)
+  bool no_refine = false;               // skip refinement/coarsening (stage 3b)
+  bool no_optimize = false;             // skip CVT, flips and sliver removal (stage 3c)
 };
 int run_mesh(const MeshArgs& args);
 // `mesh`: the whole pipeline (cmd_pipeline.cpp).

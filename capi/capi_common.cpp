@@ -1,4 +1,5 @@
 // Library information, errors and options.
+#include <cstddef>
 #include <cstring>
 #include <string>
 
@@ -17,6 +18,12 @@ int set_error(int code, const std::string& message) {
 
 const char* last_error_c_str() { return t_last_error.c_str(); }
 
+size_t options_size(int32_t version) {
+  // Each version's struct ends where the next version's first field starts.
+  if (version == 1) return offsetof(anitet_options, layers);
+  return sizeof(anitet_options);
+}
+
 int read_options(const char* function, const anitet_options* given, anitet_options& out) {
   const anitet_options defaults = ANITET_OPTIONS_INIT;
   out = defaults;
@@ -27,8 +34,8 @@ int read_options(const char* function, const anitet_options* given, anitet_optio
                          " is not supported (1.." + std::to_string(ANITET_OPTIONS_VERSION) +
                          "); initialise with ANITET_OPTIONS_INIT or anitet_options_init");
   }
-  // Version 1 holds every field known today; later versions copy only what the caller has.
-  out = *given;
+  // Only the caller's version of the struct exists in its memory; later fields keep defaults.
+  std::memcpy(&out, given, options_size(given->version));
   return ANITET_OK;
 }
 
@@ -73,6 +80,14 @@ static_assert(ANITET_VERSION_MAJOR == ANITET_BUILD_VERSION_MAJOR &&
                   ANITET_VERSION_MINOR == ANITET_BUILD_VERSION_MINOR &&
                   ANITET_VERSION_PATCH == ANITET_BUILD_VERSION_PATCH,
               "include/anitet.h version macros differ from the CMake project version");
+
+// Version 1 of anitet_options ends after log_user_data: its layout is frozen.
+static_assert(offsetof(anitet_options, layers) == 6 * sizeof(int32_t) + 4 * sizeof(void*),
+              "the version 1 fields of anitet_options moved");
+static_assert(offsetof(anitet_options, recovery_max_seconds) % alignof(double) == 0 &&
+                  offsetof(anitet_options, size_scale) % alignof(double) == 0 &&
+                  sizeof(anitet_options) == offsetof(anitet_options, size_scale) + sizeof(double),
+              "anitet_options has padding: the Fortran and Python mirrors assume none");
 
 // The header's codes are anitet::Error's values: never renumber either.
 #define ANITET_SAME_CODE(c, e) static_assert(c == static_cast<int>(anitet::Error::e), #c)
@@ -129,7 +144,7 @@ int anitet_options_init(anitet_options* options, int32_t version) {
     anitet_options resolved;
     const int code = read_options(fn, &wanted, resolved);
     if (code != ANITET_OK) return code;
-    *options = resolved;
+    std::memcpy(options, &resolved, options_size(version));  // never past the caller's version
     return ok();
   });
 }

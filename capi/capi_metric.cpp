@@ -1,5 +1,5 @@
-// Metric fields and the mesher entry point. The metric module and the meshing pipeline are not
-// part of the library yet: what needs them says ANITET_ERR_NOT_IMPLEMENTED, never a silent no-op.
+// Metric fields. Reading metric files and per-point metrics on a background mesh are not part of
+// the library yet: they say ANITET_ERR_NOT_IMPLEMENTED, never a silent no-op.
 #include <cmath>
 #include <memory>
 #include <string>
@@ -99,20 +99,6 @@ int anitet_metric_evaluate(const anitet_metric* metric, double x, double y, doub
                                                         ", " + std::to_string(y) + ", " + std::to_string(z) + ")");
     }
     return ok();
-  });
-}
-
-int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric,
-                      const anitet_options* options, anitet_mesh** out) {
-  (void)metric;
-  const char* const fn = __func__;
-  return guard(fn, [&] {
-    if (out == nullptr) return null_argument(fn, "out");
-    *out = nullptr;
-    if (surface == nullptr) return null_argument(fn, "surface");
-    anitet_options opt;
-    if (const int code = read_options(fn, options, opt); code != ANITET_OK) return code;
-    return not_implemented(fn, "the meshing pipeline");
   });
 }
 

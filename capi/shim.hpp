@@ -2,6 +2,7 @@
 // entry point goes through, and argument checks that set a message naming the function.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <new>
@@ -18,7 +19,9 @@ int set_status(const char* function, const Status& status);
 inline int ok() { return set_error(ANITET_OK, std::string()); }
 const char* last_error_c_str();
 
-// Options after the version check; NULL gives the defaults.
+// Bytes of an anitet_options struct of `version` (a valid one).
+size_t options_size(int32_t version);
+// Options after the version check; NULL gives the defaults. Reads only the caller's version.
 int read_options(const char* function, const anitet_options* given, anitet_options& out);
 
 // Runs body() (returning int) and turns any escaping exception into an error code: no exception

@@ -92,8 +92,11 @@ typedef struct anitet_surface anitet_surface; /* a triangulated closed surface (
 typedef struct anitet_mesh anitet_mesh;       /* a tetrahedral mesh (read, given or meshed) */
 typedef struct anitet_metric anitet_metric;   /* a metric (sizing) field */
 
-/* Progress: fraction in [0, 1] of the named stage ("validate", ...). Return 0 to continue,
- * non-zero to cancel: the running call then returns ANITET_ERR_CANCELLED. */
+/* Progress: `fraction` in [0, 1] of the running call's work done, on entering the named stage
+ * ("validate" for anitet_surface_validate, 0 then 1). Return 0 to continue, non-zero to cancel:
+ * the running call then returns ANITET_ERR_CANCELLED and creates nothing. Stages are not interrupted in the middle: cancelling takes effect at the next call.
+ * The mesher's stages: "validate" (0), "layers", "recovery", "coupling", "sizing", "refine",
+ * "optimize", "done" (1); later versions may add stages, so do not rely on the list. */
 typedef int (*anitet_progress_fn)(double fraction, const char* stage, void* user_data);
 /* Log: one message (valid only during the call) at an ANITET_LOG_* level. */
 typedef void (*anitet_log_fn)(int32_t level, const char* message, void* user_data);
@@ -104,10 +107,14 @@ typedef int (*anitet_metric_fn)(double x, double y, double z, double m[6], void*
 /* ---------------------------------------------------------------------------------------------
  * Versioned options.
  * ------------------------------------------------------------------------------------------- */
-#define ANITET_OPTIONS_VERSION 1
+#define ANITET_OPTIONS_VERSION 2
+
+/* Values of anitet_options.layer_scheme (version 2). */
+#define ANITET_LAYERS_PUSH 0       /* prism layers by vertex pushes only (the default) */
+#define ANITET_LAYERS_FACE_PUSH 1  /* the paper's two steps: face tets, then vertex pushes */
 
 typedef struct anitet_options {
-  int32_t version;                   /* ANITET_OPTIONS_VERSION (1) */
+  int32_t version;                   /* ANITET_OPTIONS_VERSION; 1 for callers of anitet 0.1 */
   int32_t num_threads;               /* 0: the library's default */
   int32_t merge_duplicate_vertices;  /* validation repair: merge equal vertices (default 1) */
   int32_t orient_shells;             /* validation repair: flip inward shells (default 1) */
@@ -117,12 +124,22 @@ typedef struct anitet_options {
   void* progress_user_data;
   anitet_log_fn log;                 /* may be NULL */
   void* log_user_data;
-  /* Version 2 and later append fields here. */
+  /* Version 2 (read only when version >= 2; a version 1 caller gets the defaults): */
+  int32_t layers;                    /* boundary layers of stage 1, >= 1 (default 2) */
+  int32_t layer_scheme;              /* ANITET_LAYERS_PUSH (default) or ANITET_LAYERS_FACE_PUSH */
+  double recovery_max_seconds;       /* time budget of the boundary recovery; 0: default (20) */
+  int32_t refine;                    /* 1: refine to the sizes (default), 0: skip the stage */
+  int32_t optimize;                  /* 1: optimize the quality (default), 0: skip the stage */
+  double size_scale;                 /* every target edge length times this (> 0; default 1;
+                                        2 = a mesh twice as coarse) */
+  /* Version 3 and later append fields here. */
 } anitet_options;
 
-#define ANITET_OPTIONS_INIT { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0 }
+#define ANITET_OPTIONS_INIT \
+  { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0, 2, ANITET_LAYERS_PUSH, 0.0, 1, 1, 1.0 }
 
-/* Fills *options with the defaults of `version` (1 .. ANITET_OPTIONS_VERSION).
+/* Fills the fields of `version` (1 .. ANITET_OPTIONS_VERSION) of *options with their defaults
+ * and sets options->version; a struct of an older version is not written past its end.
  * Errors: INVALID_ARGUMENT (NULL options, unknown version). */
 ANITET_API int anitet_options_init(anitet_options* options, int32_t version);
 
@@ -213,9 +230,23 @@ ANITET_API int anitet_metric_evaluate(const anitet_metric* metric, double x, dou
  * Meshing.
  * ------------------------------------------------------------------------------------------- */
 
-/* Meshes the inside of `surface` (validated by this call) with `metric` (NULL: sizes from the
- * surface) into a new mesh *out. Returns NOT_IMPLEMENTED in this version (*out is set to NULL):
- * the meshing pipeline is not part of the library yet. */
+/* Meshes the inside of `surface` into a new mesh *out (*out is NULL after any error). The call
+ * validates a copy of the surface with the options' repairs (`surface` itself is not changed),
+ * then runs the stages: boundary layers, Delaunay with conforming boundary recovery, coupling,
+ * refinement to the sizes and quality optimization (options may skip the last two).
+ * Sizes: refinement and optimization follow `metric` when not NULL (evaluated wherever they
+ * need it; the mesh then carries its tensors at the vertices, see anitet_mesh_get_metric), else
+ * a sizing field built from the surface's triangles; options->size_scale scales either. The
+ * boundary layers follow the surface's edge lengths.
+ * The mesh: the (repaired) surface's points first and in order, positive tets, a region label
+ * per body, the surface's triangles as boundary triangles with their patch labels. Same inputs
+ * and options, same mesh, bit for bit. options may be NULL for the defaults; options->progress
+ * is called on entering each stage and may cancel; options->log gets the repairs and problems
+ * of the validation and one line per stage.
+ * Errors: INVALID_ARGUMENT (NULL surface or out, bad options version or value; a metric
+ * callback that fails or returns a tensor that is not positive definite: the message names the
+ * point), the validation's codes (OPEN_BOUNDARY, SELF_INTERSECTION, ...), CANCELLED,
+ * RECOVERY_FAILED, INTERNAL (a stage failed), OUT_OF_MEMORY. */
 ANITET_API int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric,
                                  const anitet_options* options, anitet_mesh** out);
 

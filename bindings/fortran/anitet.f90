@@ -41,7 +41,9 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_LOG_WARNING = 1
   integer(c_int32_t), parameter, public :: ANITET_LOG_INFO = 2
   integer(c_int32_t), parameter, public :: ANITET_LOG_DEBUG = 3
-  integer(c_int32_t), parameter, public :: ANITET_OPTIONS_VERSION = 1
+  integer(c_int32_t), parameter, public :: ANITET_OPTIONS_VERSION = 2
+  integer(c_int32_t), parameter, public :: ANITET_LAYERS_PUSH = 0
+  integer(c_int32_t), parameter, public :: ANITET_LAYERS_FACE_PUSH = 1
   integer(c_int32_t), parameter, public :: ANITET_QUALITY_VERSION = 1
 
   ! ---- versioned structs (same layout as the C structs) -----------------------------------------
@@ -57,6 +59,13 @@ module anitet
     type(c_ptr) :: progress_user_data
     type(c_funptr) :: log
     type(c_ptr) :: log_user_data
+    ! version 2
+    integer(c_int32_t) :: layers
+    integer(c_int32_t) :: layer_scheme
+    real(c_double) :: recovery_max_seconds
+    integer(c_int32_t) :: refine
+    integer(c_int32_t) :: optimize
+    real(c_double) :: size_scale
   end type
 
   type, bind(c), public :: anitet_quality_t

@@ -13,5 +13,7 @@ int anitet_header_check(void) {
   (void)progress;
   (void)log;
   (void)metric;
+  options.layer_scheme = ANITET_LAYERS_FACE_PUSH;
+  options.size_scale = 2.0;
   return options.version + quality.version + ANITET_VERSION_NUMBER + ANITET_ERR_INTERNAL;
 }

@@ -6,5 +6,7 @@ int anitet_header_check_cxx();
 int anitet_header_check_cxx() {
   anitet_options options = ANITET_OPTIONS_INIT;
   anitet_quality quality = ANITET_QUALITY_INIT;
-  return options.version + quality.version;
+  options.layer_scheme = ANITET_LAYERS_FACE_PUSH;
+  options.progress = nullptr;
+  return options.version + quality.version + options.layers;
 }

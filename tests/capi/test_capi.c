@@ -65,6 +65,8 @@ static void test_options_init(void** state) {
   assert_int_equal(b.check_self_intersections, 1);
   assert_null(b.progress);
   assert_null(b.log);
+  assert_int_equal(b.layers, 2);
+  assert_int_equal(b.layer_scheme, ANITET_LAYERS_PUSH);
   assert_int_equal(anitet_options_init(&b, 0), ANITET_ERR_INVALID_ARGUMENT);
   assert_true(contains(anitet_last_error_message(), "version 0"));
   assert_int_equal(anitet_options_init(&b, ANITET_OPTIONS_VERSION + 1), ANITET_ERR_INVALID_ARGUMENT);
@@ -316,7 +318,7 @@ static void test_callbacks_progress_log_cancel(void** state) {
   anitet_surface_destroy(s);
 }
 
-/* ---- metrics and the mesher ----------------------------------------------------------------- */
+/* ---- metrics (the mesher: test_capi_mesher.c) ----------------------------------------------- */
 
 static int stretched(double x, double y, double z, double m[6], void* user_data) {
   const double k = *(const double*)user_data;
@@ -368,22 +370,6 @@ static void test_metric(void** state) {
   assert_int_equal(anitet_metric_create_from_points(NULL, values, 8, 1, &m), ANITET_ERR_INVALID_ARGUMENT);
   anitet_mesh_destroy(box);
   anitet_metric_destroy(NULL);
-}
-
-static void test_mesher_not_implemented(void** state) {
-  anitet_surface* s = make_cube();
-  anitet_mesh* out = (anitet_mesh*)1;
-  anitet_options o = ANITET_OPTIONS_INIT;
-  (void)state;
-  assert_int_equal(anitet_mesher_run(s, NULL, NULL, &out), ANITET_ERR_NOT_IMPLEMENTED);
-  assert_null(out);
-  assert_true(contains(anitet_last_error_message(), "anitet_mesher_run"));
-  assert_true(contains(anitet_last_error_message(), "not implemented"));
-  assert_int_equal(anitet_mesher_run(NULL, NULL, NULL, &out), ANITET_ERR_INVALID_ARGUMENT);
-  assert_int_equal(anitet_mesher_run(s, NULL, NULL, NULL), ANITET_ERR_INVALID_ARGUMENT);
-  o.version = 0;
-  assert_int_equal(anitet_mesher_run(s, NULL, &o, &out), ANITET_ERR_INVALID_ARGUMENT);
-  anitet_surface_destroy(s);
 }
 
 /* ---- volume meshes -------------------------------------------------------------------------- */
@@ -628,7 +614,6 @@ int main(void) {
       cmocka_unit_test(test_surface_validate_bad_options_version),
       cmocka_unit_test(test_callbacks_progress_log_cancel),
       cmocka_unit_test(test_metric),
-      cmocka_unit_test(test_mesher_not_implemented),
       cmocka_unit_test(test_mesh_read_and_fill),
       cmocka_unit_test(test_mesh_accessor_errors),
       cmocka_unit_test(test_mesh_create),

@@ -1,5 +1,5 @@
-/* The C ABI from two threads: each validates its own surface many times at once, and the last
- * error message is per thread. */
+/* The C ABI from two threads: each validates its own surface many times at once, two meshers run
+ * at once and give the mesh of a lone run, and the last error message is per thread. */
 #define _POSIX_C_SOURCE 200112L
 #include <pthread.h>
 #include <setjmp.h>
@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include "capi_test_util.h"
+#include "sphere_surface.h"
 
 enum { kRounds = 30 };
 
@@ -74,6 +75,67 @@ static void test_two_threads_validate_concurrently(void** state) {
   }
 }
 
+struct mesher_worker {
+  const anitet_surface* surface;
+  pthread_barrier_t* barrier;
+  int rounds;
+  int rc;             /* first failing code, ANITET_OK otherwise */
+  int64_t tets[4];    /* tets of each round */
+};
+
+static void* mesh_loop(void* arg) {
+  struct mesher_worker* w = (struct mesher_worker*)arg;
+  int round;
+  pthread_barrier_wait(w->barrier);
+  for (round = 0; round < w->rounds; ++round) {
+    anitet_mesh* m = NULL;
+    const int rc = anitet_mesher_run(w->surface, NULL, NULL, &m);
+    if (rc != ANITET_OK) {
+      w->rc = rc;
+      return NULL;
+    }
+    anitet_mesh_get_counts(m, NULL, &w->tets[round], NULL);
+    anitet_mesh_destroy(m);
+  }
+  return NULL;
+}
+
+static void test_two_meshers_in_two_threads(void** state) {
+  static double xyz[3 * SPHERE_NPOINTS];
+  static int32_t tri[3 * SPHERE_NTRI], patch[SPHERE_NTRI];
+  pthread_barrier_t barrier;
+  pthread_t threads[2];
+  struct mesher_worker workers[2];
+  anitet_surface* surfaces[2] = {NULL, NULL};
+  anitet_mesh* alone = NULL;
+  int64_t tets_alone = 0;
+  int i, round;
+  (void)state;
+  sphere_build(xyz, tri, patch);
+  for (i = 0; i < 2; ++i) {
+    assert_int_equal(anitet_surface_create(xyz, SPHERE_NPOINTS, tri, SPHERE_NTRI, patch, 0, &surfaces[i]),
+                     ANITET_OK);
+  }
+  assert_int_equal(anitet_mesher_run(surfaces[0], NULL, NULL, &alone), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_counts(alone, NULL, &tets_alone, NULL), ANITET_OK);
+  anitet_mesh_destroy(alone);
+  assert_int_equal(pthread_barrier_init(&barrier, NULL, 2), 0);
+  for (i = 0; i < 2; ++i) {
+    memset(&workers[i], 0, sizeof workers[i]);
+    workers[i].surface = surfaces[i];
+    workers[i].barrier = &barrier;
+    workers[i].rounds = 4;
+    assert_int_equal(pthread_create(&threads[i], NULL, mesh_loop, &workers[i]), 0);
+  }
+  for (i = 0; i < 2; ++i) assert_int_equal(pthread_join(threads[i], NULL), 0);
+  pthread_barrier_destroy(&barrier);
+  for (i = 0; i < 2; ++i) {
+    assert_int_equal(workers[i].rc, ANITET_OK);
+    for (round = 0; round < 4; ++round) assert_int_equal(workers[i].tets[round], tets_alone);
+    anitet_surface_destroy(surfaces[i]);
+  }
+}
+
 static void* set_error_then_return(void* arg) {
   (void)arg;
   anitet_mesh_get_counts(NULL, NULL, NULL, NULL);
@@ -93,6 +155,7 @@ static void test_last_error_is_thread_local(void** state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_two_threads_validate_concurrently),
+      cmocka_unit_test(test_two_meshers_in_two_threads),
       cmocka_unit_test(test_last_error_is_thread_local),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

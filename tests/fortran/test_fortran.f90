@@ -1,9 +1,11 @@
 ! The Fortran module over the C ABI: a cube surface built in memory (1-based), validated and read
 ! back; a volume mesh read from the tests' data and filled into allocatable arrays; the error
-! paths a Fortran caller meets. Argument 1: the tests' data directory (tests/data).
+! paths a Fortran caller meets; the examples' sphere meshed with and without a metric.
+! Argument 1: the tests' data directory (tests/data).
 program test_fortran
   use, intrinsic :: iso_c_binding
   use anitet
+  use sphere_surface
   implicit none
 
   integer :: failures = 0
@@ -182,19 +184,48 @@ contains
 
   subroutine check_metric_and_mesher()
     type(c_ptr) :: metric, other, surface, mesh
+    type(anitet_options_t), target :: options
     real(c_double) :: m(6)
-    real(c_double) :: xyz(3, 4)
-    integer(c_int32_t) :: faces(3, 4)
+    real(c_double) :: xyz(3, SPHERE_NPOINTS)
+    integer(c_int32_t) :: faces(3, SPHERE_NTRI), patch(SPHERE_NTRI)
+    integer(c_int32_t), allocatable :: tets(:, :), tri(:, :)
+    real(c_double), allocatable :: values(:, :)
+    integer(c_int64_t) :: np, nt, nb
     call check(anitet_metric_create_uniform(0.5d0, metric) == ANITET_OK, "uniform metric")
     call check(anitet_metric_evaluate(metric, [0d0, 0d0, 0d0], m) == ANITET_OK, "evaluate")
     call check(m(1) == 4d0 .and. m(3) == 4d0 .and. m(6) == 4d0 .and. m(2) == 0d0, "uniform tensor")
-    xyz = reshape([0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 0d0, 1d0], [3, 4])
-    faces = reshape([1, 3, 2, 1, 2, 4, 2, 3, 4, 1, 4, 3], [3, 4])
-    call check(anitet_surface_create(xyz, faces, surface) == ANITET_OK, "tet surface")
-    call check(anitet_mesher_run(surface, mesh, metric) == ANITET_ERR_NOT_IMPLEMENTED, &
-               "mesher says not implemented")
-    call check(.not. c_associated(mesh), "no mesh")
-    call check(index(anitet_last_error_message(), "not implemented") > 0, "mesher message")
+    ! The examples' sphere, 1-based.
+    call sphere_build(xyz, faces, patch)
+    call check(anitet_surface_create(xyz, faces, surface, patch) == ANITET_OK, "sphere surface")
+    call check(anitet_mesher_run(surface, mesh) == ANITET_OK, "mesher runs")
+    call check(anitet_mesh_get_counts(mesh, np, nt, nb) == ANITET_OK, "mesh counts")
+    call check(np >= SPHERE_NPOINTS .and. nt > np .and. nb == SPHERE_NTRI, "mesh counts values")
+    call check(anitet_mesh_get_tets(mesh, tets) == ANITET_OK, "mesh tets")
+    call check(size(tets, 1) == 4 .and. size(tets, 2) == nt, "tets shape")
+    call check(minval(tets) == 1 .and. maxval(tets) <= np, "tets 1-based")
+    call check(anitet_mesh_get_boundary_triangles(mesh, tri) == ANITET_OK, "boundary triangles")
+    call check(all(tri == faces), "boundary triangles are the input")
+    call anitet_mesh_destroy(mesh)
+    ! With a metric: its tensors at the vertices.
+    call check(anitet_mesher_run(surface, mesh, metric) == ANITET_OK, "mesher with a metric")
+    call check(anitet_mesh_get_metric(mesh, values) == ANITET_OK, "mesh metric")
+    call check(size(values, 1) == 6 .and. all(values(1, :) == 4d0), "mesh metric values")
+    call anitet_mesh_destroy(mesh)
+    ! Version 2 options: a bad layer count is refused.
+    call check(anitet_options_init(options) == ANITET_OK, "options v2")
+    call check(options%layers == 2 .and. options%layer_scheme == ANITET_LAYERS_PUSH, &
+               "options v2 defaults")
+    ! The struct's layout is the C one: version 1 ends after four pointers, version 2 adds
+    ! 2 * (4 + 4 + 8) bytes.
+    call check(c_sizeof(options) == 6 * 4 + 4 * c_sizeof(c_null_ptr) + 32, "options size")
+    call check(options%refine == 1 .and. options%optimize == 1 .and. options%size_scale == 1d0, &
+               "options v2 refine defaults")
+    options%layers = 0
+    call check(anitet_mesher_run(surface, mesh, options=options) == ANITET_ERR_INVALID_ARGUMENT, &
+               "zero layers refused")
+    options%layers = 1
+    call check(anitet_mesher_run(surface, mesh, options=options) == ANITET_OK, "one layer")
+    call anitet_mesh_destroy(mesh)
     call check(anitet_metric_read("size.vdb", other) == ANITET_ERR_NOT_IMPLEMENTED, "metric read")
     call check(.not. c_associated(other), "no metric handle")
     call anitet_metric_destroy(metric)

@@ -1,0 +1,25 @@
+"""anitet: boundary-constrained tetrahedral meshing, from Python.
+
+A pure-Python binding (ctypes) over the C ABI of libanitet (include/anitet.h): no compiled
+extension. The library is found through ANITET_LIBRARY (a path), then next to an installed copy
+of this package, then the system's loader (libanitet.so.0). NumPy is optional.
+
+    import anitet
+    surface = anitet.Surface.read("fandisk.off")          # or Surface.from_arrays(points, tris)
+    mesh = anitet.mesh_surface(surface, layers=2, progress=lambda stage, f: print(stage, f))
+    print(mesh.counts(), mesh.quality(surface))
+    mesh.write("fandisk.mesh")
+"""
+from ._capi import (ERR_BAD_INDEX, ERR_BUFFER_TOO_SMALL, ERR_CANCELLED, ERR_DEGENERATE_TRIANGLE,
+                    ERR_DUPLICATE_POINT, ERR_DUPLICATE_TRIANGLE, ERR_EMPTY_INPUT,
+                    ERR_FILE_NOT_FOUND, ERR_INCONSISTENT_ORIENTATION, ERR_INTERNAL,
+                    ERR_INTERSECTING_SHELLS, ERR_INVALID_ARGUMENT, ERR_INVALID_MESH,
+                    ERR_NON_FINITE_COORDINATE, ERR_NON_MANIFOLD_EDGE, ERR_NON_MANIFOLD_VERTEX,
+                    ERR_NOT_IMPLEMENTED, ERR_OPEN_BOUNDARY, ERR_OUT_OF_MEMORY, ERR_PARSE,
+                    ERR_RECOVERY_FAILED, ERR_SELF_INTERSECTION, ERR_UNSUPPORTED_FORMAT,
+                    LAYERS_FACE_PUSH, LAYERS_PUSH, LOG_DEBUG, LOG_ERROR, LOG_INFO, LOG_WARNING, OK,
+                    OPTIONS_VERSION, QUALITY_VERSION, VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH)
+from ._api import (HAVE_NUMPY, AnitetError, Mesh, Metric, Options, Quality, Surface, error_name,
+                   mesh_surface, version, version_number)
+
+__version__ = "%d.%d.%d" % (VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH)

@@ -1,0 +1,557 @@
+"""The Python face of the C ABI: Surface, Metric, Mesh, Options, Quality and AnitetError.
+
+Arrays: with NumPy importable (and ANITET_PYTHON_NUMPY not "0"), outputs are NumPy arrays shaped
+(n, 3) / (n, 4) / (n,) and inputs may be any array-like; without it, outputs are lists of tuples
+(lists for one value per element) and inputs are sequences. Indices are 0-based unless an
+index_base of 1 is asked for.
+"""
+import ctypes
+import json
+import os
+from ctypes import byref, c_double, c_int32, c_int64, c_void_p
+
+from . import _capi
+from ._capi import lib
+
+if os.environ.get("ANITET_PYTHON_NUMPY", "1") != "0":
+    try:
+        import numpy as _np
+    except ImportError:  # numpy is optional
+        _np = None
+else:
+    _np = None
+
+HAVE_NUMPY = _np is not None
+
+
+class AnitetError(Exception):
+    """A failed call: code (an ERR_* value), name ("open_boundary") and the library's message."""
+
+    def __init__(self, code, message):
+        self.code = code
+        self.name = lib.anitet_error_name(code).decode()
+        self.message = message
+        super().__init__("%s (%s, %d)" % (message, self.name, code))
+
+
+def _check(rc):
+    if rc != _capi.OK:
+        raise AnitetError(rc, lib.anitet_last_error_message().decode("utf-8", "replace"))
+
+
+def version():
+    """The library's version, "major.minor.patch"."""
+    return lib.anitet_version().decode()
+
+
+def version_number():
+    return lib.anitet_version_number()
+
+
+def error_name(code):
+    return lib.anitet_error_name(code).decode()
+
+
+# ---- arrays ------------------------------------------------------------------------------------
+
+def _flat_input(data, width, ctype, what):
+    """(keep-alive object, pointer, number of rows) of rows of `width` values of ctype."""
+    if _np is not None:
+        dtype = _np.float64 if ctype is c_double else _np.int32
+        given = _np.asarray(data)
+        if ctype is c_int32:
+            if given.size and given.dtype.kind not in "iu":
+                raise TypeError("%s: integer values expected, got %s" % (what, given.dtype))
+            if given.size and (given.min() < -2**31 or given.max() >= 2**31):
+                raise ValueError("%s: values out of the int32 range" % what)
+        arr = _np.ascontiguousarray(given, dtype=dtype)
+        if arr.size % width != 0 or (arr.ndim == 2 and arr.shape[1] != width) or arr.ndim > 2:
+            raise ValueError("%s: shape %s is not (n, %d)" % (what, arr.shape, width))
+        return arr, arr.ctypes.data_as(ctypes.POINTER(ctype)), arr.size // width
+    flat = []
+    for row in data:
+        if width == 1 and not isinstance(row, (list, tuple)):
+            flat.append(row)
+            continue
+        if len(row) != width:
+            raise ValueError("%s: a row has %d values, %d expected" % (what, len(row), width))
+        flat.extend(row)
+    if ctype is c_int32:
+        for v in flat:
+            if not isinstance(v, int):
+                raise TypeError("%s: integer values expected, got %r" % (what, v))
+            if v < -2**31 or v >= 2**31:
+                raise ValueError("%s: value %d out of the int32 range" % (what, v))
+    buf = (ctype * len(flat))(*flat)
+    return buf, ctypes.cast(buf, ctypes.POINTER(ctype)), len(flat) // width
+
+
+def _flat_doubles(values):
+    """(keep-alive object, pointer, count) of all the values, rows flattened."""
+    if _np is not None:
+        arr = _np.ascontiguousarray(values, dtype=_np.float64).ravel()
+        return arr, arr.ctypes.data_as(ctypes.POINTER(c_double)), arr.size
+    flat = []
+    for row in values:
+        if hasattr(row, "__len__"):
+            flat.extend(row)
+        else:
+            flat.append(row)
+    buf = (c_double * len(flat))(*flat)
+    return buf, ctypes.cast(buf, ctypes.POINTER(c_double)), len(flat)
+
+
+def _output(rows, width, ctype, fill):
+    """Calls fill(pointer, length) on a new buffer of rows x width values and returns it."""
+    n = rows * width
+    if _np is not None:
+        arr = _np.empty((rows, width) if width > 1 else (rows,),
+                        dtype=_np.float64 if ctype is c_double else _np.int32)
+        _check(fill(arr.ctypes.data_as(ctypes.POINTER(ctype)), n))
+        return arr
+    buf = (ctype * max(n, 1))()
+    _check(fill(ctypes.cast(buf, ctypes.POINTER(ctype)), n))
+    if width == 1:
+        return list(buf[:n])
+    return [tuple(buf[i:i + width]) for i in range(0, n, width)]
+
+
+def _text(query):
+    """A JSON text through the size-query-then-fill convention."""
+    needed = c_int64(0)
+    _check(query(None, 0, byref(needed)))
+    buf = ctypes.create_string_buffer(needed.value)
+    _check(query(buf, needed.value, None))
+    return buf.value.decode("utf-8")
+
+
+def _path(p):
+    return os.fsencode(p)
+
+
+def _base(index_base):
+    if index_base not in (0, 1):
+        raise ValueError("index_base must be 0 or 1")
+    return index_base
+
+
+# ---- handles -----------------------------------------------------------------------------------
+
+class _Handle:
+    """Owns one C handle; close() (or the end of a with block, or garbage collection) frees it."""
+
+    _destroy = None
+
+    def __init__(self, ptr):
+        self._ptr = ptr
+
+    @property
+    def _as_parameter_(self):
+        # A closed handle is NULL to the library: its calls fail with ERR_INVALID_ARGUMENT.
+        return self._ptr
+
+    def close(self):
+        if getattr(self, "_ptr", None):
+            type(self)._destroy(self._ptr)
+            self._ptr = None
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown: the library may be gone already
+            pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def _create(cls, call, *args):
+    out = c_void_p()
+    _check(call(*args, byref(out)))
+    return cls(out.value)
+
+
+# ---- options -----------------------------------------------------------------------------------
+
+class Options:
+    """The mesher's and the validation's options (anitet_options version 2; the fields and their
+    meaning are the C struct's, with booleans for the 0/1 ones).
+
+    progress(stage, fraction): called on entering each stage; return False to cancel (the call
+    then raises AnitetError with code ERR_CANCELLED); None or True continues. An exception raised
+    in progress or log cancels the run and is raised again from the call.
+    log(level, message): the validation's repairs and problems, one line per stage.
+    """
+
+    def __init__(self, num_threads=0, merge_duplicate_vertices=True, orient_shells=True,
+                 check_self_intersections=True, layers=2, layer_scheme=_capi.LAYERS_PUSH,
+                 recovery_max_seconds=0.0, refine=True, optimize=True, size_scale=1.0,
+                 progress=None, log=None):
+        self.num_threads = num_threads
+        self.merge_duplicate_vertices = merge_duplicate_vertices
+        self.orient_shells = orient_shells
+        self.check_self_intersections = check_self_intersections
+        self.layers = layers
+        self.layer_scheme = layer_scheme
+        self.recovery_max_seconds = recovery_max_seconds
+        self.refine = refine
+        self.optimize = optimize
+        self.size_scale = size_scale
+        self.progress = progress
+        self.log = log
+
+
+class _CallbackScope:
+    """The C struct of an Options with its callbacks, for the duration of one call."""
+
+    def __init__(self, options):
+        self.error = None
+        self.struct = _capi.COptions()
+        _check(lib.anitet_options_init(byref(self.struct), _capi.OPTIONS_VERSION))
+        if options is None:
+            return
+        s = self.struct
+        s.num_threads = options.num_threads
+        s.merge_duplicate_vertices = int(bool(options.merge_duplicate_vertices))
+        s.orient_shells = int(bool(options.orient_shells))
+        s.check_self_intersections = int(bool(options.check_self_intersections))
+        s.layers = options.layers
+        s.layer_scheme = options.layer_scheme
+        s.recovery_max_seconds = options.recovery_max_seconds
+        s.refine = int(bool(options.refine))
+        s.optimize = int(bool(options.optimize))
+        s.size_scale = options.size_scale
+        # The ctypes callback objects must outlive the call: they are attributes of self.
+        if options.progress is not None:
+            user_progress = options.progress
+
+            def progress(fraction, stage, _):
+                if self.error is not None:
+                    return 1
+                try:
+                    return 1 if user_progress(stage.decode(), fraction) is False else 0
+                except BaseException as e:  # noqa: B902 - re-raised after the C call returns
+                    self.error = e
+                    return 1
+
+            self._progress = _capi.PROGRESS_FN(progress)
+            s.progress = self._progress
+        if options.log is not None:
+            user_log = options.log
+
+            def log(level, message, _):
+                if self.error is not None:
+                    return
+                try:
+                    user_log(level, message.decode("utf-8", "replace"))
+                except BaseException as e:  # noqa: B902
+                    self.error = e
+
+            self._log = _capi.LOG_FN(log)
+            s.log = self._log
+
+    def call(self, fn, *args):
+        rc = fn(*args)
+        if self.error is not None:
+            raise self.error
+        _check(rc)
+
+
+def _options_arg(options, kwargs):
+    if kwargs:
+        if options is not None:
+            raise TypeError("give either an Options or keyword options, not both")
+        options = Options(**kwargs)
+    return _CallbackScope(options)
+
+
+# ---- surfaces ----------------------------------------------------------------------------------
+
+class Surface(_Handle):
+    """A closed triangulated surface: the input of the mesher."""
+
+    _destroy = lib.anitet_surface_destroy
+
+    @classmethod
+    def from_arrays(cls, points, triangles, patches=None, index_base=0):
+        """points (n, 3), triangles (m, 3) counter-clockwise seen from outside, patches (m,)."""
+        p_keep, p_ptr, n = _flat_input(points, 3, c_double, "points")
+        t_keep, t_ptr, m = _flat_input(triangles, 3, c_int32, "triangles")
+        l_keep, l_ptr = None, None
+        if patches is not None:
+            l_keep, l_ptr, k = _flat_input(patches, 1, c_int32, "patches")
+            if k != m:
+                raise ValueError("patches: %d labels for %d triangles" % (k, m))
+        # p_keep, t_keep and l_keep own the memory behind the pointers until the call returns.
+        return _create(cls, lib.anitet_surface_create, p_ptr, n, t_ptr, m, l_ptr,
+                       _base(index_base))
+
+    @classmethod
+    def read(cls, path):
+        """A surface from a file (.off .obj .stl .ply .mesh .msh)."""
+        return _create(cls, lib.anitet_surface_read, _path(path))
+
+    def counts(self):
+        np_, nt = c_int64(), c_int64()
+        _check(lib.anitet_surface_get_counts(self, byref(np_), byref(nt)))
+        return np_.value, nt.value
+
+    @property
+    def num_points(self):
+        return self.counts()[0]
+
+    @property
+    def num_triangles(self):
+        return self.counts()[1]
+
+    def points(self):
+        return _output(self.num_points, 3, c_double,
+                       lambda p, n: lib.anitet_surface_get_points(self, p, n))
+
+    def triangles(self, index_base=0):
+        b = _base(index_base)
+        return _output(self.num_triangles, 3, c_int32,
+                       lambda p, n: lib.anitet_surface_get_triangles(self, p, n, b))
+
+    def patches(self):
+        return _output(self.num_triangles, 1, c_int32,
+                       lambda p, n: lib.anitet_surface_get_patches(self, p, n))
+
+    def validate(self, options=None, **kwargs):
+        """Validates and safely repairs the surface in place; AnitetError names the first problem
+        (the report stays available: problem_count, validation_report)."""
+        scope = _options_arg(options, kwargs)
+        scope.call(lib.anitet_surface_validate, self, byref(scope.struct))
+
+    def problem_count(self, code):
+        count = c_int64()
+        _check(lib.anitet_surface_problem_count(self, code, byref(count)))
+        return count.value
+
+    def validation_json(self):
+        return _text(lambda buf, n, needed: lib.anitet_surface_validation_json(self, buf, n, needed))
+
+    def validation_report(self):
+        return json.loads(self.validation_json())
+
+    def mesh(self, metric=None, options=None, **kwargs):
+        """Meshes the inside of the surface: see mesh_surface."""
+        return mesh_surface(self, metric, options, **kwargs)
+
+
+# ---- metrics -----------------------------------------------------------------------------------
+
+class Metric(_Handle):
+    """A metric (sizing) field."""
+
+    _destroy = lib.anitet_metric_destroy
+
+    @classmethod
+    def uniform(cls, size):
+        return _create(cls, lib.anitet_metric_create_uniform, float(size))
+
+    @classmethod
+    def analytic(cls, function):
+        """function(x, y, z) -> the 6 values xx xy yy xz yz zz; an exception marks the point as
+        not evaluable (evaluate raises it again)."""
+        holder = {"error": None}
+
+        def callback(x, y, z, m, _):
+            try:
+                values = function(x, y, z)
+                if len(values) != 6:
+                    raise ValueError("the metric function returned %d values, 6 expected" % len(values))
+                for i in range(6):
+                    m[i] = float(values[i])
+                return 0
+            except BaseException as e:  # noqa: B902 - reported by evaluate
+                holder["error"] = e
+                return 1
+
+        c_callback = _capi.METRIC_FN(callback)
+        metric = _create(cls, lib.anitet_metric_create_analytic, c_callback, None)
+        metric._callback = c_callback  # must live as long as the C metric
+        metric._holder = holder
+        return metric
+
+    @classmethod
+    def read(cls, path, background_mesh_path=None):
+        bg = _path(background_mesh_path) if background_mesh_path is not None else None
+        return _create(cls, lib.anitet_metric_read, _path(path), bg)
+
+    @classmethod
+    def from_points(cls, background, values, components):
+        keep, ptr, count = _flat_doubles(values)  # keep owns the memory behind ptr
+        return _create(cls, lib.anitet_metric_create_from_points, background, ptr, count,
+                       components)
+
+    def evaluate(self, x, y, z):
+        """The tensor at (x, y, z): a tuple xx xy yy xz yz zz."""
+        m = (c_double * 6)()
+        holder = getattr(self, "_holder", None)
+        if holder is not None:
+            holder["error"] = None
+        rc = lib.anitet_metric_evaluate(self, x, y, z, m)
+        if rc != _capi.OK and holder is not None and holder["error"] is not None:
+            error, holder["error"] = holder["error"], None
+            raise AnitetError(rc, lib.anitet_last_error_message().decode()) from error
+        _check(rc)
+        return tuple(m)
+
+
+# ---- volume meshes -----------------------------------------------------------------------------
+
+class Quality:
+    """The numbers of anitet_quality (version 1)."""
+
+    FIELDS = ("valid", "boundary_constrained", "vertices", "tets", "nonpositive_tets",
+              "radius_ratio_mean", "radius_ratio_min", "mean_ratio_mean", "mean_ratio_min",
+              "min_dihedral_deg", "max_dihedral_deg", "good_fraction", "bad_fraction")
+
+    def __init__(self, c_quality):
+        for name in self.FIELDS:
+            value = getattr(c_quality, name)
+            setattr(self, name, bool(value) if name in ("valid", "boundary_constrained") else value)
+
+    def as_dict(self):
+        return {name: getattr(self, name) for name in self.FIELDS}
+
+    def __repr__(self):
+        return "Quality(%s)" % ", ".join("%s=%r" % kv for kv in self.as_dict().items())
+
+
+class Mesh(_Handle):
+    """A tetrahedral mesh: the mesher's result, read from a file or built from arrays."""
+
+    _destroy = lib.anitet_mesh_destroy
+
+    @classmethod
+    def from_arrays(cls, points, tets, regions=None, boundary_triangles=None,
+                    boundary_patches=None, index_base=0):
+        p_keep, p_ptr, n = _flat_input(points, 3, c_double, "points")
+        t_keep, t_ptr, nt = _flat_input(tets, 4, c_int32, "tets")
+        r_keep, r_ptr, b_keep, b_ptr, l_keep, l_ptr, nb = None, None, None, None, None, None, 0
+        if regions is not None:
+            r_keep, r_ptr, k = _flat_input(regions, 1, c_int32, "regions")
+            if k != nt:
+                raise ValueError("regions: %d labels for %d tets" % (k, nt))
+        if boundary_triangles is not None:
+            b_keep, b_ptr, nb = _flat_input(boundary_triangles, 3, c_int32, "boundary_triangles")
+        if boundary_patches is not None:
+            l_keep, l_ptr, k = _flat_input(boundary_patches, 1, c_int32, "boundary_patches")
+            if k != nb:
+                raise ValueError("boundary_patches: %d labels for %d triangles" % (k, nb))
+        # The *_keep names own the memory behind the pointers until the call returns.
+        return _create(cls, lib.anitet_mesh_create, p_ptr, n, t_ptr, nt, r_ptr, b_ptr, nb, l_ptr,
+                       _base(index_base))
+
+    @classmethod
+    def read(cls, path):
+        """A mesh from a file (.mesh .msh .node/.ele .vtu)."""
+        return _create(cls, lib.anitet_mesh_read, _path(path))
+
+    def write(self, path):
+        """Writes .mesh, .msh or .vtu by extension."""
+        _check(lib.anitet_mesh_write(self, _path(path)))
+
+    def write_metric(self, path):
+        """Writes the per-vertex metric as a Medit .sol."""
+        _check(lib.anitet_mesh_write_metric(self, _path(path)))
+
+    def counts(self):
+        """(points, tets, boundary triangles)."""
+        a, b, c = c_int64(), c_int64(), c_int64()
+        _check(lib.anitet_mesh_get_counts(self, byref(a), byref(b), byref(c)))
+        return a.value, b.value, c.value
+
+    @property
+    def num_points(self):
+        return self.counts()[0]
+
+    @property
+    def num_tets(self):
+        return self.counts()[1]
+
+    @property
+    def num_boundary_triangles(self):
+        return self.counts()[2]
+
+    def points(self):
+        return _output(self.num_points, 3, c_double,
+                       lambda p, n: lib.anitet_mesh_get_points(self, p, n))
+
+    def tets(self, index_base=0):
+        b = _base(index_base)
+        return _output(self.num_tets, 4, c_int32,
+                       lambda p, n: lib.anitet_mesh_get_tets(self, p, n, b))
+
+    def regions(self):
+        return _output(self.num_tets, 1, c_int32,
+                       lambda p, n: lib.anitet_mesh_get_regions(self, p, n))
+
+    def boundary_triangles(self, index_base=0):
+        b = _base(index_base)
+        return _output(self.num_boundary_triangles, 3, c_int32,
+                       lambda p, n: lib.anitet_mesh_get_boundary_triangles(self, p, n, b))
+
+    def boundary_patches(self):
+        return _output(self.num_boundary_triangles, 1, c_int32,
+                       lambda p, n: lib.anitet_mesh_get_boundary_patches(self, p, n))
+
+    @property
+    def metric_components(self):
+        """0 (no per-vertex metric), 1 (size) or 6 (xx xy yy xz yz zz)."""
+        c = c_int32()
+        _check(lib.anitet_mesh_get_metric_components(self, byref(c)))
+        return c.value
+
+    def metric(self):
+        """The per-vertex metric, (n, components) values; None when the mesh has none."""
+        comps = self.metric_components
+        if comps == 0:
+            return None
+        return _output(self.num_points, comps, c_double,
+                       lambda p, n: lib.anitet_mesh_get_metric(self, p, n))
+
+    def set_metric(self, values, components=None):
+        """Sets the per-vertex metric: values (n, 6) tensors or (n,) sizes; None removes it."""
+        if values is None:
+            _check(lib.anitet_mesh_set_metric(self, None, 0, 0))
+            return
+        if components is None:
+            first = values[0] if len(values) else 0.0
+            components = len(first) if hasattr(first, "__len__") else 1
+        keep, ptr, count = _flat_doubles(values)  # keep owns the memory behind ptr
+        _check(lib.anitet_mesh_set_metric(self, ptr, count, components))
+
+    def quality(self, input=None):  # noqa: A002 - the C argument's name
+        """The quality numbers, against the input surface when given (boundary_constrained)."""
+        q = _capi.CQuality()
+        q.version = _capi.QUALITY_VERSION
+        _check(lib.anitet_mesh_quality(self, input, byref(q)))
+        return Quality(q)
+
+    def quality_json(self, input=None):  # noqa: A002
+        """The full quality report as JSON text."""
+        return _text(lambda buf, n, needed: lib.anitet_mesh_quality_json(self, input, buf, n, needed))
+
+    def quality_report(self, input=None):  # noqa: A002
+        return json.loads(self.quality_json(input))
+
+
+def mesh_surface(surface, metric=None, options=None, **kwargs):
+    """Meshes the inside of `surface` (validated on a copy) into a new Mesh.
+
+    metric: a Metric for the sizes (the mesh then carries it at its vertices, Mesh.metric()), or
+    None for sizes from the surface's triangles. options: an Options, or its fields as keywords
+    (layers=1, size_scale=2, progress=..., log=...).
+    """
+    if metric is not None and not isinstance(metric, Metric):
+        raise TypeError("metric must be an anitet.Metric or None, not %s" % type(metric).__name__)
+    scope = _options_arg(options, kwargs)
+    out = c_void_p()
+    scope.call(lib.anitet_mesher_run, surface, metric, byref(scope.struct), byref(out))
+    return Mesh(out.value)

@@ -1,0 +1,184 @@
+"""ctypes declarations of include/anitet.h and the loading of libanitet.
+
+Every function of the header has an entry in _PROTOTYPES (tests/python checks that against the
+header, so that the two cannot drift); the structs mirror the C layouts field by field.
+"""
+import ctypes
+import ctypes.util
+import os
+from ctypes import (CFUNCTYPE, POINTER, Structure, c_char_p, c_double, c_int, c_int32, c_int64,
+                    c_void_p)
+
+SOVERSION = 0
+
+# ---- constants (equal to the header's macros) -----------------------------------------------
+VERSION_MAJOR = 0
+VERSION_MINOR = 1
+VERSION_PATCH = 0
+OK = 0
+ERR_INVALID_ARGUMENT = -1
+ERR_FILE_NOT_FOUND = -2
+ERR_PARSE = -3
+ERR_UNSUPPORTED_FORMAT = -4
+ERR_EMPTY_INPUT = -5
+ERR_BUFFER_TOO_SMALL = -6
+ERR_NON_FINITE_COORDINATE = -10
+ERR_DEGENERATE_TRIANGLE = -11
+ERR_DUPLICATE_TRIANGLE = -12
+ERR_OPEN_BOUNDARY = -13
+ERR_NON_MANIFOLD_EDGE = -14
+ERR_NON_MANIFOLD_VERTEX = -15
+ERR_INCONSISTENT_ORIENTATION = -16
+ERR_SELF_INTERSECTION = -17
+ERR_INTERSECTING_SHELLS = -18
+ERR_BAD_INDEX = -19
+ERR_NOT_IMPLEMENTED = -30
+ERR_CANCELLED = -31
+ERR_DUPLICATE_POINT = -32
+ERR_RECOVERY_FAILED = -33
+ERR_INVALID_MESH = -34
+ERR_OUT_OF_MEMORY = -40
+ERR_INTERNAL = -99
+LOG_ERROR = 0
+LOG_WARNING = 1
+LOG_INFO = 2
+LOG_DEBUG = 3
+OPTIONS_VERSION = 2
+QUALITY_VERSION = 1
+LAYERS_PUSH = 0
+LAYERS_FACE_PUSH = 1
+
+# ---- callbacks and structs ----------------------------------------------------------------------
+PROGRESS_FN = CFUNCTYPE(c_int, c_double, c_char_p, c_void_p)
+LOG_FN = CFUNCTYPE(None, c_int32, c_char_p, c_void_p)
+METRIC_FN = CFUNCTYPE(c_int, c_double, c_double, c_double, POINTER(c_double), c_void_p)
+
+
+class COptions(Structure):
+    _fields_ = [
+        ("version", c_int32),
+        ("num_threads", c_int32),
+        ("merge_duplicate_vertices", c_int32),
+        ("orient_shells", c_int32),
+        ("check_self_intersections", c_int32),
+        ("reserved0", c_int32),
+        ("progress", PROGRESS_FN),
+        ("progress_user_data", c_void_p),
+        ("log", LOG_FN),
+        ("log_user_data", c_void_p),
+        # version 2
+        ("layers", c_int32),
+        ("layer_scheme", c_int32),
+        ("recovery_max_seconds", c_double),
+        ("refine", c_int32),
+        ("optimize", c_int32),
+        ("size_scale", c_double),
+    ]
+
+
+class CQuality(Structure):
+    _fields_ = [
+        ("version", c_int32),
+        ("valid", c_int32),
+        ("boundary_constrained", c_int32),
+        ("reserved0", c_int32),
+        ("vertices", c_int64),
+        ("tets", c_int64),
+        ("nonpositive_tets", c_int64),
+        ("radius_ratio_mean", c_double),
+        ("radius_ratio_min", c_double),
+        ("mean_ratio_mean", c_double),
+        ("mean_ratio_min", c_double),
+        ("min_dihedral_deg", c_double),
+        ("max_dihedral_deg", c_double),
+        ("good_fraction", c_double),
+        ("bad_fraction", c_double),
+    ]
+
+
+_P = c_void_p  # an opaque handle
+_PP = POINTER(c_void_p)  # a handle returned through the last argument
+_D = POINTER(c_double)
+_I32 = POINTER(c_int32)
+_I64 = POINTER(c_int64)
+
+# name: (restype, argtypes), in the header's order.
+_PROTOTYPES = {
+    "anitet_options_init": (c_int, [POINTER(COptions), c_int32]),
+    "anitet_version": (c_char_p, []),
+    "anitet_version_number": (c_int32, []),
+    "anitet_last_error_message": (c_char_p, []),
+    "anitet_error_name": (c_char_p, [c_int32]),
+    "anitet_surface_create": (c_int, [_D, c_int64, _I32, c_int64, _I32, c_int32, _PP]),
+    "anitet_surface_read": (c_int, [c_char_p, _PP]),
+    "anitet_surface_destroy": (None, [_P]),
+    "anitet_surface_get_counts": (c_int, [_P, _I64, _I64]),
+    "anitet_surface_get_points": (c_int, [_P, _D, c_int64]),
+    "anitet_surface_get_triangles": (c_int, [_P, _I32, c_int64, c_int32]),
+    "anitet_surface_get_patches": (c_int, [_P, _I32, c_int64]),
+    "anitet_surface_validate": (c_int, [_P, POINTER(COptions)]),
+    "anitet_surface_problem_count": (c_int, [_P, c_int32, _I64]),
+    "anitet_surface_validation_json": (c_int, [_P, c_char_p, c_int64, _I64]),
+    "anitet_metric_create_uniform": (c_int, [c_double, _PP]),
+    "anitet_metric_create_analytic": (c_int, [METRIC_FN, c_void_p, _PP]),
+    "anitet_metric_read": (c_int, [c_char_p, c_char_p, _PP]),
+    "anitet_metric_create_from_points": (c_int, [_P, _D, c_int64, c_int32, _PP]),
+    "anitet_metric_destroy": (None, [_P]),
+    "anitet_metric_evaluate": (c_int, [_P, c_double, c_double, c_double, _D]),
+    "anitet_mesher_run": (c_int, [_P, _P, POINTER(COptions), _PP]),
+    "anitet_mesh_create": (c_int, [_D, c_int64, _I32, c_int64, _I32, _I32, c_int64, _I32, c_int32,
+                                   _PP]),
+    "anitet_mesh_read": (c_int, [c_char_p, _PP]),
+    "anitet_mesh_destroy": (None, [_P]),
+    "anitet_mesh_write": (c_int, [_P, c_char_p]),
+    "anitet_mesh_write_metric": (c_int, [_P, c_char_p]),
+    "anitet_mesh_get_counts": (c_int, [_P, _I64, _I64, _I64]),
+    "anitet_mesh_get_points": (c_int, [_P, _D, c_int64]),
+    "anitet_mesh_get_tets": (c_int, [_P, _I32, c_int64, c_int32]),
+    "anitet_mesh_get_regions": (c_int, [_P, _I32, c_int64]),
+    "anitet_mesh_get_boundary_triangles": (c_int, [_P, _I32, c_int64, c_int32]),
+    "anitet_mesh_get_boundary_patches": (c_int, [_P, _I32, c_int64]),
+    "anitet_mesh_get_metric_components": (c_int, [_P, _I32]),
+    "anitet_mesh_get_metric": (c_int, [_P, _D, c_int64]),
+    "anitet_mesh_set_metric": (c_int, [_P, _D, c_int64, c_int32]),
+    "anitet_mesh_quality": (c_int, [_P, _P, POINTER(CQuality)]),
+    "anitet_mesh_quality_json": (c_int, [_P, _P, c_char_p, c_int64, _I64]),
+}
+
+
+def _candidates():
+    """Where libanitet may be, most specific first."""
+    env = os.environ.get("ANITET_LIBRARY")
+    if env:
+        return [env]  # an explicit choice is not second-guessed
+    found = []
+    try:  # written into an installed copy by `cmake --install` (bindings/python/CMakeLists.txt)
+        from . import _installed  # type: ignore
+        found.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), _installed.LIBRARY))
+    except ImportError:
+        pass
+    found.append("libanitet.so.%d" % SOVERSION)  # the loader's search path (ldconfig, LD_LIBRARY_PATH)
+    name = ctypes.util.find_library("anitet")
+    if name:
+        found.append(name)
+    return found
+
+
+def _load():
+    errors = []
+    for path in _candidates():
+        try:
+            lib = ctypes.CDLL(path)
+        except OSError as e:
+            errors.append("%s: %s" % (path, e))
+            continue
+        for name, (restype, argtypes) in _PROTOTYPES.items():
+            fn = getattr(lib, name)
+            fn.restype = restype
+            fn.argtypes = argtypes
+        return lib
+    raise OSError("anitet: cannot load libanitet (set ANITET_LIBRARY to its path); tried:\n  " +
+                  "\n  ".join(errors))
+
+
+lib = _load()

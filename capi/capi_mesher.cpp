@@ -1,0 +1,206 @@
+// The mesher entry point: anitet_options -> anitet::MesherOptions, the C progress and log
+// callbacks and the caller's metric around anitet::Mesher, the result as a new anitet_mesh.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <string>
+
+#include "handles.hpp"
+#include "layers/layers.hpp"
+#include "pipeline/mesher.hpp"
+#include "shim.hpp"
+
+using namespace anitet::capi;
+
+static_assert(ANITET_LAYERS_PUSH == static_cast<int>(anitet::LayerScheme::kPushOnly) &&
+                  ANITET_LAYERS_FACE_PUSH == static_cast<int>(anitet::LayerScheme::kFacesThenPush),
+              "ANITET_LAYERS_* differ from anitet::LayerScheme");
+
+namespace {
+
+int bad_option(const char* function, const std::string& what) {
+  return set_error(ANITET_ERR_INVALID_ARGUMENT, std::string(function) + ": options: " + what);
+}
+
+// Checks the option values and translates them; ANITET_OK or INVALID_ARGUMENT.
+int to_mesher_options(const char* function, const anitet_options& o, anitet::MesherOptions& out) {
+  if (o.num_threads < 0) return bad_option(function, "num_threads is negative");
+  if (o.layers < 1) return bad_option(function, "layers is " + std::to_string(o.layers) + ", at least 1 needed");
+  if (o.layer_scheme != ANITET_LAYERS_PUSH && o.layer_scheme != ANITET_LAYERS_FACE_PUSH) {
+    return bad_option(function, "layer_scheme is " + std::to_string(o.layer_scheme) +
+                                    ", not ANITET_LAYERS_PUSH (0) or ANITET_LAYERS_FACE_PUSH (1)");
+  }
+  if (!std::isfinite(o.recovery_max_seconds) || o.recovery_max_seconds < 0.0) {
+    return bad_option(function, "recovery_max_seconds must be finite and >= 0");
+  }
+  if (!(std::isfinite(o.size_scale) && o.size_scale > 0.0)) {
+    return bad_option(function, "size_scale must be finite and > 0");
+  }
+  out.validation.merge_duplicate_vertices = o.merge_duplicate_vertices != 0;
+  out.validation.orient_shells = o.orient_shells != 0;
+  out.validation.check_self_intersections = o.check_self_intersections != 0;
+  out.validation.num_threads = o.num_threads;
+  out.layers.layers = o.layers;
+  out.layers.scheme = static_cast<anitet::LayerScheme>(o.layer_scheme);
+  if (o.recovery_max_seconds > 0.0) out.recovery.max_seconds = o.recovery_max_seconds;
+  out.run_refine = o.refine != 0;
+  out.run_optimize = o.optimize != 0;
+  out.refine.size_scale = o.size_scale;
+  return ANITET_OK;
+}
+
+// Symmetric positive definite (leading minors > 0) and finite.
+bool positive_definite(const double m[6]) {
+  for (int i = 0; i < 6; ++i)
+    if (!std::isfinite(m[i])) return false;
+  const double d2 = m[0] * m[2] - m[1] * m[1];
+  const double d3 = m[0] * (m[2] * m[5] - m[4] * m[4]) - m[1] * (m[1] * m[5] - m[4] * m[3]) +
+                    m[3] * (m[1] * m[4] - m[2] * m[3]);
+  return m[0] > 0.0 && d2 > 0.0 && d3 > 0.0;
+}
+
+// The caller's metric as the pipeline's sizing field. SizingField::metric cannot fail, so a
+// failing callback (or a tensor that is not positive definite) is recorded, answered with a
+// coarse isotropic metric, and turned into an error at the next stage boundary.
+class CallerSizing final : public anitet::SizingField {
+ public:
+  CallerSizing(const anitet_metric& m, double fallback_size) : m_(m), fallback_(fallback_size) {}
+
+  void metric(const double p[3], double out[6]) const override {
+    if (m_.kind == anitet_metric::Kind::Uniform) {
+      anitet::isotropic_metric(m_.size, out);
+      return;
+    }
+    const int rc = m_.fn(p[0], p[1], p[2], out, m_.user_data);
+    if (rc == 0 && positive_definite(out)) return;
+    if (!failed_.exchange(true)) {
+      std::ostringstream why;
+      why.precision(17);
+      why << "the metric callback ";
+      if (rc != 0) why << "returned " << rc;
+      else why << "gave a tensor that is not positive definite";
+      why << " at (" << p[0] << ", " << p[1] << ", " << p[2] << ")";
+      const std::lock_guard<std::mutex> lock(mutex_);
+      failure_ = why.str();
+    }
+    anitet::isotropic_metric(fallback_, out);
+  }
+
+  bool failed() const { return failed_.load(); }
+  std::string failure() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return failure_;
+  }
+
+ private:
+  const anitet_metric& m_;
+  double fallback_;
+  mutable std::atomic<bool> failed_{false};
+  mutable std::mutex mutex_;
+  mutable std::string failure_;
+};
+
+// The diagonal of the bounding box (1 for a degenerate one): a size coarse enough to end a run
+// quickly once its metric has failed.
+double bounding_diagonal(const anitet::SurfaceMesh& s) {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (size_t i = 0; i < s.xyz.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], s.xyz[i]);
+    hi[i % 3] = std::max(hi[i % 3], s.xyz[i]);
+  }
+  const double d = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  return std::isfinite(d) && d > 0.0 ? d : 1.0;
+}
+
+void log_line(const anitet_options& o, int32_t level, const std::string& text) {
+  if (o.log) o.log(level, text.c_str(), o.log_user_data);
+}
+
+void log_validation(const anitet_options& o, const anitet::ValidationReport& report) {
+  for (const anitet::Repair& r : report.repairs) log_line(o, ANITET_LOG_INFO, "repair: " + r.message);
+  for (const anitet::Problem& p : report.problems) {
+    log_line(o, p.severity == anitet::Severity::Error ? ANITET_LOG_ERROR : ANITET_LOG_WARNING,
+             p.kind + ": " + p.message);
+  }
+}
+
+void log_stages(const anitet_options& o, const anitet::MesherResult& r) {
+  for (const anitet::StageReport& stage : r.stages) {
+    std::ostringstream line;
+    line << "stage " << stage.name << ": " << stage.tets << " tets, " << stage.seconds << " s";
+    log_line(o, ANITET_LOG_INFO, line.str());
+  }
+}
+
+}  // namespace
+
+extern "C" {
+
+int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric,
+                      const anitet_options* options, anitet_mesh** out) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (out == nullptr) return null_argument(fn, "out");
+    *out = nullptr;
+    if (surface == nullptr) return null_argument(fn, "surface");
+    anitet_options opt;
+    if (const int code = read_options(fn, options, opt); code != ANITET_OK) return code;
+    anitet::MesherOptions mo;
+    if (const int code = to_mesher_options(fn, opt, mo); code != ANITET_OK) return code;
+    std::unique_ptr<CallerSizing> sizing;
+    if (metric != nullptr) {
+      sizing = std::make_unique<CallerSizing>(*metric, bounding_diagonal(surface->mesh));
+      mo.sizing = sizing.get();
+      if (!mo.run_refine && !mo.run_optimize) {
+        log_line(opt, ANITET_LOG_WARNING,
+                 "refinement and optimization are off: the metric only goes to the mesh's vertices");
+      }
+    }
+    // The caller's callback, and a stop at the first stage boundary after a metric failure.
+    if (opt.progress || sizing) {
+      mo.progress = [&opt, &sizing](const std::string& stage, double fraction) {
+        if (sizing && sizing->failed()) return false;
+        return !opt.progress || opt.progress(fraction, stage.c_str(), opt.progress_user_data) == 0;
+      };
+    }
+    const auto metric_failed = [&] {
+      return set_error(ANITET_ERR_INVALID_ARGUMENT, std::string(fn) + ": " + sizing->failure());
+    };
+
+    // Validation here rather than in Mesher::run: its report goes to the log callback.
+    if (mo.progress && !mo.progress("validate", 0.0)) {
+      return set_error(ANITET_ERR_CANCELLED,
+                       std::string(fn) + ": cancelled by the progress callback before validation");
+    }
+    anitet::SurfaceMesh repaired = surface->mesh;
+    const anitet::ValidationReport report = anitet::validate_surface(repaired, mo.validation);
+    log_validation(opt, report);
+    if (!report.ok()) return set_status(fn, report.status());
+
+    anitet::Result<anitet::MesherResult> run = anitet::Mesher(mo).run_validated(repaired);
+    if (sizing && sizing->failed()) return metric_failed();
+    if (!run.ok()) {
+      const int code = set_status(fn, run.status());
+      log_line(opt, ANITET_LOG_ERROR, anitet_last_error_message());
+      return code;
+    }
+    log_stages(opt, run.value());
+    auto mesh = std::make_unique<anitet_mesh>();
+    mesh->mesh = std::move(run->mesh);
+    if (sizing) {
+      // The metric the mesh was made for, at its vertices (anitet_mesh_get_metric, .sol).
+      anitet::VolumeMesh& v = mesh->mesh;
+      v.vertex_metric.resize(6 * v.num_vertices());
+      for (size_t i = 0; i < v.num_vertices(); ++i) sizing->metric(&v.xyz[3 * i], &v.vertex_metric[6 * i]);
+      if (sizing->failed()) return metric_failed();
+    }
+    *out = mesh.release();
+    return ok();
+  });
+}
+
+}  // extern "C"

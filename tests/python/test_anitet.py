@@ -1,0 +1,328 @@
+"""Tests of the Python binding (bindings/python) over libanitet.
+
+Environment: PYTHONPATH with bindings/python, ANITET_LIBRARY (the built library), ANITET_HEADER
+(include/anitet.h, for the drift checks), ANITET_EXAMPLES_DIR (examples/python, for the sphere),
+ANITET_TEST_DATA_DIR (tests/data). ANITET_PYTHON_NUMPY=0 runs the same tests without NumPy.
+"""
+import ctypes
+import os
+import re
+import sys
+import tempfile
+import threading
+import unittest
+
+import anitet
+from anitet import _capi
+
+sys.path.insert(0, os.environ["ANITET_EXAMPLES_DIR"])
+import mesh_sphere  # noqa: E402 - the examples' sphere
+
+HEADER = os.environ["ANITET_HEADER"]
+DATA = os.environ["ANITET_TEST_DATA_DIR"]
+
+CUBE_POINTS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+CUBE_TRIS = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (3, 7, 6), (3, 6, 2),
+             (0, 4, 7), (0, 7, 3), (1, 2, 6), (1, 6, 5)]
+
+
+def rows(a):
+    """Rows as tuples (or values) whatever the array type."""
+    if anitet.HAVE_NUMPY:
+        return [tuple(r) if hasattr(r, "__len__") else r for r in a.tolist()]
+    return list(a)
+
+
+def sphere():
+    points, tris, patches = mesh_sphere.sphere()
+    return anitet.Surface.from_arrays(points, tris, patches), points, tris, patches
+
+
+class HeaderDrift(unittest.TestCase):
+    """The binding's declarations mirror include/anitet.h."""
+
+    @classmethod
+    def setUpClass(cls):
+        with open(HEADER) as f:
+            cls.header = f.read()
+
+    def test_every_function_declared(self):
+        declared = re.findall(r"ANITET_API[^;(]*[ *](anitet_[a-z0-9_]+)\(", self.header)
+        self.assertGreater(len(declared), 30)
+        self.assertEqual(sorted(declared), sorted(_capi._PROTOTYPES))
+
+    def test_constants(self):
+        pattern = (r"#define ANITET_((?:ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|VERSION_MAJOR|"
+                   r"VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION)) \(?(-?\d+)\)?")
+        found = re.findall(pattern, self.header)
+        self.assertGreater(len(found), 25)
+        for name, value in found:
+            self.assertEqual(getattr(anitet, name), int(value), name)
+
+    def struct_fields(self, name):
+        body = re.search(r"typedef struct %s \{(.*?)\} %s;" % (name, name), self.header, re.S).group(1)
+        body = re.sub(r"/\*.*?\*/", "", body, flags=re.S)
+        return re.findall(r"\b([a-z_0-9]+);", body)
+
+    def test_struct_layouts(self):
+        self.assertEqual([f[0] for f in _capi.COptions._fields_], self.struct_fields("anitet_options"))
+        self.assertEqual([f[0] for f in _capi.CQuality._fields_], self.struct_fields("anitet_quality"))
+        # Version 1 ends after the four pointers; version 2 adds 32 bytes.
+        self.assertEqual(_capi.COptions.layers.offset, 24 + 4 * ctypes.sizeof(ctypes.c_void_p))
+        self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.layers.offset + 32)
+
+
+class Library(unittest.TestCase):
+    def test_version(self):
+        self.assertEqual(anitet.version(), anitet.__version__)
+        self.assertEqual(anitet.version_number(), 100)
+        self.assertEqual(anitet.error_name(anitet.ERR_OPEN_BOUNDARY), "open_boundary")
+
+
+class Surfaces(unittest.TestCase):
+    def test_round_trip(self):
+        s = anitet.Surface.from_arrays(CUBE_POINTS, CUBE_TRIS, list(range(12)))
+        self.assertEqual(s.counts(), (8, 12))
+        self.assertEqual(rows(s.points()), [tuple(float(c) for c in p) for p in CUBE_POINTS])
+        self.assertEqual(rows(s.triangles()), CUBE_TRIS)
+        self.assertEqual(rows(s.triangles(index_base=1)), [tuple(v + 1 for v in t) for t in CUBE_TRIS])
+        self.assertEqual(rows(s.patches()), list(range(12)))
+        s.validate()
+        self.assertEqual(s.problem_count(anitet.ERR_OPEN_BOUNDARY), 0)
+        self.assertIn("problems", s.validation_report())
+
+    def test_one_based(self):
+        s = anitet.Surface.from_arrays(CUBE_POINTS, [tuple(v + 1 for v in t) for t in CUBE_TRIS],
+                                       index_base=1)
+        self.assertEqual(rows(s.triangles()), CUBE_TRIS)
+        self.assertEqual(rows(s.patches()), [0] * 12)
+
+    def test_errors(self):
+        bad = list(CUBE_TRIS)
+        bad[2] = (4, 5, 8)
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.Surface.from_arrays(CUBE_POINTS, bad)
+        self.assertEqual(e.exception.code, anitet.ERR_BAD_INDEX)
+        self.assertEqual(e.exception.name, "bad_index")
+        self.assertIn("triangle 2 refers to vertex 8", e.exception.message)
+        with self.assertRaises(ValueError):
+            anitet.Surface.from_arrays(CUBE_POINTS, [(0, 1)])
+        with self.assertRaises(ValueError):
+            anitet.Surface.from_arrays(CUBE_POINTS, CUBE_TRIS, index_base=2)
+        with self.assertRaises(TypeError):
+            anitet.Surface.from_arrays(CUBE_POINTS, [(0.5, 1, 2)])
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.Surface.from_arrays([], [])
+        self.assertEqual(e.exception.code, anitet.ERR_EMPTY_INPUT)
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.Surface.read(os.path.join(DATA, "io", "no_such_file.off"))
+        self.assertEqual(e.exception.code, anitet.ERR_FILE_NOT_FOUND)
+
+    def test_open_surface(self):
+        s = anitet.Surface.from_arrays(CUBE_POINTS, CUBE_TRIS[:11])
+        with self.assertRaises(anitet.AnitetError) as e:
+            s.validate()
+        self.assertEqual(e.exception.code, anitet.ERR_OPEN_BOUNDARY)
+        self.assertEqual(s.problem_count(anitet.ERR_OPEN_BOUNDARY), 3)
+        with self.assertRaises(anitet.AnitetError) as e:
+            s.mesh()
+        self.assertEqual(e.exception.code, anitet.ERR_OPEN_BOUNDARY)
+
+    def test_closed_handle(self):
+        s = anitet.Surface.from_arrays(CUBE_POINTS, CUBE_TRIS)
+        with s:
+            pass
+        with self.assertRaises(anitet.AnitetError) as e:  # a closed handle is NULL to the library
+            s.counts()
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        s.close()  # twice is fine
+
+
+class Meshing(unittest.TestCase):
+    def test_sphere(self):
+        s, points, tris, patches = sphere()
+        m = anitet.mesh_surface(s)
+        n, nt, nb = m.counts()
+        self.assertEqual(nb, len(tris))
+        self.assertGreater(nt, n)
+        self.assertEqual(rows(m.points())[:len(points)], points)
+        self.assertEqual(rows(m.boundary_triangles()), tris)
+        self.assertEqual(rows(m.boundary_patches()), patches)
+        tets = rows(m.tets())
+        self.assertEqual(len(tets), nt)
+        self.assertEqual(rows(m.tets(index_base=1))[0], tuple(v + 1 for v in tets[0]))
+        self.assertEqual(len(set(rows(m.regions()))), 1)
+        self.assertIsNone(m.metric())
+        q = m.quality(s)
+        self.assertTrue(q.valid)
+        self.assertTrue(q.boundary_constrained)
+        self.assertEqual(q.nonpositive_tets, 0)
+        self.assertEqual(q.tets, nt)
+        self.assertEqual(m.quality_report(s)["tets"], nt)
+
+    def test_progress_log_and_cancel(self):
+        s = sphere()[0]
+        stages, logs = [], []
+        m = s.mesh(progress=lambda stage, f: stages.append((stage, f)),
+                   log=lambda level, text: logs.append((level, text)))
+        names = [st for st, _ in stages]
+        self.assertEqual(names[:4], ["validate", "layers", "recovery", "coupling"])
+        self.assertEqual(names[-1], "done")
+        self.assertEqual(stages[-1][1], 1.0)
+        self.assertTrue(any("stage layers" in text for _, text in logs))
+        m.close()
+        # Returning False cancels.
+        seen = []
+
+        def stop_at_recovery(stage, fraction):
+            seen.append(stage)
+            return stage != "recovery"
+
+        with self.assertRaises(anitet.AnitetError) as e:
+            s.mesh(progress=stop_at_recovery)
+        self.assertEqual(e.exception.code, anitet.ERR_CANCELLED)
+        self.assertEqual(seen, ["validate", "layers", "recovery"])
+
+        # An exception in a callback cancels and comes back as itself.
+        def broken(stage, fraction):
+            raise KeyError(stage)
+
+        with self.assertRaises(KeyError):
+            s.mesh(progress=broken)
+
+    def test_options(self):
+        s = sphere()[0]
+        one = s.mesh(options=anitet.Options(layers=1, refine=False, optimize=False))
+        two = s.mesh(layers=2, refine=False, optimize=False)
+        self.assertNotEqual(one.num_tets, two.num_tets)
+        with self.assertRaises(anitet.AnitetError) as e:
+            s.mesh(layers=0)
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        self.assertIn("layers is 0", e.exception.message)
+        with self.assertRaises(TypeError):
+            s.mesh(options=anitet.Options(), layers=1)
+        with self.assertRaises(TypeError):
+            s.mesh(anitet.Options())  # the first argument is the metric
+
+    def test_deterministic_and_threads(self):
+        s = sphere()[0]
+        alone = s.mesh()
+        results = [None, None]
+
+        def work(i):
+            surface = sphere()[0]
+            results[i] = surface.mesh()
+
+        threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        for m in results:
+            self.assertEqual(m.counts(), alone.counts())
+            self.assertEqual(rows(m.points()), rows(alone.points()))
+            self.assertEqual(rows(m.tets()), rows(alone.tets()))
+
+
+class Metrics(unittest.TestCase):
+    def test_uniform_and_analytic(self):
+        u = anitet.Metric.uniform(0.5)
+        self.assertEqual(u.evaluate(1, 2, 3), (4.0, 0.0, 4.0, 0.0, 0.0, 4.0))
+        a = anitet.Metric.analytic(lambda x, y, z: (1.0 + x, 0, 1, 0, 0, 1))
+        self.assertEqual(a.evaluate(2, 0, 0), (3.0, 0.0, 1.0, 0.0, 0.0, 1.0))
+        with self.assertRaises(anitet.AnitetError):
+            anitet.Metric.uniform(-1)
+
+    def test_failing_callback(self):
+        def metric(x, y, z):
+            if z < 0:
+                raise ArithmeticError("below")
+            return (1, 0, 1, 0, 0, 1)
+
+        a = anitet.Metric.analytic(metric)
+        with self.assertRaises(anitet.AnitetError) as e:
+            a.evaluate(0, 0, -1)
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        self.assertIsInstance(e.exception.__cause__, ArithmeticError)
+        with self.assertRaises(anitet.AnitetError) as e:
+            sphere()[0].mesh(a)
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        self.assertIn("metric callback returned", e.exception.message)
+
+    def test_mesh_with_metric(self):
+        s = sphere()[0]
+        m = s.mesh(anitet.Metric.analytic(mesh_sphere.stretched_metric))
+        self.assertEqual(m.metric_components, 6)
+        values = rows(m.metric())
+        self.assertEqual(len(values), m.num_points)
+        p = rows(m.points())[5]
+        self.assertEqual(values[5], mesh_sphere.stretched_metric(*p))
+
+    def test_not_implemented(self):
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.Metric.read("size.vdb")
+        self.assertEqual(e.exception.code, anitet.ERR_NOT_IMPLEMENTED)
+
+
+class Meshes(unittest.TestCase):
+    TET = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    FACES = [(0, 2, 1), (0, 1, 3), (1, 2, 3), (0, 3, 2)]
+
+    def test_arrays_metric_files(self):
+        m = anitet.Mesh.from_arrays(self.TET, [(0, 1, 2, 3)], regions=[7],
+                                    boundary_triangles=self.FACES, boundary_patches=[1, 2, 3, 4])
+        self.assertEqual(m.counts(), (4, 1, 4))
+        self.assertEqual(rows(m.regions()), [7])
+        self.assertEqual(rows(m.boundary_patches()), [1, 2, 3, 4])
+        m.set_metric([0.5, 1.0, 1.5, 2.0])
+        self.assertEqual(m.metric_components, 1)
+        self.assertEqual(rows(m.metric()), [0.5, 1.0, 1.5, 2.0])
+        m.set_metric([(1, 0, 1, 0, 0, 1)] * 4)
+        self.assertEqual(m.metric_components, 6)
+        with self.assertRaises(anitet.AnitetError) as e:
+            m.set_metric([1.0, 2.0])
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        with tempfile.TemporaryDirectory() as d:
+            m.write(os.path.join(d, "tet.vtu"))
+            m.write_metric(os.path.join(d, "tet.sol"))
+            back = anitet.Mesh.read(os.path.join(d, "tet.vtu"))
+            self.assertEqual(back.counts()[:2], (4, 1))
+            with self.assertRaises(anitet.AnitetError) as e:
+                m.write(os.path.join(d, "tet.xyz"))
+            self.assertEqual(e.exception.code, anitet.ERR_UNSUPPORTED_FORMAT)
+        m.set_metric(None)
+        self.assertIsNone(m.metric())
+        faces = anitet.Surface.from_arrays(self.TET, self.FACES)
+        q = m.quality(faces)
+        self.assertTrue(q.valid and q.boundary_constrained)
+        self.assertEqual(q.as_dict()["tets"], 1)
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.Mesh.from_arrays(self.TET, [(0, 1, 2, 4)])
+        self.assertEqual(e.exception.code, anitet.ERR_BAD_INDEX)
+
+    def test_read(self):
+        m = anitet.Mesh.read(os.path.join(DATA, "io", "box.mesh"))
+        self.assertEqual(m.counts(), (8, 6, 12))
+        self.assertEqual(rows(m.tets(index_base=1))[0], (1, 2, 4, 8))
+
+
+class Arrays(unittest.TestCase):
+    def test_output_types(self):
+        s = anitet.Surface.from_arrays(CUBE_POINTS, CUBE_TRIS)
+        if anitet.HAVE_NUMPY:
+            import numpy
+            self.assertIsInstance(s.points(), numpy.ndarray)
+            self.assertEqual(s.points().shape, (8, 3))
+            self.assertEqual(s.triangles().dtype, numpy.int32)
+            # NumPy inputs of other dtypes are converted.
+            t = anitet.Surface.from_arrays(numpy.array(CUBE_POINTS, dtype=numpy.float32),
+                                           numpy.array(CUBE_TRIS, dtype=numpy.int64))
+            self.assertEqual(t.counts(), (8, 12))
+        else:
+            self.assertIsInstance(s.points(), list)
+            self.assertEqual(s.points()[1], (1.0, 0.0, 0.0))
+
+
+if __name__ == "__main__":
+    print("anitet %s, numpy: %s" % (anitet.version(), anitet.HAVE_NUMPY))
+    unittest.main(verbosity=2)
