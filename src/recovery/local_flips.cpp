@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "core/tet_ops.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet {
@@ -10,13 +11,6 @@ namespace anitet {
 namespace {
 
 constexpr uint64_t kNoNeighbour = TetMesh::kNoNeighbour;
-using Key = std::array<uint32_t, 3>;
-
-Key facet_key(const uint32_t* v, int i) {
-  Key k = {v[kFacetVertex[i][0]], v[kFacetVertex[i][1]], v[kFacetVertex[i][2]]};
-  std::sort(k.begin(), k.end());
-  return k;
-}
 
 uint64_t pair_key(uint32_t a, uint32_t b) {
   if (a > b) std::swap(a, b);
@@ -27,137 +21,27 @@ int orient(const TetMesh& m, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
   return predicates::orient3d(m.point(a), m.point(b), m.point(c), m.point(d));
 }
 
-}  // namespace
-
-bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old, const std::vector<uint32_t>& fresh,
-                  std::vector<uint32_t>* created) {
-  if (old.empty() || fresh.empty() || fresh.size() % 4 != 0) return false;
-  const size_t n_new = fresh.size() / 4;
-  auto is_old = [&](uint32_t t) { return std::find(old.begin(), old.end(), t) != old.end(); };
-  for (size_t k = 0; k < n_new; ++k) {
-    const uint32_t* v = &fresh[4 * k];
-    for (int i = 0; i < 4; ++i)
-      if (v[i] == TetMesh::kGhost) return false;
-    if (orient(mesh, v[0], v[1], v[2], v[3]) <= 0) return false;
-  }
-  struct Outer {
-    Key key;
-    uint64_t adj;
-    bool prot;
-    bool used;
-  };
-  std::vector<Outer> outer;
-  std::vector<uint64_t> constrained;
-  for (uint32_t o : old) {
-    if (mesh.is_deleted(o) || mesh.is_ghost(o)) return false;
-    const uint32_t* v = &mesh.tet_v[4 * size_t(o)];
-    for (int i = 0; i < 4; ++i) {
-      const uint64_t adj = mesh.tet_adj[4 * size_t(o) + i];
-      if (adj != kNoNeighbour && is_old(static_cast<uint32_t>(adj >> 2))) continue;
-      outer.push_back({facet_key(v, i), adj, mesh.facet_protected(o, i), false});
-    }
-    for (int k = 0; k < 6; ++k)
-      if ((mesh.tet_flags[o] >> (tflag::kEdgeConstrainedShift + k)) & 1u)
-        constrained.push_back(pair_key(v[kEdgeVertex[k][0]], v[kEdgeVertex[k][1]]));
-  }
-  // Facets of the new tets: pairs among themselves, the rest on outer facets.
-  struct NewFacet {
-    Key key;
-    uint32_t tet;
-    int facet;
-  };
-  std::vector<NewFacet> facets;
-  for (size_t k = 0; k < n_new; ++k)
-    for (int i = 0; i < 4; ++i) facets.push_back({facet_key(&fresh[4 * k], i), uint32_t(k), i});
-  std::sort(facets.begin(), facets.end(), [](const NewFacet& a, const NewFacet& b) { return a.key < b.key; });
-  struct Match {
-    uint32_t a_tet;
-    int a_facet;
-    uint32_t b_tet;  // kNone: outer facet index in b_facet
-    int b_facet;
-  };
-  std::vector<Match> matches;
-  for (size_t k = 0; k < facets.size();) {
-    if (k + 1 < facets.size() && facets[k + 1].key == facets[k].key) {
-      if (k + 2 < facets.size() && facets[k + 2].key == facets[k].key) return false;
-      matches.push_back({facets[k].tet, facets[k].facet, facets[k + 1].tet, facets[k + 1].facet});
-      k += 2;
-      continue;
-    }
-    size_t hit = outer.size();
-    for (size_t o = 0; o < outer.size(); ++o)
-      if (!outer[o].used && outer[o].key == facets[k].key) hit = o;
-    if (hit == outer.size()) return false;
-    outer[hit].used = true;
-    matches.push_back({facets[k].tet, facets[k].facet, TetMesh::kNone, static_cast<int>(hit)});
-    ++k;
-  }
-  for (const Outer& o : outer)
-    if (!o.used) return false;
-
-  // The check passed: rewrite.
-  const int32_t region = mesh.tet_region[old[0]];
-  for (uint32_t o : old) mesh.delete_tet(o);
-  std::vector<uint32_t> ids(n_new);
-  for (size_t k = 0; k < n_new; ++k)
-    ids[k] = mesh.new_tet(fresh[4 * k], fresh[4 * k + 1], fresh[4 * k + 2], fresh[4 * k + 3], region);
-  for (const Match& m : matches) {
-    const uint32_t t = ids[m.a_tet];
-    if (m.b_tet != TetMesh::kNone) {
-      mesh.link(t, m.a_facet, ids[m.b_tet], m.b_facet);
-      continue;
-    }
-    const Outer& o = outer[size_t(m.b_facet)];
-    if (o.adj == kNoNeighbour) mesh.tet_adj[4 * size_t(t) + m.a_facet] = kNoNeighbour;
-    else mesh.link(t, m.a_facet, static_cast<uint32_t>(o.adj >> 2), static_cast<int>(o.adj & 3));
-    mesh.set_facet_protected(t, m.a_facet, o.prot);
-  }
-  if (!constrained.empty()) {
-    std::sort(constrained.begin(), constrained.end());
-    for (uint32_t t : ids)
-      for (int k = 0; k < 6; ++k)
-        if (std::binary_search(constrained.begin(), constrained.end(),
-                               pair_key(mesh.vertex(t, kEdgeVertex[k][0]), mesh.vertex(t, kEdgeVertex[k][1]))))
-          mesh.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
-  }
-  if (created) *created = ids;
+// The recovery's replace: constrained edges (defended subsegments) must survive a flip.
+bool replace(TetMesh& mesh, const std::vector<uint32_t>& old, const std::vector<uint32_t>& fresh,
+             std::vector<uint32_t>* created) {
+  thread_local meshops::ReplaceScratch scratch;
+  thread_local std::vector<meshops::TetVerts> tets;
+  tets.clear();
+  for (size_t k = 0; k + 3 < fresh.size(); k += 4) tets.push_back({fresh[k], fresh[k + 1], fresh[k + 2], fresh[k + 3]});
+  if (!meshops::replace_tets(mesh, old, tets, scratch, meshops::ConstrainedEdges::kKeep)) return false;
+  if (created) *created = scratch.created;
   return true;
 }
+
+}  // namespace
 
 bool edge_ring(const TetMesh& mesh, uint32_t t, uint32_t p, uint32_t q, EdgeRing& ring, size_t max_size) {
   ring.p = p;
   ring.q = q;
-  ring.link.clear();
-  ring.tets.clear();
-  uint32_t x = TetMesh::kNone, y = TetMesh::kNone;
-  for (int i = 0; i < 4; ++i) {
-    const uint32_t v = mesh.vertex(t, i);
-    if (v == p || v == q) continue;
-    (x == TetMesh::kNone ? x : y) = v;
-  }
-  if (y == TetMesh::kNone) return false;  // t does not have edge pq
-  const uint32_t start = t;
-  for (;;) {
-    if (mesh.is_ghost(t) || ring.tets.size() >= max_size) return false;
-    ring.tets.push_back(t);
-    ring.link.push_back(x);
-    // Leave t through the facet (p q y), the one opposite x.
-    int ix = 0;
-    while (mesh.vertex(t, ix) != x) ++ix;
-    const uint64_t adj = mesh.tet_adj[4 * size_t(t) + ix];
-    if (adj == kNoNeighbour) return false;
-    const auto n = static_cast<uint32_t>(adj >> 2);
-    uint32_t z = TetMesh::kNone;
-    for (int i = 0; i < 4; ++i) {
-      const uint32_t v = mesh.vertex(n, i);
-      if (v != p && v != q && v != y) z = v;
-    }
-    x = y;
-    y = z;
-    t = n;
-    if (t == start) break;
-  }
-  if (ring.tets.size() < 3) return false;
+  if (!meshops::edge_ring(mesh, p, q, t, ring.tets, ring.link)) return false;
+  if (ring.tets.size() < 3 || ring.tets.size() > max_size) return false;
+  for (uint32_t v : ring.link)
+    if (v == TetMesh::kGhost) return false;
   if (orient(mesh, p, q, ring.link[0], ring.link[1]) < 0) {
     // Walked the other way round: reverse so that tets[i] holds link[i], link[i+1].
     std::reverse(ring.link.begin(), ring.link.end());
@@ -183,7 +67,7 @@ bool flip23(TetMesh& mesh, uint32_t t, int facet, std::vector<uint32_t>* created
     const uint32_t u = f[k], w = f[(k + 1) % 3];
     for (uint32_t v : {u, w, b, a}) fresh.push_back(v);
   }
-  return replace_tets(mesh, {t, n}, fresh, created);
+  return replace(mesh, {t, n}, fresh, created);
 }
 
 bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int want_n,
@@ -272,7 +156,7 @@ bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int 
     for (uint32_t v : {V(tr[0]), V(tr[1]), V(tr[2]), ring.q}) fresh.push_back(v);
     for (uint32_t v : {V(tr[0]), V(tr[2]), V(tr[1]), ring.p}) fresh.push_back(v);
   }
-  return replace_tets(mesh, ring.tets, fresh, created);
+  return replace(mesh, ring.tets, fresh, created);
 }
 
 }  // namespace anitet

@@ -16,17 +16,11 @@
 
 namespace anitet {
 
-// Replaces the live, non-ghost tets `old` by the tets `fresh` (4 vertex ids each) that must fill
-// the same region: every facet of a new tet pairs with another new tet's or with an outer facet
-// of the old set, and every new tet is positive. Outer facets keep their neighbours and protected
-// bits; constrained-edge bits of the old tets go to the new tets that have those edges; the
-// region is old[0]'s. False, with the mesh unchanged, when any of this does not hold.
-bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old, const std::vector<uint32_t>& fresh,
-                  std::vector<uint32_t>* created = nullptr);
-
 // The tets around edge (p q), starting at tet t which has it: tets[i] holds p, q, link[i] and
-// link[i+1 mod n], and orient3d(p, q, link[i], link[i+1]) > 0. False when a ghost tet or a facet
-// without neighbour is met (a hull or boundary edge) or the ring is longer than max_size.
+// link[i+1 mod n], and orient3d(p, q, link[i], link[i+1]) > 0. False when a ghost tet, a protected
+// facet or a facet without neighbour is met (a hull or boundary edge) or the ring is longer than
+// max_size. (meshops::edge_ring, oriented.) The flips below replace tets with
+// meshops::replace_tets, which keeps every constrained edge.
 struct EdgeRing {
   uint32_t p = TetMesh::kNone, q = TetMesh::kNone;
   std::vector<uint32_t> link;

@@ -1,0 +1,218 @@
+#include "core/tet_ops.hpp"
+
+#include <algorithm>
+
+#include "predicates/predicates.hpp"
+
+namespace anitet::meshops {
+
+namespace {
+constexpr uint16_t kBallMark = 1u << 10;  // a scratch bit of tet_flags (tflag::kScratchMask)
+}  // namespace
+
+bool tet_has_vertex(const TetMesh& mesh, uint32_t t, uint32_t v) {
+  if (t >= mesh.num_tet_slots() || mesh.is_deleted(t)) return false;
+  const uint32_t* tv = &mesh.tet_v[4 * size_t(t)];
+  return tv[0] == v || tv[1] == v || tv[2] == v || tv[3] == v;
+}
+
+void VertexTets::build(const TetMesh& mesh) {
+  map_.assign(mesh.num_vertices(), TetMesh::kNone);
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
+    if (!mesh.is_deleted(t) && !mesh.is_ghost(t)) note(mesh, t);
+}
+
+void VertexTets::note(const TetMesh& mesh, uint32_t t) {
+  if (map_.size() < mesh.num_vertices()) map_.resize(mesh.num_vertices(), TetMesh::kNone);
+  for (int i = 0; i < 4; ++i) map_[mesh.vertex(t, i)] = t;
+}
+
+uint32_t VertexTets::tet_of(const TetMesh& mesh, uint32_t v) {
+  if (v >= map_.size()) map_.resize(mesh.num_vertices(), TetMesh::kNone);
+  const uint32_t t = map_[v];
+  if (t == TetMesh::kNone || tet_has_vertex(mesh, t, v)) return t;
+  ++rescans;
+  map_[v] = TetMesh::kNone;
+  for (uint32_t s = 0; s < mesh.num_tet_slots(); ++s)
+    if (!mesh.is_ghost(s) && tet_has_vertex(mesh, s, v)) return map_[v] = s;
+  return TetMesh::kNone;
+}
+
+void vertex_ball(TetMesh& mesh, uint32_t v, uint32_t start, std::vector<uint32_t>& ball) {
+  ball.clear();
+  if (!tet_has_vertex(mesh, start, v)) return;
+  ball.push_back(start);
+  mesh.tet_flags[start] |= kBallMark;
+  for (size_t k = 0; k < ball.size(); ++k) {
+    const uint32_t t = ball[k];
+    for (int i = 0; i < 4; ++i) {
+      if (mesh.vertex(t, i) == v) continue;  // the facet opposite v does not hold v
+      if (mesh.tet_adj[4 * size_t(t) + i] == TetMesh::kNoNeighbour) continue;
+      const uint32_t n = mesh.neighbour(t, i);
+      if (mesh.tet_flags[n] & kBallMark) continue;
+      mesh.tet_flags[n] |= kBallMark;
+      ball.push_back(n);
+    }
+  }
+  for (uint32_t t : ball) mesh.tet_flags[t] &= uint16_t(~kBallMark);
+}
+
+bool edge_ring(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, std::vector<uint32_t>& tets,
+               std::vector<uint32_t>& ring) {
+  tets.clear();
+  ring.clear();
+  if (!tet_has_vertex(mesh, start, a) || !tet_has_vertex(mesh, start, b)) return false;
+  uint32_t t = start, x = TetMesh::kNone, y = TetMesh::kNone;
+  for (int i = 0; i < 4; ++i) {
+    const uint32_t w = mesh.vertex(start, i);
+    if (w != a && w != b) (x == TetMesh::kNone ? x : y) = w;
+  }
+  ring.push_back(x);
+  for (int steps = 0; steps < 64; ++steps) {
+    tets.push_back(t);
+    ring.push_back(y);
+    // Leave t through the facet (a b y), opposite x.
+    int ix = -1;
+    for (int i = 0; i < 4; ++i)
+      if (mesh.vertex(t, i) == x) ix = i;
+    if (ix < 0 || mesh.tet_adj[4 * size_t(t) + ix] == TetMesh::kNoNeighbour || mesh.facet_protected(t, ix))
+      return false;
+    const uint32_t n = mesh.neighbour(t, ix);
+    if (n == start) {
+      ring.pop_back();  // ring[last] == ring[0]
+      return ring.size() == tets.size();
+    }
+    uint32_t z = TetMesh::kNone;
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t w = mesh.vertex(n, i);
+      if (w != a && w != b && w != y) z = w;
+    }
+    x = y;
+    y = z;
+    t = n;
+  }
+  return false;
+}
+
+bool all_positive(const TetMesh& mesh, const std::vector<uint32_t>& tets) {
+  for (uint32_t t : tets)
+    if (predicates::orient3d(mesh.point(mesh.vertex(t, 0)), mesh.point(mesh.vertex(t, 1)),
+                             mesh.point(mesh.vertex(t, 2)), mesh.point(mesh.vertex(t, 3))) <= 0)
+      return false;
+  return true;
+}
+
+namespace {
+
+uint64_t pair_key(uint32_t a, uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (uint64_t(a) << 32) | b;
+}
+
+}  // namespace
+
+bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
+                  ReplaceScratch& scratch, ConstrainedEdges rule) {
+  using Facet = ReplaceScratch::Facet;
+  if (old_tets.empty() || fresh.empty()) return false;
+  const int32_t region = mesh.tet_region[old_tets[0]];
+  std::vector<uint64_t>& constrained = scratch.constrained;
+  constrained.clear();
+  for (uint32_t t : old_tets) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t) || mesh.tet_region[t] != region) return false;
+    if (!(mesh.tet_flags[t] & tflag::kEdgeConstrainedMask)) continue;
+    if (rule == ConstrainedEdges::kRefuse) return false;
+    for (int k = 0; k < 6; ++k)
+      if ((mesh.tet_flags[t] >> (tflag::kEdgeConstrainedShift + k)) & 1u)
+        constrained.push_back(pair_key(mesh.vertex(t, kEdgeVertex[k][0]), mesh.vertex(t, kEdgeVertex[k][1])));
+  }
+  for (const TetVerts& v : fresh) {
+    for (uint32_t w : v)
+      if (w == TetMesh::kGhost) return false;
+    if (predicates::orient3d(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3])) <= 0)
+      return false;
+  }
+  // Every constrained edge must survive.
+  std::sort(constrained.begin(), constrained.end());
+  constrained.erase(std::unique(constrained.begin(), constrained.end()), constrained.end());
+  for (uint64_t e : constrained) {
+    bool found = false;
+    for (size_t n = 0; n < fresh.size() && !found; ++n)
+      for (int k = 0; k < 6 && !found; ++k)
+        found = pair_key(fresh[n][kEdgeVertex[k][0]], fresh[n][kEdgeVertex[k][1]]) == e;
+    if (!found) return false;
+  }
+
+  auto key_of = [](uint32_t p, uint32_t q, uint32_t r) {
+    std::array<uint32_t, 3> k = {p, q, r};
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  std::vector<Facet>& facets = scratch.facets;
+  facets.clear();
+  for (uint32_t t : old_tets) mesh.tet_flags[t] |= kBallMark;
+  for (uint32_t t : old_tets) {
+    for (int i = 0; i < 4; ++i) {
+      const uint64_t adj = mesh.tet_adj[4 * size_t(t) + i];
+      const bool inside = adj != TetMesh::kNoNeighbour && (mesh.tet_flags[adj >> 2] & kBallMark);
+      if (inside && !mesh.facet_protected(t, i)) continue;
+      if (inside) {  // a protected facet between two old tets: refuse to touch it
+        for (uint32_t s : old_tets) mesh.tet_flags[s] &= uint16_t(~kBallMark);
+        return false;
+      }
+      const int* f = kFacetVertex[i];
+      facets.push_back({key_of(mesh.vertex(t, f[0]), mesh.vertex(t, f[1]), mesh.vertex(t, f[2])), adj, 0,
+                        uint8_t(mesh.facet_protected(t, i))});
+    }
+  }
+  for (uint32_t t : old_tets) mesh.tet_flags[t] &= uint16_t(~kBallMark);
+  for (size_t n = 0; n < fresh.size(); ++n)
+    for (int i = 0; i < 4; ++i) {
+      const int* f = kFacetVertex[i];
+      facets.push_back({key_of(fresh[n][f[0]], fresh[n][f[1]], fresh[n][f[2]]), 4 * uint64_t(n) + uint64_t(i), 1, 0});
+    }
+  std::sort(facets.begin(), facets.end(), [](const Facet& x, const Facet& y) {
+    return x.key != y.key ? x.key < y.key : x.is_new < y.is_new;
+  });
+  // Every key must appear exactly twice: (old boundary, new) or (new, new).
+  for (size_t k = 0; k < facets.size(); k += 2) {
+    if (k + 1 >= facets.size() || facets[k].key != facets[k + 1].key || !facets[k + 1].is_new) return false;
+    if (k + 2 < facets.size() && facets[k + 2].key == facets[k].key) return false;
+  }
+
+  for (uint32_t t : old_tets) mesh.delete_tet(t);
+  std::vector<uint32_t>& created = scratch.created;
+  created.clear();
+  for (const TetVerts& v : fresh) {
+    const uint32_t t = mesh.new_tet(v[0], v[1], v[2], v[3], region);
+    mesh.tet_flags[t] = 0;
+    for (int k = 0; k < 6 && !constrained.empty(); ++k)
+      if (std::binary_search(constrained.begin(), constrained.end(),
+                             pair_key(v[kEdgeVertex[k][0]], v[kEdgeVertex[k][1]])))
+        mesh.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
+    created.push_back(t);
+  }
+  for (size_t k = 0; k < facets.size(); k += 2) {
+    const Facet& a = facets[k];
+    const Facet& b = facets[k + 1];
+    const uint32_t tb = created[b.half_face >> 2];
+    const int ib = static_cast<int>(b.half_face & 3);
+    if (a.is_new) {
+      mesh.link(created[a.half_face >> 2], static_cast<int>(a.half_face & 3), tb, ib);
+    } else {
+      mesh.tet_adj[4 * size_t(tb) + ib] = a.half_face;
+      if (a.half_face != TetMesh::kNoNeighbour) mesh.tet_adj[a.half_face] = 4 * uint64_t(tb) + uint64_t(ib);
+      if (a.protect) mesh.set_facet_protected(tb, ib, true);
+    }
+  }
+  return true;
+}
+
+bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
+                  VertexTets& vt, ReplaceScratch& scratch) {
+  if (!replace_tets(mesh, old_tets, fresh, scratch, ConstrainedEdges::kRefuse)) return false;
+  for (uint32_t t : scratch.created) vt.note(mesh, t);
+  return true;
+}
+
+}  // namespace anitet::meshops

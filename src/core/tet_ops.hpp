@@ -1,0 +1,83 @@
+// Local topological operations on a TetMesh, shared by boundary recovery (flips), refinement
+// (edge collapse) and optimization (flips, vertex moves):
+//   - a vertex -> tet map kept up to date by the operations,
+//   - the ball of a vertex and the ring of tets around an edge,
+//   - replace_tets(): swap a set of tets for another set filling the same region; every new tet
+//     must be positive by the exact orient3d and every boundary facet of the old set must be
+//     matched by exactly one new facet, so a rejected operation leaves the mesh untouched.
+// Protected facets and facets without neighbour are carried over, never created or removed.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/tet_mesh.hpp"
+
+namespace anitet::meshops {
+
+// True when t is live and holds vertex v.
+bool tet_has_vertex(const TetMesh& mesh, uint32_t t, uint32_t v);
+
+// One live tet per vertex (kNone: the vertex is in no tet, e.g. removed by a collapse).
+class VertexTets {
+ public:
+  void build(const TetMesh& mesh);
+  // A live tet holding v; repairs a stale entry by a scan of the mesh (rare).
+  uint32_t tet_of(const TetMesh& mesh, uint32_t v);
+  void note(const TetMesh& mesh, uint32_t t);  // t's vertices now point at t
+  void forget(uint32_t v) { if (v < map_.size()) map_[v] = TetMesh::kNone; }
+  bool removed(uint32_t v) const { return v < map_.size() && map_[v] == TetMesh::kNone; }
+  size_t rescans = 0;
+
+ private:
+  std::vector<uint32_t> map_;
+};
+
+// The tets holding v (a traversal across the facets through v, from a tet holding v).
+void vertex_ball(TetMesh& mesh, uint32_t v, uint32_t start, std::vector<uint32_t>& ball);
+
+// The tets around edge ab, in order, and the ring vertices: ring[i] and ring[i+1] are the other
+// two vertices of tets[i]. False when the edge touches a facet without neighbour or a protected
+// facet (an edge of the mesh boundary), or a tet of the ring is not found. Ghost tets are not
+// special here: their ghost vertex shows in `ring`.
+bool edge_ring(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, std::vector<uint32_t>& tets,
+               std::vector<uint32_t>& ring);
+
+using TetVerts = std::array<uint32_t, 4>;
+
+// Scratch memory of replace_tets (reuse one per loop).
+struct ReplaceScratch {
+  struct Facet {
+    std::array<uint32_t, 3> key;  // sorted vertex ids
+    uint64_t half_face;           // old boundary: the outside half-face; new: 4*index + facet
+    uint8_t is_new;
+    uint8_t protect;
+  };
+  std::vector<Facet> facets;
+  std::vector<uint64_t> constrained;  // constrained edges of the old tets (vertex pair keys)
+  std::vector<uint32_t> created;
+};
+
+// What replace_tets does with the constrained-edge bits of the old tets.
+enum class ConstrainedEdges : uint8_t {
+  kRefuse,  // fail when an old tet has one (refinement, optimization: S's edges never move)
+  kKeep,    // every constrained edge must be an edge of the new tets, which get its bit
+};
+
+// Replaces the live, non-ghost tets `old_tets` (one region) by `fresh` (given in positive
+// orientation, no ghost vertex). Fails (mesh unchanged) when a new tet is not positive by the
+// exact orient3d, the new tets do not close up against the old boundary, a protected facet lies
+// between two old tets, or the constrained edges rule says no. On success scratch.created lists
+// the new tet ids (in the order of `fresh`).
+bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
+                  ReplaceScratch& scratch, ConstrainedEdges rule = ConstrainedEdges::kRefuse);
+// The same, also pointing the new tets' vertices at them in vt.
+bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
+                  VertexTets& vt, ReplaceScratch& scratch);
+
+// Exact check that every tet of `tets` is positive.
+bool all_positive(const TetMesh& mesh, const std::vector<uint32_t>& tets);
+
+}  // namespace anitet::meshops
