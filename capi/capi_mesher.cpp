@@ -63,8 +63,8 @@ bool positive_definite(const double m[6]) {
 }
 
 // The caller's metric as the pipeline's sizing field. SizingField::metric cannot fail, so a
-// failing callback (or a tensor that is not positive definite) is recorded, answered with a
-// coarse isotropic metric, and turned into an error at the next stage boundary.
+// failing analytic callback (or a tensor of it that is not positive definite) is recorded,
+// answered with a coarse isotropic metric, and turned into an error at the next stage boundary.
 class CallerSizing final : public anitet::SizingField {
  public:
   CallerSizing(const anitet_metric& m, double fallback_size) : m_(m), fallback_(fallback_size) {}
@@ -72,6 +72,10 @@ class CallerSizing final : public anitet::SizingField {
   void metric(const double p[3], double out[6]) const override {
     if (m_.kind == anitet_metric::Kind::Uniform) {
       anitet::isotropic_metric(m_.size, out);
+      return;
+    }
+    if (m_.kind == anitet_metric::Kind::Field) {  // SPD by construction (checked when created)
+      m_.field->metric(p, out);
       return;
     }
     const int rc = m_.fn(p[0], p[1], p[2], out, m_.user_data);

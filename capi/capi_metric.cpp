@@ -1,20 +1,59 @@
-// Metric fields. Reading metric files and per-point metrics on a background mesh are not part of
-// the library yet: they say ANITET_ERR_NOT_IMPLEMENTED, never a silent no-op.
+// Metric fields: uniform, analytic (a caller callback), and the fields of metric/ (a .vdb grid, a
+// .sol on a background mesh, or per-point values on a background mesh given as a handle).
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "handles.hpp"
+#include "io/volume_io.hpp"
+#include "metric/metric_field.hpp"
+#include "metric/sol_field.hpp"
 #include "shim.hpp"
 
 using namespace anitet::capi;
 
 namespace {
-int not_implemented(const char* function, const char* what) {
-  return set_error(ANITET_ERR_NOT_IMPLEMENTED, std::string(function) + ": " + what +
-                                                   " is not implemented in anitet " +
-                                                   ANITET_VERSION_STRING);
+
+// The lower-case extension of the file name in `path` (".vdb"), "" without one.
+std::string extension(const std::string& path) {
+  const size_t slash = path.find_last_of("/\\");
+  const size_t dot = path.rfind('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return std::string();
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
 }
+
+anitet_metric* new_field_metric(std::shared_ptr<const anitet::SizingField> field) {
+  auto metric = std::make_unique<anitet_metric>();
+  metric->kind = anitet_metric::Kind::Field;
+  metric->field = std::move(field);
+  return metric.release();
+}
+
+// A .sol on the background mesh at background_path: both read, then the interpolating field.
+int read_sol_metric(const char* fn, const std::string& path, const std::string& background_path,
+                    anitet_metric** out) {
+  anitet::Result<anitet::metric::SolField> sol = anitet::metric::read_sol(path);
+  if (!sol.ok()) return set_status(fn, sol.status());
+  anitet::Result<anitet::VolumeMesh> background = anitet::read_volume_mesh(background_path);
+  if (!background.ok()) return set_status(fn, background.status());
+  anitet::Result<anitet::metric::BackgroundMeshField> field =
+      anitet::metric::BackgroundMeshField::create(background.value(), sol.value());
+  if (!field.ok()) {
+    return set_error(static_cast<int>(field.status().code()),
+                     std::string(fn) + ": " + path + " on " + background_path + ": " +
+                         field.status().message());
+  }
+  *out = new_field_metric(
+      std::make_shared<const anitet::metric::BackgroundMeshField>(std::move(field.value())));
+  return ok();
+}
+
 }  // namespace
 
 extern "C" {
@@ -52,19 +91,40 @@ int anitet_metric_create_analytic(anitet_metric_fn callback, void* user_data, an
 }
 
 int anitet_metric_read(const char* path, const char* background_mesh_path, anitet_metric** out) {
-  (void)background_mesh_path;
   const char* const fn = __func__;
   return guard(fn, [&] {
     if (out == nullptr) return null_argument(fn, "out");
     *out = nullptr;
     if (path == nullptr) return null_argument(fn, "path");
-    return not_implemented(fn, "reading a metric file (.vdb, .sol)");
+    const std::string file(path);
+    const std::string ext = extension(file);
+    if (ext == ".vdb") {
+      if (background_mesh_path != nullptr) {
+        return set_error(ANITET_ERR_INVALID_ARGUMENT,
+                         std::string(fn) + ": " + file +
+                             ": a .vdb needs no background mesh (background_mesh_path must be NULL)");
+      }
+      anitet::Result<anitet::metric::MetricField> field = anitet::metric::read_metric_vdb(file);
+      if (!field.ok()) return set_status(fn, field.status());
+      *out = new_field_metric(
+          std::make_shared<const anitet::metric::MetricField>(std::move(field.value())));
+      return ok();
+    }
+    if (ext == ".sol") {
+      if (background_mesh_path == nullptr) {
+        return set_error(ANITET_ERR_INVALID_ARGUMENT,
+                         std::string(fn) + ": " + file +
+                             ": a .sol needs its background mesh (background_mesh_path is NULL)");
+      }
+      return read_sol_metric(fn, file, std::string(background_mesh_path), out);
+    }
+    return set_error(ANITET_ERR_UNSUPPORTED_FORMAT,
+                     std::string(fn) + ": " + file + ": expected a .vdb or a .sol file");
   });
 }
 
 int anitet_metric_create_from_points(const anitet_mesh* background, const double* values,
                                      int64_t num_values, int32_t components, anitet_metric** out) {
-  (void)num_values;
   const char* const fn = __func__;
   return guard(fn, [&] {
     if (out == nullptr) return null_argument(fn, "out");
@@ -75,7 +135,31 @@ int anitet_metric_create_from_points(const anitet_mesh* background, const double
       return set_error(ANITET_ERR_INVALID_ARGUMENT, std::string(fn) + ": components is " +
                                                         std::to_string(components) + ", not 1 or 6");
     }
-    return not_implemented(fn, "a per-point metric on a background mesh");
+    const anitet::VolumeMesh& mesh = background->mesh;
+    const uint64_t needed = uint64_t(components) * mesh.num_vertices();
+    if (num_values < 0 || uint64_t(num_values) != needed) {
+      return set_error(ANITET_ERR_INVALID_ARGUMENT,
+                       std::string(fn) + ": num_values is " + std::to_string(num_values) + ", not " +
+                           std::to_string(components) + " per point of the background mesh (" +
+                           std::to_string(needed) + ")");
+    }
+    anitet::metric::SolField sol;
+    sol.components = components;
+    sol.values.assign(values, values + needed);
+    for (uint64_t i = 0; i < needed; ++i) {
+      if (!std::isfinite(sol.values[i]) || (components == 1 && !(sol.values[i] > 0.0))) {
+        const char* what = components == 1 ? "not a finite size > 0" : "not finite";
+        return set_error(ANITET_ERR_INVALID_ARGUMENT, std::string(fn) + ": the value of point " +
+                                                          std::to_string(i / components) +
+                                                          " (0-based) is " + what);
+      }
+    }
+    anitet::Result<anitet::metric::BackgroundMeshField> field =
+        anitet::metric::BackgroundMeshField::create(mesh, sol);
+    if (!field.ok()) return set_status(fn, field.status());
+    *out = new_field_metric(
+        std::make_shared<const anitet::metric::BackgroundMeshField>(std::move(field.value())));
+    return ok();
   });
 }
 
@@ -86,6 +170,15 @@ int anitet_metric_evaluate(const anitet_metric* metric, double x, double y, doub
   return guard(fn, [&] {
     if (metric == nullptr) return null_argument(fn, "metric");
     if (m == nullptr) return null_argument(fn, "m");
+    if (metric->kind == anitet_metric::Kind::Field) {
+      if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
+        return set_error(ANITET_ERR_INVALID_ARGUMENT,
+                         std::string(fn) + ": the point has a coordinate that is not finite");
+      }
+      const double p[3] = {x, y, z};
+      metric->field->metric(p, m);
+      return ok();
+    }
     if (metric->kind == anitet_metric::Kind::Uniform) {
       const double d = 1.0 / (metric->size * metric->size);  // unit length = size
       const double tensor[6] = {d, 0.0, d, 0.0, 0.0, d};

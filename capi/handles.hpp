@@ -1,9 +1,11 @@
 // The structs behind the opaque C handles.
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include "anitet.h"
+#include "core/sizing.hpp"
 #include "core/surface_mesh.hpp"
 #include "core/volume_mesh.hpp"
 #include "validate/validate.hpp"
@@ -18,9 +20,12 @@ struct anitet_mesh {
 };
 
 struct anitet_metric {
-  enum class Kind { Uniform, Analytic };
+  enum class Kind { Uniform, Analytic, Field };
   Kind kind = Kind::Uniform;
   double size = 0.0;                  // Uniform
   anitet_metric_fn fn = nullptr;      // Analytic
   void* user_data = nullptr;
+  // Field: a metric/ field read from a file or built on a background mesh (immutable, its
+  // metric() may be called from several threads at once).
+  std::shared_ptr<const anitet::SizingField> field;
 };

@@ -1,5 +1,6 @@
-/*
- * anitet.h - the stable C ABI of anitet (C99; also valid C++).
+/**
+ * @file anitet.h
+ * The stable C ABI of anitet (C99; also valid C++).
  *
  * Conventions (docs/c-api.md has the long form and an example):
  *  - Opaque handles: anitet_surface, anitet_mesh, anitet_metric. Create with a *_create / *_read
@@ -25,14 +26,16 @@
 #include <stdint.h>
 
 /* Version of this header; anitet_version() gives the library's at run time. */
-#define ANITET_VERSION_MAJOR 0
-#define ANITET_VERSION_MINOR 1
-#define ANITET_VERSION_PATCH 0
-#define ANITET_VERSION_STRING "0.1.0"
-/* major*10000 + minor*100 + patch, comparable with anitet_version_number(). */
+#define ANITET_VERSION_MAJOR 0         /**< major version of this header */
+#define ANITET_VERSION_MINOR 1         /**< minor version of this header */
+#define ANITET_VERSION_PATCH 0         /**< patch level of this header */
+#define ANITET_VERSION_STRING "0.1.0"  /**< "major.minor.patch" of this header */
+/** major*10000 + minor*100 + patch, comparable with anitet_version_number(). */
 #define ANITET_VERSION_NUMBER \
   (ANITET_VERSION_MAJOR * 10000 + ANITET_VERSION_MINOR * 100 + ANITET_VERSION_PATCH)
 
+/** Marks the library's functions: default visibility (or dllexport/dllimport on Windows).
+ * Define ANITET_STATIC before including the header to link a static build of the library. */
 #if defined(ANITET_STATIC)
 #define ANITET_API
 #elif defined(_WIN32)
@@ -54,91 +57,96 @@ extern "C" {
 /* ---------------------------------------------------------------------------------------------
  * Error codes. Equal to anitet::Error in src/core/status.hpp. Never renumbered.
  * ------------------------------------------------------------------------------------------- */
-#define ANITET_OK 0
-#define ANITET_ERR_INVALID_ARGUMENT (-1)     /* NULL handle/pointer, bad size, bad option */
-#define ANITET_ERR_FILE_NOT_FOUND (-2)       /* cannot open a file for reading or writing */
-#define ANITET_ERR_PARSE (-3)                /* malformed or truncated file contents */
-#define ANITET_ERR_UNSUPPORTED_FORMAT (-4)   /* unknown extension or format variant */
-#define ANITET_ERR_EMPTY_INPUT (-5)          /* no points, triangles or tets */
-#define ANITET_ERR_BUFFER_TOO_SMALL (-6)     /* a caller buffer is shorter than needed */
-#define ANITET_ERR_NON_FINITE_COORDINATE (-10)
-#define ANITET_ERR_DEGENERATE_TRIANGLE (-11)
-#define ANITET_ERR_DUPLICATE_TRIANGLE (-12)
-#define ANITET_ERR_OPEN_BOUNDARY (-13)
-#define ANITET_ERR_NON_MANIFOLD_EDGE (-14)
-#define ANITET_ERR_NON_MANIFOLD_VERTEX (-15)
-#define ANITET_ERR_INCONSISTENT_ORIENTATION (-16)
-#define ANITET_ERR_SELF_INTERSECTION (-17)
-#define ANITET_ERR_INTERSECTING_SHELLS (-18)
-#define ANITET_ERR_BAD_INDEX (-19)           /* an index that is not a vertex */
-#define ANITET_ERR_NOT_IMPLEMENTED (-30)     /* declared, not available in this version */
-#define ANITET_ERR_CANCELLED (-31)           /* a progress callback returned non-zero */
-#define ANITET_ERR_DUPLICATE_POINT (-32)
-#define ANITET_ERR_RECOVERY_FAILED (-33)
-#define ANITET_ERR_INVALID_MESH (-34)
-#define ANITET_ERR_OUT_OF_MEMORY (-40)
-#define ANITET_ERR_INTERNAL (-99)
+#define ANITET_OK 0                               /**< the call succeeded */
+#define ANITET_ERR_INVALID_ARGUMENT (-1)          /**< NULL handle/pointer, bad size or option */
+#define ANITET_ERR_FILE_NOT_FOUND (-2)            /**< cannot open a file to read or write */
+#define ANITET_ERR_PARSE (-3)                     /**< malformed or truncated file contents */
+#define ANITET_ERR_UNSUPPORTED_FORMAT (-4)        /**< unknown extension or format variant */
+#define ANITET_ERR_EMPTY_INPUT (-5)               /**< no points, triangles or tets */
+#define ANITET_ERR_BUFFER_TOO_SMALL (-6)          /**< a caller buffer is shorter than needed */
+#define ANITET_ERR_NON_FINITE_COORDINATE (-10)    /**< a coordinate is NaN or infinite */
+#define ANITET_ERR_DEGENERATE_TRIANGLE (-11)      /**< a triangle of zero area */
+#define ANITET_ERR_DUPLICATE_TRIANGLE (-12)       /**< two triangles on the same three vertices */
+#define ANITET_ERR_OPEN_BOUNDARY (-13)            /**< an edge of one triangle: not closed */
+#define ANITET_ERR_NON_MANIFOLD_EDGE (-14)        /**< an edge of more than two triangles */
+#define ANITET_ERR_NON_MANIFOLD_VERTEX (-15)      /**< a vertex whose triangles form 2+ fans */
+#define ANITET_ERR_INCONSISTENT_ORIENTATION (-16) /**< mixed orientations, or an inward shell */
+#define ANITET_ERR_SELF_INTERSECTION (-17)        /**< two triangles of the surface intersect */
+#define ANITET_ERR_INTERSECTING_SHELLS (-18)      /**< two closed shells of the surface intersect */
+#define ANITET_ERR_BAD_INDEX (-19)                /**< an index that is not a vertex */
+#define ANITET_ERR_NOT_IMPLEMENTED (-30)          /**< not available in this version */
+#define ANITET_ERR_CANCELLED (-31)                /**< a progress callback returned non-zero */
+#define ANITET_ERR_DUPLICATE_POINT (-32)          /**< two input points at one place */
+#define ANITET_ERR_RECOVERY_FAILED (-33)          /**< an input triangle not recovered */
+#define ANITET_ERR_INVALID_MESH (-34)             /**< e.g. a face of more than two tets */
+#define ANITET_ERR_OUT_OF_MEMORY (-40)            /**< an allocation failed */
+#define ANITET_ERR_INTERNAL (-99)                 /**< a bug or an unexpected failure */
 
 /* Log levels passed to anitet_log_fn. */
-#define ANITET_LOG_ERROR 0
-#define ANITET_LOG_WARNING 1
-#define ANITET_LOG_INFO 2
-#define ANITET_LOG_DEBUG 3
+#define ANITET_LOG_ERROR 0    /**< log level: an error (the call fails) */
+#define ANITET_LOG_WARNING 1  /**< log level: a problem that does not stop the call */
+#define ANITET_LOG_INFO 2     /**< log level: repairs, stages and their figures */
+#define ANITET_LOG_DEBUG 3    /**< log level: details */
 
 /* ---------------------------------------------------------------------------------------------
  * Opaque handles and callbacks.
  * ------------------------------------------------------------------------------------------- */
-typedef struct anitet_surface anitet_surface; /* a triangulated closed surface (the input) */
-typedef struct anitet_mesh anitet_mesh;       /* a tetrahedral mesh (read, given or meshed) */
-typedef struct anitet_metric anitet_metric;   /* a metric (sizing) field */
+typedef struct anitet_surface anitet_surface; /**< a triangulated closed surface (the input) */
+typedef struct anitet_mesh anitet_mesh;       /**< a tetrahedral mesh (read, given or meshed) */
+typedef struct anitet_metric anitet_metric;   /**< a metric (sizing) field */
 
-/* Progress: `fraction` in [0, 1] of the running call's work done, on entering the named stage
+/** Progress: `fraction` in [0, 1] of the running call's work done, on entering the named stage
  * ("validate" for anitet_surface_validate, 0 then 1). Return 0 to continue, non-zero to cancel:
- * the running call then returns ANITET_ERR_CANCELLED and creates nothing. Stages are not interrupted in the middle: cancelling takes effect at the next call.
+ * the running call then returns ANITET_ERR_CANCELLED and creates nothing. Stages are not
+ * interrupted in the middle: cancelling takes effect at the next call.
  * The mesher's stages: "validate" (0), "layers", "recovery", "coupling", "sizing", "refine",
  * "optimize", "done" (1); later versions may add stages, so do not rely on the list. */
 typedef int (*anitet_progress_fn)(double fraction, const char* stage, void* user_data);
-/* Log: one message (valid only during the call) at an ANITET_LOG_* level. */
+/** Log: one message (valid only during the call) at an ANITET_LOG_* level. */
 typedef void (*anitet_log_fn)(int32_t level, const char* message, void* user_data);
-/* Analytic metric at (x, y, z): fill m with the symmetric positive-definite tensor in the order
+/** Analytic metric at (x, y, z): fill m with the symmetric positive-definite tensor in the order
  * xx xy yy xz yz zz (Medit's); return 0, or non-zero when the point cannot be evaluated. */
 typedef int (*anitet_metric_fn)(double x, double y, double z, double m[6], void* user_data);
 
 /* ---------------------------------------------------------------------------------------------
  * Versioned options.
  * ------------------------------------------------------------------------------------------- */
+/** The newest version of anitet_options this header declares. */
 #define ANITET_OPTIONS_VERSION 2
 
-/* Values of anitet_options.layer_scheme (version 2). */
-#define ANITET_LAYERS_PUSH 0       /* prism layers by vertex pushes only (the default) */
-#define ANITET_LAYERS_FACE_PUSH 1  /* the paper's two steps: face tets, then vertex pushes */
+/** Values of anitet_options.layer_scheme (version 2). */
+#define ANITET_LAYERS_PUSH 0       /**< prism layers by vertex pushes only (the default) */
+#define ANITET_LAYERS_FACE_PUSH 1  /**< the paper's two steps: face tets, then vertex pushes */
 
+/** Options of the validation and the mesher, a versioned struct: set it with
+ * ANITET_OPTIONS_INIT or anitet_options_init(), then change fields. */
 typedef struct anitet_options {
-  int32_t version;                   /* ANITET_OPTIONS_VERSION; 1 for callers of anitet 0.1 */
-  int32_t num_threads;               /* 0: the library's default */
-  int32_t merge_duplicate_vertices;  /* validation repair: merge equal vertices (default 1) */
-  int32_t orient_shells;             /* validation repair: flip inward shells (default 1) */
-  int32_t check_self_intersections;  /* exact self-intersection search (default 1) */
-  int32_t reserved0;                 /* keep 0 (alignment; may gain a meaning in a later version) */
-  anitet_progress_fn progress;       /* may be NULL */
-  void* progress_user_data;
-  anitet_log_fn log;                 /* may be NULL */
-  void* log_user_data;
+  int32_t version;                   /**< ANITET_OPTIONS_VERSION; 1 for callers of anitet 0.1 */
+  int32_t num_threads;               /**< 0: the library's default */
+  int32_t merge_duplicate_vertices;  /**< validation repair: merge equal vertices (default 1) */
+  int32_t orient_shells;             /**< validation repair: flip inward shells (default 1) */
+  int32_t check_self_intersections;  /**< exact self-intersection search (default 1) */
+  int32_t reserved0;                 /**< keep 0 (alignment; may gain a meaning later) */
+  anitet_progress_fn progress;       /**< may be NULL */
+  void* progress_user_data;          /**< passed to progress untouched */
+  anitet_log_fn log;                 /**< may be NULL */
+  void* log_user_data;               /**< passed to log untouched */
   /* Version 2 (read only when version >= 2; a version 1 caller gets the defaults): */
-  int32_t layers;                    /* boundary layers of stage 1, >= 1 (default 2) */
-  int32_t layer_scheme;              /* ANITET_LAYERS_PUSH (default) or ANITET_LAYERS_FACE_PUSH */
-  double recovery_max_seconds;       /* time budget of the boundary recovery; 0: default (20) */
-  int32_t refine;                    /* 1: refine to the sizes (default), 0: skip the stage */
-  int32_t optimize;                  /* 1: optimize the quality (default), 0: skip the stage */
-  double size_scale;                 /* every target edge length times this (> 0; default 1;
+  int32_t layers;                    /**< boundary layers of stage 1, >= 1 (default 2) */
+  int32_t layer_scheme;              /**< ANITET_LAYERS_PUSH (default) or ANITET_LAYERS_FACE_PUSH */
+  double recovery_max_seconds;       /**< time budget of the boundary recovery; 0: default (20) */
+  int32_t refine;                    /**< 1: refine to the sizes (default), 0: skip the stage */
+  int32_t optimize;                  /**< 1: optimize the quality (default), 0: skip the stage */
+  double size_scale;                 /**< every target edge length times this (> 0; default 1;
                                         2 = a mesh twice as coarse) */
   /* Version 3 and later append fields here. */
 } anitet_options;
 
+/** Initializer of an anitet_options of version ANITET_OPTIONS_VERSION with the defaults. */
 #define ANITET_OPTIONS_INIT \
   { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0, 2, ANITET_LAYERS_PUSH, 0.0, 1, 1, 1.0 }
 
-/* Fills the fields of `version` (1 .. ANITET_OPTIONS_VERSION) of *options with their defaults
+/** Fills the fields of `version` (1 .. ANITET_OPTIONS_VERSION) of *options with their defaults
  * and sets options->version; a struct of an older version is not written past its end.
  * Errors: INVALID_ARGUMENT (NULL options, unknown version). */
 ANITET_API int anitet_options_init(anitet_options* options, int32_t version);
@@ -147,56 +155,57 @@ ANITET_API int anitet_options_init(anitet_options* options, int32_t version);
  * Library information and errors.
  * ------------------------------------------------------------------------------------------- */
 
-/* The library's version, "major.minor.patch" (static storage). */
+/** The library's version, "major.minor.patch" (static storage). */
 ANITET_API const char* anitet_version(void);
-/* The library's version as major*10000 + minor*100 + patch. */
+/** The library's version as major*10000 + minor*100 + patch. */
 ANITET_API int32_t anitet_version_number(void);
-/* Message of the last int-returning call on this thread; "" after a success. The pointer stays
+/** Message of the last int-returning call on this thread; "" after a success. The pointer stays
  * valid until the next anitet_* call on the same thread. Never NULL. */
 ANITET_API const char* anitet_last_error_message(void);
-/* Stable short name of an error code ("open_boundary"); "unknown_error" for other values. */
+/** Stable short name of an error code ("open_boundary"); "unknown_error" for other values. */
 ANITET_API const char* anitet_error_name(int32_t code);
 
 /* ---------------------------------------------------------------------------------------------
  * Surfaces.
  * ------------------------------------------------------------------------------------------- */
 
-/* A surface from caller arrays, copied: xyz (3*num_points), tri (3*num_triangles, vertex
+/** A surface from caller arrays, copied: xyz (3*num_points), tri (3*num_triangles, vertex
  * indices counter-clockwise seen from outside, counted from index_base), patch (num_triangles
  * labels, or NULL for all 0). Errors: INVALID_ARGUMENT (NULL pointer, negative count,
  * index_base not 0 or 1), EMPTY_INPUT (no point or no triangle), BAD_INDEX. */
 ANITET_API int anitet_surface_create(const double* xyz, int64_t num_points, const int32_t* tri,
                                      int64_t num_triangles, const int32_t* patch,
                                      int32_t index_base, anitet_surface** out);
-/* A surface from a file (.off .obj .stl .ply .mesh .msh by extension).
+/** A surface from a file (.off .obj .stl .ply .mesh .msh by extension).
  * Errors: INVALID_ARGUMENT, FILE_NOT_FOUND, PARSE, UNSUPPORTED_FORMAT, EMPTY_INPUT, BAD_INDEX. */
 ANITET_API int anitet_surface_read(const char* path, anitet_surface** out);
+/** Frees a surface; NULL is accepted. */
 ANITET_API void anitet_surface_destroy(anitet_surface* surface);
 
-/* Numbers of points and triangles (after repairs when it was validated). */
+/** Numbers of points and triangles (after repairs when it was validated). */
 ANITET_API int anitet_surface_get_counts(const anitet_surface* surface, int64_t* num_points,
                                          int64_t* num_triangles);
-/* Fills xyz (xyz_len >= 3*num_points). */
+/** Fills xyz (xyz_len >= 3*num_points). */
 ANITET_API int anitet_surface_get_points(const anitet_surface* surface, double* xyz,
                                          int64_t xyz_len);
-/* Fills tri (tri_len >= 3*num_triangles) with indices counted from index_base. */
+/** Fills tri (tri_len >= 3*num_triangles) with indices counted from index_base. */
 ANITET_API int anitet_surface_get_triangles(const anitet_surface* surface, int32_t* tri,
                                             int64_t tri_len, int32_t index_base);
-/* Fills patch (patch_len >= num_triangles). */
+/** Fills patch (patch_len >= num_triangles). */
 ANITET_API int anitet_surface_get_patches(const anitet_surface* surface, int32_t* patch,
                                           int64_t patch_len);
 
-/* Validates the surface and applies the safe repairs (merging equal vertices, flipping inward
+/** Validates the surface and applies the safe repairs (merging equal vertices, flipping inward
  * shells) to it; options may be NULL for the defaults. Returns ANITET_OK for a clean closed
  * oriented surface, else the first problem's code (OPEN_BOUNDARY, SELF_INTERSECTION, ...) with
  * a message naming the elements. The report is kept in the surface for the queries below.
  * Calls options->progress ("validate", 0 then 1) and options->log (repairs, problems). */
 ANITET_API int anitet_surface_validate(anitet_surface* surface, const anitet_options* options);
-/* Instances of the problem `code` found by the last validation (0 when absent). Errors:
+/** Instances of the problem `code` found by the last validation (0 when absent). Errors:
  * INVALID_ARGUMENT (NULL, or the surface was not validated). */
 ANITET_API int anitet_surface_problem_count(const anitet_surface* surface, int32_t code,
                                             int64_t* count);
-/* The last validation report as JSON text into buf (buf_len bytes, NUL included); *needed gets
+/** The last validation report as JSON text into buf (buf_len bytes, NUL included); *needed gets
  * the size needed. buf == NULL with buf_len == 0 asks for the size only and succeeds. */
 ANITET_API int anitet_surface_validation_json(const anitet_surface* surface, char* buf,
                                               int64_t buf_len, int64_t* needed);
@@ -205,24 +214,58 @@ ANITET_API int anitet_surface_validation_json(const anitet_surface* surface, cha
  * Metric fields.
  * ------------------------------------------------------------------------------------------- */
 
-/* The isotropic metric of edge length `size` (> 0, finite) everywhere. */
+/** The isotropic metric of edge length `size` (> 0, finite) everywhere. */
 ANITET_API int anitet_metric_create_uniform(double size, anitet_metric** out);
-/* An analytic metric: callback is called (possibly from several threads at once) with
+/** An analytic metric: callback is called (possibly from several threads at once) with
  * user_data, which must stay valid while the metric is in use. */
 ANITET_API int anitet_metric_create_analytic(anitet_metric_fn callback, void* user_data,
                                              anitet_metric** out);
-/* A metric from a file: an OpenVDB .vdb (scalar size or tensor grids), or a Medit .sol with
- * background_mesh_path (NULL otherwise). NOT_IMPLEMENTED in this version. */
+/** A metric read from a file, chosen by the extension of `path` (case-insensitive):
+ *  - ".vdb": an OpenVDB file; background_mesh_path must be NULL. It holds either one scalar grid
+ *    "size" (the edge length h, interpolated trilinearly in h; the metric is I/h^2), or the six
+ *    scalar grids "log_metric_xx" "log_metric_xy" "log_metric_yy" "log_metric_xz"
+ *    "log_metric_yz" "log_metric_zz" (the components of log M), or the six grids "metric_xx" ..
+ *    "metric_zz" (M itself), tried in that order; float or double grids, one uniform linear
+ *    transform shared by all. Tensors are interpolated in log space (log-Euclidean, always
+ *    positive definite). Points outside the grids' active box take the value at the box's edge.
+ *  - ".sol": an ASCII Medit .sol (MeshVersionFormatted 1 or 2, Dimension 3, one SolAtVertices
+ *    field of type 1, a size per vertex, or type 3, the tensor xx xy yy xz yz zz per vertex) on
+ *    the tetrahedral mesh at background_mesh_path (.mesh .msh .node/.ele .vtu, as
+ *    anitet_mesh_read), one value set per vertex of it, in its vertex order. Inside a tet sizes
+ *    are interpolated linearly (barycentric), tensors in log space; points outside the mesh take
+ *    the value of the nearest tet (clamped barycentric weights).
+ *
+ * Units: sizes are edge lengths in the coordinates' unit; a tensor M measures a vector e as
+ * sqrt(e^T M e), so M = I/h^2 for the size h (unit: 1/length^2). The file is read and closed by
+ * the call: the metric keeps its own copy (of the grids, or of the background mesh and values).
+ *
+ * Errors: INVALID_ARGUMENT (NULL path or out; a .sol without background_mesh_path or a .vdb
+ * with one; a .sol whose number of values is not the background's number of vertices; a size
+ * <= 0 or a tensor that is not positive definite), FILE_NOT_FOUND (path or background missing or
+ * unreadable), PARSE (not a .vdb, malformed .sol or mesh), UNSUPPORTED_FORMAT (another
+ * extension; a .sol field of another type; a .vdb without the grids above or with a non-uniform
+ * transform), EMPTY_INPUT (a background without tets, a .sol without a field), BAD_INDEX. */
 ANITET_API int anitet_metric_read(const char* path, const char* background_mesh_path,
                                   anitet_metric** out);
-/* Per-point values on a background mesh: components 1 (size) or 6 (xx xy yy xz yz zz) per
- * point of `background`. NOT_IMPLEMENTED in this version. */
+/** A metric given by values at the points of a background tetrahedral mesh: `components` values
+ * per point of `background`, in the order of its points (anitet_mesh_get_points; no index is
+ * passed, so there is no index_base), num_values == components * (number of points) doubles in
+ * all. components 1: the size h (> 0, an edge length in the coordinates' unit) per point;
+ * components 6: the tensor xx xy yy xz yz zz (symmetric positive definite, 1/length^2) per
+ * point. Interpolation and points outside the mesh: as for a .sol in anitet_metric_read.
+ * The values and the background's points and tets are copied: `background` and `values` may be
+ * destroyed or changed after the call. The background's own per-vertex metric is not used.
+ * Errors: INVALID_ARGUMENT (NULL background, values or out; components not 1 or 6; num_values
+ * not components times the number of points; a value not finite, a size <= 0, a tensor that is
+ * not positive definite: the message names the 0-based point), EMPTY_INPUT (no tet). */
 ANITET_API int anitet_metric_create_from_points(const anitet_mesh* background,
                                                 const double* values, int64_t num_values,
                                                 int32_t components, anitet_metric** out);
+/** Frees a metric; NULL is accepted. The meshes made with it keep their per-vertex tensors. */
 ANITET_API void anitet_metric_destroy(anitet_metric* metric);
-/* The tensor at (x, y, z) into m[6] (xx xy yy xz yz zz). Errors: INVALID_ARGUMENT, and the
- * analytic callback's failure as INVALID_ARGUMENT naming its return value. */
+/** The tensor at (x, y, z) into m[6] (xx xy yy xz yz zz). Errors: INVALID_ARGUMENT (NULL
+ * metric or m; a coordinate that is not finite, for a metric read from a file or created from
+ * points), and the analytic callback's failure as INVALID_ARGUMENT naming its return value. */
 ANITET_API int anitet_metric_evaluate(const anitet_metric* metric, double x, double y, double z,
                                       double m[6]);
 
@@ -230,7 +273,7 @@ ANITET_API int anitet_metric_evaluate(const anitet_metric* metric, double x, dou
  * Meshing.
  * ------------------------------------------------------------------------------------------- */
 
-/* Meshes the inside of `surface` into a new mesh *out (*out is NULL after any error). The call
+/** Meshes the inside of `surface` into a new mesh *out (*out is NULL after any error). The call
  * validates a copy of the surface with the options' repairs (`surface` itself is not changed),
  * then runs the stages: boundary layers, Delaunay with conforming boundary recovery, coupling,
  * refinement to the sizes and quality optimization (options may skip the last two).
@@ -254,7 +297,7 @@ ANITET_API int anitet_mesher_run(const anitet_surface* surface, const anitet_met
  * Volume meshes.
  * ------------------------------------------------------------------------------------------- */
 
-/* A mesh from caller arrays, copied: xyz (3*num_points), tets (4*num_tets, positively oriented),
+/** A mesh from caller arrays, copied: xyz (3*num_points), tets (4*num_tets, positively oriented),
  * regions (num_tets, or NULL for 0), boundary triangles bnd_tri (3*num_boundary_triangles, NULL
  * when 0) with bnd_patch (num_boundary_triangles, or NULL for 0); indices counted from
  * index_base. Errors: INVALID_ARGUMENT, EMPTY_INPUT (no tet), BAD_INDEX. */
@@ -263,37 +306,38 @@ ANITET_API int anitet_mesh_create(const double* xyz, int64_t num_points, const i
                                   const int32_t* bnd_tri, int64_t num_boundary_triangles,
                                   const int32_t* bnd_patch, int32_t index_base,
                                   anitet_mesh** out);
-/* A mesh from a file (.mesh .msh .node/.ele .vtu by extension). */
+/** A mesh from a file (.mesh .msh .node/.ele .vtu by extension). */
 ANITET_API int anitet_mesh_read(const char* path, anitet_mesh** out);
+/** Frees a mesh; NULL is accepted. */
 ANITET_API void anitet_mesh_destroy(anitet_mesh* mesh);
-/* Writes .mesh (Medit), .msh (Gmsh 4.1) or .vtu by extension. */
+/** Writes .mesh (Medit), .msh (Gmsh 4.1) or .vtu by extension. */
 ANITET_API int anitet_mesh_write(const anitet_mesh* mesh, const char* path);
-/* Writes the per-vertex metric as a Medit .sol. INVALID_ARGUMENT when the mesh has none. */
+/** Writes the per-vertex metric as a Medit .sol. INVALID_ARGUMENT when the mesh has none. */
 ANITET_API int anitet_mesh_write_metric(const anitet_mesh* mesh, const char* path);
 
-/* Counts; any output pointer may be NULL. */
+/** Counts; any output pointer may be NULL. */
 ANITET_API int anitet_mesh_get_counts(const anitet_mesh* mesh, int64_t* num_points,
                                       int64_t* num_tets, int64_t* num_boundary_triangles);
-/* Fills xyz (xyz_len >= 3*num_points). */
+/** Fills xyz (xyz_len >= 3*num_points). */
 ANITET_API int anitet_mesh_get_points(const anitet_mesh* mesh, double* xyz, int64_t xyz_len);
-/* Fills tets (tets_len >= 4*num_tets) with indices counted from index_base. */
+/** Fills tets (tets_len >= 4*num_tets) with indices counted from index_base. */
 ANITET_API int anitet_mesh_get_tets(const anitet_mesh* mesh, int32_t* tets, int64_t tets_len,
                                     int32_t index_base);
-/* Fills regions (regions_len >= num_tets). */
+/** Fills regions (regions_len >= num_tets). */
 ANITET_API int anitet_mesh_get_regions(const anitet_mesh* mesh, int32_t* regions,
                                        int64_t regions_len);
-/* Fills tri (tri_len >= 3*num_boundary_triangles) with indices counted from index_base. */
+/** Fills tri (tri_len >= 3*num_boundary_triangles) with indices counted from index_base. */
 ANITET_API int anitet_mesh_get_boundary_triangles(const anitet_mesh* mesh, int32_t* tri,
                                                   int64_t tri_len, int32_t index_base);
-/* Fills patch (patch_len >= num_boundary_triangles). */
+/** Fills patch (patch_len >= num_boundary_triangles). */
 ANITET_API int anitet_mesh_get_boundary_patches(const anitet_mesh* mesh, int32_t* patch,
                                                 int64_t patch_len);
-/* Values per vertex of the mesh's metric: 0 (none), 1 (size) or 6 (xx xy yy xz yz zz). */
+/** Values per vertex of the mesh's metric: 0 (none), 1 (size) or 6 (xx xy yy xz yz zz). */
 ANITET_API int anitet_mesh_get_metric_components(const anitet_mesh* mesh, int32_t* components);
-/* Fills values (values_len >= components*num_points). */
+/** Fills values (values_len >= components*num_points). */
 ANITET_API int anitet_mesh_get_metric(const anitet_mesh* mesh, double* values,
                                       int64_t values_len);
-/* Replaces the per-vertex metric: components 1 (size, > 0) or 6 (xx xy yy xz yz zz) values per
+/** Replaces the per-vertex metric: components 1 (size, > 0) or 6 (xx xy yy xz yz zz) values per
  * point, values_len == components*num_points, all finite; components 0 removes it (values may
  * be NULL). Errors: INVALID_ARGUMENT. */
 ANITET_API int anitet_mesh_set_metric(anitet_mesh* mesh, const double* values, int64_t values_len,
@@ -302,36 +346,40 @@ ANITET_API int anitet_mesh_set_metric(anitet_mesh* mesh, const double* values, i
 /* ---------------------------------------------------------------------------------------------
  * Quality report.
  * ------------------------------------------------------------------------------------------- */
+/** The newest version of anitet_quality this header declares. */
 #define ANITET_QUALITY_VERSION 1
 
+/** Quality figures of a tetrahedral mesh (anitet_mesh_quality), a versioned struct: set its
+ * version with ANITET_QUALITY_INIT. */
 typedef struct anitet_quality {
-  int32_t version;              /* ANITET_QUALITY_VERSION (1), set by the caller */
-  int32_t valid;                /* 1: no non-positive tet, no face shared by more than 2 tets */
-  int32_t boundary_constrained; /* 1: every input triangle is a boundary face, no Steiner point
+  int32_t version;              /**< ANITET_QUALITY_VERSION (1), set by the caller */
+  int32_t valid;                /**< 1: no non-positive tet, no face shared by more than 2 tets */
+  int32_t boundary_constrained; /**< 1: every input triangle is a boundary face, no Steiner point
                                    on the boundary (0 when no input surface was given) */
-  int32_t reserved0;            /* 0 */
-  int64_t vertices;
-  int64_t tets;
-  int64_t nonpositive_tets;     /* exact orient3d <= 0 */
-  double radius_ratio_mean;     /* 3 * inradius / circumradius: 1 regular, 0 flat */
-  double radius_ratio_min;
-  double mean_ratio_mean;       /* 12 (3|V|)^(2/3) / sum of squared edge lengths */
-  double mean_ratio_min;
-  double min_dihedral_deg;
-  double max_dihedral_deg;
-  double good_fraction;         /* share of tets with radius ratio > 0.4 */
-  double bad_fraction;          /* share of tets with radius ratio < 0.1 */
+  int32_t reserved0;            /**< 0 */
+  int64_t vertices;             /**< number of vertices */
+  int64_t tets;                 /**< number of tets */
+  int64_t nonpositive_tets;     /**< exact orient3d <= 0 */
+  double radius_ratio_mean;     /**< 3 * inradius / circumradius: 1 regular, 0 flat */
+  double radius_ratio_min;      /**< smallest radius ratio */
+  double mean_ratio_mean;       /**< 12 (3|V|)^(2/3) / sum of squared edge lengths */
+  double mean_ratio_min;        /**< smallest mean ratio */
+  double min_dihedral_deg;      /**< smallest dihedral angle, in degrees */
+  double max_dihedral_deg;      /**< largest dihedral angle, in degrees */
+  double good_fraction;         /**< share of tets with radius ratio > 0.4 */
+  double bad_fraction;          /**< share of tets with radius ratio < 0.1 */
   /* Version 2 and later append fields here. */
 } anitet_quality;
 
+/** Initializer of an anitet_quality of version ANITET_QUALITY_VERSION, all figures 0. */
 #define ANITET_QUALITY_INIT { ANITET_QUALITY_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 }
 
-/* The quality of `mesh`, against `input` (may be NULL) for boundary_constrained. out->version
+/** The quality of `mesh`, against `input` (may be NULL) for boundary_constrained. out->version
  * must be 1 .. ANITET_QUALITY_VERSION; the fields of that version are filled.
  * Errors: INVALID_ARGUMENT, BAD_INDEX, NON_FINITE_COORDINATE. */
 ANITET_API int anitet_mesh_quality(const anitet_mesh* mesh, const anitet_surface* input,
                                    anitet_quality* out);
-/* The full quality report as JSON text into buf (buf_len bytes, NUL included); *needed gets the
+/** The full quality report as JSON text into buf (buf_len bytes, NUL included); *needed gets the
  * size needed. buf == NULL with buf_len == 0 asks for the size only and succeeds. The text is
  * the same for the same inputs (its "seconds" field is 0), so a size query then a fill agree. */
 ANITET_API int anitet_mesh_quality_json(const anitet_mesh* mesh, const anitet_surface* input,
@@ -341,4 +389,4 @@ ANITET_API int anitet_mesh_quality_json(const anitet_mesh* mesh, const anitet_su
 }
 #endif
 
-#endif /* ANITET_H */
+#endif /**< ANITET_H */

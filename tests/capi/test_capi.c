@@ -360,12 +360,17 @@ static void test_metric(void** state) {
   anitet_metric_destroy(m);
   assert_int_equal(anitet_metric_create_analytic(NULL, &k, &m), ANITET_ERR_INVALID_ARGUMENT);
 
-  assert_int_equal(anitet_metric_read(ANITET_TEST_DATA_DIR "/size.vdb", NULL, &m), ANITET_ERR_NOT_IMPLEMENTED);
+  /* Files and per-point values: test_capi_metric.c has the full tests. */
+  assert_int_equal(anitet_metric_read(ANITET_TEST_DATA_DIR "/no_such_size.vdb", NULL, &m), ANITET_ERR_FILE_NOT_FOUND);
   assert_null(m);
-  assert_true(contains(anitet_last_error_message(), "not implemented"));
+  assert_true(contains(anitet_last_error_message(), "no_such_size.vdb"));
   assert_int_equal(anitet_metric_read(NULL, NULL, &m), ANITET_ERR_INVALID_ARGUMENT);
   assert_int_equal(anitet_mesh_read(BOX_MESH, &box), ANITET_OK);
-  assert_int_equal(anitet_metric_create_from_points(box, values, 8, 1, &m), ANITET_ERR_NOT_IMPLEMENTED);
+  assert_int_equal(anitet_metric_create_from_points(box, values, 8, 1, &m), ANITET_OK);
+  assert_int_equal(anitet_metric_evaluate(m, 0.5, 0.05, 1.0, t), ANITET_OK);
+  assert_true(fabs(t[0] - 1.0) < 1e-12 && fabs(t[2] - 1.0) < 1e-12 && fabs(t[5] - 1.0) < 1e-12);
+  anitet_metric_destroy(m);
+  m = NULL;
   assert_int_equal(anitet_metric_create_from_points(box, values, 8, 3, &m), ANITET_ERR_INVALID_ARGUMENT);
   assert_int_equal(anitet_metric_create_from_points(NULL, values, 8, 1, &m), ANITET_ERR_INVALID_ARGUMENT);
   anitet_mesh_destroy(box);

@@ -1,6 +1,7 @@
 ! The Fortran module over the C ABI: a cube surface built in memory (1-based), validated and read
 ! back; a volume mesh read from the tests' data and filled into allocatable arrays; the error
-! paths a Fortran caller meets; the examples' sphere meshed with and without a metric.
+! paths a Fortran caller meets; the examples' sphere meshed with and without a metric, and with
+! a metric from per-point values or a .sol on a background mesh.
 ! Argument 1: the tests' data directory (tests/data).
 program test_fortran
   use, intrinsic :: iso_c_binding
@@ -19,6 +20,7 @@ program test_fortran
   call check_volume_mesh(trim(data_dir) // "/io/box.mesh")
   call check_mesh_from_arrays()
   call check_metric_and_mesher()
+  call check_metric_on_background(trim(data_dir) // "/io/box.mesh")
 
   if (failures > 0) then
     print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
@@ -226,10 +228,77 @@ contains
     options%layers = 1
     call check(anitet_mesher_run(surface, mesh, options=options) == ANITET_OK, "one layer")
     call anitet_mesh_destroy(mesh)
-    call check(anitet_metric_read("size.vdb", other) == ANITET_ERR_NOT_IMPLEMENTED, "metric read")
+    call check(anitet_metric_read("no_such_size.vdb", other) == ANITET_ERR_FILE_NOT_FOUND, &
+               "metric read: missing file")
     call check(.not. c_associated(other), "no metric handle")
     call anitet_metric_destroy(metric)
     call anitet_surface_destroy(surface)
+  end subroutine
+
+  ! Metrics on a background mesh (tests/data/io/box.mesh: 8 points, 6 tets): per-point values,
+  ! and the same values written as .sol + .mesh then read back; the sphere meshed with it.
+  subroutine check_metric_on_background(box_path)
+    character(len=*), intent(in) :: box_path
+    type(c_ptr) :: background, from_points, from_file, surface, mesh
+    real(c_double) :: sizes(1, 8), tensors(6, 8), short(1, 7), three(3, 8), m(6)
+    real(c_double) :: xyz(3, SPHERE_NPOINTS)
+    integer(c_int32_t) :: faces(3, SPHERE_NTRI), patch(SPHERE_NTRI)
+    real(c_double), allocatable :: values(:, :)
+    integer :: i
+    sizes = 0.25d0
+    short = 0.25d0
+    three = 1d0
+    do i = 1, 8
+      tensors(:, i) = [100d0, 0d0, 25d0, 0d0, 0d0, 6.25d0]
+    end do
+    call check(anitet_mesh_read(box_path, background) == ANITET_OK, "background mesh")
+    call check(anitet_metric_create_from_points(background, sizes, from_points) == ANITET_OK, &
+               "metric from points")
+    call check(anitet_metric_evaluate(from_points, [0.5d0, 0.05d0, 1d0], m) == ANITET_OK, &
+               "evaluate from points")
+    call check(abs(m(1) - 16d0) < 1d-12 .and. abs(m(6) - 16d0) < 1d-12 .and. abs(m(2)) < 1d-12, &
+               "per-point size 0.25")
+    call anitet_metric_destroy(from_points)
+    call check(anitet_metric_create_from_points(background, tensors, from_points) == ANITET_OK, &
+               "tensor metric from points")
+    call check(anitet_metric_evaluate(from_points, [1d0, 0.02d0, 0.5d0], m) == ANITET_OK, &
+               "evaluate tensor")
+    call check(abs(m(1) - 100d0) < 1d-10 .and. abs(m(3) - 25d0) < 1d-10 .and. &
+               abs(m(6) - 6.25d0) < 1d-10, "per-point tensor")
+    call anitet_metric_destroy(from_points)
+    call check(anitet_metric_create_from_points(background, short, from_points) == &
+               ANITET_ERR_INVALID_ARGUMENT, "7 values for 8 points refused")
+    call check(index(anitet_last_error_message(), "num_values is 7") > 0, "sizes mismatch message")
+    call check(anitet_metric_create_from_points(background, three, from_points) == &
+               ANITET_ERR_INVALID_ARGUMENT, "3 components refused")
+    call check(.not. c_associated(from_points), "no metric after an error")
+
+    ! .sol + background mesh, written through the C ABI (in the test's working directory).
+    call check(anitet_mesh_set_metric(background, sizes) == ANITET_OK, "set metric")
+    call check(anitet_mesh_write(background, "fortran_background.mesh") == ANITET_OK, "write mesh")
+    call check(anitet_mesh_write_metric(background, "fortran_background.sol") == ANITET_OK, &
+               "write sol")
+    call check(anitet_metric_read("fortran_background.sol", from_file, "fortran_background.mesh") &
+               == ANITET_OK, "metric read .sol")
+    call check(anitet_metric_evaluate(from_file, [0.7d0, 0.03d0, 0.2d0], m) == ANITET_OK, &
+               "evaluate .sol")
+    call check(abs(m(1) - 16d0) < 1d-12 .and. abs(m(3) - 16d0) < 1d-12, ".sol size 0.25")
+    call check(anitet_metric_read("fortran_background.sol", from_points) == &
+               ANITET_ERR_INVALID_ARGUMENT, ".sol without background refused")
+    call check(anitet_metric_read("fortran_background.sol", from_points, "no_such.mesh") == &
+               ANITET_ERR_FILE_NOT_FOUND, "missing background")
+
+    ! The sphere meshed to it: the mesh carries the size 0.25 at every vertex.
+    call sphere_build(xyz, faces, patch)
+    call check(anitet_surface_create(xyz, faces, surface, patch) == ANITET_OK, "sphere surface")
+    call check(anitet_mesher_run(surface, mesh, from_file) == ANITET_OK, "mesher with a .sol")
+    call check(anitet_mesh_get_metric(mesh, values) == ANITET_OK, "mesh metric")
+    call check(size(values, 1) == 6 .and. all(abs(values(1, :) - 16d0) < 1d-9), &
+               "mesh metric of the .sol")
+    call anitet_mesh_destroy(mesh)
+    call anitet_surface_destroy(surface)
+    call anitet_metric_destroy(from_file)
+    call anitet_mesh_destroy(background)
   end subroutine
 
 end program test_fortran

@@ -2,7 +2,8 @@
 
 Environment: PYTHONPATH with bindings/python, ANITET_LIBRARY (the built library), ANITET_HEADER
 (include/anitet.h, for the drift checks), ANITET_EXAMPLES_DIR (examples/python, for the sphere),
-ANITET_TEST_DATA_DIR (tests/data). ANITET_PYTHON_NUMPY=0 runs the same tests without NumPy.
+ANITET_TEST_DATA_DIR (tests/data), ANITET_METRIC_VDB_DIR (the .vdb files of the fixture
+make_metric_vdb; optional). ANITET_PYTHON_NUMPY=0 runs the same tests without NumPy.
 """
 import ctypes
 import os
@@ -258,10 +259,59 @@ class Metrics(unittest.TestCase):
         p = rows(m.points())[5]
         self.assertEqual(values[5], mesh_sphere.stretched_metric(*p))
 
-    def test_not_implemented(self):
+    def assert_size(self, metric, point, h):
+        t = metric.evaluate(*point)
+        for c, expected in enumerate((1 / h**2, 0, 1 / h**2, 0, 0, 1 / h**2)):
+            self.assertAlmostEqual(t[c] * h**2, expected * h**2, places=12)
+
+    def test_from_points(self):
+        background = anitet.Mesh.read(os.path.join(DATA, "io", "box.mesh"))  # 8 points, 6 tets
+        sizes = anitet.Metric.from_points(background, [0.25] * 8)
+        self.assert_size(sizes, (0.5, 0.05, 1.0), 0.25)
+        tensors = anitet.Metric.from_points(background, [(100, 0, 25, 0, 0, 6.25)] * 8)
+        t = tensors.evaluate(1.0, 0.02, 0.5)
+        self.assertAlmostEqual(t[0], 100, places=10)
+        self.assertAlmostEqual(t[2], 25, places=10)
+        self.assertAlmostEqual(t[5], 6.25, places=10)
+        for values, components, text in (([0.25] * 7, None, "num_values is 7"),
+                                         ([0.25] * 8, 3, "components is 3"),
+                                         ([0.25] * 7 + [-1.0], None, "point 7")):
+            with self.assertRaises(anitet.AnitetError) as e:
+                anitet.Metric.from_points(background, values, components)
+            self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+            self.assertIn(text, e.exception.message)
+        with self.assertRaises(TypeError):
+            anitet.Metric.from_points(None, [0.25] * 8)
+
+    def test_read_sol_and_mesh(self):
+        background = anitet.Mesh.read(os.path.join(DATA, "io", "box.mesh"))
+        background.set_metric([0.25] * 8)
+        with tempfile.TemporaryDirectory() as d:
+            sol, mesh = os.path.join(d, "bg.sol"), os.path.join(d, "bg.mesh")
+            background.write(mesh)
+            background.write_metric(sol)
+            metric = anitet.Metric.read(sol, mesh)
+            for path, bg, code in ((sol, None, anitet.ERR_INVALID_ARGUMENT),
+                                   (os.path.join(d, "missing.sol"), mesh, anitet.ERR_FILE_NOT_FOUND),
+                                   (sol, os.path.join(d, "missing.mesh"), anitet.ERR_FILE_NOT_FOUND),
+                                   (mesh, None, anitet.ERR_UNSUPPORTED_FORMAT)):
+                with self.assertRaises(anitet.AnitetError) as e:
+                    anitet.Metric.read(path, bg)
+                self.assertEqual(e.exception.code, code)
+        self.assert_size(metric, (0.7, 0.03, 0.2), 0.25)  # the file is no longer needed
+        m = sphere()[0].mesh(metric)
+        self.assertEqual(m.metric_components, 6)
+        for t in rows(m.metric()):
+            self.assertAlmostEqual(t[0], 16.0, places=9)
+
+    @unittest.skipUnless(os.environ.get("ANITET_METRIC_VDB_DIR"), "no .vdb fixture directory")
+    def test_read_vdb(self):
+        d = os.environ["ANITET_METRIC_VDB_DIR"]
+        metric = anitet.Metric.read(os.path.join(d, "size_linear.vdb"))  # h = 0.2 + 0.1 x
+        self.assert_size(metric, (0.5, 0.3, 0.7), 0.25)
         with self.assertRaises(anitet.AnitetError) as e:
-            anitet.Metric.read("size.vdb")
-        self.assertEqual(e.exception.code, anitet.ERR_NOT_IMPLEMENTED)
+            anitet.Metric.read(os.path.join(d, "size_linear.vdb"), os.path.join(DATA, "io", "box.mesh"))
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
 
 
 class Meshes(unittest.TestCase):

@@ -379,11 +379,22 @@ class Metric(_Handle):
 
     @classmethod
     def read(cls, path, background_mesh_path=None):
+        """A metric from a file, by extension: an OpenVDB .vdb (grid "size", or the six
+        "log_metric_*" or "metric_*" grids; no background), or a Medit .sol (a size or a tensor
+        per vertex) on the tetrahedral mesh at background_mesh_path (.mesh .msh .vtu .node)."""
         bg = _path(background_mesh_path) if background_mesh_path is not None else None
         return _create(cls, lib.anitet_metric_read, _path(path), bg)
 
     @classmethod
-    def from_points(cls, background, values, components):
+    def from_points(cls, background, values, components=None):
+        """A metric from values at the points of `background` (a Mesh), in its point order:
+        (n,) sizes or (n, 6) tensors xx xy yy xz yz zz. components (1 or 6) defaults to the
+        values' row length. The values and the mesh are copied."""
+        if not isinstance(background, Mesh):
+            raise TypeError("background must be an anitet.Mesh, not %s" % type(background).__name__)
+        if components is None:
+            first = values[0] if len(values) else 0.0
+            components = len(first) if hasattr(first, "__len__") else 1
         keep, ptr, count = _flat_doubles(values)  # keep owns the memory behind ptr
         return _create(cls, lib.anitet_metric_create_from_points, background, ptr, count,
                        components)
