@@ -106,7 +106,6 @@ class Recoverer {
   bool flip_edge(uint32_t u, uint32_t w);
   bool flip_face(uint32_t a, uint32_t b, uint32_t c);
   void note_tets(const std::vector<uint32_t>& tets);
-  bool crossing_parameter(uint32_t e, const ChainPoint& u, const ChainPoint& w, double& t);
   bool face_subfaces(uint32_t f, std::vector<Tri>& subfaces);
   bool insert_on_face(uint32_t f);
   void collect_face_vertices(uint32_t f, std::vector<uint32_t>& vs);
@@ -297,10 +296,7 @@ bool Recoverer::split_segment(uint32_t e, size_t k) {
   const double len = (w.t - u.t) * full;
   double t = 0.5 * (u.t + w.t);
   const bool u_input = u.v < n_in_, w_input = w.v < n_in_;
-  double tc;
-  if (opt_.split_at_crossings && crossing_parameter(e, u, w, tc)) {
-    t = tc;  // the paper's rule: the point where the segment leaves the tets around u
-  } else if (u_input != w_input && len > 0) {
+  if (u_input != w_input && len > 0) {
     double d = std::exp2(std::floor(std::log2(len * 2.0 / 3.0)));
     if (d < len / 3.0) d *= 2.0;
     t = u_input ? u.t + d / full : w.t - d / full;
@@ -318,59 +314,6 @@ bool Recoverer::split_segment(uint32_t e, size_t k) {
     }
   }
   return false;
-}
-
-// Where the subsegment (u w) of input edge e leaves the tets around u (the paper's intersection
-// point), as a parameter of e. The exit is found in floating point, barycentric coordinates with a
-// tolerance: on the planar parts of CAD surfaces the segment leaves through an edge of the ball's
-// boundary more often than through a facet's interior. False when it leaves near a vertex (a
-// vertex almost on the segment) or the exit is not well inside (u w): the caller then splits at a
-// fixed parameter instead.
-bool Recoverer::crossing_parameter(uint32_t e, const ChainPoint& u, const ChainPoint& w, double& t) {
-  const double* U = mesh_.point(u.v);
-  const double* W = mesh_.point(w.v);
-  const double* a = S_.point(edge_v_[2 * e]);
-  const double* b = S_.point(edge_v_[2 * e + 1]);
-  double uw[3];
-  sub(W, U, uw);
-  double best_s = -1, best_margin = -INFINITY;
-  ball(u.v, scratch_);
-  for (uint32_t tet : scratch_) {
-    if (mesh_.is_ghost(tet)) continue;
-    int i = 0;
-    while (mesh_.vertex(tet, i) != u.v) ++i;
-    const double* P = mesh_.point(mesh_.vertex(tet, kFacetVertex[i][0]));
-    const double* Q = mesh_.point(mesh_.vertex(tet, kFacetVertex[i][1]));
-    const double* R = mesh_.point(mesh_.vertex(tet, kFacetVertex[i][2]));
-    // Ray U + s uw against the plane of PQR: Cramer's rule on [uw, P-Q, P-R] (s, beta, gamma).
-    double pq[3], pr[3], pu[3], n[3];
-    sub(P, Q, pq);
-    sub(P, R, pr);
-    sub(P, U, pu);
-    cross(pq, pr, n);
-    const double det = dot(uw, n);
-    if (!(std::fabs(det) > 0)) continue;
-    const double s = dot(pu, n) / det;
-    double c1[3], c2[3];
-    cross(pu, pr, c1);
-    cross(pq, pu, c2);
-    const double beta = dot(uw, c1) / det, gamma = dot(uw, c2) / det;
-    const double margin = std::min({1.0 - beta - gamma, beta, gamma});
-    if (s > 0 && margin > best_margin) {
-      best_margin = margin;
-      best_s = s;
-    }
-  }
-  if (best_s <= 0 || best_margin < -1e-9) return false;
-  double x[3], ab[3], ax[3];
-  for (int d = 0; d < 3; ++d) x[d] = U[d] + best_s * uw[d];
-  sub(b, a, ab);
-  sub(x, a, ax);
-  const double tx = dot(ax, ab) / dot(ab, ab);
-  const double lo = u.t + opt_.crossing_margin * (w.t - u.t), hi = w.t - opt_.crossing_margin * (w.t - u.t);
-  if (!(tx > lo && tx < hi)) return false;
-  t = tx;
-  return true;
 }
 
 void Recoverer::note_tets(const std::vector<uint32_t>& tets) {
@@ -555,8 +498,19 @@ bool Recoverer::face_subfaces(uint32_t f, std::vector<Tri>& subfaces) {
     }
     ++interior;
   }
-  // Euler characteristic of a disk: V - E + F = 1, with every vertex of f used.
-  const long long V = static_cast<long long>(vs.size());
+  // Euler characteristic of a disk: V - E + F = 1 over the vertices the subfaces use. Every chain
+  // vertex is used (the boundary check above); a Steiner point of f's interior may be left out:
+  // the modified kernel can leave it in a flat tet just under the disk (inside the material),
+  // where it stays an interior vertex within rounding of f.
+  std::vector<char> used(vs.size(), 0);
+  for (const Tri& t : subfaces)
+    for (uint32_t v : t) used[size_t(std::lower_bound(vs.begin(), vs.end(), v) - vs.begin())] = 1;
+  long long V = 0;
+  for (size_t k = 0; k < vs.size(); ++k) {
+    if (used[k]) ++V;
+    else if (!(vs[k] >= n_in_ && vhost_kind_[vs[k]] == static_cast<int8_t>(SteinerHost::kFace) && vhost_[vs[k]] == f))
+      return false;
+  }
   const long long E = static_cast<long long>(boundary + interior);
   const long long F = static_cast<long long>(subfaces.size());
   return V - E + F == 1 && 3 * F == 2 * static_cast<long long>(interior) + static_cast<long long>(boundary);
@@ -965,14 +919,37 @@ Status Recoverer::carve() {
 Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOptions& options) {
   if (S.num_vertices() < 4 || S.num_triangles() < 4)
     return Status(Error::EmptyInput, "recover_boundary: a closed surface needs at least 4 vertices and 4 triangles");
-  RecoveryOutput out;
-  out.stats.input_vertices = S.num_vertices();
-  out.stats.input_triangles = S.num_triangles();
-  {
-    Recoverer r(S, options, out);
-    if (Status s = r.run(); !s.ok()) return s;
+  // The strategies, each from scratch: as asked, then (when retry_strategies) with flips, then
+  // with defended subsegments. No one of them recovers every shared surface; together they
+  // recover more (measurements in the README's status table).
+  std::vector<RecoveryOptions> attempts = {options};
+  if (options.retry_strategies) {
+    RecoveryOptions flips = options;
+    flips.use_flips = true;
+    flips.defend_edges = false;
+    RecoveryOptions defend = options;
+    defend.use_flips = false;
+    defend.defend_edges = true;
+    for (const RecoveryOptions& o : {flips, defend})
+      if (o.use_flips != options.use_flips || o.defend_edges != options.defend_edges) attempts.push_back(o);
   }
-  return out;
+  Status first;
+  for (size_t k = 0; k < attempts.size(); ++k) {
+    RecoveryOutput out;
+    out.stats.input_vertices = S.num_vertices();
+    out.stats.input_triangles = S.num_triangles();
+    out.stats.strategy = k;
+    Status s;
+    {
+      Recoverer r(S, attempts[k], out);
+      s = r.run();
+    }
+    if (s.ok()) return out;
+    if (s.code() != Error::RecoveryFailed) return s;
+    if (k == 0) first = s;
+  }
+  if (attempts.size() == 1) return first;
+  return Status(first.code(), first.message() + " (the retries with flips and with defended subsegments failed too)");
 }
 
 }  // namespace anitet

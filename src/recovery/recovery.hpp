@@ -27,26 +27,24 @@ namespace anitet {
 struct RecoveryOptions {
   uint64_t seed = 0x5eed;
   size_t max_passes = 400;          // sweeps over the missing constraints before giving up
-  double max_seconds = 20;          // and the time budget of the recovery loop
+  double max_seconds = 120;         // and a wall-time safety net (the caps above bound the work)
   double max_steiner_per_face = 24; // Steiner cap: this many per input triangle (+ 1000)
-  bool remove_outside = true;
+  bool remove_outside = true;      // false: keep the whole convex hull and the ghost tets
   // Mark each subsegment constrained as soon as it is present, so that the kernel keeps it. Off
-  // by default: on the shared surfaces the face phase then stalls on flat stacks of tets (see
-  // the report of issue 4); with it off, destroyed subsegments are found and split again.
+  // at first: it stalls on femur, casting, tray_bottom, turbine (face points blocked by defended
+  // edges), where splitting destroyed subsegments again works; the last retry uses it.
   bool defend_edges = false;
-  // Split a missing subsegment where it leaves the tets around its first end (the paper's
-  // intersection points) rather than at its middle; a crossing closer to an end than this share
-  // of the subsegment is not used.
-  bool split_at_crossings = false;
   // Try flips (2-3, edge removal) before Steiner points for a missing edge or an unsplit face.
-  // Off by default: on the shared corpus it recovers airplane with no Steiner point and casting,
-  // but without defended subsegments a flip can remove a present one and the face phase then
-  // stalls on bimba_low, femur, armadillo (measurements in the session note of 2026-11-23).
+  // Off at first: with flips, knight/kitten/elephant/rocker-arm need 5-30x fewer Steiner points
+  // and casting recovers, but bimba_low, femur, tray_bottom and turbine stall in the face phase.
+  // The retry below uses them.
   bool use_flips = false;
-  double crossing_margin = 0.1;
+  // When the recovery fails with the options above, start again with use_flips, then again with
+  // defend_edges (each from scratch); RecoveryStats::strategy tells which one succeeded.
+  bool retry_strategies = true;
   // A boundary subsegment of a face that no subface uses gets a face point just inside it even
   // when no coplanar vertex explains the gap.
-  bool apex_always = true;       // false: keep the whole convex hull and the ghost tets
+  bool apex_always = true;
 };
 
 // Where a vertex of the result lies on the input surface.
@@ -62,6 +60,7 @@ struct RecoveryStats {
   size_t input_vertices = 0, input_triangles = 0;
   size_t steiner_on_edges = 0, steiner_on_faces = 0;
   size_t passes = 0;
+  size_t strategy = 0;            // 0: the options as given, 1: retried with flips, 2: with defended edges
   size_t flips = 0;               // constraints recovered by a flip instead of a point
   size_t blocked_insertions = 0;  // insertions the kernel refused (another point was tried)
   size_t tets = 0;                // tets of the result
