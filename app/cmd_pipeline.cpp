@@ -1,17 +1,22 @@
-// `anitet mesh IN -o OUT`: the whole pipeline (validate, layers, recovery, coupling, refinement,
-// optimization), then the
-// mesh written and its quality report printed (the same as `anitet quality OUT --surface IN`).
+// `anitet mesh IN -o OUT`: the whole pipeline (validate, layers with an optional boundary layer,
+// recovery, coupling, refinement, optimization) with the sizing field of the metric options
+// (metric_options.hpp), then the mesh written and its quality report printed (the same as
+// `anitet quality OUT --surface IN`, measured in the local frame with --geodetic).
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "io/volume_io.hpp"
+#include "metric_options.hpp"
 #include "pipeline/mesher.hpp"
 #include "quality/quality_report.hpp"
 #include "surface_check.hpp"
@@ -40,6 +45,19 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
+// The exit code of a library error: bad options (InvalidArgument) are usage errors, missing
+// or unreadable files read errors.
+int exit_code_of(Error e) {
+  switch (e) {
+    case Error::InvalidArgument: return kExitUsage;
+    case Error::NotImplemented: return kExitNotImplemented;
+    case Error::FileNotFound:
+    case Error::Parse:
+    case Error::UnsupportedFormat: return kExitReadError;
+    default: return kExitInternal;
+  }
+}
+
 }  // namespace
 
 int run_mesh_pipeline(const MeshArgs& args) {
@@ -47,30 +65,95 @@ int run_mesh_pipeline(const MeshArgs& args) {
   CheckedSurface checked;
   if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
 
+  // --geodetic: the surface to a local frame in metres (validated again there: the checks are
+  // geometric), the mesh back to longitude, latitude, height at the end with --geodetic-output.
+  const std::vector<double> input_xyz = args.metric.geodetic_output ? checked.surface.xyz : std::vector<double>();
+  Result<std::optional<geo::GeoFrame>> frame = prepare_geodetic(args.metric, checked.surface);
+  if (!frame.ok()) {
+    std::cerr << cmd << ": --geodetic: '" << args.input << "': " << frame.status().message() << "\n";
+    return exit_code_of(frame.status().code());
+  }
+  if (frame.value()) {
+    checked.report = validate_surface(checked.surface);
+    if (!checked.report.ok()) {
+      print_invalid_surface("mesh", args.input + " (in the local frame)", checked.report);
+      return kExitInvalidInput;
+    }
+  }
+
   MesherOptions options;
   options.layers.layers = args.layers;
   options.layers.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
+  if (!args.bl_patches.empty()) {
+    if (!(args.bl_first_height > 0.0)) {
+      std::cerr << cmd << ": --bl-patches needs --bl-first-height\n";
+      return kExitUsage;
+    }
+    BoundaryLayerOptions& bl = options.layers.boundary_layer;
+    bl.wall_patches.assign(args.bl_patches.begin(), args.bl_patches.end());
+    bl.first_height = args.bl_first_height;
+    bl.growth = args.bl_growth;
+    bl.layers = args.bl_layers;
+  }
   options.refine.size_scale = args.size;
   options.run_refine = !args.no_refine;
   options.run_optimize = !args.no_optimize;
+
+  // The sizing field: the user's (--metric, bounds, gradation) or, when only its output is asked
+  // for, the default grid built here; else the Mesher builds the default grid itself.
+  std::unique_ptr<SizingField> field;
+  if (wants_sizing_field(args.metric)) {
+    const auto t0 = std::chrono::steady_clock::now();
+    Result<std::unique_ptr<SizingField>> built = build_sizing_field(
+        args.metric, checked.surface, frame.value() ? &*frame.value() : nullptr, options.surface_sizing);
+    if (!built.ok()) {
+      std::cerr << cmd << ": sizing field: " << built.status().message() << " ["
+                << error_name(built.status().code()) << "]\n";
+      return exit_code_of(built.status().code());
+    }
+    field = std::move(built).value();
+    options.sizing = field.get();
+    if (!args.quiet && !args.json)
+      std::cout << "anitet mesh: sizing field built in "
+                << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s\n";
+  }
+
   ProgressBar bar(!args.quiet && !args.json && isatty(STDERR_FILENO));
   options.progress = [&bar](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
   Result<MesherResult> run = Mesher(options).run_validated(checked.surface);
   if (!run.ok()) {
     std::cerr << cmd << ": meshing '" << args.input << "' failed: " << run.status().message() << " ["
               << error_name(run.status().code()) << "]\n";
-    return run.status().code() == Error::NotImplemented ? kExitNotImplemented : kExitInternal;
+    const Error e = run.status().code();  // bad options (e.g. a wall patch no triangle has): usage
+    return e == Error::NotImplemented ? kExitNotImplemented : e == Error::InvalidArgument ? kExitUsage : kExitInternal;
   }
-  const MesherResult& r = run.value();
-  if (Status st = write_volume_mesh(r.mesh, args.output); !st.ok()) {
-    std::cerr << cmd << ": cannot write '" << args.output << "': " << st.message() << "\n";
-    return kExitReadError;
-  }
+  MesherResult& r = run.value();
+  // Measured in the local frame, against the surface that was meshed.
   Result<QualityReport> quality = compute_quality_report(r.mesh, &checked.surface);
   if (!quality.ok()) {
     std::cerr << cmd << ": cannot measure the mesh: " << quality.status().message() << "\n";
     return kExitInternal;
   }
+  if (field) {
+    if (Status st = write_metric_outputs(args.metric, *field, checked.surface, r.mesh); !st.ok()) {
+      std::cerr << cmd << ": cannot write the sizing field: " << st.message() << "\n";
+      return kExitReadError;
+    }
+  }
+  if (Status st = restore_geodetic(args.metric, frame.value(), r.mesh); !st.ok()) {
+    std::cerr << cmd << ": --geodetic-output: " << st.message() << "\n";
+    return kExitInternal;
+  }
+  // The input's vertices come first, in input order: written back exactly as read (the round
+  // trip through the local frame is exact only to ~1e-9 m), so the output keeps the input
+  // surface bit for bit.
+  if (!input_xyz.empty() && r.mesh.xyz.size() >= input_xyz.size())
+    std::copy(input_xyz.begin(), input_xyz.end(), r.mesh.xyz.begin());
+  if (Status st = write_volume_mesh(r.mesh, args.output); !st.ok()) {
+    std::cerr << cmd << ": cannot write '" << args.output << "': " << st.message() << "\n";
+    return kExitReadError;
+  }
+  const BoundaryLayerReport& bl = r.boundary_layer;
   if (args.json) {
     nlohmann::json stages = nlohmann::json::array();
     for (const StageReport& s : r.stages) stages.push_back({{"stage", s.name}, {"seconds", s.seconds}, {"tets", s.tets}});
@@ -82,6 +165,14 @@ int run_mesh_pipeline(const MeshArgs& args) {
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
         {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range}}},
+        {"boundary_layer", {{"layers", bl.layers}, {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
+                            {"vertices", bl.vertices}, {"full_columns", bl.full_columns},
+                            {"nominal_columns", bl.nominal_columns}, {"reduced_vertices", bl.reduced_vertices},
+                            {"reduced_share", r.layers.bl_reduced_share},
+                            {"first_height_min", bl.first_height_min}, {"first_height_mean", bl.first_height_mean},
+                            {"first_height_max", bl.first_height_max}, {"max_height_error", bl.max_height_error},
+                            {"growth_mean", bl.growth_mean}, {"max_displacement", bl.max_displacement},
+                            {"stage1_seconds", r.layers.bl_seconds}}},
         {"optimize", {{"moves", r.optimize.moves}, {"flips23", r.optimize.flips23},
                       {"edge_removals", r.optimize.edge_removals}, {"perturbations", r.optimize.perturbations}}},
         {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
@@ -92,6 +183,15 @@ int run_mesh_pipeline(const MeshArgs& args) {
               << (r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0) << " tets/s)\n";
     for (const StageReport& s : r.stages)
       std::cout << "  stage " << s.name << ": " << s.seconds << " s, " << s.tets << " tets\n";
+    if (bl.layers > 0)
+      std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
+                << bl.tets << " tets, " << bl.vertices << " vertices kept fixed; " << bl.full_columns
+                << " full columns, " << bl.nominal_columns << " within 10% of h0 r^i (max error "
+                << bl.max_height_error << "); reduced vertices " << bl.reduced_vertices << " ("
+                << 100.0 * r.layers.bl_reduced_share << "%); first height min " << bl.first_height_min
+                << " mean " << bl.first_height_mean << " max " << bl.first_height_max << "; growth "
+                << bl.growth_mean << "; BL vertices moved after stage 1 by at most " << bl.max_displacement
+                << "; " << r.layers.bl_seconds << " s\n";
     std::cout << "  stage 2 Steiner points on S1: " << r.recovery.steiner_on_edges << " on edges, "
               << r.recovery.steiner_on_faces << " in faces; coupling split " << r.couple.edge_split_tets
               << " T1 tets and re-coned " << r.couple.faces_reconed << " S1 faces\n"

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "metric_options.hpp"
+
 namespace anitet::cli {
 
 struct CheckSurfaceArgs {
@@ -41,6 +43,7 @@ struct MeshArgs {
   double size = 1.0;                    // global scale of the sizing field (2: twice as coarse)
   bool no_refine = false;               // skip refinement/coarsening (stage 3b)
   bool no_optimize = false;             // skip CVT, flips and sliver removal (stage 3c)
+  MetricCliOptions metric;              // --metric, --hmin/--hmax/--hgrad, --geodetic, ... (mesh)
 };
 int run_mesh(const MeshArgs& args);
 // `mesh`: the whole pipeline (cmd_pipeline.cpp).

@@ -67,24 +67,34 @@ int run(int argc, char** argv) {
                        "faces (the paper's: a tet on every face, then vertex pushes)")
       ->capture_default_str()
       ->check(CLI::IsMember({"push", "faces"}));
+  const char* bl_group = "Boundary layer";
   mesh_cmd->add_option("--bl-patches", mesh.bl_patches,
-                       "Boundary layer (stage 1): the input's patch labels that are walls (whole "
-                       "shells); the other patches get the ordinary --layers")
-      ->delimiter(',');
+                       "The input's patch labels (comma-separated) that are walls, each a whole shell: "
+                       "n thin prism layers grow there first, then the ordinary --layers on the whole "
+                       "front. BL tets keep their heights through the pipeline (frozen for refinement "
+                       "and optimization) and get region bodies + body (1 for one body)")
+      ->delimiter(',')
+      ->group(bl_group);
   mesh_cmd->add_option("--bl-first-height", mesh.bl_first_height,
-                       "Boundary layer: first layer height h0 (length units; needed with --bl-patches)")
-      ->check(CLI::PositiveNumber);
-  mesh_cmd->add_option("--bl-growth", mesh.bl_growth, "Boundary layer: growth ratio r of the heights")
+                       "First layer height h0 (length units; needed with --bl-patches)")
+      ->check(CLI::PositiveNumber)
+      ->group(bl_group);
+  mesh_cmd->add_option("--bl-growth", mesh.bl_growth, "Growth ratio r: layer i has height h0 r^i")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 10.0));
-  mesh_cmd->add_option("--bl-layers", mesh.bl_layers, "Boundary layer: number of layers n")
+      ->check(CLI::Range(1.0, 10.0))
+      ->group(bl_group);
+  mesh_cmd->add_option("--bl-layers", mesh.bl_layers, "Number of boundary layers n")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Range(1, 1000))
+      ->group(bl_group);
   mesh_cmd->add_option("--size", mesh.size,
-                       "Scale every target edge length of the sizing field (the paper's grid from the "
-                       "surface's triangle sizes): 0.5 = twice as fine, 2 = twice as coarse")
+                       "Scale every target edge length of the sizing field (--metric's, or the paper's "
+                       "grid from the surface's triangle sizes), after --hmin/--hmax/--hgrad: 0.5 = "
+                       "twice as fine, 2 = twice as coarse")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->group("Sizing");
+  add_metric_options(*mesh_cmd, mesh.metric);
   mesh_cmd->add_flag("--no-refine", mesh.no_refine, "Skip refinement/coarsening by metric edge length");
   mesh_cmd->add_flag("--no-optimize", mesh.no_optimize, "Skip CVT smoothing, flips and sliver removal");
   mesh_cmd->add_flag("--json", mesh.json, "Print the report as JSON");
@@ -104,9 +114,11 @@ int run(int argc, char** argv) {
 
   if (check_cmd->parsed()) return run_check_surface(check);
   if (quality_cmd->parsed()) return run_quality(quality);
-  if (mesh_cmd->parsed() && !mesh.bl_patches.empty() && mesh.stop_after != "layers") {
-    std::cerr << "anitet mesh: --bl-patches: the boundary layer runs with --stop-after layers only; "
-                 "in the whole pipeline it is not implemented yet\n";
+  if (mesh_cmd->parsed() && mesh.stop_after == "layers" &&
+      (wants_sizing_field(mesh.metric) || mesh.metric.geodetic || !mesh.metric.background.empty())) {
+    std::cerr << "anitet mesh: the sizing and geographic options (--metric, --background, --hmin, "
+                 "--hmax, --hgrad, --write-metric, --write-sizing, --geodetic) apply to the whole "
+                 "pipeline, not to --stop-after layers\n";
     return kExitUsage;
   }
   if (mesh_cmd->parsed()) return mesh.stop_after == "layers" ? run_mesh_layers(mesh) : run_mesh_pipeline(mesh);

@@ -121,10 +121,12 @@ void add_metric_options(CLI::App& cmd, MetricCliOptions& o) {
                  "applied to the whole tensor (> 1; 0: none)")
       ->group(group);
   cmd.add_option("--write-metric", o.write_metric,
-                 "Write the sizing field at the mesh's vertices as a Medit .sol")
+                 "Write the sizing field (before --size) at the output mesh's vertices as a "
+                 "Medit .sol (sizes when isotropic, else tensors)")
       ->group(group);
   cmd.add_option("--write-sizing", o.write_sizing,
-                 "Write the sizing field as OpenVDB grids (.vdb), for any OpenVDB viewer")
+                 "Write the sizing field (before --size) as OpenVDB grids (.vdb), for any "
+                 "OpenVDB viewer; readable again with --metric")
       ->group(group);
   const char* geo = "Geographic";
   cmd.add_flag("--geodetic", o.geodetic,
@@ -142,7 +144,8 @@ void add_metric_options(CLI::App& cmd, MetricCliOptions& o) {
       ->group(geo)
       ->check(CLI::IsMember({"enu", "utm"}));
   cmd.add_flag("--geodetic-output", o.geodetic_output,
-               "Write the mesh back in longitude, latitude, height (default: the local frame)")
+               "Write the mesh back in longitude, latitude, height, the input's vertices exactly "
+               "as read (default: the mesh in the local frame)")
       ->group(geo);
 }
 

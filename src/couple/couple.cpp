@@ -77,6 +77,8 @@ class Coupler {
   std::vector<Piece> pieces_;                      // S1 face pieces present in T1
   std::unordered_map<Tri, uint32_t, TriHash> piece_of_;  // sorted triangle -> index in pieces_
   std::vector<std::vector<uint32_t>> vtets_;       // tets around each vertex (edge splits only)
+  int32_t bodies_ = 0;
+  size_t bl_tets_ = 0;
 };
 
 Status Coupler::map_t2_vertices() {
@@ -317,8 +319,19 @@ Status Coupler::finish_boundary_and_regions() {
   std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return component_key[x] < component_key[y]; });
   std::vector<int32_t> region_of(order.size());
   for (size_t r = 0; r < order.size(); ++r) region_of[order[r]] = static_cast<int32_t>(r);
-  for (uint32_t t = 0; t < nt; ++t)
-    if (!mesh_.is_deleted(t)) mesh_.tet_region[t] = region_of[component[t]];
+  // Boundary-layer tets: the T1 tets with a nonzero region (stage 1 tags them; the other T1
+  // tets, the T2 tets and the cones are 0) go to region bodies + their body's region, and
+  // their vertices are flagged vflag::kBoundaryLayer.
+  const auto bodies = static_cast<int32_t>(order.size());
+  bodies_ = bodies;
+  for (uint32_t t = 0; t < nt; ++t) {
+    if (mesh_.is_deleted(t)) continue;
+    const bool bl = mesh_.tet_region[t] != 0;
+    mesh_.tet_region[t] = region_of[component[t]] + (bl ? bodies : 0);
+    if (!bl) continue;
+    ++bl_tets_;
+    for (int i = 0; i < 4; ++i) mesh_.vflags[mesh_.vertex(t, i)] |= vflag::kBoundaryLayer;
+  }
   return Status::success();
 }
 
@@ -340,6 +353,8 @@ Status Coupler::run(CoupleStats& stats) {
   if (Status st = add_t2_tets(stats); !st.ok()) return st;
   if (Status st = finish_boundary_and_regions(); !st.ok()) return st;
   stats.tets = mesh_.num_live_tets();
+  stats.bodies = static_cast<size_t>(bodies_);
+  stats.bl_tets = bl_tets_;
   return Status::success();
 }
 

@@ -30,6 +30,8 @@ struct CoupleStats {
   size_t edge_split_tets = 0;      // T1 tets split by edge splits
   size_t faces_reconed = 0;        // S1 faces whose T1 tets were replaced by the cone over S2
   size_t t1_tets = 0, t2_tets = 0, tets = 0;
+  size_t bodies = 0;   // connected bodies (regions 0 .. bodies - 1)
+  size_t bl_tets = 0;  // boundary-layer tets (regions bodies .. 2 bodies - 1)
   double seconds = 0.0;
 };
 
@@ -37,7 +39,9 @@ struct CoupledMesh {
   // T1' and T2 in one mesh: T1's vertices first (the input's own at the start, flagged
   // vflag::kOnInputSurface), then the Steiner points of T2. No ghost tets; adjacency built; the
   // facets on S have no neighbour and are protected. Tet regions: one per connected body,
-  // numbered by the smallest input triangle bounding it.
+  // numbered 0 .. bodies - 1 by the smallest input triangle bounding it; the boundary-layer tets
+  // (T1 tets with a nonzero region, see BoundaryLayerOptions::region) of body k get region
+  // bodies + k (1 for the usual single body) and their vertices vflag::kBoundaryLayer.
   TetMesh mesh;
   CoupleStats stats;
 };

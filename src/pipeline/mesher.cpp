@@ -1,6 +1,8 @@
 #include "pipeline/mesher.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 #include "core/sizing.hpp"
@@ -15,6 +17,87 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 // Share of the run's time each stage takes, roughly, for the progress fraction.
 constexpr double kDoneAfterValidate = 0.03, kDoneAfterLayers = 0.2, kDoneAfterRecovery = 0.35,
                  kDoneAfterCoupling = 0.4, kDoneAfterSizing = 0.45, kDoneAfterRefine = 0.7;
+
+// Freezes the boundary layer (the tets of region >= first_bl_region) for refinement and
+// optimization: every facet of a BL tet protected on both sides, every BL vertex locked.
+// Returns the number of BL vertices.
+size_t freeze_boundary_layer(TetMesh& mesh, int32_t first_bl_region) {
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t) || mesh.tet_region[t] < first_bl_region) continue;
+    for (int i = 0; i < 4; ++i) {
+      mesh.set_facet_protected(t, i, true);
+      const uint64_t adj = mesh.tet_adj[4 * size_t(t) + i];
+      if (adj != TetMesh::kNoNeighbour) mesh.set_facet_protected(mesh.neighbour(t, i), mesh.neighbour_facet(t, i), true);
+    }
+  }
+  size_t n = 0;
+  for (uint8_t& f : mesh.vflags)
+    if (f & vflag::kBoundaryLayer) {
+      f |= vflag::kLocked;
+      ++n;
+    }
+  return n;
+}
+
+double distance(const double* p, const double* q) {
+  return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+}
+
+// The BL columns measured on the final mesh (see BoundaryLayerReport). vertex_origin and
+// t1_xyz: stage 1's, for the T1 vertices (ids unchanged since).
+void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptions& bl, int layers,
+                            const std::vector<uint32_t>& vertex_origin, const std::vector<double>& t1_xyz,
+                            const TetMesh& mesh, BoundaryLayerReport& r) {
+  r.layers = layers;
+  const size_t nv = vertex_origin.size();
+  std::vector<std::vector<uint32_t>> children(nv);
+  for (uint32_t v = 0; v < nv; ++v)
+    if (vertex_origin[v] != TetMesh::kNone && vertex_origin[v] < nv) children[vertex_origin[v]].push_back(v);
+  std::vector<uint8_t> wall(surface.num_vertices(), 0);
+  for (size_t t = 0; t < surface.num_triangles(); ++t)
+    if (std::find(bl.wall_patches.begin(), bl.wall_patches.end(), surface.patch[t]) != bl.wall_patches.end())
+      for (int k = 0; k < 3; ++k) wall[surface.tri[3 * t + k]] = 1;
+  double first_sum = 0.0, growth_sum = 0.0;
+  r.first_height_min = HUGE_VAL;
+  for (uint32_t v = 0; v < surface.num_vertices(); ++v) {
+    if (!wall[v]) continue;
+    ++r.wall_vertices;
+    uint32_t at = v;
+    double worst = 0.0, first = 0.0, last = 0.0;
+    bool full = layers > 0;
+    for (int i = 0; i < layers; ++i) {
+      if (at >= nv || children[at].empty()) {
+        full = false;
+        break;
+      }
+      const uint32_t next = children[at].back();
+      const double h = distance(mesh.point(at), mesh.point(next));
+      if (i == 0) first = h;
+      last = h;
+      worst = std::max(worst, std::abs(h / (bl.first_height * std::pow(bl.growth, i)) - 1.0));
+      at = next;
+    }
+    if (!full) continue;
+    ++r.full_columns;
+    first_sum += first;
+    r.first_height_min = std::min(r.first_height_min, first);
+    r.first_height_max = std::max(r.first_height_max, first);
+    growth_sum += layers > 1 && first > 0.0 ? std::pow(last / first, 1.0 / (layers - 1)) : 1.0;
+    if (worst <= 0.1) {
+      ++r.nominal_columns;
+      r.max_height_error = std::max(r.max_height_error, worst);
+    }
+  }
+  if (r.full_columns) {
+    r.first_height_mean = first_sum / double(r.full_columns);
+    r.growth_mean = growth_sum / double(r.full_columns);
+  } else {
+    r.first_height_min = 0.0;
+  }
+  for (uint32_t v = 0; v < nv && 3 * size_t(v) + 2 < t1_xyz.size(); ++v)
+    if (mesh.vflags[v] & vflag::kBoundaryLayer)
+      r.max_displacement = std::max(r.max_displacement, distance(mesh.point(v), &t1_xyz[3 * size_t(v)]));
+}
 
 }  // namespace
 
@@ -36,6 +119,9 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   };
   MesherResult result;
 
+  if (options_.layers.boundary_layer.enabled() && options_.layers.boundary_layer.region == 0)
+    return Status(Error::InvalidArgument,
+                  "boundary layer: region must be nonzero (coupling tells the BL tets by it)");
   if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
   auto t = Clock::now();
   const IsotropicSurfaceSizing sizing(surface);
@@ -54,6 +140,15 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   result.recovery = recovered->stats;
   result.stages.push_back({"recovery", since(t), recovered->stats.tets});
 
+  // Kept for the boundary-layer figures (stage 1's vertex ids survive the later stages).
+  const BoundaryLayerOptions& bl = options_.layers.boundary_layer;
+  std::vector<uint32_t> t1_origin;
+  std::vector<double> t1_xyz;
+  if (bl.enabled()) {
+    t1_origin = layers->vertex_origin;
+    t1_xyz = layers->mesh.xyz;
+  }
+
   if (Status st = progress("coupling", kDoneAfterRecovery); !st.ok()) return st;
   t = Clock::now();
   Result<CoupledMesh> coupled = couple_meshes(surface, std::move(layers).value(), s1_map, recovered.value());
@@ -62,6 +157,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   result.stages.push_back({"coupling", since(t), coupled->stats.tets});
 
   TetMesh& mesh = coupled->mesh;
+  if (bl.enabled()) result.boundary_layer.vertices = freeze_boundary_layer(mesh, int32_t(coupled->stats.bodies));
   if (options_.run_refine || options_.run_optimize) {
     if (Status st = progress("sizing", kDoneAfterCoupling); !st.ok()) return st;
     t = Clock::now();
@@ -95,6 +191,12 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   }
 
   t = Clock::now();
+  if (bl.enabled()) {
+    measure_boundary_layer(surface, bl, result.layers.bl_layers, t1_origin, t1_xyz, mesh, result.boundary_layer);
+    for (uint32_t k = 0; k < mesh.num_tet_slots(); ++k)
+      if (!mesh.is_deleted(k) && mesh.tet_region[k] >= int32_t(coupled->stats.bodies)) ++result.boundary_layer.tets;
+    result.boundary_layer.reduced_vertices = result.layers.bl_reduced_vertices;
+  }
   // Vertices removed by coarsening are dropped; the input's stay first, in input order (they
   // bound S's facets, so they are all used).
   result.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/options_.run_refine);

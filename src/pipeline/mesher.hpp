@@ -1,6 +1,10 @@
 // The Mesher: the stages in order, behind one class.
 //   validate -> stage 1 (layers) -> stage 2 (Delaunay of S1 + conforming recovery) -> coupling
 //   -> refinement/coarsening (refine/) -> optimization (optimize/) -> a VolumeMesh.
+// Boundary layers (layers.boundary_layer with wall patches): the BL tets come out of coupling in
+// their own region (couple.hpp) and are frozen for refinement and optimization: every facet of a
+// BL tet is protected (cavities, flips and collapses stop there) and every BL vertex locked
+// (never moved or removed), so the layers and their heights reach the output unchanged.
 // Same input and options, same mesh, bit for bit (every stage is deterministic and sequential).
 #pragma once
 
@@ -56,6 +60,24 @@ struct StageReport {
   size_t tets = 0;  // tets the stage leaves (its own output)
 };
 
+// Boundary-layer figures measured on the final mesh (MesherOptions::layers.boundary_layer).
+// A column is a wall vertex followed up the BL layers (each pushed vertex to the one pushed from
+// it); the height of layer i is the length of its step, measured after refinement and
+// optimization, against the requested h0 r^i.
+struct BoundaryLayerReport {
+  int layers = 0;              // BL layers built (n)
+  size_t wall_vertices = 0;    // input vertices on the wall patches
+  size_t tets = 0;             // BL tets in the output (regions bodies .. 2 bodies - 1)
+  size_t vertices = 0;         // BL vertices (wall vertices included), frozen for stages 3b/3c
+  size_t full_columns = 0;     // wall vertices whose column reaches all n layers
+  size_t nominal_columns = 0;  // full columns with every height within 10% of h0 r^i
+  size_t reduced_vertices = 0; // wall vertices with a reduced layer (stage 1's count)
+  double first_height_min = 0.0, first_height_mean = 0.0, first_height_max = 0.0;  // full columns
+  double max_height_error = 0.0;  // max |h / (h0 r^i) - 1| over the nominal columns
+  double growth_mean = 0.0;       // mean of (h_(n-1) / h_0)^(1 / (n-1)) over full columns
+  double max_displacement = 0.0;  // largest move of a BL vertex after stage 1 (0: kept)
+};
+
 struct MesherResult {
   // Vertices: the input's first, in input order; tets positive; regions per body; boundary
   // triangles: the input's, with their patch labels.
@@ -64,6 +86,7 @@ struct MesherResult {
   LayersStats layers;
   RecoveryStats recovery;
   CoupleStats couple;
+  BoundaryLayerReport boundary_layer;  // zero without wall patches
   RefineStats refine;      // zero when the stage did not run
   OptimizeStats optimize;  // zero when the stage did not run
   double seconds = 0.0;
