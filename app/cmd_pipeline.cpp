@@ -160,8 +160,10 @@ int run_mesh_pipeline(const MeshArgs& args) {
     nlohmann::json out = {
         {"input", args.input}, {"output", args.output}, {"seconds", r.seconds}, {"stages", stages},
         {"tets_per_second", r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0},
+        {"layers", {{"layers_used", r.layers_used}, {"retries", r.layers_retries}}},
         {"recovery", {{"steiner_on_s1_edges", r.recovery.steiner_on_edges},
-                      {"steiner_on_s1_faces", r.recovery.steiner_on_faces}}},
+                      {"steiner_on_s1_faces", r.recovery.steiner_on_faces},
+                      {"strategy", r.recovery.strategy}}},
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
         {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range}}},
@@ -183,6 +185,9 @@ int run_mesh_pipeline(const MeshArgs& args) {
               << (r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0) << " tets/s)\n";
     for (const StageReport& s : r.stages)
       std::cout << "  stage " << s.name << ": " << s.seconds << " s, " << s.tets << " tets\n";
+    if (r.layers_retries > 0)
+      std::cout << "  stage 2 could not recover S1 with the requested layers; stages 1-2 retried "
+                << r.layers_retries << " time(s), " << r.layers_used << " layer(s) worked\n";
     if (bl.layers > 0)
       std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
                 << bl.tets << " tets, " << bl.vertices << " vertices kept fixed; " << bl.full_columns

@@ -123,22 +123,48 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
     return Status(Error::InvalidArgument,
                   "boundary layer: region must be nonzero (coupling tells the BL tets by it)");
   if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
-  auto t = Clock::now();
+  // Stages 1 and 2. When stage 2 cannot recover S1, stage 1 is run again with another number of
+  // layers (fewer first, down to 1, then one more): S1 changes shape and its recovery often
+  // succeeds. The report says which count was used (LayersStats::layers).
   const IsotropicSurfaceSizing sizing(surface);
-  Result<LayersOutput> layers = build_layers(surface, sizing, options_.layers);
-  if (!layers.ok()) return Status(layers.status().code(), "stage 1 (layers): " + layers.status().message());
-  result.layers = layers->stats;
-  result.stages.push_back({"layers", since(t), layers->stats.tets});
-
-  if (Status st = progress("recovery", kDoneAfterLayers); !st.ok()) return st;
-  t = Clock::now();
+  std::vector<int> layer_counts = {options_.layers.layers};
+  if (options_.retry_layer_counts) {
+    for (int n = options_.layers.layers - 1; n >= 1; --n) layer_counts.push_back(n);
+    layer_counts.push_back(options_.layers.layers + 1);
+  }
+  Result<LayersOutput> layers = Status(Error::Internal, "no layer count tried");
+  Result<RecoveryOutput> recovered = Status(Error::Internal, "no layer count tried");
   std::vector<uint32_t> s1_map;
-  const SurfaceMesh s1 = front_surface(layers.value(), &s1_map);
-  Result<RecoveryOutput> recovered = recover_boundary(s1, options_.recovery);
-  if (!recovered.ok())
-    return Status(recovered.status().code(), "stage 2 (recovery of S1): " + recovered.status().message());
+  Status first_failure;
+  for (size_t attempt = 0; attempt < layer_counts.size(); ++attempt) {
+    auto t = Clock::now();
+    LayersOptions layer_options = options_.layers;
+    layer_options.layers = layer_counts[attempt];
+    layers = build_layers(surface, sizing, layer_options);
+    if (!layers.ok()) return Status(layers.status().code(), "stage 1 (layers): " + layers.status().message());
+    result.layers = layers->stats;
+    result.layers_retries = attempt;
+    result.layers_used = layer_counts[attempt];
+    result.stages.push_back({attempt == 0 ? "layers" : "layers (retry)", since(t), layers->stats.tets});
+
+    if (Status st = progress("recovery", kDoneAfterLayers); !st.ok()) return st;
+    t = Clock::now();
+    s1_map.clear();
+    const SurfaceMesh s1 = front_surface(layers.value(), &s1_map);
+    recovered = recover_boundary(s1, options_.recovery);
+    result.stages.push_back({attempt == 0 ? "recovery" : "recovery (retry)", since(t),
+                             recovered.ok() ? recovered->stats.tets : 0});
+    if (recovered.ok()) break;
+    if (recovered.status().code() != Error::RecoveryFailed) break;
+    if (attempt == 0) first_failure = recovered.status();
+  }
+  if (!recovered.ok()) {
+    const Status& s = first_failure.ok() ? recovered.status() : first_failure;
+    std::string msg = "stage 2 (recovery of S1): " + s.message();
+    if (layer_counts.size() > 1) msg += " (retried with " + std::to_string(layer_counts.size() - 1) + " other layer counts)";
+    return Status(s.code(), msg);
+  }
   result.recovery = recovered->stats;
-  result.stages.push_back({"recovery", since(t), recovered->stats.tets});
 
   // Kept for the boundary-layer figures (stage 1's vertex ids survive the later stages).
   const BoundaryLayerOptions& bl = options_.layers.boundary_layer;
@@ -150,7 +176,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   }
 
   if (Status st = progress("coupling", kDoneAfterRecovery); !st.ok()) return st;
-  t = Clock::now();
+  auto t = Clock::now();
   Result<CoupledMesh> coupled = couple_meshes(surface, std::move(layers).value(), s1_map, recovered.value());
   if (!coupled.ok()) return Status(coupled.status().code(), "stage 3 (coupling): " + coupled.status().message());
   result.couple = coupled->stats;

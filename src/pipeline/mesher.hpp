@@ -35,6 +35,9 @@ using ProgressCallback = std::function<bool(const std::string& stage, double fra
 struct MesherOptions {
   LayersOptions layers;
   RecoveryOptions recovery;
+  // When stage 2 cannot recover S1, run stages 1 and 2 again with layers.layers - 1, ..., 1, then
+  // layers.layers + 1 (each run from scratch); MesherResult::layers_used tells which count worked.
+  bool retry_layer_counts = true;
   ValidationOptions validation;
   ProgressCallback progress;  // may be empty
   // Stage 3b/3c. The sizing field they follow: `sizing` when given (a user metric; it must
@@ -83,7 +86,9 @@ struct MesherResult {
   // triangles: the input's, with their patch labels.
   VolumeMesh mesh;
   std::vector<StageReport> stages;
-  LayersStats layers;
+  LayersStats layers;      // of the stage-1 run that stage 2 recovered
+  int layers_used = 0;     // the layer count of that run
+  size_t layers_retries = 0;  // stage 1 + 2 runs before it (other layer counts, see MesherOptions)
   RecoveryStats recovery;
   CoupleStats couple;
   BoundaryLayerReport boundary_layer;  // zero without wall patches
