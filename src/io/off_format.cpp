@@ -76,6 +76,12 @@ Result<SurfaceMesh> parse_off(std::string_view data, const std::string& name) {
     add_fan(mesh, polygon.data(), polygon.size(), 0);
     in.skip_line();  // face colour
   }
+  // Data after the announced faces: the counts are wrong; refuse rather than drop faces.
+  if (in.skip_space()) {
+    return in.error(Error::Parse, "data after the " + std::to_string(nf) +
+                                      " faces the header announces: '" +
+                                      quote_token(in.peek_token()) + "'");
+  }
   if (mesh.tri.empty()) return Status(Error::EmptyInput, name + ": the file has no faces");
   return mesh;
 }

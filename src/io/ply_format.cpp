@@ -160,6 +160,8 @@ class PlyValueReader {
 
   bool binary() const { return encoding_ != PlyEncoding::Ascii; }
   size_t remaining() const { return binary() ? bytes_.remaining() : text_.remaining(); }
+  // ASCII: something other than whitespace is left (binary files may carry padding).
+  bool text_left() { return !binary() && text_.skip_space(); }
 
   bool read_double(PlyType type, double& out) {
     if (!binary()) return text_.read_double(out);
@@ -336,6 +338,9 @@ Result<SurfaceMesh> parse_ply(std::string_view data, const std::string& name) {
         }
       }
     }
+  }
+  if (in.text_left()) {
+    return in.error(Error::Parse, "data after the elements the header announces (wrong counts?)");
   }
   if (mesh.tri.empty()) return Status(Error::EmptyInput, name + ": the PLY file has no faces");
   return mesh;

@@ -42,6 +42,12 @@ bool check_arrays(const SurfaceMesh& s, ReportBuilder& out) {
     out.error(Error::InvalidArgument, "the coordinate or index array is not a multiple of 3");
     return false;
   }
+  if (!s.patch.empty() && s.patch.size() != s.num_triangles()) {  // no labels: all patch 0
+    out.error(Error::InvalidArgument, "the patch array has " + std::to_string(s.patch.size()) +
+                                          " labels for " + std::to_string(s.num_triangles()) +
+                                          " triangles");
+    return false;
+  }
   if (s.num_triangles() == 0) {
     out.error(Error::EmptyInput, "the surface has no triangles");
     return false;
