@@ -124,8 +124,8 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
                   "boundary layer: region must be nonzero (coupling tells the BL tets by it)");
   if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
   // Stages 1 and 2. When stage 2 cannot recover S1, stage 1 is run again with another number of
-  // layers (fewer first, down to 1, then one more): S1 changes shape and its recovery often
-  // succeeds. The report says which count was used (LayersStats::layers).
+  // layers (fewer first, down to 1, then one more): S1 changes shape and its recovery may then
+  // succeed (bimba_low: not with 2 layers, yes with 1). MesherResult::layers_used says which.
   const IsotropicSurfaceSizing sizing(surface);
   std::vector<int> layer_counts = {options_.layers.layers};
   if (options_.retry_layer_counts) {
