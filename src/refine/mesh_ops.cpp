@@ -97,4 +97,82 @@ double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets) {
   return q;
 }
 
+MetricMap MetricMap::of(const double m[6]) {
+  MetricMap map;
+  // Isotropic up to a relative 1e-6 (fields interpolated in log space, e.g. metric/'s grids,
+  // return isotropic tensors with rounding noise).
+  const double tol = 1e-6 * std::fabs(m[0] + m[2] + m[5]);
+  if (std::fabs(m[1]) <= tol && std::fabs(m[3]) <= tol && std::fabs(m[4]) <= tol && std::fabs(m[0] - m[2]) <= tol &&
+      std::fabs(m[2] - m[5]) <= tol)
+    return map;
+  // M = L L^T with L lower triangular; a non positive pivot (M not SPD) keeps the identity.
+  const double l00 = std::sqrt(m[0]);
+  if (!(l00 > 0.0)) return map;
+  const double l10 = m[1] / l00, l20 = m[3] / l00;
+  const double d11 = m[2] - l10 * l10;
+  if (!(d11 > 0.0)) return map;
+  const double l11 = std::sqrt(d11);
+  const double l21 = (m[4] - l20 * l10) / l11;
+  const double d22 = m[5] - l20 * l20 - l21 * l21;
+  if (!(d22 > 0.0)) return map;
+  map.identity = false;
+  map.l[0] = l00;
+  map.l[1] = l10;
+  map.l[2] = l11;
+  map.l[3] = l20;
+  map.l[4] = l21;
+  map.l[5] = std::sqrt(d22);
+  return map;
+}
+
+void MetricMap::apply(const double* x, double* y) const {
+  // y = L^T x.
+  y[0] = l[0] * x[0] + l[1] * x[1] + l[3] * x[2];
+  y[1] = l[2] * x[1] + l[4] * x[2];
+  y[2] = l[5] * x[2];
+}
+
+double metric_shape_quality(const MetricMap& map, const double* a, const double* b, const double* c,
+                            const double* d) {
+  if (map.identity) return shape_quality(a, b, c, d);
+  double q[4][3];
+  map.apply(a, q[0]);
+  map.apply(b, q[1]);
+  map.apply(c, q[2]);
+  map.apply(d, q[3]);
+  return shape_quality(q[0], q[1], q[2], q[3]);
+}
+
+double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets, const MetricMap& map) {
+  double q = 1.0;
+  for (uint32_t t : tets)
+    q = std::min(q, metric_shape_quality(map, mesh.point(mesh.vertex(t, 0)), mesh.point(mesh.vertex(t, 1)),
+                                         mesh.point(mesh.vertex(t, 2)), mesh.point(mesh.vertex(t, 3))));
+  return q;
+}
+
+double metric_max_size(const double m[6]) {
+  // Smallest eigenvalue of the symmetric 3x3 matrix in closed form (trigonometric).
+  const double q = (m[0] + m[2] + m[5]) / 3.0;
+  const double p1 = m[1] * m[1] + m[3] * m[3] + m[4] * m[4];
+  const double p2 = (m[0] - q) * (m[0] - q) + (m[2] - q) * (m[2] - q) + (m[5] - q) * (m[5] - q) + 2.0 * p1;
+  double lmin = q;
+  if (p2 > 0.0) {
+    const double p = std::sqrt(p2 / 6.0);
+    const double b0 = (m[0] - q) / p, b1 = m[1] / p, b2 = (m[2] - q) / p, b3 = m[3] / p, b4 = m[4] / p,
+                 b5 = (m[5] - q) / p;
+    const double det = b0 * (b2 * b5 - b4 * b4) - b1 * (b1 * b5 - b4 * b3) + b3 * (b1 * b4 - b2 * b3);
+    const double r = std::clamp(det / 2.0, -1.0, 1.0);
+    const double phi = std::acos(r) / 3.0;
+    lmin = q + 2.0 * p * std::cos(phi + 2.0943951023931957);  // + 2 pi / 3
+  }
+  // Rounding can leave a tiny or negative value for a very elongated M: bound it below by
+  // det / trace^2 (<= the smallest eigenvalue of an SPD matrix).
+  const double det = m[0] * (m[2] * m[5] - m[4] * m[4]) - m[1] * (m[1] * m[5] - m[4] * m[3]) +
+                     m[3] * (m[1] * m[4] - m[2] * m[3]);
+  const double tr = m[0] + m[2] + m[5];
+  if (tr > 0.0) lmin = std::max(lmin, det / (tr * tr));
+  return lmin > 0.0 ? 1.0 / std::sqrt(lmin) : 1.0;
+}
+
 }  // namespace anitet::meshops

@@ -27,4 +27,26 @@ double tet_shape_quality(const TetMesh& mesh, uint32_t t);
 // Lowest shape_quality over the tets.
 double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets);
 
+// ---- Shapes in a metric ----------------------------------------------------------------------
+// The linear map x -> L^T x, M = L L^T (Cholesky; M as 6 doubles xx xy yy xz yz zz): lengths of
+// mapped vectors are lengths in M, so the shape measures of a mapped tet are its shape in M.
+// `identity` when M is isotropic up to a relative 1e-6: the measures above are scale invariant,
+// so the tet is measured as it is (bit for bit the Euclidean figures). A mapped tet keeps its orientation (det L > 0).
+struct MetricMap {
+  bool identity = true;
+  double l[6] = {1.0, 0.0, 1.0, 0.0, 0.0, 1.0};  // l00 l10 l11 l20 l21 l22
+  static MetricMap of(const double m[6]);
+  void apply(const double* x, double* y) const;
+};
+
+// shape_quality of (a b c d) measured in the metric of `map`.
+double metric_shape_quality(const MetricMap& map, const double* a, const double* b, const double* c,
+                            const double* d);
+// Lowest metric_shape_quality over the tets, all measured in the metric of `map`.
+double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets, const MetricMap& map);
+
+// The largest size of the metric M, 1 / sqrt(smallest eigenvalue): the Euclidean radius of the
+// unit ball of M (h for I / h^2).
+double metric_max_size(const double m[6]);
+
 }  // namespace anitet::meshops

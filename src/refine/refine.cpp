@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "delaunay/delaunay.hpp"
+#include "predicates/predicates.hpp"
 #include "refine/edges.hpp"
 #include "refine/mesh_ops.hpp"
 
@@ -19,8 +20,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // Points inserted in the current batch, in a hash grid per size level so that a query only
-// looks at 27 cells per level: a point q of radius r_q = spacing * h_q sits at the level whose
-// cell is at least r_q, and two points conflict when closer than spacing * min(h_p, h_q).
+// looks at 27 cells per level: a point q of radius r_q = spacing * (the largest size of M_q, see
+// meshops::metric_max_size) sits at the level whose cell is at least r_q, and two points p, q
+// conflict when their distance is below `spacing` in both metrics M_p and M_q (isotropic:
+// closer than spacing * min(h_p, h_q)). The radii bound the Euclidean extent of those balls.
 class SpacingGrid {
  public:
   SpacingGrid(const double origin[3], double base) : base_(base) { std::copy_n(origin, 3, origin_); }
@@ -28,10 +31,13 @@ class SpacingGrid {
     cells_.clear();
     pts_.clear();
     radius_.clear();
+    metric_.clear();
+    aniso_.clear();
     next_.clear();
     levels_used_ = 0;
   }
-  bool conflicts(const double p[3], double r) const {
+  // m: the metric at p, or nullptr when isotropic (then r = spacing * h_p).
+  bool conflicts(const double p[3], double r, const double* m, double spacing) const {
     for (int level = 0; level < kLevels; ++level) {
       if (!(levels_used_ & (1u << level))) continue;
       int64_t c[3];
@@ -46,19 +52,27 @@ class SpacingGrid {
               const double d2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
                                 (x[2] - p[2]) * (x[2] - p[2]);
               const double rr = std::min(r, radius_[q]);
-              if (d2 < rr * rr) return true;
+              if (!(d2 < rr * rr)) continue;
+              if (!m && !aniso_[q]) return true;  // both isotropic: closer than spacing * min(h)
+              const double d[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]};
+              const double lp = m ? metric_norm(m, d) : std::sqrt(d2) * spacing / r;
+              const double lq = aniso_[q] ? metric_norm(&metric_[6 * size_t(q)], d) : std::sqrt(d2) * spacing / radius_[q];
+              if (std::max(lp, lq) < spacing) return true;
             }
           }
     }
     return false;
   }
-  void add(const double p[3], double r) {
+  void add(const double p[3], double r, const double* m) {
     const int level = level_of(r);
     int64_t c[3];
     cell_of(p, level, c);
     const auto id = static_cast<uint32_t>(radius_.size());
     pts_.insert(pts_.end(), p, p + 3);
     radius_.push_back(r);
+    aniso_.push_back(m != nullptr);
+    if (m) metric_.insert(metric_.end(), m, m + 6);
+    else metric_.resize(metric_.size() + 6, 0.0);
     auto [it, fresh] = cells_.try_emplace(key(level, c[0], c[1], c[2]), id);
     next_.push_back(fresh ? kEnd : it->second);
     if (!fresh) it->second = id;
@@ -90,6 +104,8 @@ class SpacingGrid {
   std::unordered_map<uint64_t, uint32_t> cells_;
   std::vector<double> pts_;
   std::vector<double> radius_;
+  std::vector<double> metric_;  // 6 per point (unused for isotropic points)
+  std::vector<uint8_t> aniso_;  // 1 per point: its metric is anisotropic
   std::vector<uint32_t> next_;
   uint32_t levels_used_ = 0;
 };
@@ -112,6 +128,13 @@ class Refiner {
     size_[v] = metric_size(&metrics_[6 * size_t(v)]);
   }
   void metric_midpoint(uint32_t a, uint32_t b, double m[3]) const;
+  uint32_t insert_in_metric(const double p[3], const double mp[6], int32_t region);
+  size_t metric_flip_pass();
+  meshops::MetricMap map_at_centroid(const uint32_t* v, size_t n) const;
+  double metric_quality(const meshops::MetricMap& map, const meshops::TetVerts& v) const {
+    return meshops::metric_shape_quality(map, mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
+                                         mesh_.point(v[3]));
+  }
   size_t split_pass(const std::vector<refine_detail::Edge>& edges);
   size_t collapse_pass(const std::vector<refine_detail::Edge>& edges);
   bool collapse(uint32_t v, uint32_t w, const double q[3]);
@@ -130,18 +153,187 @@ class Refiner {
   std::unordered_set<uint64_t> refused_;  // edges (a << 32 | b) whose collapse was refused
   std::vector<uint32_t> ball_v_, ball_w_, old_, ring_tets_, ring_;
   std::vector<meshops::TetVerts> fresh_;
+  bool anisotropic_ = false;  // some vertex has an anisotropic metric: metric kernel and flips
+  std::vector<uint32_t> cavity_;
+  std::vector<uint8_t> in_cavity_;  // per tet slot: 1 in the cavity, 2 in the edge's ring
   RefineStats stats_;
   size_t protected_facets_ = 0;
 };
 
 void Refiner::metric_midpoint(uint32_t a, uint32_t b, double m[3]) const {
-  const double ha = size_[a], hb = size_[b];
+  // The sizes along the edge at its ends: h_a, h_b for isotropic ends, else (up to the common
+  // factor |ab|, which t does not see) 1 / (length of ab in M_a) and 1 / (length in M_b).
+  const double* pa = mesh_.point(a);
+  const double* pb = mesh_.point(b);
+  const double e[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+  double ha = size_[a], hb = size_[b];
+  if (!meshops::MetricMap::of(&metrics_[6 * size_t(a)]).identity ||
+      !meshops::MetricMap::of(&metrics_[6 * size_t(b)]).identity) {
+    const double la = metric_norm(&metrics_[6 * size_t(a)], e), lb = metric_norm(&metrics_[6 * size_t(b)], e);
+    ha = la > 0.0 ? 1.0 / la : 1.0;
+    hb = lb > 0.0 ? 1.0 / lb : 1.0;
+  }
   double t = 0.5;
   if (std::fabs(hb - ha) > 1e-9 * (ha + hb)) t = (std::sqrt(ha * hb) - ha) / (hb - ha);
   t = std::clamp(t, 0.2, 0.8);
-  const double* pa = mesh_.point(a);
-  const double* pb = mesh_.point(b);
   for (int k = 0; k < 3; ++k) m[k] = pa[k] + t * (pb[k] - pa[k]);
+}
+
+// The anisotropic Delaunay kernel (the insphere test in the metric M_p of the new point p, as in
+// Borouchaki-George): p lies inside the edge whose ring is ring_tets_. The cavity starts with the
+// ring, grows across facets that are neither protected nor without neighbour into tets of the
+// same region, without constrained edges, whose circumsphere in M_p holds p (measured on the
+// tets mapped by M_p^(1/2); a tet flat in M_p joins too); then tets whose boundary facet does not
+// see p strictly (exact orient3d) are taken out again until the cavity is star-shaped around p.
+// Returns the new vertex, or kNone (mesh unchanged) when a ring tet would have to leave.
+uint32_t Refiner::insert_in_metric(const double p[3], const double mp[6], int32_t region) {
+  constexpr size_t kMaxCavity = 4096;
+  const meshops::MetricMap map = meshops::MetricMap::of(mp);
+  double pm[3];
+  map.apply(p, pm);
+  in_cavity_.resize(mesh_.num_tet_slots(), 0);
+  cavity_ = ring_tets_;
+  for (uint32_t t : cavity_) in_cavity_[t] = 2;
+  for (size_t k = 0; k < cavity_.size() && cavity_.size() < kMaxCavity; ++k) {
+    const uint32_t t = cavity_[k];
+    for (int i = 0; i < 4; ++i) {
+      if (mesh_.facet_protected(t, i)) continue;
+      const uint32_t n = mesh_.neighbour(t, i);
+      if (n == TetMesh::kNone || in_cavity_[n] || mesh_.is_deleted(n) || mesh_.is_ghost(n)) continue;
+      if (mesh_.tet_region[n] != region || (mesh_.tet_flags[n] & tflag::kEdgeConstrainedMask)) continue;
+      double q[4][3];
+      for (int j = 0; j < 4; ++j) map.apply(mesh_.point(mesh_.vertex(n, j)), q[j]);
+      if (predicates::orient3d(q[0], q[1], q[2], q[3]) > 0 && predicates::insphere(q[0], q[1], q[2], q[3], pm) <= 0)
+        continue;
+      in_cavity_[n] = 1;
+      cavity_.push_back(n);
+    }
+  }
+  // Star-shapedness: facet i of t sees p when t with vertex i replaced by p is positive.
+  bool ok = true;
+  for (bool changed = true; changed && ok;) {
+    changed = false;
+    for (uint32_t t : cavity_) {
+      if (!in_cavity_[t]) continue;
+      for (int i = 0; i < 4 && in_cavity_[t]; ++i) {
+        const uint32_t n = mesh_.neighbour(t, i);
+        if (n != TetMesh::kNone && !mesh_.facet_protected(t, i) && in_cavity_[n]) continue;
+        const double* v[4];
+        for (int j = 0; j < 4; ++j) v[j] = j == i ? p : mesh_.point(mesh_.vertex(t, j));
+        if (predicates::orient3d(v[0], v[1], v[2], v[3]) > 0) continue;
+        if (in_cavity_[t] == 2) {
+          ok = false;
+          break;
+        }
+        in_cavity_[t] = 0;
+        changed = true;
+      }
+      if (!ok) break;
+    }
+  }
+  old_.clear();
+  for (uint32_t t : cavity_)
+    if (in_cavity_[t]) old_.push_back(t);
+  for (uint32_t t : cavity_) in_cavity_[t] = 0;
+  if (!ok) return TetMesh::kNone;
+  const uint32_t v = mesh_.add_vertex(p, 0);
+  fresh_.clear();
+  for (uint32_t t : old_) in_cavity_[t] = 1;
+  for (uint32_t t : old_)
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t n = mesh_.neighbour(t, i);
+      if (n != TetMesh::kNone && !mesh_.facet_protected(t, i) && in_cavity_[n]) continue;
+      meshops::TetVerts tv;
+      for (int j = 0; j < 4; ++j) tv[j] = j == i ? v : mesh_.vertex(t, j);
+      fresh_.push_back(tv);
+    }
+  for (uint32_t t : old_) in_cavity_[t] = 0;
+  if (!meshops::replace_tets(mesh_, old_, fresh_, vt_, scratch_)) {
+    // Not expected (every new tet was checked positive); the vertex stays unused.
+    vt_.forget(v);
+    return TetMesh::kNone;
+  }
+  in_cavity_.resize(mesh_.num_tet_slots(), 0);
+  return v;
+}
+
+meshops::MetricMap Refiner::map_at_centroid(const uint32_t* v, size_t n) const {
+  double c[3] = {0.0, 0.0, 0.0};
+  for (size_t k = 0; k < n; ++k)
+    for (int j = 0; j < 3; ++j) c[j] += mesh_.point(v[k])[j] / double(n);
+  double m[6];
+  field_.metric(c, m);
+  return meshops::MetricMap::of(m);
+}
+
+// Anisotropic metrics: flips that raise the worst shape in the metric (measured in the metric at
+// the centroid of the flipped region), around the tets below metric_flip_quality: 2-3 across a
+// facet, 3-2 removing an edge of three tets. The Euclidean flips of optimize/ would undo the
+// stretched shapes the metric asks for. Protected facets and constrained edges are never
+// flipped (replace_tets refuses them), and tets of different regions are never merged.
+size_t Refiner::metric_flip_pass() {
+  constexpr double kFlipQuality = 0.3;
+  size_t flips = 0;
+  std::vector<uint32_t> old(3);
+  std::vector<meshops::TetVerts> fresh;
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
+    if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
+    meshops::TetVerts tv;
+    for (int i = 0; i < 4; ++i) tv[i] = mesh_.vertex(t, i);
+    if (metric_quality(map_at_centroid(tv.data(), 4), tv) >= kFlipQuality) continue;
+    bool flipped = false;
+    // 2-3 across facet i: the new tets are t with one facet vertex replaced by the apex b of n.
+    for (int i = 0; i < 4 && !flipped; ++i) {
+      if (mesh_.facet_protected(t, i) || mesh_.tet_adj[4 * size_t(t) + i] == TetMesh::kNoNeighbour) continue;
+      const uint32_t n = mesh_.neighbour(t, i);
+      if (mesh_.is_deleted(n) || mesh_.is_ghost(n) || mesh_.tet_region[n] != mesh_.tet_region[t]) continue;
+      const uint32_t b = mesh_.vertex(n, mesh_.neighbour_facet(t, i));
+      meshops::TetVerts nv;
+      for (int j = 0; j < 4; ++j) nv[j] = mesh_.vertex(n, j);
+      const uint32_t all[5] = {tv[0], tv[1], tv[2], tv[3], b};
+      const meshops::MetricMap map = map_at_centroid(all, 5);
+      const double before = std::min(metric_quality(map, tv), metric_quality(map, nv));
+      fresh.clear();
+      double after = 1.0;
+      for (int j = 0; j < 4; ++j) {
+        if (j == i) continue;
+        meshops::TetVerts f = tv;
+        f[j] = b;
+        after = std::min(after, metric_quality(map, f));
+        fresh.push_back(f);
+      }
+      if (!(after > before + 1e-3)) continue;
+      old.assign({t, n});
+      if (meshops::replace_tets(mesh_, old, fresh, vt_, scratch_)) flipped = true;
+    }
+    // 3-2 removing edge k of t when three tets surround it.
+    for (int k = 0; k < 6 && !flipped; ++k) {
+      const uint32_t a = tv[kEdgeVertex[k][0]], b = tv[kEdgeVertex[k][1]];
+      if (!meshops::edge_ring(mesh_, a, b, t, ring_tets_, ring_) || ring_tets_.size() != 3) continue;
+      bool same_region = true;
+      for (uint32_t r : ring_tets_) same_region &= mesh_.tet_region[r] == mesh_.tet_region[t];
+      if (!same_region) continue;
+      const uint32_t all[5] = {a, b, ring_[0], ring_[1], ring_[2]};
+      const meshops::MetricMap map = map_at_centroid(all, 5);
+      double before = 1.0;
+      for (uint32_t r : ring_tets_) {
+        meshops::TetVerts rv;
+        for (int j = 0; j < 4; ++j) rv[j] = mesh_.vertex(r, j);
+        before = std::min(before, metric_quality(map, rv));
+      }
+      meshops::TetVerts fa = {ring_[0], ring_[1], ring_[2], a}, fb = {ring_[0], ring_[2], ring_[1], b};
+      if (predicates::orient3d(mesh_.point(fa[0]), mesh_.point(fa[1]), mesh_.point(fa[2]), mesh_.point(fa[3])) < 0) {
+        std::swap(fa[1], fa[2]);
+        std::swap(fb[1], fb[2]);
+      }
+      const double after = std::min(metric_quality(map, fa), metric_quality(map, fb));
+      if (!(after > before + 1e-3)) continue;
+      fresh.assign({fa, fb});
+      if (meshops::replace_tets(mesh_, ring_tets_, fresh, vt_, scratch_)) flipped = true;
+    }
+    flips += flipped;
+  }
+  return flips;
 }
 
 size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
@@ -165,8 +357,9 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
     metric_midpoint(e->a, e->b, m);
     double mm[6];
     field_.metric(m, mm);
-    const double r = options_.spacing * metric_size(mm);
-    if (grid.conflicts(m, r)) {
+    const bool iso = meshops::MetricMap::of(mm).identity;
+    const double r = options_.spacing * (iso ? metric_size(mm) : meshops::metric_max_size(mm));
+    if (grid.conflicts(m, r, iso ? nullptr : mm, options_.spacing)) {
       ++stats_.split_rejected;
       continue;
     }
@@ -175,31 +368,46 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       hint = vt_.tet_of(mesh_, e->a);
     // A midpoint that would sit closer than collapse_length to a vertex of the edge's ring would
     // only be collapsed again (split/collapse ping-pong): such an edge is left to the flips.
+    // Not with an anisotropic metric: optimize/'s flips are Euclidean, and the metric kernel
+    // re-triangulates the cavity (the long edges there are mostly flat tets' diagonals).
+    bool have_ring = false;
     if (meshops::tet_has_vertex(mesh_, hint, e->b) &&
         meshops::edge_ring(mesh_, e->a, e->b, hint, ring_tets_, ring_)) {
+      have_ring = true;
       bool crowded = false;
       for (uint32_t c : ring_) {
         const double* pc = mesh_.point(c);
         const double d[3] = {pc[0] - m[0], pc[1] - m[1], pc[2] - m[2]};
         crowded |= std::sqrt(metric_norm(mm, d) * metric_norm(&metrics_[6 * size_t(c)], d)) < options_.collapse_length;
       }
-      if (crowded) {
+      if (crowded && !anisotropic_) {
         ++stats_.split_rejected;
         continue;
       }
     }
-    const InsertResult res = inserter_.insert(m, hint);
-    if (!res.ok()) {
+    // An anisotropic metric at the midpoint: the metric kernel (the Euclidean one would connect
+    // the points by Euclidean proximity, across the stretched direction).
+    uint32_t nv = TetMesh::kNone;
+    const std::vector<uint32_t>* created = nullptr;
+    if (have_ring && !iso) {
+      nv = insert_in_metric(m, mm, mesh_.tet_region[ring_tets_.front()]);
+      created = &scratch_.created;
+    } else {
+      const InsertResult res = inserter_.insert(m, hint);
+      if (res.ok()) nv = res.vertex;
+      created = &inserter_.new_tets();
+    }
+    if (nv == TetMesh::kNone) {
       ++stats_.split_rejected;
       continue;
     }
-    update_metric(res.vertex);
+    update_metric(nv);
     touched_.resize(mesh_.num_vertices(), 0);
-    for (uint32_t t : inserter_.new_tets()) {
+    for (uint32_t t : *created) {
       vt_.note(mesh_, t);
       for (int i = 0; i < 4; ++i) touched_[mesh_.vertex(t, i)] = 1;
     }
-    grid.add(m, r);
+    grid.add(m, r, iso ? nullptr : mm);
     ++done;
   }
   return done;
@@ -243,16 +451,18 @@ bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
   else std::copy_n(&metrics_[6 * size_t(w)], 6, mq);
   // A collapse must not make the worst changed tet worse than min_collapse_quality, or than the
   // worst one it replaces when that was already below (so that bad regions can still coarsen).
+  // Shapes are measured in the metric at q (for an isotropic field: as they are).
+  const meshops::MetricMap in_mq = meshops::MetricMap::of(mq);
   double floor = options_.min_collapse_quality;
   if (floor > 0.0) {
     std::copy_n(saved, 3, xw);
-    floor = std::min(floor, meshops::min_quality(mesh_, old_));
+    floor = std::min(floor, meshops::min_quality(mesh_, old_, in_mq));
     std::copy_n(q, 3, xw);
   }
   bool ok = true;
   for (const meshops::TetVerts& f : fresh_) {
-    if (meshops::shape_quality(mesh_.point(f[0]), mesh_.point(f[1]), mesh_.point(f[2]), mesh_.point(f[3])) <
-        floor) {
+    if (meshops::metric_shape_quality(in_mq, mesh_.point(f[0]), mesh_.point(f[1]), mesh_.point(f[2]),
+                                      mesh_.point(f[3])) < floor) {
       ok = false;
       break;
     }
@@ -336,12 +546,23 @@ Result<RefineStats> Refiner::run() {
   vt_.build(mesh_);
   metrics_.resize(6 * mesh_.num_vertices());
   size_.resize(mesh_.num_vertices());
-  for (uint32_t v = 0; v < mesh_.num_vertices(); ++v) update_metric(v);
+  for (uint32_t v = 0; v < mesh_.num_vertices(); ++v) {
+    update_metric(v);
+    anisotropic_ |= !meshops::MetricMap::of(&metrics_[6 * size_t(v)]).identity;
+  }
   protected_facets_ = count_protected_facets(mesh_);
   stats_.vertices_before = refine_detail::live_vertex_count(mesh_);
   stats_.tets_before = mesh_.num_live_tets();
   if (Status st = check("before refinement"); !st.ok()) return st;
 
+  if (anisotropic_) {
+    for (int sweep = 0; sweep < 5; ++sweep) {
+      const size_t f = metric_flip_pass();
+      stats_.metric_flips += f;
+      if (f == 0) break;
+    }
+    if (Status st = check("after metric flips"); !st.ok()) return st;
+  }
   std::vector<refine_detail::Edge> edges;
   for (int pass = 0; pass < options_.max_passes; ++pass) {
     // One edge list serves both halves of the pass: the splits mark the vertices whose edges
@@ -352,8 +573,18 @@ Result<RefineStats> Refiner::run() {
     if (Status st = check("after a split pass"); !st.ok()) return st;
     size_t collapses = 0;
     if (options_.collapse) {
+      // Anisotropic: the metric flips change the neighbourhoods, so refused collapses are retried.
+      if (anisotropic_) refused_.clear();
       collapses = collapse_pass(edges);
       if (Status st = check("after a collapse pass"); !st.ok()) return st;
+    }
+    if (anisotropic_) {
+      for (int sweep = 0; sweep < 3; ++sweep) {
+        const size_t f = metric_flip_pass();
+        stats_.metric_flips += f;
+        if (f == 0) break;
+      }
+      if (Status st = check("after metric flips"); !st.ok()) return st;
     }
     stats_.splits += splits;
     stats_.collapses += collapses;

@@ -4,15 +4,27 @@
 // at its two ends), then
 //   - splits the edges longer than split_length (sqrt 2), longest first, by inserting their metric
 //     midpoint through the modified Delaunay kernel (PointInserter: cavities stop at protected
-//     facets, so S is never cut). A midpoint closer than spacing * h to a point inserted earlier
-//     in the same pass is put off to the next pass (a multi-level hash grid), so a batch does not
-//     crowd points together;
+//     facets, so S is never cut). A midpoint closer than `spacing` (in the metrics of both
+//     points) to a point inserted earlier in the same pass is put off to the next pass (a
+//     multi-level hash grid), so a batch does not crowd points together;
 //   - collapses the edges shorter than collapse_length (1/sqrt 2), shortest first: both ends onto
 //     the midpoint when neither is on S, the free end onto the other when one is (a vertex of S
 //     never moves and is never removed). A collapse is applied only when every changed tet is
 //     positive by the exact orient3d, no protected facet is lost, no new edge is longer than
 //     max_collapse_result and no changed tet falls below min_collapse_quality (the shape measure
-//     of refine/mesh_ops.hpp), or below the worst tet it replaces when that one was worse.
+//     of refine/mesh_ops.hpp, taken in the metric at the collapse point), or below the worst tet
+//     it replaces when that one was worse.
+// Anisotropic metrics (some vertex's metric is not a multiple of I): lengths, the metric
+// midpoint, the spacing filter and the collapse shape test all use the tensor, and
+//   - midpoints go in through an anisotropic Delaunay kernel (cavity: the edge's ring grown by
+//     the insphere test in the metric of the new point, made star-shaped by exact orient3d)
+//     instead of the Euclidean one, which would connect points across the stretched direction;
+//   - 2-3 / 3-2 flips raising the worst shape in the metric run before the first pass and after
+//     every pass (RefineStats::metric_flips);
+//   - the ring-crowding test on splits is off and refused collapses are retried each pass (the
+//     flips change the neighbourhoods).
+// Isotropic fields take exactly the isotropic path. optimize/ is still Euclidean: on an
+// anisotropic field it degrades the metric shapes (see bench/aniso_cube).
 // Passes repeat until fewer than stop_fraction of the edges change or max_passes is reached.
 // Edges of S (on a protected facet, both ends on S) are never split: no point is added on S.
 #pragma once
@@ -31,7 +43,7 @@ struct RefineOptions {
   double size_scale = 1.0;
   double split_length = 1.4142135623730951;
   double collapse_length = 0.7071067811865476;
-  double spacing = 0.7;                // min distance between points of one batch, times h
+  double spacing = 0.7;                // min metric distance between points of one batch
   double max_collapse_result = 1.3;    // longest edge a collapse may create (normalized)
   double min_collapse_quality = 0.05;  // lowest meshops::shape_quality a collapse may create
   int max_passes = 30;
@@ -51,6 +63,7 @@ struct RefineStats {
   size_t split_rejected = 0;  // midpoints the kernel refused (blocked, outside) or spacing put off
   size_t collapses = 0;
   size_t collapse_rejected = 0;
+  size_t metric_flips = 0;  // anisotropic metrics only: 2-3 / 3-2 flips raising the metric shape
   size_t vertices_before = 0, vertices_after = 0;  // live vertices
   size_t tets_before = 0, tets_after = 0;
   // Normalized edge lengths after the last pass.
