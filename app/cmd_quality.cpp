@@ -1,10 +1,14 @@
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "io/surface_io.hpp"
 #include "io/volume_io.hpp"
+#include "metric/sol_field.hpp"
+#include "quality/html_report.hpp"
 #include "quality/quality_report.hpp"
 
 namespace anitet::cli {
@@ -15,6 +19,21 @@ int run_quality(const QualityArgs& args) {
     std::cerr << "anitet quality: cannot read mesh '" << args.mesh << "': " << mesh.status().message()
               << " [" << error_name(mesh.status().code()) << "]\n";
     return kExitReadError;
+  }
+  if (!args.metric_sol.empty()) {
+    Result<metric::SolField> sol = metric::read_sol(args.metric_sol);
+    if (!sol.ok()) {
+      std::cerr << "anitet quality: cannot read metric '" << args.metric_sol << "': " << sol.status().message()
+                << " [" << error_name(sol.status().code()) << "]\n";
+      return kExitReadError;
+    }
+    if (sol.value().num_vertices() != mesh.value().num_vertices()) {
+      std::cerr << "anitet quality: metric '" << args.metric_sol << "' has " << sol.value().num_vertices()
+                << " vertex values but mesh '" << args.mesh << "' has " << mesh.value().num_vertices()
+                << " vertices\n";
+      return kExitInvalidInput;
+    }
+    mesh.value().vertex_metric = std::move(sol).value().values;
   }
   SurfaceMesh surface;
   const bool have_surface = !args.surface.empty();
@@ -29,13 +48,45 @@ int run_quality(const QualityArgs& args) {
   }
   QualityOptions options;
   options.match_tolerance = args.tolerance;
-  Result<QualityReport> report = compute_quality_report(mesh.value(), have_surface ? &surface : nullptr, options);
-  if (!report.ok()) {
-    std::cerr << "anitet quality: cannot measure mesh '" << args.mesh << "': " << report.status().message()
-              << " [" << error_name(report.status().code()) << "]\n";
-    return kExitInvalidInput;
+  QualityReport r;
+  std::string report_line;  // what the HTML report holds, printed after the text report
+  if (args.report_html.empty()) {
+    Result<QualityReport> report = compute_quality_report(mesh.value(), have_surface ? &surface : nullptr, options);
+    if (!report.ok()) {
+      std::cerr << "anitet quality: cannot measure mesh '" << args.mesh << "': " << report.status().message()
+                << " [" << error_name(report.status().code()) << "]\n";
+      return kExitInvalidInput;
+    }
+    r = std::move(report).value();
+  } else {
+    HtmlReportOptions html_options;
+    html_options.title = "anitet quality: " + std::filesystem::path(args.mesh).filename().string();
+    html_options.mesh_name = args.mesh;
+    html_options.surface_name = args.surface;
+    for (size_t k = 0; k < 3 && k < args.cut.size(); ++k) html_options.cut[k] = args.cut[k];
+    html_options.max_polygons_per_view = args.cut_max;
+    Result<HtmlReport> html = quality_report_html(mesh.value(), have_surface ? &surface : nullptr, options, html_options);
+    if (!html.ok()) {
+      std::cerr << "anitet quality: cannot measure mesh '" << args.mesh << "': " << html.status().message()
+                << " [" << error_name(html.status().code()) << "]\n";
+      return kExitInvalidInput;
+    }
+    std::ofstream out(args.report_html, std::ios::binary);
+    out << html.value().html;
+    out.close();
+    if (!out) {
+      std::cerr << "anitet quality: cannot write report '" << args.report_html << "'\n";
+      return kExitReadError;
+    }
+    const HtmlReport& h = html.value();
+    std::ostringstream line;
+    line << "html report: " << args.report_html << " (" << h.html.size() / 1024 << " KiB, " << h.seconds_html
+         << " s after " << h.seconds_quality << " s of measures; cut views draw " << h.cut_polygons_drawn[0]
+         << "/" << h.cut_polygons_total[0] << ", " << h.cut_polygons_drawn[1] << "/" << h.cut_polygons_total[1]
+         << ", " << h.cut_polygons_drawn[2] << "/" << h.cut_polygons_total[2] << " cross-sections)\n";
+    report_line = line.str();
+    r = std::move(html).value().report;
   }
-  const QualityReport& r = report.value();
   if (!args.hist_csv.empty()) {
     std::ofstream out(args.hist_csv, std::ios::binary);
     out << quality_histogram_csv(r);
@@ -50,7 +101,7 @@ int run_quality(const QualityArgs& args) {
   } else {
     std::cout << "mesh file: " << args.mesh << "\n";
     if (have_surface) std::cout << "surface file: " << args.surface << "\n";
-    std::cout << quality_report_text(r);
+    std::cout << quality_report_text(r) << report_line;
   }
   if (args.strict) {
     if (!r.valid) {

@@ -22,6 +22,10 @@ struct QualityArgs {
   double tolerance = 1e-9;
   bool json = false;
   bool strict = false;    // exit 4 when the mesh is invalid or not boundary constrained
+  std::string report_html;            // empty: no HTML report
+  std::vector<double> cut{0.5, 0.5, 0.5};  // cut planes of the HTML report (bounding-box fractions)
+  size_t cut_max = 25000;             // cross-sections drawn per cut view at most
+  std::string metric_sol;             // per-vertex .sol of MESH: edge lengths of the report in it
 };
 int run_quality(const QualityArgs& args);
 

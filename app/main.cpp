@@ -41,6 +41,24 @@ int run(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   quality_cmd->add_flag("--strict", quality.strict,
                         "Exit 4 when the mesh is invalid or does not keep the surface");
+  CLI::Option* report_opt = quality_cmd->add_option(
+      "--report", quality.report_html, "Write a self-contained HTML report here (summary, histograms, cut views)");
+  quality_cmd->add_option("--cut", quality.cut,
+                          "Cut planes of the HTML report: x,y,z as fractions of the bounding box")
+      ->expected(3)
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0))
+      ->needs(report_opt);
+  quality_cmd->add_option("--cut-max", quality.cut_max,
+                          "Cross-sections drawn per cut view at most (the ones nearest the centre)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->needs(report_opt);
+  quality_cmd->add_option("--metric", quality.metric_sol,
+                          "Per-vertex Medit .sol of MESH (sizes or tensors, as `mesh --write-metric` "
+                          "writes): the report's edge lengths are measured in it")
+      ->needs(report_opt);
 
   MeshArgs mesh, recover;
   mesh.command = "mesh";

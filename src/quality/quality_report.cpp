@@ -196,6 +196,16 @@ void classify_faces(const VolumeMesh& mesh, bool parallel, std::vector<uint32_t>
 Result<QualityReport> compute_quality_report(const VolumeMesh& mesh,
                                              const SurfaceMesh* input_surface,
                                              const QualityOptions& options) {
+  quality_detail::TetData data;
+  std::vector<uint32_t> boundary;
+  return quality_detail::compute_quality_report_keep(mesh, input_surface, options, data, boundary);
+}
+
+Result<QualityReport> quality_detail::compute_quality_report_keep(const VolumeMesh& mesh,
+                                                                  const SurfaceMesh* input_surface,
+                                                                  const QualityOptions& options,
+                                                                  TetData& data,
+                                                                  std::vector<uint32_t>& boundary) {
   const auto clock_start = std::chrono::steady_clock::now();
   QualityReport r;
   std::vector<uint8_t> used;
@@ -206,7 +216,8 @@ Result<QualityReport> compute_quality_report(const VolumeMesh& mesh,
   r.tets = mesh.num_tets();
   r.unused_vertices = size_t(std::count(used.begin(), used.end(), uint8_t(0)));
 
-  const TetData d = measure_tets(mesh, options.parallel);
+  data = measure_tets(mesh, options.parallel);
+  const TetData& d = data;
   double vol = 0.0, comp = 0.0;  // Neumaier sum of the signed volumes
   r.rr_histogram.assign(size_t(options.histogram_bins), 0);
   const double bins = double(options.histogram_bins);
@@ -244,7 +255,7 @@ Result<QualityReport> compute_quality_report(const VolumeMesh& mesh,
     r.max_dihedral_deg = *std::max_element(d.max_dihedral.begin(), d.max_dihedral.end());
   }
 
-  std::vector<uint32_t> boundary;
+  boundary.clear();
   classify_faces(mesh, options.parallel, boundary, r.faces_shared_by_more_than_two);
   r.boundary_faces = boundary.size() / 3;
   r.valid = r.nonpositive_tets == 0 && r.faces_shared_by_more_than_two == 0;

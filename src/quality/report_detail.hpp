@@ -27,4 +27,10 @@ void match_surface(const VolumeMesh& mesh, const SurfaceMesh& surface,
                    const std::vector<uint32_t>& boundary_faces, const std::vector<uint8_t>& used,
                    const TetData& data, const QualityOptions& options, QualityReport& out);
 
+// compute_quality_report, keeping the per-tet measures (data) and the boundary faces (3 sorted
+// vertex ids each) for callers that draw more from them (html_report.cpp).
+Result<QualityReport> compute_quality_report_keep(const VolumeMesh& mesh, const SurfaceMesh* input_surface,
+                                                  const QualityOptions& options, TetData& data,
+                                                  std::vector<uint32_t>& boundary);
+
 }  // namespace anitet::quality_detail
