@@ -130,6 +130,15 @@ class Refiner {
   void metric_midpoint(uint32_t a, uint32_t b, double m[3]) const;
   uint32_t insert_in_metric(const double p[3], const double mp[6], int32_t region);
   size_t metric_flip_pass();
+  // Up to max_sweeps metric flip passes, until one flips nothing; then the debug check.
+  Status metric_flip_sweeps(int max_sweeps) {
+    for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+      const size_t f = metric_flip_pass();
+      stats_.metric_flips += f;
+      if (f == 0) break;
+    }
+    return check("after metric flips");
+  }
   meshops::MetricMap map_at_centroid(const uint32_t* v, size_t n) const;
   double metric_quality(const meshops::MetricMap& map, const meshops::TetVerts& v) const {
     return meshops::metric_shape_quality(map, mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
@@ -555,14 +564,8 @@ Result<RefineStats> Refiner::run() {
   stats_.tets_before = mesh_.num_live_tets();
   if (Status st = check("before refinement"); !st.ok()) return st;
 
-  if (anisotropic_) {
-    for (int sweep = 0; sweep < 5; ++sweep) {
-      const size_t f = metric_flip_pass();
-      stats_.metric_flips += f;
-      if (f == 0) break;
-    }
-    if (Status st = check("after metric flips"); !st.ok()) return st;
-  }
+  if (anisotropic_)
+    if (Status st = metric_flip_sweeps(5); !st.ok()) return st;
   std::vector<refine_detail::Edge> edges;
   for (int pass = 0; pass < options_.max_passes; ++pass) {
     // One edge list serves both halves of the pass: the splits mark the vertices whose edges
@@ -578,14 +581,8 @@ Result<RefineStats> Refiner::run() {
       collapses = collapse_pass(edges);
       if (Status st = check("after a collapse pass"); !st.ok()) return st;
     }
-    if (anisotropic_) {
-      for (int sweep = 0; sweep < 3; ++sweep) {
-        const size_t f = metric_flip_pass();
-        stats_.metric_flips += f;
-        if (f == 0) break;
-      }
-      if (Status st = check("after metric flips"); !st.ok()) return st;
-    }
+    if (anisotropic_)
+      if (Status st = metric_flip_sweeps(3); !st.ok()) return st;
     stats_.splits += splits;
     stats_.collapses += collapses;
     stats_.passes = pass + 1;
