@@ -14,9 +14,10 @@ if [[ ${ANITET_SKIP_SANITIZERS:-0} != 1 ]]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
   BUILD_DIR=$root/build-asan BUILD_TYPE=RelWithDebInfo "$root/scripts/build.sh" \
     -DANITET_SANITIZE=ON -DANITET_WERROR=ON
-  # Under the sanitizers the code runs 10-50x slower. The multi-layer variants, the quality gates
-  # and the largest layer runs (41 tests, 860 s of the 1230 s the ASan half took on 2 cores) run
-  # in the Release half only; their 1-layer and plain-mesh siblings run here too.
+  # Under the sanitizers the code runs 10-50x slower. The multi-layer variants, the quality gates,
+  # the largest layer runs (41 tests, 860 s of the 1230 s the ASan half took on 2 cores) and the
+  # recovery/layer-count retries run in the Release half only; their 1-layer and plain-mesh
+  # siblings run here too.
   asan_skip='_[23]_layers$|^e2e\.layers[23]\.|^e2e\.mesh-quality\.|tray_bottom|^e2e\.layers-bl\.fandisk'
   asan_skip+='|^BoundaryLayer\.AirplaneInAFarfieldBox$|^e2e\.recover\.casting|^e2e\.mesh-retry\.'
   asan_skip+='|^Layers\.(WorstTetsStandOnPoorInputTriangles|IsotropicQualityOnGoodSurfaces|PaperSchemeIsValidToo|ReportsHalvingsAndProvenance)$'
