@@ -57,7 +57,7 @@ double point_triangle_distance(const double* p, const double* a, const double* b
 
 }  // namespace
 
-double LayerBuilder::clear_distance(uint32_t v, const double at[3], double within) const {
+double LayerBuilder::clear_distance(uint32_t v, const double at[3], double within, double stop_below) const {
   std::vector<uint32_t> ring;
   for (uint32_t f : front_.star(v)) ring.insert(ring.end(), front_.tri(f), front_.tri(f) + 3);
   std::sort(ring.begin(), ring.end());
@@ -74,7 +74,7 @@ double LayerBuilder::clear_distance(uint32_t v, const double at[3], double withi
       if (std::binary_search(ring.begin(), ring.end(), t[k])) return true;
     best = std::min(best, point_triangle_distance(at, mesh_.point(t[0]), mesh_.point(t[1]),
                                                   mesh_.point(t[2])));
-    return true;
+    return !(best < stop_below);
   });
   return best;
 }
@@ -82,25 +82,7 @@ double LayerBuilder::clear_distance(uint32_t v, const double at[3], double withi
 bool LayerBuilder::keeps_clear(uint32_t v, const double to[3], double gap) const {
   // The front beyond v's ring must stay `gap` away from v's new position: a move that brings
   // the front close to touching itself would leave the next layer no room there.
-  std::vector<uint32_t> ring;
-  for (uint32_t f : front_.star(v)) ring.insert(ring.end(), front_.tri(f), front_.tri(f) + 3);
-  std::sort(ring.begin(), ring.end());
-  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-  Box3 box;
-  for (int k = 0; k < 3; ++k) {
-    box.lo[k] = to[k] - gap;
-    box.hi[k] = to[k] + gap;
-  }
-  bool clear = true;
-  front_.near(box, [&](uint32_t f) {
-    const uint32_t* t = front_.tri(f);
-    for (int k = 0; k < 3; ++k)
-      if (std::binary_search(ring.begin(), ring.end(), t[k])) return true;
-    if (point_triangle_distance(to, mesh_.point(t[0]), mesh_.point(t[1]), mesh_.point(t[2])) < gap)
-      clear = false;
-    return clear;
-  });
-  return clear;
+  return !(clear_distance(v, to, gap, gap) < gap);
 }
 
 double LayerBuilder::worst_tet_with(uint32_t v, const double* at,

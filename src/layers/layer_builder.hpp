@@ -81,8 +81,9 @@ class LayerBuilder {
   bool relocate_if_valid(uint32_t v, const double to[3], const std::vector<uint32_t>& tets);
   // No front triangle outside v's ring comes within `gap` of `to`.
   bool keeps_clear(uint32_t v, const double to[3], double gap) const;
-  // The distance from `at` to the front outside v's ring, looked for up to `within`.
-  double clear_distance(uint32_t v, const double at[3], double within) const;
+  // The distance from `at` to the front outside v's ring, looked for up to `within`; the search
+  // stops as soon as a triangle closer than `stop_below` is found.
+  double clear_distance(uint32_t v, const double at[3], double within, double stop_below = 0.0) const;
 
   // ---- boundary-layer mode (bl_step.cpp) ----
   // Wall flags, the number of BL layers; NotImplemented for a wall shell that is not whole.
