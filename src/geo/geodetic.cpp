@@ -90,30 +90,38 @@ Result<GeoFrame> centred_frame(FrameKind kind, const std::vector<double>& xyz) {
   return make_frame(kind, 0.5 * (lo[1] + hi[1]), lon, 0.5 * (lo[2] + hi[2]));
 }
 
+namespace {
+
+Status check_zone(const GeoFrame& frame) {
+  if (frame.kind != FrameKind::Enu && (frame.zone < 1 || frame.zone > 60))
+    return Status(Error::InvalidArgument, "UTM zone must be in 1..60");
+  return Status::success();
+}
+
+}  // namespace
+
 Status to_local(const GeoFrame& frame, std::vector<double>& xyz) {
   const size_t n = xyz.size() / 3;
   std::vector<double> out(xyz.size());
+  if (Status st = check_zone(frame); !st.ok()) return st;
+  for (size_t i = 0; i < n; ++i) {
+    const double* p = &xyz[3 * i];
+    if (!geodetic_ok(p[0], p[1], p[2]))
+      return Status(Error::InvalidArgument, point_text(i, p) + " is not a longitude, latitude, height");
+  }
   try {
     if (frame.kind == FrameKind::Enu) {
       const GeographicLib::LocalCartesian lc(frame.origin_lat, frame.origin_lon,
                                              frame.origin_height, GeographicLib::Geocentric::WGS84());
       for (size_t i = 0; i < n; ++i) {
         const double* p = &xyz[3 * i];
-        if (!geodetic_ok(p[0], p[1], p[2]))
-          return Status(Error::InvalidArgument,
-                        point_text(i, p) + " is not a longitude, latitude, height");
         lc.Forward(p[1], p[0], p[2], out[3 * i], out[3 * i + 1], out[3 * i + 2]);
       }
     } else {
-      if (frame.zone < 1 || frame.zone > 60)
-        return Status(Error::InvalidArgument, "UTM zone must be in 1..60");
       const GeographicLib::TransverseMercator& tm = GeographicLib::TransverseMercator::UTM();
       const double lon0 = central_meridian(frame.zone);
       for (size_t i = 0; i < n; ++i) {
         const double* p = &xyz[3 * i];
-        if (!geodetic_ok(p[0], p[1], p[2]))
-          return Status(Error::InvalidArgument,
-                        point_text(i, p) + " is not a longitude, latitude, height");
         if (std::fabs(std::remainder(p[0] - lon0, 360.0)) > kMaxZoneOffsetDeg ||
             std::fabs(p[1]) > 89.0)
           return Status(Error::InvalidArgument, point_text(i, p) + " is too far from UTM zone " +
@@ -135,6 +143,7 @@ Status to_local(const GeoFrame& frame, std::vector<double>& xyz) {
 Status to_geodetic(const GeoFrame& frame, std::vector<double>& xyz) {
   const size_t n = xyz.size() / 3;
   std::vector<double> out(xyz.size());
+  if (Status st = check_zone(frame); !st.ok()) return st;
   try {
     for (size_t i = 0; i < n; ++i) {
       const double* p = &xyz[3 * i];
@@ -153,8 +162,6 @@ Status to_geodetic(const GeoFrame& frame, std::vector<double>& xyz) {
         out[3 * i + 2] = h;
       }
     } else {
-      if (frame.zone < 1 || frame.zone > 60)
-        return Status(Error::InvalidArgument, "UTM zone must be in 1..60");
       const GeographicLib::TransverseMercator& tm = GeographicLib::TransverseMercator::UTM();
       const double lon0 = central_meridian(frame.zone);
       for (size_t i = 0; i < n; ++i) {
