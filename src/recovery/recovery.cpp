@@ -938,7 +938,8 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
     RecoveryOutput out;
     out.stats.input_vertices = S.num_vertices();
     out.stats.input_triangles = S.num_triangles();
-    out.stats.strategy = k;
+    // 0: as asked; a retry is named by what it changed (see RecoveryStats::strategy).
+    out.stats.strategy = k == 0 ? 0 : attempts[k].use_flips ? 1 : 2;
     Status s;
     {
       Recoverer r(S, attempts[k], out);
