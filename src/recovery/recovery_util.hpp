@@ -1,0 +1,67 @@
+// Small helpers shared by the two recovery strategies (internal header).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "predicates/predicates.hpp"
+
+namespace anitet::recovery_detail {
+
+inline uint64_t edge_key(uint32_t a, uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (uint64_t(a) << 32) | b;
+}
+
+using Tri = std::array<uint32_t, 3>;
+inline Tri sorted(Tri t) {
+  std::sort(t.begin(), t.end());
+  return t;
+}
+struct TriHash {
+  size_t operator()(const Tri& t) const {
+    uint64_t h = t[0];
+    h = h * 0x9e3779b97f4a7c15ull ^ t[1];
+    h = h * 0x9e3779b97f4a7c15ull ^ t[2];
+    return size_t(h ^ (h >> 29));
+  }
+};
+
+inline void cross(const double* u, const double* v, double* w) {
+  w[0] = u[1] * v[2] - u[2] * v[1];
+  w[1] = u[2] * v[0] - u[0] * v[2];
+  w[2] = u[0] * v[1] - u[1] * v[0];
+}
+inline void sub(const double* a, const double* b, double* c) {
+  for (int d = 0; d < 3; ++d) c[d] = a[d] - b[d];
+}
+inline double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline double dist2(const double* a, const double* b) {
+  double d[3];
+  sub(a, b, d);
+  return dot(d, d);
+}
+
+// Whether the line PQ passes strictly through the interior of triangle ABC (exact test); if so, x
+// gets the crossing point with ABC's plane (in floating point, so only near the triangle).
+inline bool line_crosses_triangle(const double* P, const double* Q, const double* A, const double* B,
+                                  const double* C, double x[3]) {
+  const int s0 = predicates::orient3d(P, Q, A, B);
+  const int s1 = predicates::orient3d(P, Q, B, C);
+  const int s2 = predicates::orient3d(P, Q, C, A);
+  if (!((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0))) return false;
+  double n[3], ab[3], ac[3], ap[3], aq[3];
+  sub(B, A, ab);
+  sub(C, A, ac);
+  cross(ab, ac, n);
+  sub(P, A, ap);
+  sub(Q, A, aq);
+  const double dp = dot(n, ap), dq = dot(n, aq);
+  const double s = dp / (dp - dq);
+  for (int d = 0; d < 3; ++d) x[d] = P[d] + s * (Q[d] - P[d]);
+  return true;
+}
+
+}  // namespace anitet::recovery_detail
