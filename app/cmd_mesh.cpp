@@ -33,8 +33,7 @@ int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
               << st.regions << " regions\n"
               << "  steiner points: " << st.steiner_on_edges + st.steiner_on_faces << " ("
               << st.steiner_on_edges << " on edges, " << st.steiner_on_faces << " on faces), "
-              << st.flips << " flips, " << st.passes << " passes"
-              << (st.strategy == 0 ? "" : st.strategy == 1 ? ", retried with flips" : ", retried with defended edges")
+              << st.flips << " flips, " << st.passes << " passes, strategy: " << recovery_strategy_name(st.strategy)
               << "\n"
               << "  time: " << st.seconds_total << " s (delaunay " << st.seconds_delaunay
               << " s, recovery " << st.seconds_recovery << " s, carving " << st.seconds_carve << " s)\n";

@@ -163,7 +163,8 @@ int run_mesh_pipeline(const MeshArgs& args) {
         {"layers", {{"layers_used", r.layers_used}, {"retries", r.layers_retries}}},
         {"recovery", {{"steiner_on_s1_edges", r.recovery.steiner_on_edges},
                       {"steiner_on_s1_faces", r.recovery.steiner_on_faces},
-                      {"strategy", r.recovery.strategy}}},
+                      {"strategy", r.recovery.strategy},
+                      {"strategy_name", recovery_strategy_name(r.recovery.strategy)}}},
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
         {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range}}},
@@ -198,7 +199,8 @@ int run_mesh_pipeline(const MeshArgs& args) {
                 << bl.growth_mean << "; BL vertices moved after stage 1 by at most " << bl.max_displacement
                 << "; " << r.layers.bl_seconds << " s\n";
     std::cout << "  stage 2 Steiner points on S1: " << r.recovery.steiner_on_edges << " on edges, "
-              << r.recovery.steiner_on_faces << " in faces; coupling split " << r.couple.edge_split_tets
+              << r.recovery.steiner_on_faces << " in faces (" << recovery_strategy_name(r.recovery.strategy)
+              << "); coupling split " << r.couple.edge_split_tets
               << " T1 tets and re-coned " << r.couple.faces_reconed << " S1 faces\n"
               << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits, "
               << r.refine.collapses << " collapses (" << r.refine.split_rejected << " splits put off, "

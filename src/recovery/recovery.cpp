@@ -11,6 +11,7 @@
 #include "predicates/predicates.hpp"
 #include "recovery/local_flips.hpp"
 #include "recovery/recovery_util.hpp"
+#include "recovery/split_recovery.hpp"
 
 namespace anitet {
 
@@ -865,12 +866,23 @@ Status Recoverer::carve() {
 
 }  // namespace
 
+const char* recovery_strategy_name(size_t strategy) {
+  switch (strategy) {
+    case 0: return "fuzzy faces";
+    case 1: return "fuzzy faces with flips";
+    case 2: return "fuzzy faces with defended edges";
+    case 3: return "split constraints";
+    default: return "unknown";
+  }
+}
+
 Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOptions& options) {
   if (S.num_vertices() < 4 || S.num_triangles() < 4)
     return Status(Error::EmptyInput, "recover_boundary: a closed surface needs at least 4 vertices and 4 triangles");
-  // The strategies, each from scratch: as asked, then (when retry_strategies) with flips, then
-  // with defended subsegments. No one of them recovers every shared surface; together they
-  // recover more (measurements in the README's status table).
+  // The strategies, each from scratch: split constraints (split_recovery.hpp); then the fuzzy
+  // faces as asked, then (when retry_strategies) with flips, then with defended subsegments. No
+  // one of them recovers every shared surface; together they recover more (measurements in the
+  // README's status table).
   std::vector<RecoveryOptions> attempts = {options};
   if (options.retry_strategies) {
     RecoveryOptions flips = options;
@@ -883,6 +895,18 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
       if (o.use_flips != options.use_flips || o.defend_edges != options.defend_edges) attempts.push_back(o);
   }
   Status first;
+  if (options.split_constraints) {
+    RecoveryOutput out;
+    out.stats.input_vertices = S.num_vertices();
+    out.stats.input_triangles = S.num_triangles();
+    out.stats.strategy = 3;
+    const Status s = recovery_detail::recover_by_splitting(S, options, out);
+    if (s.ok()) return out;
+    if (s.code() != Error::RecoveryFailed || !options.fuzzy_faces) return s;
+    first = s;
+  }
+  if (!options.fuzzy_faces)
+    return Status(Error::InvalidArgument, "recover_boundary: no strategy enabled (split_constraints and fuzzy_faces are off)");
   for (size_t k = 0; k < attempts.size(); ++k) {
     RecoveryOutput out;
     out.stats.input_vertices = S.num_vertices();
@@ -896,10 +920,10 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
     }
     if (s.ok()) return out;
     if (s.code() != Error::RecoveryFailed) return s;
-    if (k == 0) first = s;
+    if (first.ok()) first = s;
   }
-  if (attempts.size() == 1) return first;
-  return Status(first.code(), first.message() + " (the retries with flips and with defended subsegments failed too)");
+  if (attempts.size() == 1 && !options.split_constraints) return first;
+  return Status(first.code(), first.message() + " (" + (options.split_constraints ? "the fuzzy-face strategies" : "the retries with flips and with defended subsegments") + " failed too)");
 }
 
 }  // namespace anitet

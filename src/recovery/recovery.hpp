@@ -42,6 +42,13 @@ struct RecoveryOptions {
   // When the recovery fails with the options above, start again with use_flips, then again with
   // defend_edges (each from scratch); RecoveryStats::strategy tells which one succeeded.
   bool retry_strategies = true;
+  // First recover by splitting the constraint triangles themselves (split_recovery.hpp): every
+  // decision combinatorial. When it fails (or is off), the fuzzy-face strategies above run when
+  // fuzzy_faces is on, each from scratch.
+  bool split_constraints = true;
+  bool fuzzy_faces = true;
+  double split_max_seconds = 30;     // its own wall-time cap (the fallbacks get max_seconds each)
+  double split_max_steiner_per_face = 6;  // and Steiner cap (+ 1000): its successes need ~1
   // A boundary subsegment of a face that no subface uses gets a face point just inside it even
   // when no coplanar vertex explains the gap.
   bool apex_always = true;
@@ -60,7 +67,9 @@ struct RecoveryStats {
   size_t input_vertices = 0, input_triangles = 0;
   size_t steiner_on_edges = 0, steiner_on_faces = 0;
   size_t passes = 0;
-  size_t strategy = 0;            // 0: the options as given, 1: retried with flips, 2: with defended edges
+  // 3: split constraints (the first try by default); 0: the options as given, 1: retried with
+  // flips, 2: with defended edges
+  size_t strategy = 0;
   size_t flips = 0;               // constraints recovered by a flip instead of a point
   size_t blocked_insertions = 0;  // insertions the kernel refused (another point was tried)
   size_t tets = 0;                // tets of the result
@@ -81,6 +90,9 @@ struct RecoveryOutput {
   std::vector<SteinerPoint> steiner;
   RecoveryStats stats;
 };
+
+// "split constraints", "fuzzy faces", "fuzzy faces with flips", "fuzzy faces with defended edges".
+const char* recovery_strategy_name(size_t strategy);
 
 // S must be a valid closed, consistently oriented surface (validate_surface()); duplicate points
 // are refused. Fails with RecoveryFailed naming the constraint that could not be recovered.

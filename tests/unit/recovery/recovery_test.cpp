@@ -134,41 +134,62 @@ void append(SurfaceMesh& into, const SurfaceMesh& from) {
                       from.patch[f]);
 }
 
-RecoveryOutput recover_ok(const SurfaceMesh& s) {
-  Result<RecoveryOutput> r = recover_boundary(s);
+RecoveryOutput recover_ok(const SurfaceMesh& s, const RecoveryOptions& o = {}) {
+  Result<RecoveryOutput> r = recover_boundary(s, o);
   EXPECT_TRUE(r.ok()) << r.status().message();
   if (!r.ok()) return {};
   return std::move(r).value();
 }
 
+RecoveryOptions split_only() {
+  RecoveryOptions o;
+  o.fuzzy_faces = false;
+  return o;
+}
+RecoveryOptions fuzzy_only() {
+  RecoveryOptions o;
+  o.split_constraints = false;
+  return o;
+}
+
+// The same surface recovered by each strategy alone: split constraints, then fuzzy faces.
+std::vector<RecoveryOutput> recover_each(const SurfaceMesh& s) {
+  std::vector<RecoveryOutput> outs;
+  outs.push_back(recover_ok(s, split_only()));
+  EXPECT_EQ(outs.back().stats.strategy, 3u);
+  outs.push_back(recover_ok(s, fuzzy_only()));
+  EXPECT_NE(outs.back().stats.strategy, 3u);
+  return outs;
+}
+
 TEST(Recovery, Cube) {
   const SurfaceMesh s = cube();
-  RecoveryOutput out = recover_ok(s);
-  expect_recovered(s, out);
-  EXPECT_GE(out.s2_face.size(), 12u);
-  for (size_t k = 0; k < out.s2_face.size(); ++k) EXPECT_EQ(out.s2_patch[k], s.patch[out.s2_face[k]]);
+  for (const RecoveryOutput& out : recover_each(s)) {
+    expect_recovered(s, out);
+    EXPECT_GE(out.s2_face.size(), 12u);
+    for (size_t k = 0; k < out.s2_face.size(); ++k) EXPECT_EQ(out.s2_patch[k], s.patch[out.s2_face[k]]);
+  }
 }
 
 TEST(Recovery, NestedCubesMakeACavity) {
   SurfaceMesh s = cube(0, 3);
   append(s, cube(1, 1, /*inward=*/true));
-  RecoveryOutput out = recover_ok(s);
-  expect_recovered(s, out);
+  for (const RecoveryOutput& out : recover_each(s)) expect_recovered(s, out);
 }
 
 TEST(Recovery, TwoDisjointCubesAreTwoRegions) {
   SurfaceMesh s = cube(0, 1);
   append(s, cube(2, 1));
-  RecoveryOutput out = recover_ok(s);
-  expect_recovered(s, out, 2);
-  std::vector<int> seen(2, 0);
-  for (uint32_t t = 0; t < out.mesh.num_tet_slots(); ++t)
-    if (!out.mesh.is_deleted(t)) {
-      const int r = out.mesh.tet_region[t];
-      ASSERT_TRUE(r == 0 || r == 1);
-      // Region 0 holds the first cube (x < 1.5).
-      EXPECT_EQ(out.mesh.point(out.mesh.vertex(t, 0))[0] < 1.5 ? 0 : 1, r);
-    }
+  for (const RecoveryOutput& out : recover_each(s)) {
+    expect_recovered(s, out, 2);
+    for (uint32_t t = 0; t < out.mesh.num_tet_slots(); ++t)
+      if (!out.mesh.is_deleted(t)) {
+        const int r = out.mesh.tet_region[t];
+        ASSERT_TRUE(r == 0 || r == 1);
+        // Region 0 holds the first cube (x < 1.5).
+        EXPECT_EQ(out.mesh.point(out.mesh.vertex(t, 0))[0] < 1.5 ? 0 : 1, r);
+      }
+  }
 }
 
 SurfaceMesh box(double sx, double sy, double sz) {
@@ -206,14 +227,12 @@ TEST(Recovery, CubeWithAPointPushedIn) {
   s.add_triangle(7, 6, 8, 1);
   s.add_triangle(6, 4, 8, 1);
   s = validated(s);
-  RecoveryOutput out = recover_ok(s);
-  expect_recovered(s, out);
+  for (const RecoveryOutput& out : recover_each(s)) expect_recovered(s, out);
 }
 
 TEST(Recovery, ThinSlab) {
   const SurfaceMesh s = validated(box(1.0, 0.7, 0.01));
-  RecoveryOutput out = recover_ok(s);
-  expect_recovered(s, out);
+  for (const RecoveryOutput& out : recover_each(s)) expect_recovered(s, out);
 }
 
 // Schonhardt's twisted prism: no tetrahedralization without Steiner points.
@@ -232,9 +251,10 @@ TEST(Recovery, TwistedPrismNeedsSteinerPoints) {
     s.add_triangle(i, 3 + j, 3 + i);
   }
   s = validated(s);
-  RecoveryOutput out = recover_ok(s);
-  expect_recovered(s, out);
-  EXPECT_GT(out.steiner.size(), 0u);
+  for (const RecoveryOutput& out : recover_each(s)) {
+    expect_recovered(s, out);
+    EXPECT_GT(out.steiner.size(), 0u);
+  }
 }
 
 // Convex hulls of random points on an ellipsoid (the hull triangles of a Delaunay mesh).
@@ -257,8 +277,7 @@ TEST(Recovery, RandomConvexPolytopes) {
     for (uint32_t v : s.tri) used[v] = 1;
     ASSERT_EQ(std::count(used.begin(), used.end(), 1), 60) << "points on an ellipsoid are all on the hull";
     s = validated(s);
-    RecoveryOutput out = recover_ok(s);
-    expect_recovered(s, out);
+    for (const RecoveryOutput& out : recover_each(s)) expect_recovered(s, out);
   }
 }
 
@@ -308,24 +327,40 @@ TEST(RecoveryKernel, ConstrainedEdgeSurvivesInsertions) {
 
 std::string surf(const char* name) { return std::string(ANITET_SURFACES_DIR) + "/" + name; }
 
-void recover_file(const char* name) {
+void recover_file(const char* name, const RecoveryOptions& o = {}, size_t strategy = ~size_t(0)) {
   Result<SurfaceMesh> r = read_surface(surf(name));
   ASSERT_TRUE(r.ok()) << r.status().message();
   SurfaceMesh s = std::move(r).value();
   const ValidationReport rep = validate_surface(s);
   ASSERT_TRUE(rep.ok()) << rep.summary();
-  RecoveryOutput out = recover_ok(s);
+  RecoveryOutput out = recover_ok(s, o);
   expect_recovered(s, out, rep.num_regions);
-  std::printf("%s: %zu triangles, %zu Steiner on edges, %zu on faces, %zu passes, %.3f s\n", name,
+  if (strategy != ~size_t(0)) {
+    EXPECT_EQ(out.stats.strategy, strategy);
+  }
+  std::printf("%s: %zu triangles, %zu Steiner on edges, %zu on faces, %zu passes, %s, %.3f s\n", name,
               s.num_triangles(), out.stats.steiner_on_edges, out.stats.steiner_on_faces,
-              out.stats.passes, out.stats.seconds_total);
+              out.stats.passes, recovery_strategy_name(out.stats.strategy), out.stats.seconds_total);
 }
 
 TEST(RecoveryShared, Fandisk) { recover_file("fandisk.off"); }
 TEST(RecoveryShared, DecimatedKnight) { recover_file("decimated-knight.off"); }
+// The split strategy cascades on its sliver triangles; the default falls back to fuzzy faces.
 TEST(RecoveryShared, TrayBottom) { recover_file("tray_bottom.stl"); }
 TEST(RecoveryShared, BimbaLow) { recover_file("bimba_low.off"); }
 TEST(RecoveryShared, RockerArm) { recover_file("rocker-arm.obj"); }
+
+// The split strategy alone, on the surfaces it recovers in well under a second each (femur and
+// casting failed every fuzzy-face strategy as stage 1 fronts).
+TEST(RecoverySplit, Femur) { recover_file("femur.off", split_only(), 3); }
+TEST(RecoverySplit, Casting) { recover_file("casting.off", split_only(), 3); }
+TEST(RecoverySplit, Kitten) { recover_file("kitten.off", split_only(), 3); }
+TEST(RecoverySplit, Elephant) { recover_file("elephant.obj", split_only(), 3); }
+TEST(RecoverySplit, Airplane) { recover_file("airplane.obj", split_only(), 3); }
+TEST(RecoverySplit, BimbaLow) { recover_file("bimba_low.off", split_only(), 3); }
+// And the fuzzy faces alone (the default's fallback).
+TEST(RecoveryFuzzy, DecimatedKnight) { recover_file("decimated-knight.off", fuzzy_only()); }
+TEST(RecoveryFuzzy, Fandisk) { recover_file("fandisk.off", fuzzy_only()); }
 
 // Known failure (issue 4): the tiny sliver triangles of this part make the midpoint splitting
 // cascade past the Steiner cap (~150k points, 20 s) without recovering every face.

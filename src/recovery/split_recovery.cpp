@@ -1,0 +1,706 @@
+#include "recovery/split_recovery.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/tet_ops.hpp"
+#include "delaunay/delaunay.hpp"
+#include "predicates/predicates.hpp"
+#include "recovery/recovery_util.hpp"
+
+namespace anitet::recovery_detail {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+constexpr uint32_t kNone = TetMesh::kNone;
+constexpr uint32_t kGhost = TetMesh::kGhost;
+constexpr uint64_t kNoNeighbour = TetMesh::kNoNeighbour;
+
+class SplitRecoverer {
+ public:
+  SplitRecoverer(const SurfaceMesh& s, const RecoveryOptions& o, RecoveryOutput& out)
+      : S_(s), opt_(o), out_(out), mesh_(out.mesh), inserter_(out.mesh, o.seed) {}
+
+  Status run();
+
+ private:
+  // A constraint edge: the (at most two) live constraint triangles on it, and the input edge it
+  // lies on (kNone for an edge inside an input face, made by a triangle split).
+  struct CEdge {
+    uint32_t tri[2] = {kNone, kNone};
+    uint32_t input_edge = kNone;
+  };
+  enum : uint8_t { kMissing = 0, kRecovered = 1, kDead = 2 };
+
+  Status build_delaunay();
+  void build_constraints();
+  void add_tri(uint32_t a, uint32_t b, uint32_t c, uint32_t face);
+  void remove_tri(uint32_t k);
+  CEdge& edge_of(uint32_t a, uint32_t b, uint32_t input_edge);
+  const std::vector<uint32_t>& ball(uint32_t v);
+  bool has_edge(uint32_t a, uint32_t b);
+  bool find_facet(const Tri& t, uint32_t& tet, int& facet);
+  void protect(uint32_t k);
+  void mark_edge_constrained(uint32_t a, uint32_t b);
+  double param_on(uint32_t v, uint32_t e) const;
+  uint32_t insert(const double p[3], SteinerHost host, uint32_t host_id, double param, uint32_t hint);
+  bool split_edge(uint64_t key);
+  bool flip_edge(uint64_t key, bool only_to_mesh);
+  bool split_triangle(uint32_t k);
+  Status carve();
+  std::string describe_tri(uint32_t k) const;
+
+  const SurfaceMesh& S_;
+  const RecoveryOptions& opt_;
+  RecoveryOutput& out_;
+  TetMesh& mesh_;
+  PointInserter inserter_;
+  meshops::VertexTets vt_;
+  size_t n_in_ = 0;
+
+  std::vector<uint32_t> edge_v_;                 // 2 per input edge (sorted ids)
+  std::unordered_map<uint64_t, uint32_t> input_edge_id_;
+  std::vector<int8_t> vhost_kind_;               // per vertex: -1 input vertex, 0 edge, 1 face
+  std::vector<uint32_t> vhost_;                  // host input edge / face
+  std::vector<double> vparam_;                   // edge-hosted: parameter from edge_v_[2e]
+
+  std::vector<Tri> ct_;                          // constraint triangles, oriented like S
+  std::vector<uint32_t> ct_face_;                // their input face
+  std::vector<uint8_t> ct_state_;
+  std::unordered_map<uint64_t, CEdge> edges_;
+  std::vector<uint64_t> edge_keys_;              // sweep order (erased keys are skipped)
+
+  std::vector<uint32_t> ball_, bfs_;
+  std::vector<uint32_t> tet_stamp_;
+  uint32_t stamp_ = 0;
+};
+
+std::string SplitRecoverer::describe_tri(uint32_t k) const {
+  const uint32_t f = ct_face_[k];
+  return "input triangle " + std::to_string(f) + " (" + std::to_string(S_.tri[3 * f]) + " " +
+         std::to_string(S_.tri[3 * f + 1]) + " " + std::to_string(S_.tri[3 * f + 2]) + ")";
+}
+
+Status SplitRecoverer::build_delaunay() {
+  Result<DelaunayStats> d = delaunay_tetrahedralize(mesh_, S_.xyz.data(), n_in_);
+  if (!d.ok()) return d.status();
+  if (!d->duplicates.empty())
+    return Status(Error::DuplicatePoint, "recover_boundary: input vertex " +
+                                             std::to_string(d->duplicates[0].point) +
+                                             " has the coordinates of vertex " +
+                                             std::to_string(d->duplicates[0].same_as));
+  vt_.build(mesh_);
+  vhost_kind_.assign(n_in_, -1);
+  vhost_.assign(n_in_, kNone);
+  vparam_.assign(n_in_, 0.0);
+  return Status::success();
+}
+
+SplitRecoverer::CEdge& SplitRecoverer::edge_of(uint32_t a, uint32_t b, uint32_t input_edge) {
+  const uint64_t key = edge_key(a, b);
+  auto [it, fresh] = edges_.try_emplace(key);
+  if (fresh) {
+    it->second.input_edge = input_edge;
+    edge_keys_.push_back(key);
+  }
+  return it->second;
+}
+
+void SplitRecoverer::add_tri(uint32_t a, uint32_t b, uint32_t c, uint32_t face) {
+  const auto k = static_cast<uint32_t>(ct_.size());
+  ct_.push_back({a, b, c});
+  ct_face_.push_back(face);
+  ct_state_.push_back(kMissing);
+  const uint32_t v[3] = {a, b, c};
+  for (int i = 0; i < 3; ++i) {
+    CEdge& e = edge_of(v[i], v[(i + 1) % 3], kNone);
+    (e.tri[0] == kNone ? e.tri[0] : e.tri[1]) = k;
+  }
+}
+
+void SplitRecoverer::remove_tri(uint32_t k) {
+  ct_state_[k] = kDead;
+  const Tri& t = ct_[k];
+  for (int i = 0; i < 3; ++i) {
+    auto it = edges_.find(edge_key(t[i], t[(i + 1) % 3]));
+    if (it == edges_.end()) continue;
+    for (uint32_t& s : it->second.tri)
+      if (s == k) s = kNone;
+    if (it->second.tri[0] == kNone && it->second.tri[1] == kNone) edges_.erase(it);
+  }
+}
+
+void SplitRecoverer::build_constraints() {
+  const size_t nf = S_.num_triangles();
+  for (uint32_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = S_.tri[3 * f + k], b = S_.tri[3 * f + (k + 1) % 3];
+      auto [it, fresh] = input_edge_id_.emplace(edge_key(a, b), uint32_t(edge_v_.size() / 2));
+      if (fresh) {
+        edge_v_.push_back(std::min(a, b));
+        edge_v_.push_back(std::max(a, b));
+      }
+      edge_of(a, b, it->second);
+    }
+  for (uint32_t f = 0; f < nf; ++f) add_tri(S_.tri[3 * f], S_.tri[3 * f + 1], S_.tri[3 * f + 2], f);
+}
+
+const std::vector<uint32_t>& SplitRecoverer::ball(uint32_t v) {
+  const uint32_t t = vt_.tet_of(mesh_, v);
+  if (t == kNone) {
+    ball_.clear();
+    return ball_;
+  }
+  meshops::vertex_ball(mesh_, v, t, ball_);
+  return ball_;
+}
+
+bool SplitRecoverer::has_edge(uint32_t a, uint32_t b) {
+  for (uint32_t t : ball(a))
+    if (meshops::tet_has_vertex(mesh_, t, b)) return true;
+  return false;
+}
+
+bool SplitRecoverer::find_facet(const Tri& tr, uint32_t& tet, int& facet) {
+  for (uint32_t t : ball(tr[0])) {
+    int missing = -1, found = 0;
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t v = mesh_.vertex(t, i);
+      if (v == tr[0] || v == tr[1] || v == tr[2]) ++found;
+      else missing = i;
+    }
+    if (found == 3) {
+      tet = t;
+      facet = missing;
+      return true;
+    }
+  }
+  return false;
+}
+
+void SplitRecoverer::protect(uint32_t k) {
+  uint32_t t;
+  int i;
+  if (!find_facet(ct_[k], t, i)) return;
+  mesh_.set_facet_protected(t, i, true);
+  const uint64_t adj = mesh_.tet_adj[4 * size_t(t) + i];
+  if (adj != kNoNeighbour) mesh_.set_facet_protected(uint32_t(adj >> 2), int(adj & 3), true);
+  ct_state_[k] = kRecovered;
+}
+
+void SplitRecoverer::mark_edge_constrained(uint32_t a, uint32_t b) {
+  for (uint32_t t : ball(a))
+    for (int k = 0; k < 6; ++k) {
+      const uint32_t x = mesh_.vertex(t, kEdgeVertex[k][0]), y = mesh_.vertex(t, kEdgeVertex[k][1]);
+      if ((x == a && y == b) || (x == b && y == a))
+        mesh_.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
+    }
+}
+
+double SplitRecoverer::param_on(uint32_t v, uint32_t e) const {
+  if (v == edge_v_[2 * e]) return 0.0;
+  if (v == edge_v_[2 * e + 1]) return 1.0;
+  return vparam_[v];
+}
+
+uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t host_id, double param,
+                                uint32_t hint) {
+  InsertOptions io;
+  io.vertex_flags = vflag::kOnInputSurface;
+  const InsertResult r = inserter_.insert(p, hint, io);
+  if (!r.ok()) {
+    ++out_.stats.blocked_insertions;
+    return kNone;
+  }
+  for (uint32_t t : inserter_.new_tets())
+    if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
+  vhost_kind_.push_back(static_cast<int8_t>(host));
+  vhost_.push_back(host_id);
+  vparam_.push_back(param);
+  out_.steiner.push_back({r.vertex, host, host_id});
+  if (host == SteinerHost::kEdge) ++out_.stats.steiner_on_edges;
+  else ++out_.stats.steiner_on_faces;
+  return r.vertex;
+}
+
+// Splits the missing constraint edge `key` and its two triangles at a new point. On an input
+// edge the point is on the input segment (by its parameter), at a power-of-two distance from an
+// input vertex when the edge ends at one (concentric shells: segments meeting at a small angle
+// do not split each other forever), else at the middle; inside a face, at the middle.
+bool SplitRecoverer::split_edge(uint64_t key) {
+  const CEdge ce = edges_.at(key);
+  const auto a = uint32_t(key >> 32), b = uint32_t(key & 0xffffffffu);
+  uint32_t v = kNone;
+  const uint32_t hint = vt_.tet_of(mesh_, a);
+  if (ce.input_edge != kNone) {
+    const uint32_t e = ce.input_edge;
+    const double* A = S_.point(edge_v_[2 * e]);
+    const double* B = S_.point(edge_v_[2 * e + 1]);
+    double ta = param_on(a, e), tb = param_on(b, e);
+    const bool a_input = a < n_in_, b_input = b < n_in_;
+    bool lo_input = a_input, hi_input = b_input;
+    if (ta > tb) {
+      std::swap(ta, tb);
+      std::swap(lo_input, hi_input);
+    }
+    const double full = std::sqrt(dist2(A, B));
+    const double len = (tb - ta) * full;
+    double t = 0.5 * (ta + tb);
+    if (lo_input != hi_input && len > 0) {
+      double d = std::exp2(std::floor(std::log2(len * 2.0 / 3.0)));
+      if (d < len / 3.0) d *= 2.0;
+      t = lo_input ? ta + d / full : tb - d / full;
+    }
+    const double tries[4] = {t, 0.5 * (ta + tb), ta + 0.4 * (tb - ta), ta + 0.6 * (tb - ta)};
+    for (double tt : tries) {
+      if (!(tt > ta && tt < tb)) continue;
+      double p[3];
+      if (tt < 0.5) for (int d = 0; d < 3; ++d) p[d] = A[d] + tt * (B[d] - A[d]);
+      else for (int d = 0; d < 3; ++d) p[d] = B[d] + (1.0 - tt) * (A[d] - B[d]);
+      v = insert(p, SteinerHost::kEdge, e, tt, hint);
+      if (v != kNone) break;
+    }
+  } else {
+    const uint32_t face = ce.tri[0] != kNone ? ct_face_[ce.tri[0]] : ct_face_[ce.tri[1]];
+    const double* P = mesh_.point(a);
+    const double* Q = mesh_.point(b);
+    for (double s : {0.5, 0.4, 0.6}) {
+      double p[3];
+      for (int d = 0; d < 3; ++d) p[d] = P[d] + s * (Q[d] - P[d]);
+      v = insert(p, SteinerHost::kFace, face, 0.0, hint);
+      if (v != kNone) break;
+    }
+  }
+  if (v == kNone) return false;
+  // The triangles on (a b) become two each, on either side of v.
+  uint32_t tris[2] = {ce.tri[0], ce.tri[1]};
+  Tri old[2];
+  uint32_t faces[2];
+  for (int s = 0; s < 2; ++s) {
+    if (tris[s] == kNone) continue;
+    old[s] = ct_[tris[s]];
+    faces[s] = ct_face_[tris[s]];
+    remove_tri(tris[s]);
+  }
+  edge_of(a, v, ce.input_edge);
+  edge_of(v, b, ce.input_edge);
+  for (int s = 0; s < 2; ++s) {
+    if (tris[s] == kNone) continue;
+    const Tri& t = old[s];
+    int i = 0;
+    while (!((t[i] == a && t[(i + 1) % 3] == b) || (t[i] == b && t[(i + 1) % 3] == a))) ++i;
+    const uint32_t x = t[i], y = t[(i + 1) % 3], z = t[(i + 2) % 3];
+    add_tri(x, v, z, faces[s]);
+    add_tri(v, y, z, faces[s]);
+  }
+  return true;
+}
+
+// Flips the constraint edge `key` inside its input face: its triangles (v z x) and (z v y) become
+// (x v y) and (y z x) when the quadrilateral is convex in the face's plane, and the mesh has the
+// edge (x y) (only_to_mesh), or else y is inside the circle of (v z x) (a 2D Delaunay flip).
+bool SplitRecoverer::flip_edge(uint64_t key, bool only_to_mesh) {
+  const CEdge ce = edges_.at(key);
+  if (ce.input_edge != kNone || ce.tri[0] == kNone || ce.tri[1] == kNone) return false;
+  const uint32_t k1 = ce.tri[0], k2 = ce.tri[1];
+  if (ct_state_[k1] != kMissing || ct_state_[k2] != kMissing || ct_face_[k1] != ct_face_[k2]) return false;
+  const auto a = uint32_t(key >> 32), b = uint32_t(key & 0xffffffffu);
+  // k1 = (v z x) with v -> z along k1's orientation; then k2 = (z v y).
+  const Tri& t1 = ct_[k1];
+  int i = 0;
+  while (!(t1[i] == a || t1[i] == b) || !(t1[(i + 1) % 3] == a || t1[(i + 1) % 3] == b)) ++i;
+  const uint32_t v = t1[i], z = t1[(i + 1) % 3], x = t1[(i + 2) % 3];
+  const Tri& t2 = ct_[k2];
+  uint32_t y = kNone;
+  for (uint32_t w : t2)
+    if (w != v && w != z) y = w;
+  if (y == kNone || y == x || edges_.count(edge_key(x, y))) return false;
+  const uint32_t f = ct_face_[k1];
+  double n[3];
+  {
+    const double* A = S_.point(S_.tri[3 * f]);
+    double ab[3], ac[3];
+    sub(S_.point(S_.tri[3 * f + 1]), A, ab);
+    sub(S_.point(S_.tri[3 * f + 2]), A, ac);
+    cross(ab, ac, n);
+  }
+  auto area = [&](uint32_t p, uint32_t q, uint32_t r) {
+    double u[3], w[3], c[3];
+    sub(mesh_.point(q), mesh_.point(p), u);
+    sub(mesh_.point(r), mesh_.point(p), w);
+    cross(u, w, c);
+    return dot(c, n);
+  };
+  if (!(area(x, v, y) > 0 && area(y, z, x) > 0)) return false;
+  if (only_to_mesh) {
+    if (!has_edge(x, y)) return false;
+  } else {
+    // y inside the circumcircle of (v z x), in the face's plane (floating point: a heuristic).
+    double e1[3], e2[3], nn = std::sqrt(dot(n, n));
+    sub(mesh_.point(z), mesh_.point(v), e1);
+    const double l1 = std::sqrt(dot(e1, e1));
+    for (double& c : e1) c /= l1;
+    cross(n, e1, e2);
+    for (double& c : e2) c /= nn;
+    auto uv = [&](uint32_t p, double& pu, double& pv) {
+      double d[3];
+      sub(mesh_.point(p), mesh_.point(v), d);
+      pu = dot(d, e1);
+      pv = dot(d, e2);
+    };
+    double P[4][2];
+    const uint32_t q[4] = {v, z, x, y};
+    for (int k = 0; k < 4; ++k) uv(q[k], P[k][0], P[k][1]);
+    double m[3][3];
+    for (int k = 0; k < 3; ++k) {
+      const double du = P[k][0] - P[3][0], dv = P[k][1] - P[3][1];
+      m[k][0] = du;
+      m[k][1] = dv;
+      m[k][2] = du * du + dv * dv;
+    }
+    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    if (!(det > 0)) return false;  // (v z x) counter-clockwise: det > 0 means y inside
+  }
+  remove_tri(k1);
+  remove_tri(k2);
+  add_tri(x, v, y, f);
+  add_tri(y, z, x, f);
+  return true;
+}
+
+// Splits the missing constraint triangle k (its edges present) at the point where a mesh edge
+// crosses it farthest inside (largest smallest barycentric coordinate), else at its centroid.
+bool SplitRecoverer::split_triangle(uint32_t k) {
+  const Tri t = ct_[k];
+  const uint32_t face = ct_face_[k];
+  const double* A = mesh_.point(t[0]);
+  const double* B = mesh_.point(t[1]);
+  const double* C = mesh_.point(t[2]);
+  double n[3];
+  {
+    double ab[3], ac[3];
+    sub(B, A, ab);
+    sub(C, A, ac);
+    cross(ab, ac, n);
+  }
+  const double nn = dot(n, n);
+  auto inner_score = [&](const double* x) {  // smallest barycentric coordinate of x
+    const double* P[3] = {A, B, C};
+    double least = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+      double u[3], w[3], c[3];
+      sub(P[(i + 1) % 3], x, u);
+      sub(P[(i + 2) % 3], x, w);
+      cross(u, w, c);
+      least = std::min(least, dot(c, n) / nn);
+    }
+    return least;
+  };
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::min({A[d], B[d], C[d]});
+    hi[d] = std::max({A[d], B[d], C[d]});
+  }
+  // Tets near the triangle: breadth-first from its corners' balls through tets that meet its
+  // bounding box and its plane.
+  if (tet_stamp_.size() < mesh_.num_tet_slots()) tet_stamp_.resize(2 * mesh_.num_tet_slots(), 0);
+  if (++stamp_ == 0) {
+    std::fill(tet_stamp_.begin(), tet_stamp_.end(), 0);
+    stamp_ = 1;
+  }
+  bfs_.clear();
+  for (int c = 0; c < 3; ++c)
+    for (uint32_t s : ball(t[c]))
+      if (tet_stamp_[s] != stamp_) {
+        tet_stamp_[s] = stamp_;
+        bfs_.push_back(s);
+      }
+  double best[3] = {0, 0, 0};
+  double best_score = -1;
+  uint32_t best_tet = kNone;
+  const size_t limit = 20000;
+  for (size_t q = 0; q < bfs_.size() && q < limit; ++q) {
+    const uint32_t s = bfs_[q];
+    if (mesh_.is_ghost(s)) continue;
+    int side[4];
+    bool box = true;
+    double tl[3] = {INFINITY, INFINITY, INFINITY}, th[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < 4; ++i) {
+      const double* p = mesh_.point(mesh_.vertex(s, i));
+      side[i] = predicates::orient3d(A, B, C, p);
+      for (int d = 0; d < 3; ++d) {
+        tl[d] = std::min(tl[d], p[d]);
+        th[d] = std::max(th[d], p[d]);
+      }
+    }
+    for (int d = 0; d < 3; ++d) box = box && tl[d] <= hi[d] && th[d] >= lo[d];
+    const bool pos = side[0] > 0 || side[1] > 0 || side[2] > 0 || side[3] > 0;
+    const bool neg = side[0] < 0 || side[1] < 0 || side[2] < 0 || side[3] < 0;
+    if (!box || !pos || !neg) continue;
+    for (const auto& ev : kEdgeVertex) {
+      if (side[ev[0]] * side[ev[1]] >= 0) continue;
+      const uint32_t p = mesh_.vertex(s, ev[0]), r = mesh_.vertex(s, ev[1]);
+      double x[3];
+      if (!line_crosses_triangle(mesh_.point(p), mesh_.point(r), A, B, C, x)) continue;
+      const double score = inner_score(x);
+      if (score > best_score) {
+        best_score = score;
+        std::copy(x, x + 3, best);
+        best_tet = s;
+      }
+    }
+    for (int i = 0; i < 4; ++i) {
+      if (mesh_.tet_adj[4 * size_t(s) + i] == kNoNeighbour) continue;
+      const uint32_t nb = mesh_.neighbour(s, i);
+      if (tet_stamp_[nb] == stamp_) continue;
+      tet_stamp_[nb] = stamp_;
+      bfs_.push_back(nb);
+    }
+  }
+  std::vector<std::array<double, 3>> tries;
+  if (best_score > 0) {
+    // Not too near an edge of the triangle (thin pieces cascade): pulled towards the centroid
+    // until its smallest barycentric coordinate is kMinBary.
+    constexpr double kMinBary = 0.1;
+    if (best_score < kMinBary) {
+      const double lambda = (1.0 / 3.0 - kMinBary) / (1.0 / 3.0 - best_score);
+      for (int d = 0; d < 3; ++d) {
+        const double c = (A[d] + B[d] + C[d]) / 3;
+        best[d] = c + lambda * (best[d] - c);
+      }
+    }
+    tries.push_back({best[0], best[1], best[2]});
+  }
+  tries.push_back({(A[0] + B[0] + C[0]) / 3, (A[1] + B[1] + C[1]) / 3, (A[2] + B[2] + C[2]) / 3});
+  const double bary[3][3] = {{0.4, 0.3, 0.3}, {0.3, 0.4, 0.3}, {0.3, 0.3, 0.4}};
+  for (const auto& w : bary)
+    tries.push_back({w[0] * A[0] + w[1] * B[0] + w[2] * C[0], w[0] * A[1] + w[1] * B[1] + w[2] * C[1],
+                     w[0] * A[2] + w[1] * B[2] + w[2] * C[2]});
+  uint32_t v = kNone;
+  for (size_t i = 0; i < tries.size() && v == kNone; ++i)
+    v = insert(tries[i].data(), SteinerHost::kFace, face, 0.0, i == 0 && best_tet != kNone ? best_tet : vt_.tet_of(mesh_, t[0]));
+  if (v == kNone) return false;
+  remove_tri(k);
+  add_tri(t[0], t[1], v, face);
+  add_tri(t[1], t[2], v, face);
+  add_tri(t[2], t[0], v, face);
+  return true;
+}
+
+Status SplitRecoverer::run() {
+  n_in_ = S_.num_vertices();
+  const auto t0 = Clock::now();
+  if (Status s = build_delaunay(); !s.ok()) return s;
+  out_.stats.seconds_delaunay = seconds_since(t0);
+  const auto t1 = Clock::now();
+  build_constraints();
+  const size_t cap = size_t(opt_.split_max_steiner_per_face * double(S_.num_triangles())) + 1000;
+  size_t pass = 0;
+  bool done = false, cascade = false;
+  constexpr size_t kGrowthLimit = 4;
+  size_t growths = 0, last_missing = ~size_t(0);
+  for (; pass < opt_.max_passes; ++pass) {
+    if (out_.steiner.size() > cap || seconds_since(t1) > opt_.split_max_seconds) break;
+    // Subsegments of the input edges first (the edges that already existed when the sweep
+    // began): their chains are fixed, so a missing one is split.
+    size_t missing_edges = 0;
+    const size_t n_keys = edge_keys_.size();
+    for (size_t i = 0; i < n_keys; ++i) {
+      const uint64_t key = edge_keys_[i];
+      auto it = edges_.find(key);
+      if (it == edges_.end() || it->second.input_edge == kNone) continue;
+      if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
+      ++missing_edges;
+      split_edge(key);
+      if (out_.steiner.size() > cap || ((missing_edges & 255) == 0 && seconds_since(t1) > opt_.split_max_seconds)) break;
+    }
+    edge_keys_.erase(std::remove_if(edge_keys_.begin(), edge_keys_.end(),
+                                    [&](uint64_t key) { return !edges_.count(key); }),
+                     edge_keys_.end());
+    if (missing_edges > 0) continue;
+    // An edge inside an input face is free: flip a missing one to the mesh's edge, or to the
+    // face's 2D Delaunay edge.
+    size_t flips = 0;
+    for (size_t i = 0; i < edge_keys_.size(); ++i) {
+      const uint64_t key = edge_keys_[i];
+      auto it = edges_.find(key);
+      if (it == edges_.end() || it->second.input_edge != kNone) continue;
+      if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
+      if (flip_edge(key, true) || flip_edge(key, false)) ++flips;
+    }
+    edge_keys_.erase(std::remove_if(edge_keys_.begin(), edge_keys_.end(),
+                                    [&](uint64_t key) { return !edges_.count(key); }),
+                     edge_keys_.end());
+    out_.stats.flips += flips;
+    // Protect every triangle present, then split the missing ones.
+    std::vector<uint32_t> missing;
+    for (uint32_t k = 0; k < ct_.size(); ++k) {
+      if (ct_state_[k] != kMissing) continue;
+      uint32_t t;
+      int i;
+      if (find_facet(ct_[k], t, i)) protect(k);
+      else missing.push_back(k);
+    }
+    if (missing.empty()) {
+      done = true;
+      break;
+    }
+    // Splitting thin triangles can cascade (each split leaving more pieces missing): give up
+    // when the count of missing triangles has grown kGrowthLimit face phases in a row.
+    growths = missing.size() > last_missing ? growths + 1 : 0;
+    last_missing = missing.size();
+    if (growths >= kGrowthLimit) {
+      cascade = true;
+      break;
+    }
+    for (size_t i = 0; i < missing.size(); ++i) {
+      if (ct_state_[missing[i]] == kMissing) split_triangle(missing[i]);
+      if (out_.steiner.size() > cap || ((i & 255) == 255 && seconds_since(t1) > opt_.split_max_seconds)) break;
+    }
+  }
+  out_.stats.passes = pass;
+  if (!done) {
+    const std::string why = cascade ? " (splits cascading: the missing pieces grew " + std::to_string(kGrowthLimit) +
+                                          " passes in a row)"
+                                    : "";
+    for (size_t i = 0; i < edge_keys_.size(); ++i) {
+      const uint64_t key = edge_keys_[i];
+      auto it = edges_.find(key);
+      if (it == edges_.end()) continue;
+      const auto a = uint32_t(key >> 32), b = uint32_t(key & 0xffffffffu);
+      if (has_edge(a, b)) continue;
+      const uint32_t k = it->second.tri[0] != kNone ? it->second.tri[0] : it->second.tri[1];
+      return Status(Error::RecoveryFailed,
+                    "recover_boundary: an edge (" + std::to_string(a) + " " + std::to_string(b) +
+                        ") of " + describe_tri(k) + " not recovered after " + std::to_string(pass) +
+                        " passes, " + std::to_string(out_.steiner.size()) + " Steiner points and " +
+                        std::to_string(seconds_since(t1)) + " s" + why);
+    }
+    for (uint32_t k = 0; k < ct_.size(); ++k)
+      if (ct_state_[k] == kMissing)
+        return Status(Error::RecoveryFailed, "recover_boundary: " + describe_tri(k) + " not recovered after " +
+                                                 std::to_string(pass) + " passes, " +
+                                                 std::to_string(out_.steiner.size()) + " Steiner points and " +
+                                                 std::to_string(seconds_since(t1)) + " s" + why);
+  }
+  // S2: the recovered constraint triangles, oriented like their input faces.
+  for (uint32_t k = 0; k < ct_.size(); ++k) {
+    if (ct_state_[k] != kRecovered) continue;
+    for (uint32_t v : ct_[k]) out_.s2_tri.push_back(v);
+    out_.s2_face.push_back(ct_face_[k]);
+    out_.s2_patch.push_back(ct_face_[k] < S_.patch.size() ? S_.patch[ct_face_[k]] : 0);
+  }
+  // Constrained edge bits on every subsegment of an input edge.
+  for (const auto& [key, e] : edges_)
+    if (e.input_edge != kNone) mark_edge_constrained(uint32_t(key >> 32), uint32_t(key & 0xffffffffu));
+  out_.input_edges = edge_v_;
+  out_.stats.seconds_recovery = seconds_since(t1);
+  const auto t2 = Clock::now();
+  if (opt_.remove_outside)
+    if (Status s = carve(); !s.ok()) return s;
+  out_.stats.seconds_carve = seconds_since(t2);
+  out_.stats.seconds_total = seconds_since(t0);
+  size_t tets = 0;
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
+    if (!mesh_.is_deleted(t) && !mesh_.is_ghost(t)) ++tets;
+  out_.stats.tets = tets;
+  return Status::success();
+}
+
+// Components of tets connected through unprotected facets. A component holding a ghost tet is
+// outside; any other is outside when its bounding constraint triangles, oriented outward from the
+// material, point into it (same cyclic order as the facet seen from inside the tet).
+Status SplitRecoverer::carve() {
+  const size_t nslots = mesh_.num_tet_slots();
+  std::unordered_map<Tri, uint32_t, TriHash> tri_of;
+  for (uint32_t k = 0; k < ct_.size(); ++k)
+    if (ct_state_[k] == kRecovered) tri_of.emplace(sorted(ct_[k]), k);
+  struct Comp {
+    bool ghost = false;
+    size_t outside_votes = 0, inside_votes = 0;
+    uint32_t min_face = kNone;
+  };
+  std::vector<int32_t> comp(nslots, -1);
+  std::vector<Comp> comps;
+  std::vector<uint32_t> stack;
+  for (uint32_t s = 0; s < nslots; ++s) {
+    if (mesh_.is_deleted(s) || comp[s] >= 0) continue;
+    const auto c = static_cast<int32_t>(comps.size());
+    comps.push_back({});
+    comp[s] = c;
+    stack.assign(1, s);
+    while (!stack.empty()) {
+      const uint32_t t = stack.back();
+      stack.pop_back();
+      if (mesh_.is_ghost(t)) comps[c].ghost = true;
+      for (int i = 0; i < 4; ++i) {
+        if (mesh_.tet_adj[4 * size_t(t) + i] == kNoNeighbour) continue;
+        if (mesh_.facet_protected(t, i)) {
+          const Tri fv = {mesh_.vertex(t, kFacetVertex[i][0]), mesh_.vertex(t, kFacetVertex[i][1]),
+                          mesh_.vertex(t, kFacetVertex[i][2])};
+          auto it = tri_of.find(sorted(fv));
+          if (it == tri_of.end()) continue;
+          const Tri& ct = ct_[it->second];
+          comps[c].min_face = std::min(comps[c].min_face, ct_face_[it->second]);
+          int r = 0;
+          while (ct[r] != fv[0]) ++r;
+          const bool same = ct[(r + 1) % 3] == fv[1];
+          if (same) ++comps[c].outside_votes;
+          else ++comps[c].inside_votes;
+          continue;
+        }
+        const uint32_t n = mesh_.neighbour(t, i);
+        if (comp[n] >= 0) continue;
+        comp[n] = c;
+        stack.push_back(n);
+      }
+    }
+  }
+  std::vector<int32_t> order;
+  for (int32_t c = 0; c < int32_t(comps.size()); ++c) {
+    const Comp& cc = comps[c];
+    if (cc.ghost || cc.inside_votes == 0) continue;
+    if (cc.outside_votes > 0)
+      return Status(Error::RecoveryFailed, "recover_boundary: a component of tets lies on both sides of the recovered "
+                                           "surface (" + std::to_string(cc.inside_votes) + " facets say inside, " +
+                                           std::to_string(cc.outside_votes) + " outside)");
+    order.push_back(c);
+  }
+  std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return comps[a].min_face < comps[b].min_face; });
+  std::vector<int32_t> region(comps.size(), -1);
+  for (size_t k = 0; k < order.size(); ++k) region[order[k]] = int32_t(k);
+  out_.stats.regions = order.size();
+  for (uint32_t t = 0; t < nslots; ++t)
+    if (!mesh_.is_deleted(t) && region[comp[t]] >= 0) mesh_.tet_region[t] = region[comp[t]];
+  for (uint32_t t = 0; t < nslots; ++t) {
+    if (mesh_.is_deleted(t) || region[comp[t]] >= 0) continue;
+    for (int i = 0; i < 4; ++i) {
+      const uint64_t adj = mesh_.tet_adj[4 * size_t(t) + i];
+      if (adj == kNoNeighbour) continue;
+      const auto n = static_cast<uint32_t>(adj >> 2);
+      if (region[comp[n]] >= 0) mesh_.tet_adj[adj] = kNoNeighbour;
+    }
+    mesh_.delete_tet(t);
+  }
+  return Status::success();
+}
+
+}  // namespace
+
+Status recover_by_splitting(const SurfaceMesh& S, const RecoveryOptions& options, RecoveryOutput& out) {
+  SplitRecoverer r(S, options, out);
+  return r.run();
+}
+
+}  // namespace anitet::recovery_detail
