@@ -125,33 +125,46 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
   // Stages 1 and 2. When stage 2 cannot recover S1, stage 1 is run again with another number of
   // layers (fewer first, down to 1, then one more): S1 changes shape and its recovery may then
-  // succeed (bimba_low: not with 2 layers, yes with 1). MesherResult::layers_used says which.
+  // succeed (bimba_low: not with 2 layers, yes with 1). The fast split-constraints recovery is
+  // tried with every layer count before the slower fuzzy-face strategies are (femur: 2 layers
+  // fail, 1 works in 0.2 s). MesherResult::layers_used says which count worked.
   const IsotropicSurfaceSizing sizing(surface);
   std::vector<int> layer_counts = {options_.layers.layers};
   if (options_.retry_layer_counts) {
     for (int n = options_.layers.layers - 1; n >= 1; --n) layer_counts.push_back(n);
     layer_counts.push_back(options_.layers.layers + 1);
   }
+  std::vector<std::pair<int, RecoveryOptions>> attempts;
+  const RecoveryOptions& ro = options_.recovery;
+  if (ro.split_constraints && ro.fuzzy_faces) {
+    RecoveryOptions split = ro, fuzzy = ro;
+    split.fuzzy_faces = false;
+    fuzzy.split_constraints = false;
+    for (int n : layer_counts) attempts.push_back({n, split});
+    for (int n : layer_counts) attempts.push_back({n, fuzzy});
+  } else {
+    for (int n : layer_counts) attempts.push_back({n, ro});
+  }
   Result<LayersOutput> layers = Status(Error::Internal, "no layer count tried");
   Result<RecoveryOutput> recovered = Status(Error::Internal, "no layer count tried");
   std::vector<uint32_t> s1_map;
   Status first_failure;
-  for (size_t attempt = 0; attempt < layer_counts.size(); ++attempt) {
+  for (size_t attempt = 0; attempt < attempts.size(); ++attempt) {
     auto t = Clock::now();
     LayersOptions layer_options = options_.layers;
-    layer_options.layers = layer_counts[attempt];
+    layer_options.layers = attempts[attempt].first;
     layers = build_layers(surface, sizing, layer_options);
     if (!layers.ok()) return Status(layers.status().code(), "stage 1 (layers): " + layers.status().message());
     result.layers = layers->stats;
     result.layers_retries = attempt;
-    result.layers_used = layer_counts[attempt];
+    result.layers_used = layer_options.layers;
     result.stages.push_back({attempt == 0 ? "layers" : "layers (retry)", since(t), layers->stats.tets});
 
     if (Status st = progress("recovery", kDoneAfterLayers); !st.ok()) return st;
     t = Clock::now();
     s1_map.clear();
     const SurfaceMesh s1 = front_surface(layers.value(), &s1_map);
-    recovered = recover_boundary(s1, options_.recovery);
+    recovered = recover_boundary(s1, attempts[attempt].second);
     result.stages.push_back({attempt == 0 ? "recovery" : "recovery (retry)", since(t),
                              recovered.ok() ? recovered->stats.tets : 0});
     if (recovered.ok()) break;
@@ -161,7 +174,8 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   if (!recovered.ok()) {
     const Status& s = first_failure.ok() ? recovered.status() : first_failure;
     std::string msg = "stage 2 (recovery of S1): " + s.message();
-    if (layer_counts.size() > 1) msg += " (retried with " + std::to_string(layer_counts.size() - 1) + " other layer counts)";
+    if (attempts.size() > 1)
+      msg += " (" + std::to_string(attempts.size()) + " attempts: layer counts and recovery strategies)";
     return Status(s.code(), msg);
   }
   result.recovery = recovered->stats;
