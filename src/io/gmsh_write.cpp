@@ -39,9 +39,12 @@ void append_entity(std::string& out, int32_t tag, const double box[6]) {
 
 }  // namespace
 
-Result<std::string> to_gmsh(const VolumeMesh& mesh) {
+Result<std::string> to_gmsh(const VolumeMesh& mesh, const PatchNames& patch_names) {
   Status valid = check_volume_arrays(mesh);
   if (!valid.ok()) return valid;
+  if (Result<std::vector<NamedPatch>> named = named_patches(mesh.bnd_patch, patch_names); !named.ok()) {
+    return named.status();
+  }
   const size_t nv = mesh.num_vertices(), nt = mesh.num_tets(), nb = mesh.num_boundary_triangles();
   std::map<int32_t, int32_t> volumes = entity_tags(mesh.region, nt);
   std::map<int32_t, int32_t> surfaces = entity_tags(mesh.bnd_patch, nb);
@@ -60,7 +63,23 @@ Result<std::string> to_gmsh(const VolumeMesh& mesh) {
       }
     }
   }
-  std::string out = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n";
+  std::string out = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  // Names of the physical groups: each patch's name, region<label> for each volume.
+  const size_t named_surfaces = nb > 0 ? surfaces.size() : 0, named_volumes = nt > 0 ? volumes.size() : 0;
+  if (named_surfaces + named_volumes > 0) {
+    out += "$PhysicalNames\n";
+    append_line(out, uint64_t{named_surfaces + named_volumes});
+    auto append_name = [&out](int dim, int32_t tag, const std::string& name) {
+      append_int(out, dim);
+      out += ' ';
+      append_int(out, tag);
+      out += " \"" + name + "\"\n";
+    };
+    if (nb > 0) for (const auto& [label, tag] : surfaces) append_name(2, tag, patch_name(patch_names, label));
+    if (nt > 0) for (const auto& [label, tag] : volumes) append_name(3, tag, region_name(label));
+    out += "$EndPhysicalNames\n";
+  }
+  out += "$Entities\n";
   append_line(out, uint64_t{0}, uint64_t{0}, uint64_t{surfaces.size()}, uint64_t{volumes.size()});
   for (const auto& entry : surfaces) append_entity(out, entry.second, box);
   for (const auto& entry : volumes) append_entity(out, entry.second, box);

@@ -212,10 +212,19 @@ Result<std::string> to_medit(const SurfaceMesh& mesh) {
   return out;
 }
 
-Result<std::string> to_medit(const VolumeMesh& mesh) {
+Result<std::string> to_medit(const VolumeMesh& mesh, const PatchNames& patch_names) {
   Status valid = check_volume_arrays(mesh);
   if (!valid.ok()) return valid;
+  Result<std::vector<NamedPatch>> named = named_patches(mesh.bnd_patch, patch_names);
+  if (!named.ok()) return named.status();
   std::string out = kMeditHeader;
+  // Medit has no names: the patch names go in comments (readers skip lines starting with '#').
+  if (!named.value().empty()) out += "\n";
+  for (const NamedPatch& p : named.value()) {
+    out += "# patch ";
+    append_int(out, p.label);
+    out += ' ' + p.name + '\n';
+  }
   append_vertices(out, mesh.xyz);
   append_elements(out, "Triangles", 3, mesh.bnd_tri, mesh.bnd_patch);
   append_elements(out, "Tetrahedra", 4, mesh.tet, mesh.region);

@@ -5,19 +5,50 @@
 
 namespace anitet {
 
+namespace {
+
+// The last component of a path, trailing slashes ignored.
+std::string last_component(std::string path) {
+  while (path.size() > 1 && path.back() == '/') path.pop_back();
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+}  // namespace
+
 Result<VolumeFormat> volume_format_from_path(const std::string& path) {
+  if (last_component(path) == "polyMesh") return VolumeFormat::OpenFoam;
   const std::string ext = lower_extension(path);
   if (ext == "mesh") return VolumeFormat::Medit;
   if (ext == "msh") return VolumeFormat::Gmsh;
   if (ext == "node" || ext == "ele") return VolumeFormat::TetGen;
   if (ext == "vtu") return VolumeFormat::Vtu;
+  if (ext == "su2") return VolumeFormat::Su2;
   return Status(Error::UnsupportedFormat, path + ": unknown volume mesh format '." + ext +
-                                              "' (expected .mesh, .msh, .node, .ele or .vtu)");
+                                              "' (expected .mesh, .msh, .node, .ele, .vtu, .su2 "
+                                              "or a .../polyMesh directory)");
+}
+
+Status check_writable_volume_path(const std::string& path) {
+  Result<VolumeFormat> format = volume_format_from_path(path);
+  if (!format.ok()) return format.status();
+  switch (format.value()) {
+    case VolumeFormat::TetGen:
+      return Status(Error::UnsupportedFormat, path + ": TetGen .node/.ele is read only; output formats are "
+                                                 ".mesh, .msh, .vtu, .su2 and .../polyMesh");
+    default:
+      break;
+  }
+  return Status::success();
 }
 
 Result<VolumeMesh> read_volume_mesh(const std::string& path) {
   Result<VolumeFormat> format = volume_format_from_path(path);
   if (!format.ok()) return format.status();
+  if (format.value() == VolumeFormat::Su2 || format.value() == VolumeFormat::OpenFoam) {
+    return Status(Error::UnsupportedFormat, path + ": anitet writes this format but does not read it "
+                                                   "(it reads .mesh, .msh, .node/.ele and .vtu)");
+  }
   if (format.value() == VolumeFormat::TetGen) {
     const std::string base = path.substr(0, path.size() - lower_extension(path).size() - 1);
     Result<std::string> node = read_file_bytes(base + ".node");
@@ -36,7 +67,7 @@ Result<VolumeMesh> read_volume_mesh(const std::string& path) {
       return read_gmsh_volume(bytes.value(), path);
     case VolumeFormat::Vtu:
       return read_vtu(bytes.value(), path);
-    case VolumeFormat::TetGen:
+    default:
       break;
   }
   return Status(Error::UnsupportedFormat, path + ": unknown volume mesh format");
@@ -44,16 +75,30 @@ Result<VolumeMesh> read_volume_mesh(const std::string& path) {
 
 Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path,
                          const std::vector<TetScalar>& tet_scalars) {
-  const std::string ext = lower_extension(path);
-  Result<std::string> bytes =
-      Status(Error::UnsupportedFormat, path + ": cannot write volume mesh format '." + ext +
-                                           "' (expected .mesh, .msh or .vtu)");
-  if (ext == "mesh") {
-    bytes = to_medit(mesh);
-  } else if (ext == "msh") {
-    bytes = to_gmsh(mesh);
-  } else if (ext == "vtu") {
-    bytes = to_vtu(mesh, tet_scalars);
+  return write_volume_mesh(mesh, path, PatchNames(), tet_scalars);
+}
+
+Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names,
+                         const std::vector<TetScalar>& tet_scalars) {
+  Result<VolumeFormat> format = volume_format_from_path(path);
+  if (!format.ok()) {
+    return Status(Error::UnsupportedFormat, path + ": cannot write volume mesh format '." + lower_extension(path) +
+                                                "' (expected .mesh, .msh, .vtu, .su2 or a .../polyMesh "
+                                                "directory)");
+  }
+  Result<std::string> bytes = std::string();
+  switch (format.value()) {
+    case VolumeFormat::Medit: bytes = to_medit(mesh, patch_names); break;
+    case VolumeFormat::Gmsh: bytes = to_gmsh(mesh, patch_names); break;
+    case VolumeFormat::Vtu:
+      if (Result<std::vector<NamedPatch>> named = named_patches(mesh.bnd_patch, patch_names); !named.ok()) {
+        return named.status();  // VTU has no names, but a wrong name is still an error
+      }
+      bytes = to_vtu(mesh, tet_scalars);
+      break;
+    case VolumeFormat::Su2: bytes = to_su2(mesh, patch_names); break;
+    case VolumeFormat::OpenFoam: return write_openfoam(mesh, path, patch_names);
+    case VolumeFormat::TetGen: return check_writable_volume_path(path);
   }
   if (!bytes.ok()) return bytes.status();
   return write_file_bytes(path, bytes.value());

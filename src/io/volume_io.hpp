@@ -5,17 +5,23 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/status.hpp"
 #include "core/volume_mesh.hpp"
+#include "io/patch_names.hpp"
 
 namespace anitet {
 
-enum class VolumeFormat { Medit, Gmsh, TetGen, Vtu };
+enum class VolumeFormat { Medit, Gmsh, TetGen, Vtu, Su2, OpenFoam };
 
-// From the extension, case-insensitive: .mesh .msh .node/.ele .vtu.
+// From the extension, case-insensitive: .mesh .msh .node/.ele .vtu .su2; a path
+// whose last component is "polyMesh" (e.g. CASE/constant/polyMesh, a trailing '/' allowed) is an
+// OpenFOAM polyMesh directory. Su2 and OpenFoam are written only.
 Result<VolumeFormat> volume_format_from_path(const std::string& path);
+// Error::UnsupportedFormat unless the format of `path` can be written.
+Status check_writable_volume_path(const std::string& path);
 
 // Reads a file chosen by extension. For TetGen give the .node or the .ele path: base.node and
 // base.ele are read, and base.face (boundary triangles with markers) when it exists.
@@ -41,26 +47,68 @@ struct TetScalar {
   std::vector<double> values;
 };
 
-// Writes a file chosen by extension: .mesh (Medit), .msh (Gmsh 4.1), .vtu (VTK XML).
-// `tet_scalars` are written by .vtu only. Error::InvalidArgument for inconsistent arrays.
+// Writes a file chosen by volume_format_from_path: .mesh (Medit), .msh (Gmsh 4.1), .vtu (VTK
+// XML), .su2, an OpenFOAM polyMesh directory. `tet_scalars` are written by .vtu
+// only. Error::InvalidArgument for inconsistent arrays. The boundary patches are named by
+// `patch_names` (label -> name, see patch_names.hpp; unnamed labels get patch<label>) in every
+// format that has names; Error::InvalidArgument for an invalid name, a named label that no
+// boundary triangle has, or two labels with one name.
 Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path,
+                         const std::vector<TetScalar>& tet_scalars = {});
+Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names,
                          const std::vector<TetScalar>& tet_scalars = {});
 // Writes mesh.vertex_metric as a Medit .sol: SolAtVertices of type 1 (1 value per vertex) or
 // type 3 (6 values per vertex, Medit's order xx xy yy xz yz zz, the same as VolumeMesh's).
 Status write_sol(const VolumeMesh& mesh, const std::string& path);
 
 // The file contents.
-// Medit: MeshVersionFormatted 2 (double precision), Triangles (patch refs), Tetrahedra (regions).
+// Medit: MeshVersionFormatted 2 (double precision), Triangles (patch refs), Tetrahedra (regions);
+//   the patch names as comment lines "# patch LABEL NAME" after the header (Medit has no names).
 // Gmsh 4.1 ASCII: one volume entity per region and one surface entity per patch; entity tag =
 //   physical tag = the label when all labels of that dimension are positive, else 1, 2, ... in
-//   increasing label order.
+//   increasing label order; $PhysicalNames gives each surface its patch name and each volume
+//   region<label>.
 // VTU: tets then boundary triangles as cells; cell data "region" (-1 on triangles), "patch" (-1
 //   on tets) and each tet scalar (-1 on triangles: VTK's ASCII parser does not read "nan"); the
 //   vertex metric, when present, as point data "size" (1 value) or "metric" (6 components).
-Result<std::string> to_medit(const VolumeMesh& mesh);
-Result<std::string> to_gmsh(const VolumeMesh& mesh);
+Result<std::string> to_medit(const VolumeMesh& mesh, const PatchNames& patch_names = {});
+Result<std::string> to_gmsh(const VolumeMesh& mesh, const PatchNames& patch_names = {});
 Result<std::string> to_vtu(const VolumeMesh& mesh, const std::vector<TetScalar>& tet_scalars = {});
 Result<std::string> to_sol(const VolumeMesh& mesh);
+
+// The solver formats (solver_formats.cpp). Each boundary
+// patch is one named group, in increasing label order; a boundary triangle that is a face of
+// exactly one tet is written oriented out of the mesh (right-hand normal), others as given.
+// SU2 native (ASCII, 0-based): NDIME= 3, NELEM= tets (VTK type 10, element index appended),
+//   NPOIN= points (index appended), NMARK= patches, each MARKER_TAG= name and MARKER_ELEMS= its
+//   triangles (type 5). One zone: regions are not written.
+Result<std::string> to_su2(const VolumeMesh& mesh, const PatchNames& patch_names = {});
+
+// OpenFOAM polyMesh (ASCII, the layout of OpenFOAM's own writers): cells = tets in order; faces
+// in OpenFOAM's order: internal faces first, in upper-triangular order (by owner, then
+// neighbour; owner < neighbour), oriented from owner to neighbour; then the boundary faces patch
+// by patch (increasing label), oriented out of the domain. Every boundary face of the tets must
+// be a boundary triangle and no boundary triangle an internal face (Error::InvalidArgument
+// otherwise). Patch type from patch_kind(): wall, patch (farfield) or symmetry. cellZones: one
+// zone region<label> per region when mesh.region is not empty.
+struct PolyMeshPatch {
+  std::string name;
+  std::string type;  // "wall", "patch" or "symmetry"
+  size_t start = 0, size = 0;
+};
+struct PolyMesh {
+  std::vector<uint32_t> face;       // 3 per face
+  std::vector<uint32_t> owner;      // 1 per face
+  std::vector<uint32_t> neighbour;  // 1 per internal face
+  std::vector<PolyMeshPatch> patches;
+  std::vector<std::pair<std::string, std::vector<uint32_t>>> cell_zones;
+  size_t num_internal_faces() const { return neighbour.size(); }
+};
+Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_names = {});
+// Writes DIR/points, faces, owner, neighbour, boundary (and cellZones, or removes a stale one),
+// creating DIR and its parents. OpenFOAM's tools want DIR = CASE/constant/polyMesh and a
+// CASE/system/controlDict, which this does not write.
+Status write_openfoam(const VolumeMesh& mesh, const std::string& dir, const PatchNames& patch_names = {});
 
 // Error::InvalidArgument unless the array sizes agree; Error::BadIndex for an index that is not
 // a vertex. Writers run this first.

@@ -1,0 +1,134 @@
+#include "io/patch_names.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <set>
+
+namespace anitet {
+
+namespace {
+
+std::string trim(const std::string& s) {
+  size_t b = 0, e = s.size();
+  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+  return s.substr(b, e - b);
+}
+
+std::string labelled(const char* prefix, int32_t label) {
+  return std::string(prefix) + (label < 0 ? "_m" + std::to_string(-int64_t{label}) : std::to_string(label));
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+Status check_patch_name(const std::string& name) {
+  constexpr size_t kMaxLength = 32;  // CGNS node names and Exodus names (MAX_STR_LENGTH)
+  if (name.empty()) return Status(Error::InvalidArgument, "empty patch name");
+  if (name.size() > kMaxLength) {
+    return Status(Error::InvalidArgument, "patch name '" + name + "' is longer than 32 characters");
+  }
+  if (!std::isalpha(static_cast<unsigned char>(name[0]))) {
+    return Status(Error::InvalidArgument, "patch name '" + name + "' must start with a letter");
+  }
+  for (char c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') {
+      return Status(Error::InvalidArgument, "patch name '" + name +
+                                                "' may only contain letters, digits and '_' (valid in "
+                                                "SU2, OpenFOAM, CGNS and Exodus)");
+    }
+  }
+  return Status::success();
+}
+
+Result<PatchNames> parse_patch_names(const std::string& spec) {
+  PatchNames names;
+  std::set<std::string> seen;
+  size_t start = 0;
+  while (start <= spec.size()) {
+    size_t comma = spec.find(',', start);
+    if (comma == std::string::npos) comma = spec.size();
+    const std::string item = trim(spec.substr(start, comma - start));
+    start = comma + 1;
+    if (item.empty()) {
+      if (comma == spec.size() && !names.empty()) break;  // a trailing comma
+      return Status(Error::InvalidArgument, "patch names '" + spec + "': empty item (expected LABEL=NAME,...)");
+    }
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos) {
+      return Status(Error::InvalidArgument, "patch names: '" + item + "' is not LABEL=NAME");
+    }
+    const std::string label_text = trim(item.substr(0, eq)), name = trim(item.substr(eq + 1));
+    int32_t label = 0;
+    const char* first = label_text.data();
+    const char* last = first + label_text.size();
+    auto [ptr, ec] = std::from_chars(first, last, label);
+    if (label_text.empty() || ec != std::errc() || ptr != last) {
+      return Status(Error::InvalidArgument, "patch names: '" + item + "': '" + label_text +
+                                                "' is not an integer patch label");
+    }
+    if (Status s = check_patch_name(name); !s.ok()) {
+      return Status(Error::InvalidArgument, "patch names: '" + item + "': " + s.message());
+    }
+    if (names.count(label)) {
+      return Status(Error::InvalidArgument, "patch names: label " + label_text + " is named twice");
+    }
+    if (!seen.insert(name).second) {
+      return Status(Error::InvalidArgument, "patch names: the name '" + name + "' is given twice");
+    }
+    names[label] = name;
+  }
+  return names;
+}
+
+std::string patch_name(const PatchNames& names, int32_t label) {
+  auto it = names.find(label);
+  return it != names.end() ? it->second : labelled("patch", label);
+}
+
+std::string region_name(int32_t label) { return labelled("region", label); }
+
+Result<std::vector<NamedPatch>> named_patches(const std::vector<int32_t>& labels, const PatchNames& names) {
+  std::set<int32_t> used(labels.begin(), labels.end());
+  for (const auto& [label, name] : names) {
+    if (Status s = check_patch_name(name); !s.ok()) return s;
+    if (!used.count(label)) {
+      return Status(Error::InvalidArgument, "patch label " + std::to_string(label) + " (named '" + name +
+                                                "') is on no boundary triangle of the mesh");
+    }
+  }
+  std::vector<NamedPatch> out;
+  std::map<std::string, int32_t> by_name;
+  for (int32_t label : used) {
+    NamedPatch p{label, patch_name(names, label)};
+    auto [it, fresh] = by_name.emplace(p.name, label);
+    if (!fresh) {
+      return Status(Error::InvalidArgument, "patch labels " + std::to_string(it->second) + " and " +
+                                                std::to_string(label) + " would both be named '" + p.name + "'");
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+PatchKind patch_kind(const std::string& name) {
+  const std::string l = lower(name);
+  if (l.find("farfield") != std::string::npos) return PatchKind::Farfield;
+  if (l.find("symmetry") != std::string::npos) return PatchKind::Symmetry;
+  return PatchKind::Wall;
+}
+
+std::map<int32_t, int32_t> positive_ids(const std::vector<int32_t>& sorted_unique_labels) {
+  std::map<int32_t, int32_t> ids;
+  const bool all_positive = !sorted_unique_labels.empty() && sorted_unique_labels.front() > 0;
+  int32_t next = 1;
+  for (int32_t label : sorted_unique_labels) ids[label] = all_positive ? label : next++;
+  return ids;
+}
+
+}  // namespace anitet

@@ -1,0 +1,54 @@
+// Names of boundary patches and regions, as the solver formats (SU2 markers, OpenFOAM patches,
+// CGNS boundary conditions, Exodus side sets) and Gmsh's $PhysicalNames need them.
+//
+// A name is 1 to 32 characters from [A-Za-z0-9_], starting with a letter: valid as an SU2
+// MARKER_TAG, an OpenFOAM word, a CGNS node name and an Exodus name (32 characters at most) as
+// it is, so no writer has to change it. Default names: patch<label> and region<label>
+// ("patch_m3" for label -3).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/status.hpp"
+
+namespace anitet {
+
+// Label -> name; labels not listed get the default name.
+using PatchNames = std::map<int32_t, std::string>;
+
+// "1=wall,2=farfield" (spaces around items allowed). Error::InvalidArgument, naming the item,
+// for a malformed item, a label given twice, a name given twice or an invalid name.
+Result<PatchNames> parse_patch_names(const std::string& spec);
+
+// Error::InvalidArgument unless `name` follows the rule above.
+Status check_patch_name(const std::string& name);
+
+// The name of a label: the given one, else patch<label> (prefix "region" for regions).
+std::string patch_name(const PatchNames& names, int32_t label);
+std::string region_name(int32_t label);
+
+// The names of the labels actually used by a mesh's boundary triangles, checked: every given
+// name valid, every named label used by at least one triangle, no two labels with one name
+// (a default name counts too: naming label 2 "patch1" while label 1 keeps its default fails).
+// Ordered by increasing label.
+struct NamedPatch {
+  int32_t label = 0;
+  std::string name;
+};
+Result<std::vector<NamedPatch>> named_patches(const std::vector<int32_t>& labels, const PatchNames& names);
+
+// The boundary-condition kind a name implies, for CGNS and OpenFOAM (case-insensitive): a name
+// containing "farfield" is a farfield (CGNS BCFarfield, OpenFOAM patch), one containing
+// "symmetry" a symmetry plane (BCSymmetryPlane, OpenFOAM symmetry), any other a wall (BCWall,
+// OpenFOAM wall).
+enum class PatchKind { Wall, Farfield, Symmetry };
+PatchKind patch_kind(const std::string& name);
+
+// Entity ids for labels, as Gmsh tags and Exodus ids need positive numbers: the labels
+// themselves when all are positive, else 1, 2, ... in increasing label order.
+std::map<int32_t, int32_t> positive_ids(const std::vector<int32_t>& sorted_unique_labels);
+
+}  // namespace anitet

@@ -1,0 +1,249 @@
+// Writers for solver formats that need no library: SU2 native (.su2) and OpenFOAM polyMesh.
+// (CGNS and Exodus II are in cgns_format.cpp and exodus_format.cpp.)
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "io/file_bytes.hpp"
+#include "io/mesh_faces.hpp"
+#include "io/number_text.hpp"
+#include "io/volume_io.hpp"
+
+namespace anitet {
+
+namespace {
+
+constexpr int kSu2Triangle = 5;
+constexpr int kSu2Tetra = 10;
+
+const char* openfoam_type(PatchKind kind) {
+  switch (kind) {
+    case PatchKind::Farfield: return "patch";
+    case PatchKind::Symmetry: return "symmetry";
+    case PatchKind::Wall: break;
+  }
+  return "wall";
+}
+
+void append_foam_header(std::string& out, const char* cls, const char* object, const std::string& note = "") {
+  out += "/*--- written by anitet ---*/\nFoamFile\n{\n    version     2.0;\n    format      ascii;\n";
+  out += "    class       ";
+  out += cls;
+  out += ";\n";
+  if (!note.empty()) out += "    note        \"" + note + "\";\n";
+  out += "    location    \"constant/polyMesh\";\n    object      ";
+  out += object;
+  out += ";\n}\n\n";
+}
+
+void append_label_list(std::string& out, const std::vector<uint32_t>& values) {
+  append_line(out, uint64_t{values.size()});
+  out += "(\n";
+  for (uint32_t v : values) append_line(out, v);
+  out += ")\n";
+}
+
+}  // namespace
+
+Result<std::string> to_su2(const VolumeMesh& mesh, const PatchNames& patch_names) {
+  if (Status s = check_volume_arrays(mesh); !s.ok()) return s;
+  Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names);
+  if (!patches.ok()) return patches.status();
+  Result<MeshFaces> faces = build_mesh_faces(mesh);
+  if (!faces.ok()) return faces.status();
+  const size_t nv = mesh.num_vertices(), nt = mesh.num_tets();
+  std::string out = "% written by anitet: ";
+  out += std::to_string(nv) + " points, " + std::to_string(nt) + " tetrahedra, " +
+         std::to_string(patches.value().size()) + " markers\nNDIME= 3\nNELEM= " + std::to_string(nt) + "\n";
+  for (size_t t = 0; t < nt; ++t) {
+    const uint32_t* v = &mesh.tet[4 * t];
+    append_line(out, int32_t{kSu2Tetra}, v[0], v[1], v[2], v[3], uint64_t{t});
+  }
+  out += "NPOIN= " + std::to_string(nv) + "\n";
+  for (size_t v = 0; v < nv; ++v) append_line(out, mesh.xyz[3 * v], mesh.xyz[3 * v + 1], mesh.xyz[3 * v + 2], uint64_t{v});
+  out += "NMARK= " + std::to_string(patches.value().size()) + "\n";
+  for (const PatchTriangles& p : patches.value()) {
+    out += "MARKER_TAG= " + p.patch.name + "\nMARKER_ELEMS= " + std::to_string(p.tris.size()) + "\n";
+    for (uint32_t b : p.tris) {
+      const std::array<uint32_t, 3> tri = outward_triangle(mesh, faces.value(), b);
+      append_line(out, int32_t{kSu2Triangle}, tri[0], tri[1], tri[2]);
+    }
+  }
+  return out;
+}
+
+Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_names) {
+  if (Status s = check_volume_arrays(mesh); !s.ok()) return s;
+  Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names);
+  if (!patches.ok()) return patches.status();
+  Result<MeshFaces> built = build_mesh_faces(mesh);
+  if (!built.ok()) return built.status();
+  const MeshFaces& faces = built.value();
+  const size_t nt = mesh.num_tets();
+
+  // The patch of every boundary face of the tets, by index into `patches`.
+  constexpr uint32_t kUnset = ~uint32_t{0};
+  std::vector<uint32_t> face_patch(4 * nt, kUnset);
+  for (size_t p = 0; p < patches.value().size(); ++p) {
+    for (uint32_t b : patches.value()[p].tris) {
+      const int64_t face = faces.bnd_face[b];
+      if (face == MeshFaces::kNone) {
+        return Status(Error::InvalidArgument, "boundary triangle " + std::to_string(b) +
+                                                  " is not a face of any tet: an OpenFOAM patch face must be");
+      }
+      if (faces.bnd_internal[b]) {
+        return Status(Error::InvalidArgument, "boundary triangle " + std::to_string(b) + " (patch '" +
+                                                  patches.value()[p].patch.name +
+                                                  "') is an internal face between two tets: OpenFOAM "
+                                                  "patches hold boundary faces only");
+      }
+      if (face_patch[size_t(face)] != kUnset) {
+        return Status(Error::InvalidArgument, "boundary triangle " + std::to_string(b) +
+                                                  " is listed twice (the same face as another boundary triangle)");
+      }
+      face_patch[size_t(face)] = static_cast<uint32_t>(p);
+    }
+  }
+
+  PolyMesh pm;
+  auto push_face = [&](size_t t, int f) {
+    const uint32_t* v = &mesh.tet[4 * t];
+    for (int k = 0; k < 3; ++k) pm.face.push_back(v[kOutwardFace[f][k]]);
+    pm.owner.push_back(static_cast<uint32_t>(t));
+  };
+  // Internal faces: each once, owned by the lower tet, by owner then neighbour.
+  for (size_t t = 0; t < nt; ++t) {
+    std::array<std::pair<uint32_t, int>, 4> upper;
+    int count = 0;
+    for (int f = 0; f < 4; ++f) {
+      const int64_t other = faces.across[4 * t + size_t(f)];
+      if (other == MeshFaces::kNone) {
+        if (face_patch[4 * t + size_t(f)] == kUnset) {
+          return Status(Error::InvalidArgument,
+                        "face " + std::to_string(f) + " of tet " + std::to_string(t) +
+                            " is on the mesh boundary but is no boundary triangle: every OpenFOAM "
+                            "boundary face must be in a patch");
+        }
+        continue;
+      }
+      const size_t u = size_t(other / 4);
+      if (u == t) return Status(Error::InvalidMesh, "tet " + std::to_string(t) + " has two equal faces");
+      if (u > t) upper[size_t(count++)] = {static_cast<uint32_t>(u), f};
+    }
+    std::sort(upper.begin(), upper.begin() + count);
+    for (int i = 0; i < count; ++i) {
+      push_face(t, upper[size_t(i)].second);
+      pm.neighbour.push_back(upper[size_t(i)].first);
+    }
+  }
+  // Boundary faces, patch by patch, each patch's faces by tet.
+  std::vector<std::vector<size_t>> by_patch(patches.value().size());
+  for (size_t face = 0; face < 4 * nt; ++face) {
+    if (face_patch[face] != kUnset) by_patch[face_patch[face]].push_back(face);
+  }
+  for (size_t p = 0; p < patches.value().size(); ++p) {
+    const NamedPatch& named = patches.value()[p].patch;
+    PolyMeshPatch patch{named.name, openfoam_type(patch_kind(named.name)), pm.owner.size(), 0};
+    for (size_t face : by_patch[p]) push_face(face / 4, int(face % 4));
+    patch.size = pm.owner.size() - patch.start;
+    pm.patches.push_back(std::move(patch));
+  }
+  if (!mesh.region.empty()) {
+    std::map<int32_t, std::vector<uint32_t>> zones;
+    for (size_t t = 0; t < nt; ++t) zones[mesh.region[t]].push_back(static_cast<uint32_t>(t));
+    for (auto& [label, cells] : zones) pm.cell_zones.emplace_back(region_name(label), std::move(cells));
+  }
+  return pm;
+}
+
+Status write_openfoam(const VolumeMesh& mesh, const std::string& dir, const PatchNames& patch_names) {
+  Result<PolyMesh> built = to_polymesh(mesh, patch_names);
+  if (!built.ok()) return built.status();
+  const PolyMesh& pm = built.value();
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return Status(Error::FileNotFound, "cannot create the directory '" + dir + "': " + ec.message());
+  const std::string base = dir.empty() || dir.back() == '/' ? dir : dir + "/";
+  const size_t nv = mesh.num_vertices(), nf = pm.owner.size();
+
+  std::string out;
+  append_foam_header(out, "vectorField", "points");
+  append_line(out, uint64_t{nv});
+  out += "(\n";
+  for (size_t v = 0; v < nv; ++v) {
+    out += '(';
+    append_double(out, mesh.xyz[3 * v]);
+    out += ' ';
+    append_double(out, mesh.xyz[3 * v + 1]);
+    out += ' ';
+    append_double(out, mesh.xyz[3 * v + 2]);
+    out += ")\n";
+  }
+  out += ")\n";
+  if (Status s = write_file_bytes(base + "points", out); !s.ok()) return s;
+
+  out.clear();
+  append_foam_header(out, "faceList", "faces");
+  append_line(out, uint64_t{nf});
+  out += "(\n";
+  for (size_t f = 0; f < nf; ++f) {
+    out += "3(";
+    append_int(out, pm.face[3 * f]);
+    out += ' ';
+    append_int(out, pm.face[3 * f + 1]);
+    out += ' ';
+    append_int(out, pm.face[3 * f + 2]);
+    out += ")\n";
+  }
+  out += ")\n";
+  if (Status s = write_file_bytes(base + "faces", out); !s.ok()) return s;
+
+  const std::string note = "nPoints:" + std::to_string(nv) + "  nCells:" + std::to_string(mesh.num_tets()) +
+                           "  nFaces:" + std::to_string(nf) +
+                           "  nInternalFaces:" + std::to_string(pm.num_internal_faces());
+  out.clear();
+  append_foam_header(out, "labelList", "owner", note);
+  append_label_list(out, pm.owner);
+  if (Status s = write_file_bytes(base + "owner", out); !s.ok()) return s;
+
+  out.clear();
+  append_foam_header(out, "labelList", "neighbour", note);
+  append_label_list(out, pm.neighbour);
+  if (Status s = write_file_bytes(base + "neighbour", out); !s.ok()) return s;
+
+  out.clear();
+  append_foam_header(out, "polyBoundaryMesh", "boundary");
+  append_line(out, uint64_t{pm.patches.size()});
+  out += "(\n";
+  for (const PolyMeshPatch& p : pm.patches) {
+    out += "    " + p.name + "\n    {\n        type            " + p.type + ";\n";
+    if (p.type != "patch") out += "        inGroups        List<word> 1(" + p.type + ");\n";
+    out += "        nFaces          " + std::to_string(p.size) + ";\n        startFace       " +
+           std::to_string(p.start) + ";\n    }\n";
+  }
+  out += ")\n";
+  if (Status s = write_file_bytes(base + "boundary", out); !s.ok()) return s;
+
+  const std::string zones_path = base + "cellZones";
+  if (pm.cell_zones.empty()) {
+    std::filesystem::remove(zones_path, ec);  // a stale one from an earlier mesh
+    return Status::success();
+  }
+  out.clear();
+  append_foam_header(out, "regIOobject", "cellZones");
+  append_line(out, uint64_t{pm.cell_zones.size()});
+  out += "(\n";
+  for (const auto& [name, cells] : pm.cell_zones) {
+    out += name + "\n{\n    type cellZone;\n    cellLabels List<label>\n";
+    append_label_list(out, cells);
+    out += ";\n}\n";
+  }
+  out += ")\n";
+  return write_file_bytes(zones_path, out);
+}
+
+}  // namespace anitet

@@ -1,0 +1,437 @@
+// The solver-format writers checked against their formats' rules without the solvers: patch
+// names, SU2 (counts, markers, indices, orientation) and the OpenFOAM polyMesh invariants (each
+// face once, owner < neighbour, upper-triangular order, orientation by cell volumes, patches),
+// parsed back from the files written.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/mesh_faces.hpp"
+#include "io/volume_io.hpp"
+#include "io_test_util.hpp"
+
+namespace anitet {
+namespace {
+
+using Tri = std::array<uint32_t, 3>;
+
+Tri sorted(Tri t) {
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+double volume6(const double* a, const double* b, const double* c, const double* d) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
+// An n x n x n grid of unit cubes, each split into 6 positive tets (Kuhn), the tets shuffled;
+// boundary triangles on the 6 sides with labels 1..6 (x-, x+, y-, y+, z-, z+), each triangle
+// written in a random rotation and orientation; region 1 for x < n/2, else 2.
+VolumeMesh grid_mesh(int n, unsigned seed) {
+  VolumeMesh m;
+  auto id = [n](int i, int j, int k) { return uint32_t((k * (n + 1) + j) * (n + 1) + i); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) m.xyz.insert(m.xyz.end(), {double(i), double(j), 0.5 * k});
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& p : perms) {
+          int c[3] = {i, j, k};
+          std::array<uint32_t, 4> t;
+          t[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[p[s]];
+            t[size_t(s) + 1] = id(c[0], c[1], c[2]);
+          }
+          if (volume6(m.point(t[0]), m.point(t[1]), m.point(t[2]), m.point(t[3])) < 0) std::swap(t[2], t[3]);
+          m.tet.insert(m.tet.end(), t.begin(), t.end());
+          m.region.push_back(i < n / 2 ? 1 : 2);
+        }
+  std::mt19937 rng(seed);
+  std::vector<size_t> order(m.num_tets());
+  for (size_t t = 0; t < order.size(); ++t) order[t] = t;
+  std::shuffle(order.begin(), order.end(), rng);
+  VolumeMesh shuffled = m;
+  for (size_t t = 0; t < order.size(); ++t) {
+    for (int q = 0; q < 4; ++q) shuffled.tet[4 * t + size_t(q)] = m.tet[4 * order[t] + size_t(q)];
+    shuffled.region[t] = m.region[order[t]];
+  }
+  m = shuffled;
+  std::map<Tri, int> count;
+  for (size_t t = 0; t < m.num_tets(); ++t)
+    for (const auto& f : kOutwardFace) ++count[sorted({m.tet[4 * t + size_t(f[0])], m.tet[4 * t + size_t(f[1])], m.tet[4 * t + size_t(f[2])]})];
+  for (const auto& [tri, c] : count) {
+    if (c != 1) continue;
+    int label = 0;
+    for (int axis = 0; axis < 3 && label == 0; ++axis) {
+      const double hi = axis == 2 ? 0.5 * n : n;
+      bool all_lo = true, all_hi = true;
+      for (uint32_t v : tri) {
+        all_lo = all_lo && m.point(v)[axis] == 0.0;
+        all_hi = all_hi && m.point(v)[axis] == hi;
+      }
+      if (all_lo) label = 2 * axis + 1;
+      if (all_hi) label = 2 * axis + 2;
+    }
+    Tri t = tri;
+    std::rotate(t.begin(), t.begin() + rng() % 3, t.end());
+    if (rng() % 2) std::swap(t[1], t[2]);
+    m.bnd_tri.insert(m.bnd_tri.end(), t.begin(), t.end());
+    m.bnd_patch.push_back(label);
+  }
+  return m;
+}
+
+const PatchNames kNames = {{1, "wall"}, {2, "FarField_out"}, {5, "symmetry_bottom"}};
+
+std::map<int32_t, std::set<Tri>> triangles_by_patch(const VolumeMesh& m) {
+  std::map<int32_t, std::set<Tri>> out;
+  for (size_t b = 0; b < m.num_boundary_triangles(); ++b)
+    out[m.bnd_patch[b]].insert(sorted({m.bnd_tri[3 * b], m.bnd_tri[3 * b + 1], m.bnd_tri[3 * b + 2]}));
+  return out;
+}
+
+// The right-hand normal of (a, b, c) dotted with (p - a): negative when p is behind the face.
+double side(const VolumeMesh& m, const Tri& t, const double* p) {
+  return volume6(m.point(t[0]), m.point(t[1]), m.point(t[2]), p);
+}
+
+std::array<double, 3> centroid(const VolumeMesh& m, const uint32_t* v, int n) {
+  std::array<double, 3> c{0, 0, 0};
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) c[size_t(k)] += m.point(v[i])[k] / n;
+  return c;
+}
+
+// --- patch names ---
+
+TEST(PatchNames, ParsesAndRefuses) {
+  Result<PatchNames> ok = parse_patch_names(" 1=wall, 2 = farfield,-3=neg_3,");
+  ASSERT_TRUE(ok.ok()) << ok.status().message();
+  EXPECT_EQ(ok.value(), (PatchNames{{1, "wall"}, {2, "farfield"}, {-3, "neg_3"}}));
+  for (const char* bad : {"", "1", "=wall", "x=wall", "1.5=wall", "1=wall,1=other", "1=wall,2=wall", "1=2abc",
+                          "1=a-b", "1=a b", "1=_x", "1=abcdefghijklmnopqrstuvwxyz0123456", "1=wall,,2=x"}) {
+    Result<PatchNames> r = parse_patch_names(bad);
+    EXPECT_FALSE(r.ok()) << "'" << bad << "' was accepted";
+    if (!r.ok()) {
+      EXPECT_EQ(r.status().code(), Error::InvalidArgument) << bad;
+    }
+  }
+  EXPECT_TRUE(parse_patch_names("1=abcdefghijklmnopqrstuvwxyz012345").ok());  // 32 characters
+  EXPECT_EQ(patch_name({}, 3), "patch3");
+  EXPECT_EQ(patch_name({}, -3), "patch_m3");
+  EXPECT_EQ(patch_name(kNames, 1), "wall");
+  EXPECT_EQ(region_name(0), "region0");
+  EXPECT_EQ(patch_kind("wall"), PatchKind::Wall);
+  EXPECT_EQ(patch_kind("FarField_out"), PatchKind::Farfield);
+  EXPECT_EQ(patch_kind("SYMMETRY"), PatchKind::Symmetry);
+}
+
+TEST(PatchNames, WritersRefuseNamesTheMeshCannotCarry) {
+  const VolumeMesh m = grid_mesh(2, 1);
+  const std::string dir = test::temp_dir();
+  // Label 9 is on no triangle; labels 2 and 3 would both be "patch3".
+  for (const PatchNames& bad : {PatchNames{{9, "nine"}}, PatchNames{{2, "patch3"}}, PatchNames{{1, "bad name"}}}) {
+    for (const char* file : {"/bad.su2", "/bad.msh", "/bad.mesh", "/bad.vtu", "/bad/constant/polyMesh"}) {
+      const Status s = write_volume_mesh(m, dir + file, bad);
+      EXPECT_EQ(s.code(), Error::InvalidArgument) << file << ": " << s.message();
+    }
+  }
+}
+
+TEST(PatchNames, GmshAndMeditCarryTheNames) {
+  const VolumeMesh m = grid_mesh(2, 2);
+  Result<std::string> msh = to_gmsh(m, kNames);
+  ASSERT_TRUE(msh.ok()) << msh.status().message();
+  const std::string& g = msh.value();
+  const size_t begin = g.find("$PhysicalNames\n8\n"), end = g.find("$EndPhysicalNames");
+  ASSERT_NE(begin, std::string::npos);
+  const std::string names = g.substr(begin, end - begin);
+  for (const char* line : {"2 1 \"wall\"", "2 2 \"FarField_out\"", "2 3 \"patch3\"", "2 5 \"symmetry_bottom\"",
+                           "2 6 \"patch6\"", "3 1 \"region1\"", "3 2 \"region2\""}) {
+    EXPECT_NE(names.find(std::string(line) + "\n"), std::string::npos) << line;
+  }
+  Result<VolumeMesh> back = read_gmsh_volume(g, "names.msh");
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ(triangles_by_patch(back.value()), triangles_by_patch(m));
+
+  Result<std::string> medit = to_medit(m, kNames);
+  ASSERT_TRUE(medit.ok());
+  EXPECT_NE(medit.value().find("\n# patch 1 wall\n# patch 2 FarField_out\n# patch 3 patch3\n"), std::string::npos);
+  Result<VolumeMesh> mback = read_medit_volume(medit.value(), "names.mesh");
+  ASSERT_TRUE(mback.ok()) << mback.status().message();
+  EXPECT_EQ(triangles_by_patch(mback.value()), triangles_by_patch(m));
+}
+
+// --- SU2 ---
+
+TEST(Su2, FollowsTheFormatRules) {
+  const VolumeMesh m = grid_mesh(3, 3);
+  Result<std::string> text = to_su2(m, kNames);
+  ASSERT_TRUE(text.ok()) << text.status().message();
+  std::istringstream in(text.value());
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line[0], '%');  // comment
+  auto keyword = [&](const std::string& key) {
+    std::getline(in, line);
+    EXPECT_EQ(line.rfind(key + "= ", 0), 0u) << "expected " << key << ", found '" << line << "'";
+    return std::stoll(line.substr(key.size() + 2));
+  };
+  EXPECT_EQ(keyword("NDIME"), 3);
+  ASSERT_EQ(keyword("NELEM"), int64_t(m.num_tets()));
+  for (size_t t = 0; t < m.num_tets(); ++t) {
+    int64_t type, v[4], index;
+    ASSERT_TRUE(in >> type >> v[0] >> v[1] >> v[2] >> v[3] >> index);
+    EXPECT_EQ(type, 10);
+    EXPECT_EQ(index, int64_t(t));
+    for (int q = 0; q < 4; ++q) EXPECT_EQ(v[q], int64_t(m.tet[4 * t + size_t(q)]));  // 0-based, positive as given
+  }
+  std::getline(in, line);
+  ASSERT_EQ(keyword("NPOIN"), int64_t(m.num_vertices()));
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    double x[3];
+    int64_t index;
+    ASSERT_TRUE(in >> x[0] >> x[1] >> x[2] >> index);
+    EXPECT_EQ(index, int64_t(v));
+    for (int k = 0; k < 3; ++k) EXPECT_TRUE(test::same_bits(x[k], m.point(v)[k]));
+  }
+  std::getline(in, line);
+  ASSERT_EQ(keyword("NMARK"), 6);
+  const std::map<int32_t, std::set<Tri>> expected = triangles_by_patch(m);
+  const std::vector<std::string> tags = {"wall", "FarField_out", "patch3", "patch4", "symmetry_bottom", "patch6"};
+  const double centre[3] = {1.5, 1.5, 0.75};
+  for (int marker = 0; marker < 6; ++marker) {
+    std::getline(in, line);
+    EXPECT_EQ(line, "MARKER_TAG= " + tags[size_t(marker)]);
+    const int64_t count = keyword("MARKER_ELEMS");
+    const std::set<Tri>& want = expected.at(marker + 1);
+    ASSERT_EQ(count, int64_t(want.size()));
+    std::set<Tri> got;
+    for (int64_t e = 0; e < count; ++e) {
+      int64_t type;
+      Tri t;
+      ASSERT_TRUE(in >> type >> t[0] >> t[1] >> t[2]);
+      EXPECT_EQ(type, 5);
+      for (uint32_t v : t) ASSERT_LT(v, m.num_vertices());
+      EXPECT_LT(side(m, t, centre), 0.0) << "marker triangle not oriented out of the (convex) domain";
+      got.insert(sorted(t));
+    }
+    std::getline(in, line);
+    EXPECT_EQ(got, want) << tags[size_t(marker)];
+  }
+  EXPECT_FALSE(std::getline(in, line) && !line.empty()) << "trailing '" << line << "'";
+}
+
+// --- OpenFOAM polyMesh ---
+
+// The body of an OpenFOAM list file (after the FoamFile header): the count, then the items.
+std::istringstream foam_body(const std::string& path, size_t& count) {
+  const std::string text = test::load(path);
+  size_t pos = text.find("FoamFile");
+  EXPECT_NE(pos, std::string::npos) << path;
+  pos = text.find('}', pos);
+  std::istringstream in(text.substr(pos + 1));
+  in >> count;
+  char open = 0;
+  in >> open;
+  EXPECT_EQ(open, '(') << path;
+  return in;
+}
+
+std::vector<uint32_t> read_labels(const std::string& path) {
+  size_t n = 0;
+  std::istringstream in = foam_body(path, n);
+  std::vector<uint32_t> out(n);
+  for (uint32_t& v : out) EXPECT_TRUE(in >> v) << path;
+  char close = 0;
+  in >> close;
+  EXPECT_EQ(close, ')') << path;
+  return out;
+}
+
+struct FoamPatch {
+  std::string name, type;
+  size_t n = 0, start = 0;
+};
+
+TEST(OpenFoam, PolyMeshInvariants) {
+  const VolumeMesh m = grid_mesh(3, 4);
+  const std::string dir = test::temp_dir() + "/case/constant/polyMesh/";
+  ASSERT_TRUE(write_volume_mesh(m, test::temp_dir() + "/case/constant/polyMesh", kNames).ok());
+
+  size_t np = 0, nf = 0;
+  std::istringstream pin = foam_body(dir + "points", np);
+  ASSERT_EQ(np, m.num_vertices());
+  for (size_t v = 0; v < np; ++v) {
+    char open, close;
+    double x[3];
+    ASSERT_TRUE(pin >> open >> x[0] >> x[1] >> x[2] >> close);
+    for (int k = 0; k < 3; ++k) EXPECT_TRUE(test::same_bits(x[k], m.point(v)[k]));
+  }
+  std::istringstream fin = foam_body(dir + "faces", nf);
+  std::vector<Tri> faces(nf);
+  for (Tri& f : faces) {
+    std::string item;
+    ASSERT_TRUE(fin >> item);  // "3(a"
+    ASSERT_EQ(item.rfind("3(", 0), 0u) << item;
+    f[0] = uint32_t(std::stoul(item.substr(2)));
+    ASSERT_TRUE(fin >> f[1] >> item);  // "c)"
+    f[2] = uint32_t(std::stoul(item));
+    for (uint32_t v : f) ASSERT_LT(v, np);
+  }
+  const std::vector<uint32_t> owner = read_labels(dir + "owner");
+  const std::vector<uint32_t> neighbour = read_labels(dir + "neighbour");
+  ASSERT_EQ(owner.size(), nf);
+  const size_t ni = neighbour.size(), nt = m.num_tets();
+
+  // Each tet face exactly once; internal faces = the shared ones.
+  std::map<Tri, int> tet_faces;
+  for (size_t t = 0; t < nt; ++t)
+    for (const auto& f : kOutwardFace) ++tet_faces[sorted({m.tet[4 * t + size_t(f[0])], m.tet[4 * t + size_t(f[1])], m.tet[4 * t + size_t(f[2])]})];
+  size_t shared = 0;
+  for (const auto& entry : tet_faces) shared += entry.second == 2;
+  EXPECT_EQ(ni, shared);
+  EXPECT_EQ(nf, tet_faces.size());
+  std::set<Tri> seen;
+  for (const Tri& f : faces) EXPECT_TRUE(seen.insert(sorted(f)).second) << "a face written twice";
+  for (const auto& entry : tet_faces) EXPECT_TRUE(seen.count(entry.first));
+
+  // Upper-triangular order: owner < neighbour, (owner, neighbour) strictly increasing; boundary
+  // faces after. Orientation: the face's normal points from owner to neighbour, and per cell the
+  // signed volumes of the cones from the centroid over its faces add up to the tet's volume.
+  std::vector<double> cell_volume6(nt, 0.0);
+  std::vector<int> cell_faces(nt, 0);
+  for (size_t f = 0; f < nf; ++f) {
+    ASSERT_LT(owner[f], nt);
+    const std::array<double, 3> co = centroid(m, &m.tet[4 * owner[f]], 4);
+    const double* p[3] = {m.point(faces[f][0]), m.point(faces[f][1]), m.point(faces[f][2])};
+    EXPECT_LT(side(m, faces[f], co.data()), 0.0) << "face " << f << " does not point out of its owner";
+    cell_volume6[owner[f]] += volume6(co.data(), p[0], p[1], p[2]);
+    ++cell_faces[owner[f]];
+    if (f < ni) {
+      ASSERT_LT(neighbour[f], nt);
+      EXPECT_LT(owner[f], neighbour[f]) << "face " << f;
+      if (f > 0) {
+        EXPECT_TRUE(std::pair(owner[f - 1], neighbour[f - 1]) < std::pair(owner[f], neighbour[f])) << f;
+      }
+      const std::array<double, 3> cn = centroid(m, &m.tet[4 * neighbour[f]], 4);
+      EXPECT_GT(side(m, faces[f], cn.data()), 0.0) << "face " << f << " does not point to its neighbour";
+      cell_volume6[neighbour[f]] -= volume6(cn.data(), p[0], p[1], p[2]);
+      ++cell_faces[neighbour[f]];
+    }
+  }
+  for (size_t t = 0; t < nt; ++t) {
+    const uint32_t* v = &m.tet[4 * t];
+    EXPECT_EQ(cell_faces[t], 4) << t;
+    // The cones from the centroid over the outward faces fill the tet: their volumes add up.
+    EXPECT_NEAR(cell_volume6[t], volume6(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3])), 1e-12) << t;
+  }
+
+  // boundary: the patches in label order, contiguous after the internal faces, each holding
+  // exactly its input triangles; types from the names.
+  const std::string btext = test::load(dir + "boundary");
+  std::istringstream bin(btext.substr(btext.find('}') + 1));
+  size_t npatch = 0;
+  char paren = 0;
+  ASSERT_TRUE(bin >> npatch >> paren);
+  ASSERT_EQ(npatch, 6u);
+  std::vector<FoamPatch> patches(npatch);
+  for (FoamPatch& p : patches) {
+    std::string word;
+    ASSERT_TRUE(bin >> p.name >> word);
+    ASSERT_EQ(word, "{");
+    while (bin >> word && word != "}") {
+      std::string value;
+      std::getline(bin, value, ';');
+      value.erase(0, value.find_first_not_of(' '));
+      if (word == "type") p.type = value;
+      if (word == "nFaces") p.n = std::stoul(value);
+      if (word == "startFace") p.start = std::stoul(value);
+    }
+  }
+  const std::vector<std::pair<std::string, std::string>> want = {
+      {"wall", "wall"}, {"FarField_out", "patch"}, {"patch3", "wall"},
+      {"patch4", "wall"}, {"symmetry_bottom", "symmetry"}, {"patch6", "wall"}};
+  const std::map<int32_t, std::set<Tri>> expected = triangles_by_patch(m);
+  size_t next = ni;
+  for (size_t p = 0; p < npatch; ++p) {
+    EXPECT_EQ(patches[p].name, want[p].first);
+    EXPECT_EQ(patches[p].type, want[p].second);
+    EXPECT_EQ(patches[p].start, next);
+    EXPECT_EQ(patches[p].n, expected.at(int32_t(p) + 1).size());
+    std::set<Tri> got;
+    for (size_t f = patches[p].start; f < patches[p].start + patches[p].n && f < nf; ++f) got.insert(sorted(faces[f]));
+    EXPECT_EQ(got, expected.at(int32_t(p) + 1)) << patches[p].name;
+    next += patches[p].n;
+  }
+  EXPECT_EQ(next, nf);
+
+  // cellZones: region1 and region2 with their tets.
+  const std::string ztext = test::load(dir + "cellZones");
+  for (int32_t r : {1, 2}) {
+    const size_t at = ztext.find("region" + std::to_string(r) + "\n{");
+    ASSERT_NE(at, std::string::npos);
+    std::istringstream zin(ztext.substr(ztext.find("List<label>", at) + 11));
+    size_t n = 0;
+    char open = 0;
+    ASSERT_TRUE(zin >> n >> open);
+    std::vector<uint32_t> cells(n);
+    for (uint32_t& c : cells) ASSERT_TRUE(zin >> c);
+    std::vector<uint32_t> expected_cells;
+    for (size_t t = 0; t < nt; ++t)
+      if (m.region[t] == r) expected_cells.push_back(uint32_t(t));
+    EXPECT_EQ(cells, expected_cells);
+  }
+}
+
+TEST(OpenFoam, RefusesBoundaryFacesOutsideEveryPatch) {
+  VolumeMesh m = grid_mesh(2, 5);
+  m.bnd_tri.resize(m.bnd_tri.size() - 3);  // one boundary face without a patch
+  m.bnd_patch.pop_back();
+  Result<PolyMesh> pm = to_polymesh(m);
+  ASSERT_FALSE(pm.ok());
+  EXPECT_EQ(pm.status().code(), Error::InvalidArgument);
+  EXPECT_NE(pm.status().message().find("no boundary triangle"), std::string::npos) << pm.status().message();
+
+  VolumeMesh inner = grid_mesh(2, 5);  // a boundary triangle that is an internal face
+  Result<MeshFaces> faces = build_mesh_faces(inner);
+  ASSERT_TRUE(faces.ok());
+  for (size_t f = 0; f < faces->across.size(); ++f) {
+    if (faces->across[f] == MeshFaces::kNone) continue;
+    for (int k = 0; k < 3; ++k) inner.bnd_tri.push_back(inner.tet[4 * (f / 4) + size_t(kOutwardFace[f % 4][k])]);
+    inner.bnd_patch.push_back(1);
+    break;
+  }
+  pm = to_polymesh(inner);
+  ASSERT_FALSE(pm.ok());
+  EXPECT_NE(pm.status().message().find("internal face"), std::string::npos) << pm.status().message();
+}
+
+TEST(SolverFormats, ReadersSayTheyOnlyWrite) {
+  for (const char* path : {"x.su2", "case/constant/polyMesh", "case/constant/polyMesh/"}) {
+    Result<VolumeMesh> r = read_volume_mesh(path);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.status().code(), Error::UnsupportedFormat) << path;
+    EXPECT_NE(r.status().message().find("does not read"), std::string::npos) << r.status().message();
+  }
+  EXPECT_EQ(check_writable_volume_path("x.node").code(), Error::UnsupportedFormat);
+  EXPECT_EQ(check_writable_volume_path("x.foam").code(), Error::UnsupportedFormat);
+  EXPECT_TRUE(check_writable_volume_path("out/polyMesh").ok());
+}
+
+}  // namespace
+}  // namespace anitet
