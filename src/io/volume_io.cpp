@@ -24,9 +24,11 @@ Result<VolumeFormat> volume_format_from_path(const std::string& path) {
   if (ext == "node" || ext == "ele") return VolumeFormat::TetGen;
   if (ext == "vtu") return VolumeFormat::Vtu;
   if (ext == "su2") return VolumeFormat::Su2;
+  if (ext == "cgns") return VolumeFormat::Cgns;
+  if (ext == "exo" || ext == "e") return VolumeFormat::Exodus;
   return Status(Error::UnsupportedFormat, path + ": unknown volume mesh format '." + ext +
-                                              "' (expected .mesh, .msh, .node, .ele, .vtu, .su2 "
-                                              "or a .../polyMesh directory)");
+                                              "' (expected .mesh, .msh, .node, .ele, .vtu, .su2, .cgns, "
+                                              ".exo, .e or a .../polyMesh directory)");
 }
 
 Status check_writable_volume_path(const std::string& path) {
@@ -35,7 +37,17 @@ Status check_writable_volume_path(const std::string& path) {
   switch (format.value()) {
     case VolumeFormat::TetGen:
       return Status(Error::UnsupportedFormat, path + ": TetGen .node/.ele is read only; output formats are "
-                                                 ".mesh, .msh, .vtu, .su2 and .../polyMesh");
+                                                 ".mesh, .msh, .vtu, .su2, .cgns, .exo/.e and .../polyMesh");
+    case VolumeFormat::Cgns:
+      if (!cgns_available()) {
+        return Status(Error::NotImplemented, path + ": anitet was not built with CGNS (libcgns-dev)");
+      }
+      break;
+    case VolumeFormat::Exodus:
+      if (!exodus_available()) {
+        return Status(Error::NotImplemented, path + ": anitet was not built with Exodus II (libexodusii-dev)");
+      }
+      break;
     default:
       break;
   }
@@ -45,7 +57,8 @@ Status check_writable_volume_path(const std::string& path) {
 Result<VolumeMesh> read_volume_mesh(const std::string& path) {
   Result<VolumeFormat> format = volume_format_from_path(path);
   if (!format.ok()) return format.status();
-  if (format.value() == VolumeFormat::Su2 || format.value() == VolumeFormat::OpenFoam) {
+  if (format.value() == VolumeFormat::Su2 || format.value() == VolumeFormat::OpenFoam ||
+      format.value() == VolumeFormat::Cgns || format.value() == VolumeFormat::Exodus) {
     return Status(Error::UnsupportedFormat, path + ": anitet writes this format but does not read it "
                                                    "(it reads .mesh, .msh, .node/.ele and .vtu)");
   }
@@ -83,8 +96,8 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
   Result<VolumeFormat> format = volume_format_from_path(path);
   if (!format.ok()) {
     return Status(Error::UnsupportedFormat, path + ": cannot write volume mesh format '." + lower_extension(path) +
-                                                "' (expected .mesh, .msh, .vtu, .su2 or a .../polyMesh "
-                                                "directory)");
+                                                "' (expected .mesh, .msh, .vtu, .su2, .cgns, .exo, .e or a "
+                                                ".../polyMesh directory)");
   }
   Result<std::string> bytes = std::string();
   switch (format.value()) {
@@ -98,6 +111,8 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
       break;
     case VolumeFormat::Su2: bytes = to_su2(mesh, patch_names); break;
     case VolumeFormat::OpenFoam: return write_openfoam(mesh, path, patch_names);
+    case VolumeFormat::Cgns: return write_cgns(mesh, path, patch_names);
+    case VolumeFormat::Exodus: return write_exodus(mesh, path, patch_names);
     case VolumeFormat::TetGen: return check_writable_volume_path(path);
   }
   if (!bytes.ok()) return bytes.status();

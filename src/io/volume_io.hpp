@@ -14,14 +14,18 @@
 
 namespace anitet {
 
-enum class VolumeFormat { Medit, Gmsh, TetGen, Vtu, Su2, OpenFoam };
+enum class VolumeFormat { Medit, Gmsh, TetGen, Vtu, Su2, OpenFoam, Cgns, Exodus };
 
-// From the extension, case-insensitive: .mesh .msh .node/.ele .vtu .su2; a path
+// From the extension, case-insensitive: .mesh .msh .node/.ele .vtu .su2 .cgns .exo/.e; a path
 // whose last component is "polyMesh" (e.g. CASE/constant/polyMesh, a trailing '/' allowed) is an
-// OpenFOAM polyMesh directory. Su2 and OpenFoam are written only.
+// OpenFOAM polyMesh directory. Su2, OpenFoam, Cgns and Exodus are written only.
 Result<VolumeFormat> volume_format_from_path(const std::string& path);
-// Error::UnsupportedFormat unless the format of `path` can be written.
+// Error::UnsupportedFormat unless the format of `path` can be written; Error::NotImplemented for
+// .cgns or .exo/.e when anitet was built without CGNS or Exodus II.
 Status check_writable_volume_path(const std::string& path);
+// Whether this build has the CGNS / Exodus II writers (found by CMake at build time).
+bool cgns_available();
+bool exodus_available();
 
 // Reads a file chosen by extension. For TetGen give the .node or the .ele path: base.node and
 // base.ele are read, and base.face (boundary triangles with markers) when it exists.
@@ -48,11 +52,12 @@ struct TetScalar {
 };
 
 // Writes a file chosen by volume_format_from_path: .mesh (Medit), .msh (Gmsh 4.1), .vtu (VTK
-// XML), .su2, an OpenFOAM polyMesh directory. `tet_scalars` are written by .vtu
+// XML), .su2, an OpenFOAM polyMesh directory, .cgns, .exo/.e. `tet_scalars` are written by .vtu
 // only. Error::InvalidArgument for inconsistent arrays. The boundary patches are named by
 // `patch_names` (label -> name, see patch_names.hpp; unnamed labels get patch<label>) in every
 // format that has names; Error::InvalidArgument for an invalid name, a named label that no
-// boundary triangle has, or two labels with one name.
+// boundary triangle has, or two labels with one name. Error::NotImplemented for .cgns or .exo
+// when anitet was built without that library.
 Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path,
                          const std::vector<TetScalar>& tet_scalars = {});
 Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names,
@@ -76,7 +81,7 @@ Result<std::string> to_gmsh(const VolumeMesh& mesh, const PatchNames& patch_name
 Result<std::string> to_vtu(const VolumeMesh& mesh, const std::vector<TetScalar>& tet_scalars = {});
 Result<std::string> to_sol(const VolumeMesh& mesh);
 
-// The solver formats (solver_formats.cpp). Each boundary
+// The solver formats (solver_formats.cpp, cgns_format.cpp, exodus_format.cpp). Each boundary
 // patch is one named group, in increasing label order; a boundary triangle that is a face of
 // exactly one tet is written oriented out of the mesh (right-hand normal), others as given.
 // SU2 native (ASCII, 0-based): NDIME= 3, NELEM= tets (VTK type 10, element index appended),
@@ -109,6 +114,21 @@ Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_nam
 // creating DIR and its parents. OpenFOAM's tools want DIR = CASE/constant/polyMesh and a
 // CASE/system/controlDict, which this does not write.
 Status write_openfoam(const VolumeMesh& mesh, const std::string& dir, const PatchNames& patch_names = {});
+
+// CGNS (HDF5 through the CGNS mid-level library): base "Base" (3, 3), one unstructured zone
+// "Zone1"; coordinates; section "GridElements" of TETRA_4 (elements 1..tets); one TRI_3 section
+// per patch named after it (the following element ids); one boundary condition per patch with
+// the same name, type from patch_kind() (BCWall, BCFarfield, BCSymmetryPlane), PointRange over
+// its section's element ids, GridLocation FaceCenter. Error::NotImplemented when built without
+// CGNS.
+Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names = {});
+
+// Exodus II: one TETRA4 element block per region (id = the label when all are positive, else
+// 1, 2, ..., named region<label>), elements numbered block by block; one side set per patch
+// (id by the same rule, named after the patch) listing element and Exodus side number (1 = nodes
+// 1 2 4, 2 = 2 3 4, 3 = 1 4 3, 4 = 1 3 2). Every boundary triangle must be a face of a tet
+// (Error::InvalidArgument otherwise). Error::NotImplemented when built without Exodus II.
+Status write_exodus(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names = {});
 
 // Error::InvalidArgument unless the array sizes agree; Error::BadIndex for an index that is not
 // a vertex. Writers run this first.

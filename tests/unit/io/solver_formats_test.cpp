@@ -18,6 +18,13 @@
 #include "io/volume_io.hpp"
 #include "io_test_util.hpp"
 
+#ifdef ANITET_HAVE_CGNS
+#include <cgnslib.h>
+#endif
+#ifdef ANITET_HAVE_EXODUS
+#include <exodusII.h>
+#endif
+
 namespace anitet {
 namespace {
 
@@ -145,9 +152,13 @@ TEST(PatchNames, WritersRefuseNamesTheMeshCannotCarry) {
   const std::string dir = test::temp_dir();
   // Label 9 is on no triangle; labels 2 and 3 would both be "patch3".
   for (const PatchNames& bad : {PatchNames{{9, "nine"}}, PatchNames{{2, "patch3"}}, PatchNames{{1, "bad name"}}}) {
-    for (const char* file : {"/bad.su2", "/bad.msh", "/bad.mesh", "/bad.vtu", "/bad/constant/polyMesh"}) {
+    for (const char* file : {"/bad.su2", "/bad.msh", "/bad.mesh", "/bad.vtu", "/bad/constant/polyMesh", "/bad.cgns",
+                             "/bad.exo"}) {
       const Status s = write_volume_mesh(m, dir + file, bad);
-      EXPECT_EQ(s.code(), Error::InvalidArgument) << file << ": " << s.message();
+      const bool library = std::string(file).find(".cgns") != std::string::npos ? cgns_available()
+                           : std::string(file).find(".exo") != std::string::npos ? exodus_available()
+                                                                                   : true;
+      EXPECT_EQ(s.code(), library ? Error::InvalidArgument : Error::NotImplemented) << file << ": " << s.message();
     }
   }
 }
@@ -422,7 +433,7 @@ TEST(OpenFoam, RefusesBoundaryFacesOutsideEveryPatch) {
 }
 
 TEST(SolverFormats, ReadersSayTheyOnlyWrite) {
-  for (const char* path : {"x.su2", "case/constant/polyMesh", "case/constant/polyMesh/"}) {
+  for (const char* path : {"x.su2", "x.cgns", "x.exo", "x.e", "case/constant/polyMesh", "case/constant/polyMesh/"}) {
     Result<VolumeMesh> r = read_volume_mesh(path);
     ASSERT_FALSE(r.ok());
     EXPECT_EQ(r.status().code(), Error::UnsupportedFormat) << path;
@@ -431,7 +442,219 @@ TEST(SolverFormats, ReadersSayTheyOnlyWrite) {
   EXPECT_EQ(check_writable_volume_path("x.node").code(), Error::UnsupportedFormat);
   EXPECT_EQ(check_writable_volume_path("x.foam").code(), Error::UnsupportedFormat);
   EXPECT_TRUE(check_writable_volume_path("out/polyMesh").ok());
+  EXPECT_EQ(check_writable_volume_path("x.cgns").code(), cgns_available() ? Error::Ok : Error::NotImplemented);
+  EXPECT_EQ(check_writable_volume_path("x.exo").code(), exodus_available() ? Error::Ok : Error::NotImplemented);
 }
+
+// --- CGNS, read back with the CGNS library ---
+
+#ifdef ANITET_HAVE_CGNS
+TEST(Cgns, ReadBackWithTheCgnsLibrary) {
+  ASSERT_TRUE(cgns_available());
+  const VolumeMesh m = grid_mesh(2, 6);
+  const std::string path = test::temp_dir() + "/grid.cgns";
+  const Status written = write_volume_mesh(m, path, kNames);
+  ASSERT_TRUE(written.ok()) << written.message();
+  int fn = 0, nbases = 0, nzones = 0, ncoords = 0, nsections = 0, nbocos = 0, cell_dim = 0, phys_dim = 0;
+  ASSERT_EQ(cg_open(path.c_str(), CG_MODE_READ, &fn), CG_OK) << cg_get_error();
+  char name[64];
+  ASSERT_EQ(cg_nbases(fn, &nbases), CG_OK);
+  ASSERT_EQ(nbases, 1);
+  ASSERT_EQ(cg_base_read(fn, 1, name, &cell_dim, &phys_dim), CG_OK);
+  EXPECT_EQ(std::string(name), "Base");
+  EXPECT_EQ(cell_dim, 3);
+  EXPECT_EQ(phys_dim, 3);
+  ASSERT_EQ(cg_nzones(fn, 1, &nzones), CG_OK);
+  ASSERT_EQ(nzones, 1);
+  cgsize_t size[3];
+  ASSERT_EQ(cg_zone_read(fn, 1, 1, name, size), CG_OK);
+  CGNS_ENUMT(ZoneType_t) zone_type;
+  ASSERT_EQ(cg_zone_type(fn, 1, 1, &zone_type), CG_OK);
+  EXPECT_EQ(zone_type, CGNS_ENUMV(Unstructured));
+  EXPECT_EQ(size[0], cgsize_t(m.num_vertices()));
+  EXPECT_EQ(size[1], cgsize_t(m.num_tets()));
+  ASSERT_EQ(cg_ncoords(fn, 1, 1, &ncoords), CG_OK);
+  EXPECT_EQ(ncoords, 3);
+  const cgsize_t one = 1, nv = cgsize_t(m.num_vertices());
+  std::vector<double> xyz[3];
+  for (int k = 0; k < 3; ++k) {
+    xyz[k].resize(m.num_vertices());
+    const char* cname = k == 0 ? "CoordinateX" : k == 1 ? "CoordinateY" : "CoordinateZ";
+    ASSERT_EQ(cg_coord_read(fn, 1, 1, cname, CGNS_ENUMV(RealDouble), &one, &nv, xyz[k].data()), CG_OK);
+    for (size_t v = 0; v < m.num_vertices(); ++v) EXPECT_TRUE(test::same_bits(xyz[k][v], m.point(v)[k]));
+  }
+  ASSERT_EQ(cg_nsections(fn, 1, 1, &nsections), CG_OK);
+  ASSERT_EQ(nsections, 7);  // the tets, then one per patch
+  const std::map<int32_t, std::set<Tri>> expected = triangles_by_patch(m);
+  const std::vector<std::string> names = {"GridElements", "wall", "FarField_out", "patch3", "patch4", "symmetry_bottom", "patch6"};
+  std::vector<std::pair<cgsize_t, cgsize_t>> ranges;
+  const double centre[3] = {1.0, 1.0, 0.5};
+  cgsize_t next = 1;
+  for (int sec = 1; sec <= nsections; ++sec) {
+    CGNS_ENUMT(ElementType_t) type;
+    cgsize_t start = 0, end = 0;
+    int nbndry = 0, parent = 0;
+    ASSERT_EQ(cg_section_read(fn, 1, 1, sec, name, &type, &start, &end, &nbndry, &parent), CG_OK);
+    EXPECT_EQ(std::string(name), names[size_t(sec - 1)]);
+    EXPECT_EQ(start, next);
+    next = end + 1;
+    ranges.emplace_back(start, end);
+    std::vector<cgsize_t> conn(size_t(end - start + 1) * (sec == 1 ? 4 : 3));
+    ASSERT_EQ(cg_elements_read(fn, 1, 1, sec, conn.data(), nullptr), CG_OK);
+    if (sec == 1) {
+      EXPECT_EQ(type, CGNS_ENUMV(TETRA_4));
+      ASSERT_EQ(conn.size(), m.tet.size());
+      for (size_t i = 0; i < conn.size(); ++i) EXPECT_EQ(conn[i], cgsize_t(m.tet[i]) + 1);
+      continue;
+    }
+    EXPECT_EQ(type, CGNS_ENUMV(TRI_3));
+    std::set<Tri> got;
+    for (size_t e = 0; e < conn.size() / 3; ++e) {
+      const Tri t = {uint32_t(conn[3 * e] - 1), uint32_t(conn[3 * e + 1] - 1), uint32_t(conn[3 * e + 2] - 1)};
+      EXPECT_LT(side(m, t, centre), 0.0) << "not oriented out of the domain";
+      got.insert(sorted(t));
+    }
+    EXPECT_EQ(got, expected.at(sec - 1)) << names[size_t(sec - 1)];
+  }
+  ASSERT_EQ(cg_nbocos(fn, 1, 1, &nbocos), CG_OK);
+  ASSERT_EQ(nbocos, 6);
+  const CGNS_ENUMT(BCType_t) types[6] = {CGNS_ENUMV(BCWall), CGNS_ENUMV(BCFarfield), CGNS_ENUMV(BCWall),
+                                         CGNS_ENUMV(BCWall), CGNS_ENUMV(BCSymmetryPlane), CGNS_ENUMV(BCWall)};
+  for (int bc = 1; bc <= nbocos; ++bc) {
+    CGNS_ENUMT(BCType_t) type;
+    CGNS_ENUMT(PointSetType_t) ptset;
+    CGNS_ENUMT(DataType_t) normal_type;
+    CGNS_ENUMT(GridLocation_t) location;
+    cgsize_t npnts = 0, normal_size = 0;
+    int normal_index[3], ndataset = 0;
+    ASSERT_EQ(cg_boco_info(fn, 1, 1, bc, name, &type, &ptset, &npnts, normal_index, &normal_size, &normal_type,
+                           &ndataset),
+              CG_OK);
+    EXPECT_EQ(std::string(name), names[size_t(bc)]);
+    EXPECT_EQ(type, types[bc - 1]) << name;
+    EXPECT_EQ(ptset, CGNS_ENUMV(PointRange));
+    ASSERT_EQ(npnts, 2);
+    cgsize_t range[2];
+    ASSERT_EQ(cg_boco_read(fn, 1, 1, bc, range, nullptr), CG_OK);
+    EXPECT_EQ(std::pair(range[0], range[1]), ranges[size_t(bc)]) << name;
+    ASSERT_EQ(cg_boco_gridlocation_read(fn, 1, 1, bc, &location), CG_OK);
+    EXPECT_EQ(location, CGNS_ENUMV(FaceCenter));
+  }
+  cg_close(fn);
+}
+#else
+TEST(Cgns, SaysItIsNotBuilt) {
+  EXPECT_FALSE(cgns_available());
+  const Status s = write_volume_mesh(grid_mesh(1, 6), test::temp_dir() + "/grid.cgns");
+  EXPECT_EQ(s.code(), Error::NotImplemented);
+  EXPECT_NE(s.message().find("not built with CGNS"), std::string::npos) << s.message();
+}
+#endif
+
+// --- Exodus II, read back with the Exodus library ---
+
+#ifdef ANITET_HAVE_EXODUS
+TEST(Exodus, ReadBackWithTheExodusLibrary) {
+  ASSERT_TRUE(exodus_available());
+  const VolumeMesh m = grid_mesh(2, 7);
+  const std::string path = test::temp_dir() + "/grid.exo";
+  const Status written = write_volume_mesh(m, path, kNames);
+  ASSERT_TRUE(written.ok()) << written.message();
+  int cpu_ws = sizeof(double), io_ws = 0;
+  float version = 0;
+  const int id = ex_open(path.c_str(), EX_READ, &cpu_ws, &io_ws, &version);
+  ASSERT_GE(id, 0);
+  char title[MAX_LINE_LENGTH + 1];
+  int ndim = 0, nnodes = 0, nelem = 0, nblocks = 0, nnode_sets = 0, nside_sets = 0;
+  ASSERT_GE(ex_get_init(id, title, &ndim, &nnodes, &nelem, &nblocks, &nnode_sets, &nside_sets), 0);
+  EXPECT_EQ(ndim, 3);
+  EXPECT_EQ(nnodes, int(m.num_vertices()));
+  EXPECT_EQ(nelem, int(m.num_tets()));
+  ASSERT_EQ(nblocks, 2);
+  EXPECT_EQ(nnode_sets, 0);
+  ASSERT_EQ(nside_sets, 6);
+  std::vector<double> x(m.num_vertices()), y(m.num_vertices()), z(m.num_vertices());
+  ASSERT_GE(ex_get_coord(id, x.data(), y.data(), z.data()), 0);
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    EXPECT_TRUE(test::same_bits(x[v], m.point(v)[0]) && test::same_bits(y[v], m.point(v)[1]) &&
+                test::same_bits(z[v], m.point(v)[2]));
+  }
+  auto names_of = [&](ex_entity_type type, int count) {
+    std::vector<std::vector<char>> storage(size_t(count), std::vector<char>(MAX_STR_LENGTH + 1, '\0'));
+    std::vector<char*> ptrs;
+    for (auto& st : storage) ptrs.push_back(st.data());
+    EXPECT_GE(ex_get_names(id, type, ptrs.data()), 0);
+    std::vector<std::string> out;
+    for (auto& st : storage) out.emplace_back(st.data());
+    return out;
+  };
+  // Blocks: region1 (id 1) then region2 (id 2); elements numbered block by block.
+  int block_ids[2];
+  ASSERT_GE(ex_get_ids(id, EX_ELEM_BLOCK, block_ids), 0);
+  EXPECT_EQ(block_ids[0], 1);
+  EXPECT_EQ(block_ids[1], 2);
+  EXPECT_EQ(names_of(EX_ELEM_BLOCK, 2), (std::vector<std::string>{"region1", "region2"}));
+  std::vector<int> element;  // all blocks' connectivity, 4 per Exodus element (1-based nodes)
+  std::multiset<std::array<uint32_t, 4>> want_tets, got_tets;
+  for (int b = 0; b < 2; ++b) {
+    char type[MAX_STR_LENGTH + 1];
+    int count = 0, per = 0, edges = 0, faces = 0, attrs = 0;
+    ASSERT_GE(ex_get_block(id, EX_ELEM_BLOCK, block_ids[b], type, &count, &per, &edges, &faces, &attrs), 0);
+    EXPECT_EQ(std::string(type), "TETRA4");
+    ASSERT_EQ(per, 4);
+    std::vector<int> conn(size_t(count) * 4);
+    ASSERT_GE(ex_get_conn(id, EX_ELEM_BLOCK, block_ids[b], conn.data(), nullptr, nullptr), 0);
+    for (size_t e = 0; e < size_t(count); ++e) {
+      std::array<uint32_t, 4> t;
+      for (size_t q = 0; q < 4; ++q) t[q] = uint32_t(conn[4 * e + q] - 1);
+      got_tets.insert(t);
+      EXPECT_GT(volume6(m.point(t[0]), m.point(t[1]), m.point(t[2]), m.point(t[3])), 0.0);
+    }
+    element.insert(element.end(), conn.begin(), conn.end());
+  }
+  for (size_t t = 0; t < m.num_tets(); ++t) {
+    want_tets.insert({m.tet[4 * t], m.tet[4 * t + 1], m.tet[4 * t + 2], m.tet[4 * t + 3]});
+  }
+  EXPECT_EQ(got_tets, want_tets);
+  // Side sets: ids 1..6 named after the patches; (element, side) through Exodus's TETRA side
+  // table gives exactly the patch's triangles, oriented out of the element.
+  int set_ids[6];
+  ASSERT_GE(ex_get_ids(id, EX_SIDE_SET, set_ids), 0);
+  EXPECT_EQ(names_of(EX_SIDE_SET, 6), (std::vector<std::string>{"wall", "FarField_out", "patch3", "patch4",
+                                                                "symmetry_bottom", "patch6"}));
+  const int side_nodes[4][3] = {{1, 2, 4}, {2, 3, 4}, {1, 4, 3}, {1, 3, 2}};  // Exodus II manual, TETRA
+  const std::map<int32_t, std::set<Tri>> expected = triangles_by_patch(m);
+  for (int s = 0; s < 6; ++s) {
+    EXPECT_EQ(set_ids[s], s + 1);
+    int count = 0, dist = 0;
+    ASSERT_GE(ex_get_set_param(id, EX_SIDE_SET, set_ids[s], &count, &dist), 0);
+    std::vector<int> elems(static_cast<size_t>(count)), sides(static_cast<size_t>(count));
+    ASSERT_GE(ex_get_set(id, EX_SIDE_SET, set_ids[s], elems.data(), sides.data()), 0);
+    std::set<Tri> got;
+    for (int i = 0; i < count; ++i) {
+      ASSERT_GE(elems[size_t(i)], 1);
+      ASSERT_LE(elems[size_t(i)], nelem);
+      ASSERT_GE(sides[size_t(i)], 1);
+      ASSERT_LE(sides[size_t(i)], 4);
+      const int* e = &element[4 * size_t(elems[size_t(i)] - 1)];
+      const int* sn = side_nodes[sides[size_t(i)] - 1];
+      const Tri t = {uint32_t(e[sn[0] - 1] - 1), uint32_t(e[sn[1] - 1] - 1), uint32_t(e[sn[2] - 1] - 1)};
+      const uint32_t tet[4] = {uint32_t(e[0] - 1), uint32_t(e[1] - 1), uint32_t(e[2] - 1), uint32_t(e[3] - 1)};
+      EXPECT_LT(side(m, t, centroid(m, tet, 4).data()), 0.0) << "side not pointing out of its element";
+      got.insert(sorted(t));
+    }
+    EXPECT_EQ(got, expected.at(s + 1)) << "side set " << s + 1;
+  }
+  ex_close(id);
+}
+#else
+TEST(Exodus, SaysItIsNotBuilt) {
+  EXPECT_FALSE(exodus_available());
+  const Status s = write_volume_mesh(grid_mesh(1, 7), test::temp_dir() + "/grid.exo");
+  EXPECT_EQ(s.code(), Error::NotImplemented);
+  EXPECT_NE(s.message().find("not built with Exodus"), std::string::npos) << s.message();
+}
+#endif
 
 }  // namespace
 }  // namespace anitet

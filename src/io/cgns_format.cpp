@@ -1,0 +1,140 @@
+// CGNS writer through the CGNS mid-level library (optional: ANITET_HAVE_CGNS).
+#include <string>
+#include <vector>
+
+#include "io/mesh_faces.hpp"
+#include "io/volume_io.hpp"
+
+#ifdef ANITET_HAVE_CGNS
+#include <cgnslib.h>
+
+#include <array>
+#include <cstdio>
+#include <limits>
+#include <utility>
+#endif
+
+namespace anitet {
+
+#ifdef ANITET_HAVE_CGNS
+
+bool cgns_available() { return true; }
+
+namespace {
+
+CGNS_ENUMT(BCType_t) cgns_bc_type(PatchKind kind) {
+  switch (kind) {
+    case PatchKind::Farfield: return CGNS_ENUMV(BCFarfield);
+    case PatchKind::Symmetry: return CGNS_ENUMV(BCSymmetryPlane);
+    case PatchKind::Wall: break;
+  }
+  return CGNS_ENUMV(BCWall);
+}
+
+// Closes the file on every path; the file is removed when the write did not finish.
+class CgnsFile {
+ public:
+  explicit CgnsFile(std::string path) : path_(std::move(path)) {}
+  ~CgnsFile() {
+    if (open_) cg_close(fn_);
+    if (!done_) std::remove(path_.c_str());
+  }
+  CgnsFile(const CgnsFile&) = delete;
+  CgnsFile& operator=(const CgnsFile&) = delete;
+
+  Status open() {
+    if (cg_open(path_.c_str(), CG_MODE_WRITE, &fn_) != CG_OK) return error("cg_open");
+    open_ = true;
+    return Status::success();
+  }
+  Status close() {
+    open_ = false;
+    if (cg_close(fn_) != CG_OK) return error("cg_close");
+    done_ = true;
+    return Status::success();
+  }
+  Status error(const char* call) const {
+    return Status(Error::FileNotFound, "cannot write '" + path_ + "': " + call + ": " + cg_get_error());
+  }
+  int fn() const { return fn_; }
+
+ private:
+  std::string path_;
+  int fn_ = -1;
+  bool open_ = false, done_ = false;
+};
+
+}  // namespace
+
+Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names) {
+  if (Status s = check_volume_arrays(mesh); !s.ok()) return s;
+  Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names);
+  if (!patches.ok()) return patches.status();
+  Result<MeshFaces> faces = build_mesh_faces(mesh);
+  if (!faces.ok()) return faces.status();
+  const size_t nv = mesh.num_vertices(), nt = mesh.num_tets(), nb = mesh.num_boundary_triangles();
+  if (nv + nt + nb > size_t(std::numeric_limits<cgsize_t>::max())) {
+    return Status(Error::InvalidArgument, path + ": too many elements for this CGNS build's 32-bit sizes");
+  }
+  if (nt == 0) return Status(Error::InvalidArgument, path + ": a CGNS zone needs at least one tetrahedron");
+
+  CgnsFile file(path);
+  if (Status s = file.open(); !s.ok()) return s;
+  const int fn = file.fn();
+  int base = 0, zone = 0, index = 0;
+  if (cg_base_write(fn, "Base", 3, 3, &base) != CG_OK) return file.error("cg_base_write");
+  const cgsize_t size[3] = {cgsize_t(nv), cgsize_t(nt), 0};
+  if (cg_zone_write(fn, base, "Zone1", size, CGNS_ENUMV(Unstructured), &zone) != CG_OK) {
+    return file.error("cg_zone_write");
+  }
+  std::vector<double> coord(nv);
+  const char* coord_names[3] = {"CoordinateX", "CoordinateY", "CoordinateZ"};
+  for (int k = 0; k < 3; ++k) {
+    for (size_t v = 0; v < nv; ++v) coord[v] = mesh.xyz[3 * v + size_t(k)];
+    if (cg_coord_write(fn, base, zone, CGNS_ENUMV(RealDouble), coord_names[k], coord.data(), &index) != CG_OK) {
+      return file.error("cg_coord_write");
+    }
+  }
+  std::vector<cgsize_t> conn(4 * nt);
+  for (size_t i = 0; i < 4 * nt; ++i) conn[i] = cgsize_t(mesh.tet[i]) + 1;
+  if (cg_section_write(fn, base, zone, "GridElements", CGNS_ENUMV(TETRA_4), 1, cgsize_t(nt), 0, conn.data(),
+                       &index) != CG_OK) {
+    return file.error("cg_section_write");
+  }
+  cgsize_t next = cgsize_t(nt) + 1;  // element ids continue after the tets
+  for (const PatchTriangles& p : patches.value()) {
+    if (p.tris.empty()) continue;
+    conn.clear();
+    for (uint32_t b : p.tris) {
+      for (uint32_t v : outward_triangle(mesh, faces.value(), b)) conn.push_back(cgsize_t(v) + 1);
+    }
+    const cgsize_t range[2] = {next, next + cgsize_t(p.tris.size()) - 1};
+    if (cg_section_write(fn, base, zone, p.patch.name.c_str(), CGNS_ENUMV(TRI_3), range[0], range[1], 0,
+                         conn.data(), &index) != CG_OK) {
+      return file.error("cg_section_write");
+    }
+    int bc = 0;
+    if (cg_boco_write(fn, base, zone, p.patch.name.c_str(), cgns_bc_type(patch_kind(p.patch.name)),
+                      CGNS_ENUMV(PointRange), 2, range, &bc) != CG_OK) {
+      return file.error("cg_boco_write");
+    }
+    if (cg_boco_gridlocation_write(fn, base, zone, bc, CGNS_ENUMV(FaceCenter)) != CG_OK) {
+      return file.error("cg_boco_gridlocation_write");
+    }
+    next = range[1] + 1;
+  }
+  return file.close();
+}
+
+#else  // !ANITET_HAVE_CGNS
+
+bool cgns_available() { return false; }
+
+Status write_cgns(const VolumeMesh&, const std::string& path, const PatchNames&) {
+  return Status(Error::NotImplemented, path + ": anitet was not built with CGNS (install libcgns-dev and "
+                                              "configure again to write .cgns)");
+}
+
+#endif
+
+}  // namespace anitet

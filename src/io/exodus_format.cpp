@@ -1,0 +1,166 @@
+// Exodus II writer through the Exodus II C library (optional: ANITET_HAVE_EXODUS).
+#include <string>
+#include <vector>
+
+#include "io/mesh_faces.hpp"
+#include "io/volume_io.hpp"
+
+#ifdef ANITET_HAVE_EXODUS
+#include <exodusII.h>
+
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <utility>
+#endif
+
+namespace anitet {
+
+#ifdef ANITET_HAVE_EXODUS
+
+bool exodus_available() { return true; }
+
+namespace {
+
+// Closes the file on every path; the file is removed when the write did not finish.
+class ExodusFile {
+ public:
+  explicit ExodusFile(std::string path) : path_(std::move(path)) {}
+  ~ExodusFile() {
+    if (id_ >= 0) ex_close(id_);
+    if (!done_) std::remove(path_.c_str());
+  }
+  ExodusFile(const ExodusFile&) = delete;
+  ExodusFile& operator=(const ExodusFile&) = delete;
+
+  Status create() {
+    int cpu_word_size = sizeof(double), io_word_size = sizeof(double);
+    id_ = ex_create(path_.c_str(), EX_CLOBBER, &cpu_word_size, &io_word_size);
+    if (id_ < 0) return error("ex_create", id_);
+    return Status::success();
+  }
+  Status close() {
+    const int rc = ex_close(id_);
+    id_ = -1;
+    if (rc < 0) return error("ex_close", rc);
+    done_ = true;
+    return Status::success();
+  }
+  Status error(const char* call, int rc) const {
+    return Status(Error::FileNotFound,
+                  "cannot write '" + path_ + "': " + call + " failed (Exodus error " + std::to_string(rc) + ")");
+  }
+  int id() const { return id_; }
+
+ private:
+  std::string path_;
+  int id_ = -1;
+  bool done_ = false;
+};
+
+}  // namespace
+
+Status write_exodus(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names) {
+  if (Status s = check_volume_arrays(mesh); !s.ok()) return s;
+  Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names);
+  if (!patches.ok()) return patches.status();
+  Result<MeshFaces> built = build_mesh_faces(mesh);
+  if (!built.ok()) return built.status();
+  const MeshFaces& faces = built.value();
+  const size_t nv = mesh.num_vertices(), nt = mesh.num_tets();
+  if (nv > size_t(std::numeric_limits<int>::max()) || nt > size_t(std::numeric_limits<int>::max())) {
+    return Status(Error::InvalidArgument, path + ": too many vertices or tets for Exodus's 32-bit ids");
+  }
+  if (nt == 0) return Status(Error::InvalidArgument, path + ": an Exodus file needs at least one tetrahedron");
+
+  // Blocks: the tets of each region, in mesh order; element ids run block by block.
+  std::map<int32_t, std::vector<uint32_t>> blocks;
+  for (size_t t = 0; t < nt; ++t) blocks[mesh.region.empty() ? 0 : mesh.region[t]].push_back(uint32_t(t));
+  std::vector<int32_t> region_labels;
+  for (const auto& entry : blocks) region_labels.push_back(entry.first);
+  const std::map<int32_t, int32_t> block_ids = positive_ids(region_labels);
+  std::vector<int> element_id(nt);  // 1-based Exodus element number of each tet
+  int next = 1;
+  for (const auto& entry : blocks) {
+    for (uint32_t t : entry.second) element_id[t] = next++;
+  }
+  // Side sets: every boundary triangle must be a tet face (an element side).
+  std::vector<int32_t> patch_labels;
+  for (const PatchTriangles& p : patches.value()) patch_labels.push_back(p.patch.label);
+  const std::map<int32_t, int32_t> set_ids = positive_ids(patch_labels);
+  for (const PatchTriangles& p : patches.value()) {
+    for (uint32_t b : p.tris) {
+      if (faces.bnd_face[b] == MeshFaces::kNone) {
+        return Status(Error::InvalidArgument, "boundary triangle " + std::to_string(b) + " (patch '" +
+                                                  p.patch.name + "') is not a face of any tet: an Exodus side "
+                                                  "set lists element sides");
+      }
+    }
+  }
+
+  ExodusFile file(path);
+  if (Status s = file.create(); !s.ok()) return s;
+  const int id = file.id();
+  int rc = ex_put_init(id, "anitet tetrahedral mesh", 3, int64_t(nv), int64_t(nt), int64_t(blocks.size()), 0,
+                       int64_t(patches.value().size()));
+  if (rc < 0) return file.error("ex_put_init", rc);
+  std::vector<double> x(nv), y(nv), z(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    x[v] = mesh.xyz[3 * v];
+    y[v] = mesh.xyz[3 * v + 1];
+    z[v] = mesh.xyz[3 * v + 2];
+  }
+  if ((rc = ex_put_coord(id, x.data(), y.data(), z.data())) < 0) return file.error("ex_put_coord", rc);
+  char coord_x[] = "x", coord_y[] = "y", coord_z[] = "z";
+  char* coord_names[3] = {coord_x, coord_y, coord_z};
+  if ((rc = ex_put_coord_names(id, coord_names)) < 0) return file.error("ex_put_coord_names", rc);
+
+  std::vector<int> conn;
+  for (const auto& [label, tets] : blocks) {
+    const int32_t block = block_ids.at(label);
+    rc = ex_put_block(id, EX_ELEM_BLOCK, block, "TETRA4", int64_t(tets.size()), 4, 0, 0, 0);
+    if (rc < 0) return file.error("ex_put_block", rc);
+    conn.clear();
+    for (uint32_t t : tets) {
+      for (int k = 0; k < 4; ++k) conn.push_back(int(mesh.tet[4 * size_t(t) + size_t(k)]) + 1);
+    }
+    if ((rc = ex_put_conn(id, EX_ELEM_BLOCK, block, conn.data(), nullptr, nullptr)) < 0) {
+      return file.error("ex_put_conn", rc);
+    }
+    if ((rc = ex_put_name(id, EX_ELEM_BLOCK, block, region_name(label).c_str())) < 0) {
+      return file.error("ex_put_name", rc);
+    }
+  }
+  std::vector<int> elements, sides;
+  for (const PatchTriangles& p : patches.value()) {
+    const int32_t set = set_ids.at(p.patch.label);
+    elements.clear();
+    sides.clear();
+    for (uint32_t b : p.tris) {
+      const int64_t face = faces.bnd_face[b];
+      elements.push_back(element_id[size_t(face / 4)]);
+      sides.push_back(int(face % 4) + 1);  // kOutwardFace is Exodus's side order
+    }
+    if ((rc = ex_put_set_param(id, EX_SIDE_SET, set, int64_t(p.tris.size()), 0)) < 0) {
+      return file.error("ex_put_set_param", rc);
+    }
+    if ((rc = ex_put_set(id, EX_SIDE_SET, set, elements.data(), sides.data())) < 0) {
+      return file.error("ex_put_set", rc);
+    }
+    if ((rc = ex_put_name(id, EX_SIDE_SET, set, p.patch.name.c_str())) < 0) return file.error("ex_put_name", rc);
+  }
+  return file.close();
+}
+
+#else  // !ANITET_HAVE_EXODUS
+
+bool exodus_available() { return false; }
+
+Status write_exodus(const VolumeMesh&, const std::string& path, const PatchNames&) {
+  return Status(Error::NotImplemented, path + ": anitet was not built with Exodus II (install libexodusii-dev "
+                                              "and configure again to write .exo/.e)");
+}
+
+#endif
+
+}  // namespace anitet
