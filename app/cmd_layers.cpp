@@ -83,11 +83,15 @@ nlohmann::json worst_json(const WorstTets& w) {
 
 }  // namespace
 
-int run_mesh_layers(const MeshArgs& args) {
+int run_mesh_layers(MeshArgs& args) {
   const std::string cmd = "anitet mesh";
+  if (const int code = check_output_path(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
   const SurfaceMesh& surface = checked.surface;
+  int32_t front_label = 1;  // S1's patch in the output: one more than the input's labels
+  for (int32_t label : surface.patch) front_label = std::max(front_label, label + 1);
+  if (const int code = check_patch_names(args, surface, {front_label}); code != kExitOk) return code;
 
   LayersOptions options;
   options.layers = args.layers;
@@ -121,13 +125,11 @@ int run_mesh_layers(const MeshArgs& args) {
   }
 
   VolumeMesh vm = r.mesh.to_volume_mesh(false);
-  int32_t front_label = 1;
-  for (int32_t label : surface.patch) front_label = std::max(front_label, label + 1);
   vm.bnd_tri = surface.tri;
   vm.bnd_patch = surface.patch;
   vm.bnd_tri.insert(vm.bnd_tri.end(), r.front_tri.begin(), r.front_tri.end());
   vm.bnd_patch.insert(vm.bnd_patch.end(), r.num_front_triangles(), front_label);
-  if (Status st = write_volume_mesh(vm, args.output); !st.ok()) {
+  if (Status st = write_volume_mesh(vm, args.output, args.patch_names); !st.ok()) {
     std::cerr << cmd << ": cannot write '" << args.output << "': " << st.message() << "\n";
     return kExitReadError;
   }

@@ -1,4 +1,5 @@
 #include <iostream>
+#include <set>
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
@@ -22,7 +23,7 @@ int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
   VolumeMesh vm = out.mesh.to_volume_mesh(/*drop_unused_vertices=*/false);
   vm.bnd_tri = out.s2_tri;
   vm.bnd_patch = out.s2_patch;
-  if (Status s = write_volume_mesh(vm, args.output); !s.ok()) {
+  if (Status s = write_volume_mesh(vm, args.output, args.patch_names); !s.ok()) {
     std::cerr << "anitet recover: cannot write '" << args.output << "': " << s.message() << "\n";
     return kExitReadError;
   }
@@ -43,21 +44,41 @@ int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
 
 }  // namespace
 
-int run_mesh(const MeshArgs& args) {
+int check_output_path(const MeshArgs& args) {
+  if (Status s = check_writable_volume_path(args.output); !s.ok()) {
+    std::cerr << "anitet " << args.command << ": cannot write '" << args.output << "': " << s.message() << "\n";
+    return s.code() == Error::NotImplemented ? kExitNotImplemented : kExitUsage;
+  }
+  return kExitOk;
+}
+
+int check_patch_names(MeshArgs& args, const SurfaceMesh& surface, const std::vector<int32_t>& extra_labels) {
+  if (args.patch_names_spec.empty()) return kExitOk;
+  const std::string cmd = "anitet " + args.command;
+  Result<PatchNames> names = parse_patch_names(args.patch_names_spec);
+  if (!names.ok()) {
+    std::cerr << cmd << ": --patch-names: " << names.status().message() << "\n";
+    return kExitUsage;
+  }
+  std::set<int32_t> labels(surface.patch.begin(), surface.patch.end());
+  labels.insert(extra_labels.begin(), extra_labels.end());
+  for (const auto& [label, name] : names.value()) {
+    if (!labels.count(label)) {
+      std::cerr << cmd << ": --patch-names: no triangle of '" << args.input << "' has the patch label " << label
+                << " (named '" << name << "')\n";
+      return kExitUsage;
+    }
+  }
+  args.patch_names = std::move(names).value();
+  return kExitOk;
+}
+
+int run_mesh(MeshArgs& args) {
   // A bad output name is a usage error, found before any work.
-  Result<VolumeFormat> format = volume_format_from_path(args.output);
-  if (!format.ok()) {
-    std::cerr << "anitet " << args.command << ": cannot write '" << args.output
-              << "': " << format.status().message() << "\n";
-    return kExitUsage;
-  }
-  if (format.value() == VolumeFormat::TetGen) {
-    std::cerr << "anitet " << args.command << ": cannot write '" << args.output
-              << "': output formats are .mesh, .msh and .vtu\n";
-    return kExitUsage;
-  }
+  if (const int code = check_output_path(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate(args.command, args.input, checked); code != kExitOk) return code;
+  if (const int code = check_patch_names(args, checked.surface); code != kExitOk) return code;
   if (!args.quiet) {
     std::cout << "anitet " << args.command << ": '" << args.input << "' is a valid surface ("
               << checked.surface.num_vertices() << " vertices, " << checked.surface.num_triangles()

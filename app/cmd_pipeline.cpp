@@ -60,10 +60,12 @@ int exit_code_of(Error e) {
 
 }  // namespace
 
-int run_mesh_pipeline(const MeshArgs& args) {
+int run_mesh_pipeline(MeshArgs& args) {
   const std::string cmd = "anitet mesh";
+  if (const int code = check_output_path(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
+  if (const int code = check_patch_names(args, checked.surface); code != kExitOk) return code;
 
   // --geodetic: the surface to a local frame in metres (validated again there: the checks are
   // geometric), the mesh back to longitude, latitude, height at the end with --geodetic-output.
@@ -149,7 +151,7 @@ int run_mesh_pipeline(const MeshArgs& args) {
   // surface bit for bit.
   if (!input_xyz.empty() && r.mesh.xyz.size() >= input_xyz.size())
     std::copy(input_xyz.begin(), input_xyz.end(), r.mesh.xyz.begin());
-  if (Status st = write_volume_mesh(r.mesh, args.output); !st.ok()) {
+  if (Status st = write_volume_mesh(r.mesh, args.output, args.patch_names); !st.ok()) {
     std::cerr << cmd << ": cannot write '" << args.output << "': " << st.message() << "\n";
     return kExitReadError;
   }
@@ -168,7 +170,7 @@ int run_mesh_pipeline(const MeshArgs& args) {
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
         {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range}}},
-        {"boundary_layer", {{"layers", bl.layers}, {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
+        {"boundary_layer", {{"layers", bl.layers},  {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
                             {"vertices", bl.vertices}, {"full_columns", bl.full_columns},
                             {"nominal_columns", bl.nominal_columns}, {"reduced_vertices", bl.reduced_vertices},
                             {"reduced_share", r.layers.bl_reduced_share},

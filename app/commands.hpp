@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "core/surface_mesh.hpp"
+#include "io/patch_names.hpp"
 #include "metric_options.hpp"
 
 namespace anitet::cli {
@@ -48,11 +50,20 @@ struct MeshArgs {
   bool no_refine = false;               // skip refinement/coarsening (stage 3b)
   bool no_optimize = false;             // skip CVT, flips and sliver removal (stage 3c)
   MetricCliOptions metric;              // --metric, --hmin/--hmax/--hgrad, --geodetic, ... (mesh)
+  std::string patch_names_spec;         // --patch-names "1=wall,2=farfield"
+  PatchNames patch_names;               // parsed by check_output_options
 };
-int run_mesh(const MeshArgs& args);
+int run_mesh(MeshArgs& args);
+// Before any work: the output's format can be written. Returns kExitOk, or after printing the
+// reason kExitUsage (kExitNotImplemented for .cgns/.exo in a build without the library).
+int check_output_path(const MeshArgs& args);
+// After reading the surface: --patch-names parses and names only labels that `surface` has (or
+// one of `extra_labels`, e.g. the S1 patch of --stop-after layers). Fills args.patch_names.
+// Returns kExitOk, or kExitUsage after printing the reason.
+int check_patch_names(MeshArgs& args, const SurfaceMesh& surface, const std::vector<int32_t>& extra_labels = {});
 // `mesh`: the whole pipeline (cmd_pipeline.cpp).
-int run_mesh_pipeline(const MeshArgs& args);
+int run_mesh_pipeline(MeshArgs& args);
 // `mesh --stop-after layers`: stage 1 alone (cmd_layers.cpp).
-int run_mesh_layers(const MeshArgs& args);
+int run_mesh_layers(MeshArgs& args);
 
 }  // namespace anitet::cli

@@ -70,8 +70,17 @@ int run(int argc, char** argv) {
       "recover", "Delaunay mesh of the surface's points with the surface recovered conformingly (Steiner points on it)");
   for (auto [cmd, args] : {std::pair{mesh_cmd, &mesh}, std::pair{recover_cmd, &recover}}) {
     cmd->add_option("IN", args->input, "Closed surface file")->required();
-    cmd->add_option("-o,--output", args->output, "Output mesh (.mesh .msh .vtu)")->required();
+    cmd->add_option("-o,--output", args->output,
+                    "Output mesh: .mesh .msh .vtu, or for solvers .su2 (SU2), .cgns (CGNS), .exo/.e "
+                    "(Exodus II), or a directory path ending in polyMesh (OpenFOAM, e.g. CASE/constant/polyMesh)")
+        ->required();
     cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+    cmd->add_option("--patch-names", args->patch_names_spec,
+                    "Names of the input's patch labels in the output, LABEL=NAME,... (e.g. 1=wall,2=farfield); "
+                    "unnamed labels are patch<label>. A name is 1-32 letters, digits or '_', starting with a "
+                    "letter. Used as SU2 markers, OpenFOAM patches, CGNS and Exodus names, Gmsh physical names "
+                    "(Medit: comments). A name containing 'farfield' or 'symmetry' (any case) sets the CGNS BC "
+                    "(BCFarfield, BCSymmetryPlane) and OpenFOAM patch type (patch, symmetry); others are walls");
   }
   mesh_cmd->add_option("--stop-after", mesh.stop_after,
                        "Stop after a stage and write its result: 'layers' writes T1 (stage 1) to the "

@@ -57,11 +57,11 @@ Result<PatchNames> parse_patch_names(const std::string& spec) {
     start = comma + 1;
     if (item.empty()) {
       if (comma == spec.size() && !names.empty()) break;  // a trailing comma
-      return Status(Error::InvalidArgument, "patch names '" + spec + "': empty item (expected LABEL=NAME,...)");
+      return Status(Error::InvalidArgument, "'" + spec + "': empty item (expected LABEL=NAME,...)");
     }
     const size_t eq = item.find('=');
     if (eq == std::string::npos) {
-      return Status(Error::InvalidArgument, "patch names: '" + item + "' is not LABEL=NAME");
+      return Status(Error::InvalidArgument, "'" + item + "' is not LABEL=NAME");
     }
     const std::string label_text = trim(item.substr(0, eq)), name = trim(item.substr(eq + 1));
     int32_t label = 0;
@@ -69,17 +69,17 @@ Result<PatchNames> parse_patch_names(const std::string& spec) {
     const char* last = first + label_text.size();
     auto [ptr, ec] = std::from_chars(first, last, label);
     if (label_text.empty() || ec != std::errc() || ptr != last) {
-      return Status(Error::InvalidArgument, "patch names: '" + item + "': '" + label_text +
+      return Status(Error::InvalidArgument, "'" + item + "': '" + label_text +
                                                 "' is not an integer patch label");
     }
     if (Status s = check_patch_name(name); !s.ok()) {
-      return Status(Error::InvalidArgument, "patch names: '" + item + "': " + s.message());
+      return Status(Error::InvalidArgument, "'" + item + "': " + s.message());
     }
     if (names.count(label)) {
-      return Status(Error::InvalidArgument, "patch names: label " + label_text + " is named twice");
+      return Status(Error::InvalidArgument, "label " + label_text + " is named twice");
     }
     if (!seen.insert(name).second) {
-      return Status(Error::InvalidArgument, "patch names: the name '" + name + "' is given twice");
+      return Status(Error::InvalidArgument, "the name '" + name + "' is given twice");
     }
     names[label] = name;
   }
