@@ -98,7 +98,7 @@ int run_mesh_layers(MeshArgs& args) {
   options.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
   if (!args.bl_patches.empty()) {
     if (!(args.bl_first_height > 0.0)) {
-      std::cerr << cmd << ": --bl-patches needs --bl-first-height\n";
+      std::cerr << cmd << ": --bl-patches needs --bl-first-height (or --bl-yplus)\n";
       return kExitUsage;
     }
     options.boundary_layer.wall_patches.assign(args.bl_patches.begin(), args.bl_patches.end());

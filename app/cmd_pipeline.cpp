@@ -88,7 +88,7 @@ int run_mesh_pipeline(MeshArgs& args) {
   options.layers.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
   if (!args.bl_patches.empty()) {
     if (!(args.bl_first_height > 0.0)) {
-      std::cerr << cmd << ": --bl-patches needs --bl-first-height\n";
+      std::cerr << cmd << ": --bl-patches needs --bl-first-height (or --bl-yplus)\n";
       return kExitUsage;
     }
     BoundaryLayerOptions& bl = options.layers.boundary_layer;
@@ -170,7 +170,7 @@ int run_mesh_pipeline(MeshArgs& args) {
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
         {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range}}},
-        {"boundary_layer", {{"layers", bl.layers},  {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
+        {"boundary_layer", {{"layers", bl.layers}, {"first_height", args.bl_first_height}, {"yplus", args.bl_yplus}, {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
                             {"vertices", bl.vertices}, {"full_columns", bl.full_columns},
                             {"nominal_columns", bl.nominal_columns}, {"reduced_vertices", bl.reduced_vertices},
                             {"reduced_share", r.layers.bl_reduced_share},

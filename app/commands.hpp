@@ -43,7 +43,10 @@ struct MeshArgs {
   int layers = 2;                       // stage 1 layer count
   std::string layer_scheme = "push";    // "push" (prism layers) or "faces" (the paper's)
   std::vector<int> bl_patches;          // boundary-layer walls (patch labels); empty: none
-  double bl_first_height = 0.0;         // h0
+  double bl_first_height = 0.0;         // h0 (given, or from --bl-yplus)
+  double bl_yplus = 0.0;                // y+ of the first layer (0: not given)
+  double bl_reynolds = 0.0;             // Reynolds number on bl_ref_length, for bl_yplus
+  double bl_ref_length = 0.0;           // reference length of bl_reynolds
   double bl_growth = 1.2;               // r
   int bl_layers = 10;                   // n
   double size = 1.0;                    // global scale of the sizing field (2: twice as coarse)

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "layers/layers.hpp"
 
 namespace {
 
@@ -102,9 +103,28 @@ int run(int argc, char** argv) {
                        "and optimization) and get region bodies + body (1 for one body)")
       ->delimiter(',')
       ->group(bl_group);
-  mesh_cmd->add_option("--bl-first-height", mesh.bl_first_height,
-                       "First layer height h0 (length units; needed with --bl-patches)")
+  CLI::Option* first_height_opt =
+      mesh_cmd->add_option("--bl-first-height", mesh.bl_first_height,
+                           "First layer height h0 (length units; needed with --bl-patches unless --bl-yplus gives it)")
+          ->check(CLI::PositiveNumber)
+          ->group(bl_group);
+  CLI::Option* reynolds_opt =
+      mesh_cmd->add_option("--bl-reynolds", mesh.bl_reynolds, "Reynolds number Re = U L / nu, for --bl-yplus")
+          ->check(CLI::PositiveNumber)
+          ->group(bl_group);
+  CLI::Option* ref_length_opt =
+      mesh_cmd->add_option("--bl-ref-length", mesh.bl_ref_length,
+                           "Reference length L of --bl-reynolds (length units), for --bl-yplus")
+          ->check(CLI::PositiveNumber)
+          ->group(bl_group);
+  mesh_cmd->add_option("--bl-yplus", mesh.bl_yplus,
+                       "Target y+ of the first layer: h0 from the flat-plate estimate Cf = 0.026 Re^(-1/7), "
+                       "h0 = y+ L / (Re sqrt(Cf/2)); needs --bl-reynolds and --bl-ref-length, excludes "
+                       "--bl-first-height; the h0 used is printed")
       ->check(CLI::PositiveNumber)
+      ->needs(reynolds_opt)
+      ->needs(ref_length_opt)
+      ->excludes(first_height_opt)
       ->group(bl_group);
   mesh_cmd->add_option("--bl-growth", mesh.bl_growth, "Growth ratio r: layer i has height h0 r^i")
       ->capture_default_str()
@@ -139,6 +159,18 @@ int run(int argc, char** argv) {
     return kExitUsage;
   }
 
+  if (mesh_cmd->parsed() && mesh.bl_yplus > 0.0) {
+    anitet::Result<double> h0 = anitet::first_height_from_yplus(mesh.bl_yplus, mesh.bl_reynolds, mesh.bl_ref_length);
+    if (!h0.ok()) {
+      std::cerr << "anitet mesh: --bl-yplus: " << h0.status().message() << "\n";
+      return kExitUsage;
+    }
+    mesh.bl_first_height = h0.value();
+    if (!mesh.quiet && !mesh.json)
+      std::cout << "anitet mesh: --bl-yplus " << mesh.bl_yplus << " at Re " << mesh.bl_reynolds << ", L "
+                << mesh.bl_ref_length << ": first height h0 = " << mesh.bl_first_height
+                << " (flat plate: Cf = 0.026 Re^(-1/7), h0 = y+ L / (Re sqrt(Cf/2)))\n";
+  }
   if (check_cmd->parsed()) return run_check_surface(check);
   if (quality_cmd->parsed()) return run_quality(quality);
   if (mesh_cmd->parsed() && mesh.stop_after == "layers" &&

@@ -114,6 +114,12 @@ struct BoundaryLayerOptions {
   bool enabled() const { return !wall_patches.empty(); }
 };
 
+// The first-layer height for a target y+ by the flat-plate estimate: skin friction
+// Cf = 0.026 Re^(-1/7), friction velocity u_tau = U sqrt(Cf / 2), so
+// h0 = y+ nu / u_tau = y+ L / (Re sqrt(Cf / 2)) with Re = U L / nu on the reference length L.
+// Error::InvalidArgument unless all three are positive and finite.
+Result<double> first_height_from_yplus(double yplus, double reynolds, double ref_length);
+
 struct LayersOptions {
   int layers = 2;  // 1 or more
   LayerScheme scheme = LayerScheme::kPushOnly;
