@@ -83,6 +83,10 @@ Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNa
   const int fn = file.fn();
   int base = 0, zone = 0, index = 0;
   if (cg_base_write(fn, "Base", 3, 3, &base) != CG_OK) return file.error("cg_base_write");
+  // The coordinates are dimensional in units anitet does not know: NormalizedByUnknownDimensional
+  // (SIDS), set on the base so that every array below inherits it.
+  if (cg_goto(fn, base, "end") != CG_OK) return file.error("cg_goto");
+  if (cg_dataclass_write(CGNS_ENUMV(NormalizedByUnknownDimensional)) != CG_OK) return file.error("cg_dataclass_write");
   const cgsize_t size[3] = {cgsize_t(nv), cgsize_t(nt), 0};
   if (cg_zone_write(fn, base, "Zone1", size, CGNS_ENUMV(Unstructured), &zone) != CG_OK) {
     return file.error("cg_zone_write");
@@ -93,6 +97,12 @@ Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNa
     for (size_t v = 0; v < nv; ++v) coord[v] = mesh.xyz[3 * v + size_t(k)];
     if (cg_coord_write(fn, base, zone, CGNS_ENUMV(RealDouble), coord_names[k], coord.data(), &index) != CG_OK) {
       return file.error("cg_coord_write");
+    }
+    // A length: exponents of mass, length, time, temperature, angle.
+    const double length[5] = {0.0, 1.0, 0.0, 0.0, 0.0};
+    if (cg_goto(fn, base, "Zone_t", zone, "GridCoordinates_t", 1, "DataArray_t", index, "end") != CG_OK ||
+        cg_exponents_write(CGNS_ENUMV(RealDouble), length) != CG_OK) {
+      return file.error("cg_exponents_write");
     }
   }
   std::vector<cgsize_t> conn(4 * nt);
