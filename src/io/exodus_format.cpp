@@ -118,7 +118,9 @@ Status write_exodus(const VolumeMesh& mesh, const std::string& path, const Patch
   std::vector<int> conn;
   for (const auto& [label, tets] : blocks) {
     const int32_t block = block_ids.at(label);
-    rc = ex_put_block(id, EX_ELEM_BLOCK, block, "TETRA4", int64_t(tets.size()), 4, 0, 0, 0);
+    // "TETRA" with 4 nodes per element: the Exodus II manual's name for the linear tet. ("TETRA4"
+    // means the same to SEACAS and ParaView, but Debian 12's meshio 5.0 cannot read it.)
+    rc = ex_put_block(id, EX_ELEM_BLOCK, block, "TETRA", int64_t(tets.size()), 4, 0, 0, 0);
     if (rc < 0) return file.error("ex_put_block", rc);
     conn.clear();
     for (uint32_t t : tets) {

@@ -123,7 +123,7 @@ Status write_openfoam(const VolumeMesh& mesh, const std::string& dir, const Patc
 // CGNS.
 Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names = {});
 
-// Exodus II: one TETRA4 element block per region (id = the label when all are positive, else
+// Exodus II: one TETRA element block (4 nodes per element) per region (id = the label when all are positive, else
 // 1, 2, ..., named region<label>), elements numbered block by block; one side set per patch
 // (id by the same rule, named after the patch) listing element and Exodus side number (1 = nodes
 // 1 2 4, 2 = 2 3 4, 3 = 1 4 3, 4 = 1 3 2). Every boundary triangle must be a face of a tet
