@@ -310,7 +310,10 @@ ANITET_API int anitet_mesh_create(const double* xyz, int64_t num_points, const i
 ANITET_API int anitet_mesh_read(const char* path, anitet_mesh** out);
 /** Frees a mesh; NULL is accepted. */
 ANITET_API void anitet_mesh_destroy(anitet_mesh* mesh);
-/** Writes .mesh (Medit), .msh (Gmsh 4.1) or .vtu by extension. */
+/** Writes by extension: .mesh (Medit), .msh (Gmsh 4.1), .vtu, or for solvers .su2, .cgns,
+ *  .exo/.e (Exodus II) and a path ending in polyMesh (an OpenFOAM polyMesh directory); the
+ *  boundary patches are named patch<label> (the ABI cannot name them yet). NOT_IMPLEMENTED for
+ *  .cgns or .exo when the library was built without CGNS or Exodus II. */
 ANITET_API int anitet_mesh_write(const anitet_mesh* mesh, const char* path);
 /** Writes the per-vertex metric as a Medit .sol. INVALID_ARGUMENT when the mesh has none. */
 ANITET_API int anitet_mesh_write_metric(const anitet_mesh* mesh, const char* path);

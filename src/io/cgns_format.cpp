@@ -31,20 +31,20 @@ CGNS_ENUMT(BCType_t) cgns_bc_type(PatchKind kind) {
   return CGNS_ENUMV(BCWall);
 }
 
-// Closes the file on every path; the file is removed when the write did not finish.
+// Closes the file on every path; a file it created is removed when the write did not finish.
 class CgnsFile {
  public:
   explicit CgnsFile(std::string path) : path_(std::move(path)) {}
   ~CgnsFile() {
     if (open_) cg_close(fn_);
-    if (!done_) std::remove(path_.c_str());
+    if (created_ && !done_) std::remove(path_.c_str());
   }
   CgnsFile(const CgnsFile&) = delete;
   CgnsFile& operator=(const CgnsFile&) = delete;
 
   Status open() {
     if (cg_open(path_.c_str(), CG_MODE_WRITE, &fn_) != CG_OK) return error("cg_open");
-    open_ = true;
+    open_ = created_ = true;
     return Status::success();
   }
   Status close() {
@@ -54,14 +54,14 @@ class CgnsFile {
     return Status::success();
   }
   Status error(const char* call) const {
-    return Status(Error::FileNotFound, "cannot write '" + path_ + "': " + call + ": " + cg_get_error());
+    return Status(Error::FileNotFound, path_ + ": " + call + ": " + cg_get_error());
   }
   int fn() const { return fn_; }
 
  private:
   std::string path_;
   int fn_ = -1;
-  bool open_ = false, done_ = false;
+  bool open_ = false, created_ = false, done_ = false;
 };
 
 }  // namespace

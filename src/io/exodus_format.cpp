@@ -9,6 +9,7 @@
 #include <exodusII.h>
 
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <utility>
@@ -22,13 +23,13 @@ bool exodus_available() { return true; }
 
 namespace {
 
-// Closes the file on every path; the file is removed when the write did not finish.
+// Closes the file on every path; a file it created is removed when the write did not finish.
 class ExodusFile {
  public:
   explicit ExodusFile(std::string path) : path_(std::move(path)) {}
   ~ExodusFile() {
     if (id_ >= 0) ex_close(id_);
-    if (!done_) std::remove(path_.c_str());
+    if (created_ && !done_) std::remove(path_.c_str());
   }
   ExodusFile(const ExodusFile&) = delete;
   ExodusFile& operator=(const ExodusFile&) = delete;
@@ -37,6 +38,7 @@ class ExodusFile {
     int cpu_word_size = sizeof(double), io_word_size = sizeof(double);
     id_ = ex_create(path_.c_str(), EX_CLOBBER, &cpu_word_size, &io_word_size);
     if (id_ < 0) return error("ex_create", id_);
+    created_ = true;
     return Status::success();
   }
   Status close() {
@@ -47,15 +49,19 @@ class ExodusFile {
     return Status::success();
   }
   Status error(const char* call, int rc) const {
+    // exerrval: an errno value (> 0) or a netCDF/Exodus code (< 0). (nc_strerror would need
+    // the netCDF build Exodus links, which Debian does not expose.)
+    const int code = exerrval;
+    const std::string why = code > 0 ? std::strerror(code) : "netCDF/Exodus code " + std::to_string(code);
     return Status(Error::FileNotFound,
-                  "cannot write '" + path_ + "': " + call + " failed (Exodus error " + std::to_string(rc) + ")");
+                  path_ + ": " + call + " failed (Exodus error " + std::to_string(rc) + ": " + why + ")");
   }
   int id() const { return id_; }
 
  private:
   std::string path_;
   int id_ = -1;
-  bool done_ = false;
+  bool created_ = false, done_ = false;
 };
 
 }  // namespace

@@ -432,6 +432,21 @@ TEST(OpenFoam, RefusesBoundaryFacesOutsideEveryPatch) {
   EXPECT_NE(pm.status().message().find("internal face"), std::string::npos) << pm.status().message();
 }
 
+TEST(SolverFormats, WriteFailuresNameTheFile) {
+  const VolumeMesh m = grid_mesh(1, 8);
+  const std::string parent = test::temp_dir() + "/a_file";  // a file where a directory is needed
+  ASSERT_TRUE(write_file_bytes(parent, "x").ok());
+  std::vector<std::string> paths = {parent + "/x.su2", parent + "/case/constant/polyMesh"};
+  if (cgns_available()) paths.push_back(parent + "/x.cgns");
+  if (exodus_available()) paths.push_back(parent + "/x.exo");
+  for (const std::string& path : paths) {
+    const Status s = write_volume_mesh(m, path);
+    EXPECT_EQ(s.code(), Error::FileNotFound) << path << ": " << s.message();
+    EXPECT_NE(s.message().find(parent), std::string::npos) << s.message();
+  }
+  EXPECT_EQ(test::load(parent), "x");  // untouched
+}
+
 TEST(SolverFormats, ReadersSayTheyOnlyWrite) {
   for (const char* path : {"x.su2", "x.cgns", "x.exo", "x.e", "case/constant/polyMesh", "case/constant/polyMesh/"}) {
     Result<VolumeMesh> r = read_volume_mesh(path);
