@@ -134,7 +134,11 @@ Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_nam
       if (u == t) return Status(Error::InvalidMesh, "tet " + std::to_string(t) + " has two equal faces");
       if (u > t) upper[size_t(count++)] = {static_cast<uint32_t>(u), f};
     }
-    std::sort(upper.begin(), upper.begin() + count);
+    // By neighbour; at most 4 items (insertion sort: std::sort on this small array trips GCC 12's
+    // -Warray-bounds under the sanitizers).
+    for (int i = 1; i < count; ++i) {
+      for (int j = i; j > 0 && upper[size_t(j)] < upper[size_t(j - 1)]; --j) std::swap(upper[size_t(j)], upper[size_t(j - 1)]);
+    }
     for (int i = 0; i < count; ++i) {
       push_face(t, upper[size_t(i)].second);
       pm.neighbour.push_back(upper[size_t(i)].first);
