@@ -159,4 +159,56 @@ bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int 
   return replace(mesh, ring.tets, fresh, created);
 }
 
+// Makes (u w) an edge by one flip, when one does it: a 2-3 flip of the facet opposite u in a tet
+// whose neighbour there has apex w, or the removal of an edge of such a facet whose ring holds w.
+bool flip_in_edge(TetMesh& mesh, uint32_t u, uint32_t w, const std::vector<uint32_t>& ball,
+                  std::vector<uint32_t>& created) {
+  const std::vector<uint32_t> tets = ball;  // the flips change the mesh under it
+  EdgeRing ring;
+  const uint32_t want[2] = {u, w};
+  for (uint32_t t : tets) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+    int i = 0;
+    while (mesh.vertex(t, i) != u) ++i;
+    const uint64_t adj = mesh.tet_adj[4 * size_t(t) + i];
+    if (adj == TetMesh::kNoNeighbour) continue;
+    const uint32_t n = static_cast<uint32_t>(adj >> 2);
+    if (!mesh.is_ghost(n) && mesh.vertex(n, static_cast<int>(adj & 3)) == w) {
+      if (flip23(mesh, t, i, &created)) return true;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t p = mesh.vertex(t, kFacetVertex[i][k]), q = mesh.vertex(t, kFacetVertex[i][(k + 1) % 3]);
+      if (!edge_ring(mesh, t, p, q, ring)) continue;
+      if (std::find(ring.link.begin(), ring.link.end(), w) == ring.link.end()) continue;
+      if (remove_edge(mesh, ring, want, 2, &created)) return true;
+    }
+  }
+  return false;
+}
+
+// Makes triangle (a b c), whose edges are present, a facet by removing one edge whose ring holds
+// all three (the 3-2 flip when the ring is just a b c).
+bool flip_in_face(TetMesh& mesh, uint32_t a, uint32_t b, uint32_t c, const std::vector<uint32_t>& ball,
+                  std::vector<uint32_t>& created) {
+  const std::vector<uint32_t> tets = ball;  // the flips change the mesh under it
+  EdgeRing ring;
+  const uint32_t want[3] = {a, b, c};
+  for (uint32_t t : tets) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+    int i = 0;
+    while (mesh.vertex(t, i) != a) ++i;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t p = mesh.vertex(t, kFacetVertex[i][k]), q = mesh.vertex(t, kFacetVertex[i][(k + 1) % 3]);
+      if (p == b || p == c || q == b || q == c) continue;
+      if (!edge_ring(mesh, t, p, q, ring)) continue;
+      const auto has = [&](uint32_t v) { return std::find(ring.link.begin(), ring.link.end(), v) != ring.link.end(); };
+      if (!has(b) || !has(c)) continue;
+      if (remove_edge(mesh, ring, want, 3, &created)) return true;
+    }
+  }
+  return false;
+}
+
+
 }  // namespace anitet

@@ -42,4 +42,15 @@ bool flip23(TetMesh& mesh, uint32_t t, int facet, std::vector<uint32_t>* created
 bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int want_n,
                  std::vector<uint32_t>* created = nullptr);
 
+// Makes (u w) an edge by one flip, when one does: a 2-3 flip of the facet opposite u in a tet
+// whose neighbour there has apex w, or the removal of an edge of such a facet whose ring holds w.
+// `ball` holds the tets around u. On success `created` lists the new tets.
+bool flip_in_edge(TetMesh& mesh, uint32_t u, uint32_t w, const std::vector<uint32_t>& ball,
+                  std::vector<uint32_t>& created);
+
+// Makes triangle (a b c), whose edges are present, a facet by removing one edge whose ring holds
+// all three (the 3-2 flip when the ring is just a b c). `ball` holds the tets around a.
+bool flip_in_face(TetMesh& mesh, uint32_t a, uint32_t b, uint32_t c, const std::vector<uint32_t>& ball,
+                  std::vector<uint32_t>& created);
+
 }  // namespace anitet

@@ -271,69 +271,24 @@ void Recoverer::note_tets(const std::vector<uint32_t>& tets) {
     for (int k = 0; k < 4; ++k) vert_tet_[mesh_.vertex(t, k)] = t;
 }
 
-// Makes (u w) an edge by one flip, when one does it: a 2-3 flip of the facet opposite u in a tet
-// whose neighbour there has apex w, or the removal of an edge of such a facet whose ring holds w.
+// Makes (u w) an edge by one flip (local_flips.hpp's flip_in_edge).
 bool Recoverer::flip_edge(uint32_t u, uint32_t w) {
   ball(u, scratch_);
-  const std::vector<uint32_t> tets = scratch_;
-  EdgeRing ring;
   std::vector<uint32_t> created;
-  const uint32_t want[2] = {u, w};
-  for (uint32_t t : tets) {
-    if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
-    int i = 0;
-    while (mesh_.vertex(t, i) != u) ++i;
-    const uint64_t adj = mesh_.tet_adj[4 * size_t(t) + i];
-    if (adj == kNoNeighbour) continue;
-    const uint32_t n = static_cast<uint32_t>(adj >> 2);
-    if (!mesh_.is_ghost(n) && mesh_.vertex(n, static_cast<int>(adj & 3)) == w) {
-      if (flip23(mesh_, t, i, &created)) {
-        note_tets(created);
-        ++out_.stats.flips;
-        return true;
-      }
-      continue;
-    }
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t p = mesh_.vertex(t, kFacetVertex[i][k]), q = mesh_.vertex(t, kFacetVertex[i][(k + 1) % 3]);
-      if (!edge_ring(mesh_, t, p, q, ring)) continue;
-      if (std::find(ring.link.begin(), ring.link.end(), w) == ring.link.end()) continue;
-      if (remove_edge(mesh_, ring, want, 2, &created)) {
-        note_tets(created);
-        ++out_.stats.flips;
-        return true;
-      }
-    }
-  }
-  return false;
+  if (!flip_in_edge(mesh_, u, w, scratch_, created)) return false;
+  note_tets(created);
+  ++out_.stats.flips;
+  return true;
 }
 
-// Makes triangle (a b c), whose edges are present, a facet by removing one edge whose ring holds
-// all three (the 3-2 flip when the ring is just a b c).
+// Makes triangle (a b c), whose edges are present, a facet by one edge removal.
 bool Recoverer::flip_face(uint32_t a, uint32_t b, uint32_t c) {
   ball(a, scratch_);
-  const std::vector<uint32_t> tets = scratch_;
-  EdgeRing ring;
   std::vector<uint32_t> created;
-  const uint32_t want[3] = {a, b, c};
-  for (uint32_t t : tets) {
-    if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
-    int i = 0;
-    while (mesh_.vertex(t, i) != a) ++i;
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t p = mesh_.vertex(t, kFacetVertex[i][k]), q = mesh_.vertex(t, kFacetVertex[i][(k + 1) % 3]);
-      if (p == b || p == c || q == b || q == c) continue;
-      if (!edge_ring(mesh_, t, p, q, ring)) continue;
-      const auto has = [&](uint32_t v) { return std::find(ring.link.begin(), ring.link.end(), v) != ring.link.end(); };
-      if (!has(b) || !has(c)) continue;
-      if (remove_edge(mesh_, ring, want, 3, &created)) {
-        note_tets(created);
-        ++out_.stats.flips;
-        return true;
-      }
-    }
-  }
-  return false;
+  if (!flip_in_face(mesh_, a, b, c, scratch_, created)) return false;
+  note_tets(created);
+  ++out_.stats.flips;
+  return true;
 }
 
 // One sweep over all subsegments; returns how many were missing.
