@@ -9,12 +9,19 @@
 
 namespace anitet::cli {
 
+RecoveryOptions recovery_options(const MeshArgs& args) {
+  RecoveryOptions o;
+  o.split_constraints = args.recovery != "fuzzy";
+  o.fuzzy_faces = args.recovery != "split";
+  return o;
+}
+
 namespace {
 
 // `anitet recover`: the conforming Delaunay tetrahedralization of the surface (stage 2 alone);
 // the boundary triangles written are the recovered surface S2 with the input's patch labels.
 int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
-  Result<RecoveryOutput> r = recover_boundary(checked.surface);
+  Result<RecoveryOutput> r = recover_boundary(checked.surface, recovery_options(args));
   if (!r.ok()) {
     std::cerr << "anitet recover: '" << args.input << "': " << r.status().message() << "\n";
     return kExitInternal;

@@ -85,6 +85,7 @@ int run_mesh_pipeline(MeshArgs& args) {
 
   MesherOptions options;
   options.layers.layers = args.layers;
+  options.recovery = recovery_options(args);
   options.layers.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
   if (!args.bl_patches.empty()) {
     if (!(args.bl_first_height > 0.0)) {

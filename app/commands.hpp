@@ -7,6 +7,7 @@
 
 #include "core/surface_mesh.hpp"
 #include "io/patch_names.hpp"
+#include "recovery/recovery.hpp"
 #include "metric_options.hpp"
 
 namespace anitet::cli {
@@ -53,10 +54,13 @@ struct MeshArgs {
   bool no_refine = false;               // skip refinement/coarsening (stage 3b)
   bool no_optimize = false;             // skip CVT, flips and sliver removal (stage 3c)
   MetricCliOptions metric;              // --metric, --hmin/--hmax/--hgrad, --geodetic, ... (mesh)
+  std::string recovery = "all";         // stage 2 strategies: all (split, then fuzzy), split, fuzzy
   std::string patch_names_spec;         // --patch-names "1=wall,2=farfield"
   PatchNames patch_names;               // parsed by check_output_options
 };
 int run_mesh(MeshArgs& args);
+// The recovery options --recovery asks for.
+RecoveryOptions recovery_options(const MeshArgs& args);
 // Before any work: the output's format can be written. Returns kExitOk, or after printing the
 // reason kExitUsage (kExitNotImplemented for .cgns/.exo in a build without the library).
 int check_output_path(const MeshArgs& args);

@@ -76,6 +76,12 @@ int run(int argc, char** argv) {
                     "(Exodus II), or a directory path ending in polyMesh (OpenFOAM, e.g. CASE/constant/polyMesh)")
         ->required();
     cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+    cmd->add_option("--recovery", args->recovery,
+                    "Stage 2 recovery strategies: all (split constraints, then the fuzzy-face ones when it "
+                    "fails), split (split constraints only: fast, every decision combinatorial) or fuzzy "
+                    "(the fuzzy-face strategies only)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"all", "split", "fuzzy"}));
     cmd->add_option("--patch-names", args->patch_names_spec,
                     "Names of the input's patch labels in the output, LABEL=NAME,... (e.g. 1=wall,2=farfield); "
                     "unnamed labels are patch<label>. A name is 1-32 letters, digits or '_', starting with a "
