@@ -49,6 +49,7 @@ struct RecoveryOptions {
   bool fuzzy_faces = true;
   double split_max_seconds = 30;     // its own wall-time cap (the fallbacks get max_seconds each)
   double split_max_steiner_per_face = 6;  // and Steiner cap (+ 1000): its successes need ~1
+  bool split_flips = true;           // a missing input-edge subsegment: one flip before a split
   // A boundary subsegment of a face that no subface uses gets a face point just inside it even
   // when no coplanar vertex explains the gap.
   bool apex_always = true;

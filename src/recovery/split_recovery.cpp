@@ -10,6 +10,7 @@
 #include "core/tet_ops.hpp"
 #include "delaunay/delaunay.hpp"
 #include "predicates/predicates.hpp"
+#include "recovery/local_flips.hpp"
 #include "recovery/recovery_util.hpp"
 
 namespace anitet::recovery_detail {
@@ -54,6 +55,7 @@ class SplitRecoverer {
   double param_on(uint32_t v, uint32_t e) const;
   uint32_t insert(const double p[3], SteinerHost host, uint32_t host_id, double param, uint32_t hint);
   bool split_edge(uint64_t key);
+  bool flip_in(uint32_t a, uint32_t b);
   bool flip_edge(uint64_t key, bool only_to_mesh);
   bool split_triangle(uint32_t k);
   Status carve();
@@ -230,6 +232,17 @@ uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t ho
   if (host == SteinerHost::kEdge) ++out_.stats.steiner_on_edges;
   else ++out_.stats.steiner_on_faces;
   return r.vertex;
+}
+
+// Makes the missing edge (a b) by one flip (no Steiner point); the mesh is then no longer
+// Delaunay, which the modified kernel accepts.
+bool SplitRecoverer::flip_in(uint32_t a, uint32_t b) {
+  std::vector<uint32_t> created;
+  if (!flip_in_edge(mesh_, a, b, ball(a), created)) return false;
+  for (uint32_t t : created)
+    if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
+  ++out_.stats.flips;
+  return true;
 }
 
 // Splits the missing constraint edge `key` and its two triangles at a new point. On an input
@@ -522,6 +535,7 @@ Status SplitRecoverer::run() {
       if (it == edges_.end() || it->second.input_edge == kNone) continue;
       if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
       ++missing_edges;
+      if (opt_.split_flips && flip_in(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
       split_edge(key);
       if (out_.steiner.size() > cap || ((missing_edges & 255) == 0 && seconds_since(t1) > opt_.split_max_seconds)) break;
     }

@@ -358,6 +358,11 @@ TEST(RecoverySplit, Kitten) { recover_file("kitten.off", split_only(), 3); }
 TEST(RecoverySplit, Elephant) { recover_file("elephant.obj", split_only(), 3); }
 TEST(RecoverySplit, Airplane) { recover_file("airplane.obj", split_only(), 3); }
 TEST(RecoverySplit, BimbaLow) { recover_file("bimba_low.off", split_only(), 3); }
+TEST(RecoverySplit, FemurWithoutFlips) {
+  RecoveryOptions o = split_only();
+  o.split_flips = false;
+  recover_file("femur.off", o, 3);
+}
 // And the fuzzy faces alone (the default's fallback).
 TEST(RecoveryFuzzy, DecimatedKnight) { recover_file("decimated-knight.off", fuzzy_only()); }
 TEST(RecoveryFuzzy, Fandisk) { recover_file("fandisk.off", fuzzy_only()); }
