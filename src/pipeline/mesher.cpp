@@ -145,15 +145,21 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   } else {
     for (int n : layer_counts) attempts.push_back({n, ro});
   }
-  Result<LayersOutput> layers = Status(Error::Internal, "no layer count tried");
+  // Each attempt runs stages 1, 2 and the coupling: a recovered S2 whose subfaces do not all give
+  // positive cones from their T1 apexes (rounding, on slivers) fails the coupling, and the next
+  // attempt is tried as for a recovery failure.
+  const BoundaryLayerOptions& bl = options_.layers.boundary_layer;
+  std::vector<uint32_t> t1_origin;  // kept for the boundary-layer figures (stage 1's vertex ids
+  std::vector<double> t1_xyz;       // survive the later stages)
   Result<RecoveryOutput> recovered = Status(Error::Internal, "no layer count tried");
-  std::vector<uint32_t> s1_map;
+  Result<CoupledMesh> coupled = Status(Error::Internal, "no layer count tried");
   Status first_failure;
+  std::string failed_stage;
   for (size_t attempt = 0; attempt < attempts.size(); ++attempt) {
     auto t = Clock::now();
     LayersOptions layer_options = options_.layers;
     layer_options.layers = attempts[attempt].first;
-    layers = build_layers(surface, sizing, layer_options);
+    Result<LayersOutput> layers = build_layers(surface, sizing, layer_options);
     if (!layers.ok()) return Status(layers.status().code(), "stage 1 (layers): " + layers.status().message());
     result.layers = layers->stats;
     result.layers_retries = attempt;
@@ -162,40 +168,49 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
 
     if (Status st = progress("recovery", kDoneAfterLayers); !st.ok()) return st;
     t = Clock::now();
-    s1_map.clear();
+    std::vector<uint32_t> s1_map;
     const SurfaceMesh s1 = front_surface(layers.value(), &s1_map);
     recovered = recover_boundary(s1, attempts[attempt].second);
     result.stages.push_back({attempt == 0 ? "recovery" : "recovery (retry)", since(t),
                              recovered.ok() ? recovered->stats.tets : 0});
-    if (recovered.ok()) break;
-    if (recovered.status().code() != Error::RecoveryFailed) break;
-    if (attempt == 0) first_failure = recovered.status();
+    if (!recovered.ok()) {
+      if (recovered.status().code() != Error::RecoveryFailed) {
+        first_failure = recovered.status();
+        failed_stage = "stage 2 (recovery of S1): ";
+        break;
+      }
+      if (first_failure.ok()) {
+        first_failure = recovered.status();
+        failed_stage = "stage 2 (recovery of S1): ";
+      }
+      continue;
+    }
+
+    if (bl.enabled()) {
+      t1_origin = layers->vertex_origin;
+      t1_xyz = layers->mesh.xyz;
+    }
+    if (Status st = progress("coupling", kDoneAfterRecovery); !st.ok()) return st;
+    t = Clock::now();
+    coupled = couple_meshes(surface, std::move(layers).value(), s1_map, recovered.value());
+    result.stages.push_back({attempt == 0 ? "coupling" : "coupling (retry)", since(t),
+                             coupled.ok() ? coupled->stats.tets : 0});
+    if (coupled.ok()) break;
+    if (first_failure.ok()) {
+      first_failure = coupled.status();
+      failed_stage = "stage 3 (coupling): ";
+    }
   }
-  if (!recovered.ok()) {
-    const Status& s = first_failure.ok() ? recovered.status() : first_failure;
-    std::string msg = "stage 2 (recovery of S1): " + s.message();
+  if (!coupled.ok()) {
+    std::string msg = failed_stage + first_failure.message();
     if (attempts.size() > 1)
       msg += " (" + std::to_string(attempts.size()) + " attempts: layer counts and recovery strategies)";
-    return Status(s.code(), msg);
+    return Status(first_failure.code(), msg);
   }
   result.recovery = recovered->stats;
-
-  // Kept for the boundary-layer figures (stage 1's vertex ids survive the later stages).
-  const BoundaryLayerOptions& bl = options_.layers.boundary_layer;
-  std::vector<uint32_t> t1_origin;
-  std::vector<double> t1_xyz;
-  if (bl.enabled()) {
-    t1_origin = layers->vertex_origin;
-    t1_xyz = layers->mesh.xyz;
-  }
-
-  if (Status st = progress("coupling", kDoneAfterRecovery); !st.ok()) return st;
-  auto t = Clock::now();
-  Result<CoupledMesh> coupled = couple_meshes(surface, std::move(layers).value(), s1_map, recovered.value());
-  if (!coupled.ok()) return Status(coupled.status().code(), "stage 3 (coupling): " + coupled.status().message());
   result.couple = coupled->stats;
-  result.stages.push_back({"coupling", since(t), coupled->stats.tets});
 
+  auto t = Clock::now();
   TetMesh& mesh = coupled->mesh;
   if (bl.enabled()) result.boundary_layer.vertices = freeze_boundary_layer(mesh, int32_t(coupled->stats.bodies));
   if (options_.run_refine || options_.run_optimize) {
