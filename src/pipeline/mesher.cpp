@@ -170,7 +170,15 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
     t = Clock::now();
     std::vector<uint32_t> s1_map;
     const SurfaceMesh s1 = front_surface(layers.value(), &s1_map);
-    recovered = recover_boundary(s1, attempts[attempt].second);
+    // Every piece of an S1 face must see that face's T1 apex, so that the coupling's cones over
+    // them are positive (split-constraints strategy).
+    RecoveryOptions recovery_options = attempts[attempt].second;
+    recovery_options.face_apex.resize(3 * s1.num_triangles());
+    for (size_t i = 0; i < s1.num_triangles(); ++i) {
+      const uint32_t apex = layers->mesh.vertex(layers->front_tet[i], int(layers->front_facet[i]));
+      std::copy(layers->mesh.point(apex), layers->mesh.point(apex) + 3, &recovery_options.face_apex[3 * i]);
+    }
+    recovered = recover_boundary(s1, recovery_options);
     result.stages.push_back({attempt == 0 ? "recovery" : "recovery (retry)", since(t),
                              recovered.ok() ? recovered->stats.tets : 0});
     if (!recovered.ok()) {

@@ -50,6 +50,11 @@ struct RecoveryOptions {
   double split_max_seconds = 30;     // its own wall-time cap (the fallbacks get max_seconds each)
   double split_max_steiner_per_face = 6;  // and Steiner cap (+ 1000): its successes need ~1
   bool split_flips = true;           // a missing input-edge subsegment: one flip before a split
+  // Optional, 3 per input triangle: a point each piece of that triangle must see on the side its
+  // orientation gives it as the triangle does (the pipeline gives the T1 apex of each S1 face, so
+  // that every cone of the coupling is positive). The split strategy refuses a split or flip
+  // that breaks it and tries another point. Empty: no such guard.
+  std::vector<double> face_apex;
   // A boundary subsegment of a face that no subface uses gets a face point just inside it even
   // when no coplanar vertex explains the gap.
   bool apex_always = true;

@@ -44,6 +44,7 @@ class SplitRecoverer {
 
   Status build_delaunay();
   void build_constraints();
+  Status check_apexes();
   void add_tri(uint32_t a, uint32_t b, uint32_t c, uint32_t face);
   void remove_tri(uint32_t k);
   CEdge& edge_of(uint32_t a, uint32_t b, uint32_t input_edge);
@@ -56,6 +57,7 @@ class SplitRecoverer {
   uint32_t insert(const double p[3], SteinerHost host, uint32_t host_id, double param, uint32_t hint);
   bool split_edge(uint64_t key);
   bool flip_in(uint32_t a, uint32_t b);
+  bool sees_apex(const double* a, const double* b, const double* c, uint32_t face) const;
   bool flip_edge(uint64_t key, bool only_to_mesh);
   bool split_triangle(uint32_t k);
   Status carve();
@@ -81,6 +83,7 @@ class SplitRecoverer {
   std::unordered_map<uint64_t, CEdge> edges_;
   std::vector<uint64_t> edge_keys_;              // sweep order (erased keys are skipped)
 
+  int apex_sign_ = 0;  // the orient3d sign of the input triangles with their face_apex (0: no guard)
   std::vector<uint32_t> ball_, bfs_;
   std::vector<uint32_t> tet_stamp_;
   uint32_t stamp_ = 0;
@@ -154,6 +157,23 @@ void SplitRecoverer::build_constraints() {
       edge_of(a, b, it->second);
     }
   for (uint32_t f = 0; f < nf; ++f) add_tri(S_.tri[3 * f], S_.tri[3 * f + 1], S_.tri[3 * f + 2], f);
+}
+
+Status SplitRecoverer::check_apexes() {
+  if (opt_.face_apex.empty()) return Status::success();
+  const size_t nf = S_.num_triangles();
+  if (opt_.face_apex.size() != 3 * nf)
+    return Status(Error::InvalidArgument, "recover_boundary: face_apex needs 3 coordinates per input triangle");
+  // The side the input triangles see their apexes on; every input triangle must agree.
+  for (uint32_t f = 0; f < nf; ++f) {
+    const int s = predicates::orient3d(S_.point(S_.tri[3 * f]), S_.point(S_.tri[3 * f + 1]),
+                                       S_.point(S_.tri[3 * f + 2]), &opt_.face_apex[3 * size_t(f)]);
+    if (s == 0 || (apex_sign_ != 0 && s != apex_sign_))
+      return Status(Error::InvalidArgument, "recover_boundary: input triangle " + std::to_string(f) +
+                                                " does not see its face_apex on the side the others do");
+    apex_sign_ = s;
+  }
+  return Status::success();
 }
 
 const std::vector<uint32_t>& SplitRecoverer::ball(uint32_t v) {
@@ -234,6 +254,13 @@ uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t ho
   return r.vertex;
 }
 
+// Whether triangle (a b c), a piece of input triangle `face`, sees the face's apex on the side the
+// input triangles do (RecoveryOptions::face_apex; always true without it).
+bool SplitRecoverer::sees_apex(const double* a, const double* b, const double* c, uint32_t face) const {
+  if (apex_sign_ == 0) return true;
+  return predicates::orient3d(a, b, c, &opt_.face_apex[3 * size_t(face)]) == apex_sign_;
+}
+
 // Makes the missing edge (a b) by one flip (no Steiner point); the mesh is then no longer
 // Delaunay, which the modified kernel accepts.
 bool SplitRecoverer::flip_in(uint32_t a, uint32_t b) {
@@ -254,6 +281,20 @@ bool SplitRecoverer::split_edge(uint64_t key) {
   const auto a = uint32_t(key >> 32), b = uint32_t(key & 0xffffffffu);
   uint32_t v = kNone;
   const uint32_t hint = vt_.tet_of(mesh_, a);
+  // The two pieces of each triangle on (a b), split at p, must see their face's apex.
+  auto pieces_see_apex = [&](const double* p) {
+    for (uint32_t k : ce.tri) {
+      if (k == kNone) continue;
+      const Tri& t = ct_[k];
+      int i = 0;
+      while (!((t[i] == a && t[(i + 1) % 3] == b) || (t[i] == b && t[(i + 1) % 3] == a))) ++i;
+      const double* x = mesh_.point(t[i]);
+      const double* y = mesh_.point(t[(i + 1) % 3]);
+      const double* z = mesh_.point(t[(i + 2) % 3]);
+      if (!sees_apex(x, p, z, ct_face_[k]) || !sees_apex(p, y, z, ct_face_[k])) return false;
+    }
+    return true;
+  };
   if (ce.input_edge != kNone) {
     const uint32_t e = ce.input_edge;
     const double* A = S_.point(edge_v_[2 * e]);
@@ -279,6 +320,7 @@ bool SplitRecoverer::split_edge(uint64_t key) {
       double p[3];
       if (tt < 0.5) for (int d = 0; d < 3; ++d) p[d] = A[d] + tt * (B[d] - A[d]);
       else for (int d = 0; d < 3; ++d) p[d] = B[d] + (1.0 - tt) * (A[d] - B[d]);
+      if (!pieces_see_apex(p)) continue;
       v = insert(p, SteinerHost::kEdge, e, tt, hint);
       if (v != kNone) break;
     }
@@ -289,6 +331,7 @@ bool SplitRecoverer::split_edge(uint64_t key) {
     for (double s : {0.5, 0.4, 0.6}) {
       double p[3];
       for (int d = 0; d < 3; ++d) p[d] = P[d] + s * (Q[d] - P[d]);
+      if (!pieces_see_apex(p)) continue;
       v = insert(p, SteinerHost::kFace, face, 0.0, hint);
       if (v != kNone) break;
     }
@@ -354,6 +397,9 @@ bool SplitRecoverer::flip_edge(uint64_t key, bool only_to_mesh) {
     return dot(c, n);
   };
   if (!(area(x, v, y) > 0 && area(y, z, x) > 0)) return false;
+  if (!sees_apex(mesh_.point(x), mesh_.point(v), mesh_.point(y), f) ||
+      !sees_apex(mesh_.point(y), mesh_.point(z), mesh_.point(x), f))
+    return false;
   if (only_to_mesh) {
     if (!has_edge(x, y)) return false;
   } else {
@@ -501,8 +547,11 @@ bool SplitRecoverer::split_triangle(uint32_t k) {
     tries.push_back({w[0] * A[0] + w[1] * B[0] + w[2] * C[0], w[0] * A[1] + w[1] * B[1] + w[2] * C[1],
                      w[0] * A[2] + w[1] * B[2] + w[2] * C[2]});
   uint32_t v = kNone;
-  for (size_t i = 0; i < tries.size() && v == kNone; ++i)
-    v = insert(tries[i].data(), SteinerHost::kFace, face, 0.0, i == 0 && best_tet != kNone ? best_tet : vt_.tet_of(mesh_, t[0]));
+  for (size_t i = 0; i < tries.size() && v == kNone; ++i) {
+    const double* x = tries[i].data();
+    if (!sees_apex(A, B, x, face) || !sees_apex(B, C, x, face) || !sees_apex(C, A, x, face)) continue;
+    v = insert(x, SteinerHost::kFace, face, 0.0, i == 0 && best_tet != kNone ? best_tet : vt_.tet_of(mesh_, t[0]));
+  }
   if (v == kNone) return false;
   remove_tri(k);
   add_tri(t[0], t[1], v, face);
@@ -518,6 +567,7 @@ Status SplitRecoverer::run() {
   out_.stats.seconds_delaunay = seconds_since(t0);
   const auto t1 = Clock::now();
   build_constraints();
+  if (Status st = check_apexes(); !st.ok()) return st;
   const size_t cap = size_t(opt_.split_max_steiner_per_face * double(S_.num_triangles())) + 1000;
   size_t pass = 0;
   bool done = false, cascade = false;

@@ -358,6 +358,55 @@ TEST(RecoverySplit, Kitten) { recover_file("kitten.off", split_only(), 3); }
 TEST(RecoverySplit, Elephant) { recover_file("elephant.obj", split_only(), 3); }
 TEST(RecoverySplit, Airplane) { recover_file("airplane.obj", split_only(), 3); }
 TEST(RecoverySplit, BimbaLow) { recover_file("bimba_low.off", split_only(), 3); }
+// face_apex: every piece of a face sees that face's apex on the side the face does (the pipeline
+// gives the T1 apexes, so the coupling's cones are positive). Low apexes near a corner: pieces
+// far from it see it at a grazing angle.
+RecoveryOptions with_low_apexes(const SurfaceMesh& s) {
+  RecoveryOptions o = split_only();
+  o.face_apex.resize(3 * s.num_triangles());
+  for (size_t f = 0; f < s.num_triangles(); ++f) {
+    const double* A = s.point(s.tri[3 * f]);
+    const double* B = s.point(s.tri[3 * f + 1]);
+    const double* C = s.point(s.tri[3 * f + 2]);
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k) u[k] = B[k] - A[k], v[k] = C[k] - A[k];
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    for (int k = 0; k < 3; ++k) o.face_apex[3 * f + k] = 0.9 * A[k] + 0.05 * (B[k] + C[k]) + 0.01 * n[k];
+  }
+  return o;
+}
+
+void expect_pieces_see_apexes(const SurfaceMesh& s, const RecoveryOptions& o) {
+  RecoveryOutput out = recover_ok(s, o);
+  expect_recovered(s, out);
+  EXPECT_GT(out.steiner.size(), 0u) << "no split: the guard was not exercised";
+  for (size_t k = 0; k < out.s2_face.size(); ++k) {
+    const uint32_t* t = &out.s2_tri[3 * k];
+    EXPECT_GT(predicates::orient3d(out.mesh.point(t[0]), out.mesh.point(t[1]), out.mesh.point(t[2]),
+                                   &o.face_apex[3 * size_t(out.s2_face[k])]),
+              0)
+        << "subface " << k;
+  }
+}
+
+TEST(RecoverySplit, PiecesSeeTheirFaceApex) {
+  Result<SurfaceMesh> r = read_surface(std::string(ANITET_SURFACES_DIR) + "/decimated-knight.off");
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  const SurfaceMesh s = std::move(r).value();
+  const RecoveryOptions o = with_low_apexes(s);
+  expect_pieces_see_apexes(s, o);
+  // Refused: the wrong count, and an apex on the wrong side of its face.
+  RecoveryOptions bad = o;
+  bad.face_apex.pop_back();
+  EXPECT_EQ(recover_boundary(s, bad).status().code(), Error::InvalidArgument);
+  bad = o;
+  const double* A = s.point(s.tri[0]);
+  const double* B = s.point(s.tri[1]);
+  const double* C = s.point(s.tri[2]);
+  for (int k = 0; k < 3; ++k) bad.face_apex[k] = 2 * (A[k] + B[k] + C[k]) / 3 - o.face_apex[k];  // mirrored
+  EXPECT_EQ(recover_boundary(s, bad).status().code(), Error::InvalidArgument);
+}
+
 TEST(RecoverySplit, FemurWithoutFlips) {
   RecoveryOptions o = split_only();
   o.split_flips = false;
