@@ -102,13 +102,7 @@ std::string Recoverer::describe_face(uint32_t f) const {
 }
 
 Status Recoverer::build_delaunay() {
-  Result<DelaunayStats> d = delaunay_tetrahedralize(mesh_, S_.xyz.data(), n_in_);
-  if (!d.ok()) return d.status();
-  if (!d->duplicates.empty())
-    return Status(Error::DuplicatePoint, "recover_boundary: input vertex " +
-                                             std::to_string(d->duplicates[0].point) +
-                                             " has the coordinates of vertex " +
-                                             std::to_string(d->duplicates[0].same_as));
+  if (Status s = delaunay_of_surface_points(mesh_, S_); !s.ok()) return s;
   vert_tet_.assign(n_in_, kNone);
   for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
     if (mesh_.is_deleted(t)) continue;
@@ -724,10 +718,7 @@ Status Recoverer::run() {
     if (Status s = carve(); !s.ok()) return s;
   out_.stats.seconds_carve = seconds_since(t2);
   out_.stats.seconds_total = seconds_since(t0);
-  size_t tets = 0;
-  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
-    if (!mesh_.is_deleted(t) && !mesh_.is_ghost(t)) ++tets;
-  out_.stats.tets = tets;
+  out_.stats.tets = count_live_tets(mesh_);
   return Status::success();
 }
 
@@ -799,23 +790,7 @@ Status Recoverer::carve() {
   std::vector<int32_t> region(comps.size(), -1);
   for (size_t k = 0; k < order.size(); ++k) region[order[k]] = int32_t(k);
   out_.stats.regions = order.size();
-  for (uint32_t t = 0; t < nslots; ++t) {
-    if (mesh_.is_deleted(t)) continue;
-    if (region[comp[t]] >= 0) {
-      mesh_.tet_region[t] = region[comp[t]];
-      continue;
-    }
-  }
-  for (uint32_t t = 0; t < nslots; ++t) {
-    if (mesh_.is_deleted(t) || region[comp[t]] >= 0) continue;
-    for (int i = 0; i < 4; ++i) {
-      const uint64_t adj = mesh_.tet_adj[4 * size_t(t) + i];
-      if (adj == kNoNeighbour) continue;
-      const auto n = static_cast<uint32_t>(adj >> 2);
-      if (region[comp[n]] >= 0) mesh_.tet_adj[adj] = kNoNeighbour;
-    }
-    mesh_.delete_tet(t);
-  }
+  keep_regions(mesh_, comp, region);
   return Status::success();
 }
 

@@ -6,6 +6,11 @@
 #include <cstddef>
 #include <cstdint>
 
+#include <vector>
+
+#include "core/status.hpp"
+#include "core/surface_mesh.hpp"
+#include "core/tet_mesh.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet::recovery_detail {
@@ -63,5 +68,16 @@ inline bool line_crosses_triangle(const double* P, const double* Q, const double
   for (int d = 0; d < 3; ++d) x[d] = P[d] + s * (Q[d] - P[d]);
   return true;
 }
+
+// The Delaunay tetrahedralization of S's points into mesh; Error::DuplicatePoint names two
+// input vertices with the same coordinates.
+Status delaunay_of_surface_points(TetMesh& mesh, const SurfaceMesh& S);
+
+// Carving's last step: tets of component comp[t] get region region[comp[t]] when it is >= 0 and
+// are deleted otherwise (their kept neighbours' facets then have no neighbour).
+void keep_regions(TetMesh& mesh, const std::vector<int32_t>& comp, const std::vector<int32_t>& region);
+
+// Live tets that are not ghosts.
+size_t count_live_tets(const TetMesh& mesh);
 
 }  // namespace anitet::recovery_detail
