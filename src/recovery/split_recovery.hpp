@@ -2,10 +2,14 @@
 // recovery.hpp is the entry point).
 //
 // The surface to recover is kept as a list of constraint triangles, at first the input's. When a
-// constraint edge is missing from the mesh, a Steiner point is inserted near its middle and the
-// edge's two triangles are split there; when a triangle whose edges are present is missing, a
-// point is inserted where a mesh edge crosses it (else at its centroid) and the triangle is split
-// into three. A constraint triangle is recovered exactly when it is a facet of the mesh, and it is
+// subsegment of an input edge is missing from the mesh, one flip makes it when one can (no
+// point), else a Steiner point is inserted on the input segment (near the middle, or at a
+// power-of-two distance from an input vertex) and the edge's two triangles are split there. An
+// edge inside an input face is free: a missing one is flipped within the face (to the mesh's edge,
+// or the face's 2D Delaunay one). When a triangle whose input-edge subsegments are present is
+// missing, a point is inserted where a mesh edge crosses it (kept away from its edges), else at
+// its centroid, and the triangle is split into three. With RecoveryOptions::face_apex, no split
+// or flip may leave a piece that does not see its face's apex (the coupling's cones). A constraint triangle is recovered exactly when it is a facet of the mesh, and it is
 // then protected, so every decision is combinatorial: no orientation test decides which facets
 // lie on a face (the fuzzy part of the other strategy, which fails on nearly flat stacks of
 // tets). The Steiner points are computed in floating point, so each split triangle lies within
