@@ -41,6 +41,7 @@ struct MetricField::Impl {
   double origin[3] = {0, 0, 0};
   double dx = 1.0, inv_dx = 1.0;
   int bmin[3] = {0, 0, 0}, bmax[3] = {0, 0, 0};  // active bounding box, inclusive
+  bool vdb_transform = true;  // the grids carry the world transform (false: voxels too small)
 
   openvdb::math::Transform::Ptr transform() const {
     return (kind == Kind::Isotropic ? size->transform() : diag->transform()).copy();
@@ -48,6 +49,8 @@ struct MetricField::Impl {
 };
 
 namespace {
+
+constexpr double kMinVdbDeterminant = 1e-14;  // OpenVDB's limit is 3e-15
 
 // All three grids always exist (empty when unused), so that samplers can hold accessors to each.
 std::unique_ptr<MetricField::Impl> make_impl(MetricField::Kind kind, double background_size) {
@@ -64,11 +67,17 @@ std::unique_ptr<MetricField::Impl> make_impl(MetricField::Kind kind, double back
 
 // Sets the transform of every grid and caches the index-space mapping and the active box.
 Status finish_impl(MetricField::Impl& f, double dx, const double origin[3]) {
-  auto xf = openvdb::math::Transform::createLinearTransform(dx);
-  xf->postTranslate(Vec3d(origin[0], origin[1], origin[2]));
-  f.size->setTransform(xf);
-  f.diag->setTransform(xf->copy());
-  f.off->setTransform(xf->copy());
+  // OpenVDB refuses a linear transform whose determinant dx^3 is below 3e-15 (voxels under about
+  // 1.4e-5). Sampling does not need it (the index mapping below is our own), so such a field
+  // keeps the default transform and only refuses to be written as .vdb.
+  f.vdb_transform = dx * dx * dx >= kMinVdbDeterminant;
+  if (f.vdb_transform) {
+    auto xf = openvdb::math::Transform::createLinearTransform(dx);
+    xf->postTranslate(Vec3d(origin[0], origin[1], origin[2]));
+    f.size->setTransform(xf);
+    f.diag->setTransform(xf->copy());
+    f.off->setTransform(xf->copy());
+  }
   f.dx = dx;
   f.inv_dx = 1.0 / dx;
   for (int k = 0; k < 3; ++k) f.origin[k] = origin[k];
@@ -766,6 +775,10 @@ Result<MetricField> read_metric_vdb(const std::string& path) {
 
 Status write_metric_vdb(const MetricField& field, const std::string& path, bool double_precision) {
   const MetricField::Impl& f = *field.impl_;
+  if (!f.vdb_transform)
+    return Status(Error::InvalidArgument, "write_metric_vdb: '" + path + "': the voxel size " + std::to_string(f.dx) +
+                                              " is below what an OpenVDB transform holds (about 2e-5); scale the "
+                                              "model up to write its field as .vdb");
   try {
     openvdb::initialize();
     openvdb::GridPtrVec grids;

@@ -284,6 +284,32 @@ TEST(SurfaceSizing, Errors) {
   EXPECT_EQ(surface_sizing(bad).status().code(), Error::InvalidArgument);
 }
 
+// A model 10^4 times smaller than the knight: voxels under OpenVDB's smallest transform scale.
+// The field still samples the same sizes (scaled), and refuses to be written as .vdb.
+TEST(SurfaceSizing, TinyModelSamplesButIsNotWrittenAsVdb) {
+  Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/decimated-knight.off");
+  ASSERT_TRUE(s.ok());
+  SurfaceMesh tiny = s.value();
+  for (double& c : tiny.xyz) c *= 1e-4;
+  Result<MetricField> big = surface_sizing_field(s.value());
+  Result<MetricField> small = surface_sizing_field(tiny);
+  ASSERT_TRUE(big.ok()) << big.status().message();
+  ASSERT_TRUE(small.ok()) << small.status().message();
+  EXPECT_LT(small->voxel_size(), 1.4e-5);
+  MetricField::Sampler sb(big.value()), ss(small.value());
+  for (size_t v = 0; v < s->num_vertices(); v += 17) {
+    double mb[6], ms[6];
+    sb.metric(s->point(v), mb);
+    ss.metric(tiny.point(v), ms);
+    // M = I / h^2: the tiny model's metric is 10^8 times the big one's.
+    EXPECT_NEAR(ms[0] * 1e-8, mb[0], 1e-9 * mb[0]) << "vertex " << v;
+  }
+  const std::string path = ::testing::TempDir() + "/tiny_sizing.vdb";
+  const Status w = write_metric_vdb(small.value(), path);
+  EXPECT_EQ(w.code(), Error::InvalidArgument);
+  EXPECT_NE(w.message().find("OpenVDB transform"), std::string::npos) << w.message();
+}
+
 }  // namespace
 }  // namespace metric
 }  // namespace anitet
