@@ -50,6 +50,9 @@ struct RecoveryOptions {
   double split_max_seconds = 30;     // its own wall-time cap (the fallbacks get max_seconds each)
   double split_max_steiner_per_face = 6;  // and Steiner cap (+ 1000): its successes need ~1
   bool split_flips = true;           // a missing input-edge subsegment: one flip before a split
+  // First split the long edge of every input triangle with an angle above this at the apex's
+  // projection (180: never).
+  double split_cap_degrees = 170.0;
   // Optional, 3 per input triangle: a point each piece of that triangle must see on the side its
   // orientation gives it as the triangle does (the pipeline gives the T1 apex of each S1 face, so
   // that every cone of the coupling is positive). The split strategy refuses a split or flip
@@ -76,6 +79,7 @@ struct RecoveryStats {
   // 3: split constraints (the first try by default); 0: the options as given, 1: retried with
   // flips, 2: with defended edges
   size_t strategy = 0;
+  size_t caps_split = 0;          // split constraints: caps split at their apex's projection
   size_t flips = 0;               // constraints recovered by a flip instead of a point
   size_t blocked_insertions = 0;  // insertions the kernel refused (another point was tried)
   size_t tets = 0;                // tets of the result

@@ -55,7 +55,8 @@ class SplitRecoverer {
   void mark_edge_constrained(uint32_t a, uint32_t b);
   double param_on(uint32_t v, uint32_t e) const;
   uint32_t insert(const double p[3], SteinerHost host, uint32_t host_id, double param, uint32_t hint);
-  bool split_edge(uint64_t key);
+  bool split_edge(uint64_t key, double at = -1.0);
+  void split_caps();
   bool flip_in(uint32_t a, uint32_t b);
   bool sees_apex(const double* a, const double* b, const double* c, uint32_t face) const;
   bool flip_edge(uint64_t key, bool only_to_mesh);
@@ -266,11 +267,46 @@ bool SplitRecoverer::flip_in(uint32_t a, uint32_t b) {
   return true;
 }
 
+// A cap (an input triangle with an angle above kCapAngle) has a huge circumsphere: the Delaunay
+// mesh misses its long edge, and splitting that edge at the middle, then the pieces, cascades.
+// Splitting the long edge once at the apex's projection leaves two right-angled pieces, each
+// within the diametral sphere of its hypotenuse.
+void SplitRecoverer::split_caps() {
+  const double cos_cap = std::cos(opt_.split_cap_degrees * 3.14159265358979323846 / 180.0);
+  const auto n0 = static_cast<uint32_t>(ct_.size());
+  for (uint32_t k = 0; k < n0; ++k) {
+    if (ct_state_[k] != kMissing) continue;
+    const Tri t = ct_[k];
+    for (int i = 0; i < 3; ++i) {
+      const uint32_t c = t[i], a = t[(i + 1) % 3], b = t[(i + 2) % 3];
+      const double *C = mesh_.point(c), *A = mesh_.point(a), *B = mesh_.point(b);
+      double ca[3], cb[3];
+      sub(A, C, ca);
+      sub(B, C, cb);
+      if (!(dot(ca, cb) < cos_cap * std::sqrt(dot(ca, ca) * dot(cb, cb)))) continue;
+      auto it = edges_.find(edge_key(a, b));
+      if (it == edges_.end() || it->second.input_edge == kNone) break;
+      // The apex's projection on the input segment, as a parameter from its first vertex.
+      const uint32_t e = it->second.input_edge;
+      const double* P = S_.point(edge_v_[2 * e]);
+      const double* Q = S_.point(edge_v_[2 * e + 1]);
+      double pq[3], pc[3];
+      sub(Q, P, pq);
+      sub(C, P, pc);
+      const double ta = param_on(a, e), tb = param_on(b, e);
+      const double lo = std::min(ta, tb), hi = std::max(ta, tb);
+      const double tp = std::min(std::max(dot(pc, pq) / dot(pq, pq), lo + 0.05 * (hi - lo)), hi - 0.05 * (hi - lo));
+      if (split_edge(it->first, tp)) ++out_.stats.caps_split;
+      break;
+    }
+  }
+}
+
 // Splits the missing constraint edge `key` and its two triangles at a new point. On an input
 // edge the point is on the input segment (by its parameter), at a power-of-two distance from an
 // input vertex when the edge ends at one (concentric shells: segments meeting at a small angle
 // do not split each other forever), else at the middle; inside a face, at the middle.
-bool SplitRecoverer::split_edge(uint64_t key) {
+bool SplitRecoverer::split_edge(uint64_t key, double at) {
   const CEdge ce = edges_.at(key);
   const auto a = uint32_t(key >> 32), b = uint32_t(key & 0xffffffffu);
   uint32_t v = kNone;
@@ -303,7 +339,9 @@ bool SplitRecoverer::split_edge(uint64_t key) {
     const double full = std::sqrt(dist2(A, B));
     const double len = (tb - ta) * full;
     double t = 0.5 * (ta + tb);
-    if (lo_input != hi_input && len > 0) {
+    if (at > ta && at < tb) {
+      t = at;
+    } else if (lo_input != hi_input && len > 0) {
       double d = std::exp2(std::floor(std::log2(len * 2.0 / 3.0)));
       if (d < len / 3.0) d *= 2.0;
       t = lo_input ? ta + d / full : tb - d / full;
@@ -562,6 +600,7 @@ Status SplitRecoverer::run() {
   const auto t1 = Clock::now();
   build_constraints();
   if (Status st = check_apexes(); !st.ok()) return st;
+  if (opt_.split_cap_degrees < 180.0) split_caps();
   const size_t cap = size_t(opt_.split_max_steiner_per_face * double(S_.num_triangles())) + 1000;
   size_t pass = 0;
   bool done = false, cascade = false;

@@ -9,7 +9,9 @@
 // or the face's 2D Delaunay one). When a triangle whose input-edge subsegments are present is
 // missing, a point is inserted where a mesh edge crosses it (kept away from its edges), else at
 // its centroid, and the triangle is split into three. With RecoveryOptions::face_apex, no split
-// or flip may leave a piece that does not see its face's apex (the coupling's cones). A constraint triangle is recovered exactly when it is a facet of the mesh, and it is
+// or flip may leave a piece that does not see its face's apex (the coupling's cones). Before all
+// this, the long edge of every cap (an angle above RecoveryOptions::split_cap_degrees) is split at
+// its apex's projection. A constraint triangle is recovered exactly when it is a facet of the mesh, and it is
 // then protected, so every decision is combinatorial: no orientation test decides which facets
 // lie on a face (the fuzzy part of the other strategy, which fails on nearly flat stacks of
 // tets). The Steiner points are computed in floating point, so each split triangle lies within
