@@ -41,6 +41,21 @@ class SplitRecoverer {
     uint32_t input_edge = kNone;
   };
   enum : uint8_t { kMissing = 0, kRecovered = 1, kDead = 2 };
+  // An edge of a recovered (protected) triangle stays in the mesh: no sweep needs to look at it.
+  // Drops erased and settled edges from the sweep list (a settled edge stays settled: recovered
+  // triangles are never split).
+  void drop_settled_keys() {
+    edge_keys_.erase(std::remove_if(edge_keys_.begin(), edge_keys_.end(),
+                                    [&](uint64_t key) {
+                                      auto it = edges_.find(key);
+                                      return it == edges_.end() || settled(it->second);
+                                    }),
+                     edge_keys_.end());
+  }
+  bool settled(const CEdge& e) const {
+    return (e.tri[0] != kNone && ct_state_[e.tri[0]] == kRecovered) ||
+           (e.tri[1] != kNone && ct_state_[e.tri[1]] == kRecovered);
+  }
 
   Status build_delaunay();
   void build_constraints();
@@ -615,16 +630,14 @@ Status SplitRecoverer::run() {
     for (size_t i = 0; i < n_keys; ++i) {
       const uint64_t key = edge_keys_[i];
       auto it = edges_.find(key);
-      if (it == edges_.end() || it->second.input_edge == kNone) continue;
+      if (it == edges_.end() || it->second.input_edge == kNone || settled(it->second)) continue;
       if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
       ++missing_edges;
       if (opt_.split_flips && flip_in(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
       split_edge(key);
       if (out_.steiner.size() > cap || ((missing_edges & 255) == 0 && seconds_since(t1) > opt_.split_max_seconds)) break;
     }
-    edge_keys_.erase(std::remove_if(edge_keys_.begin(), edge_keys_.end(),
-                                    [&](uint64_t key) { return !edges_.count(key); }),
-                     edge_keys_.end());
+    drop_settled_keys();
     if (missing_edges > 0) continue;
     // An edge inside an input face is free: flip a missing one to the mesh's edge, or to the
     // face's 2D Delaunay edge.
@@ -632,13 +645,11 @@ Status SplitRecoverer::run() {
     for (size_t i = 0; i < edge_keys_.size(); ++i) {
       const uint64_t key = edge_keys_[i];
       auto it = edges_.find(key);
-      if (it == edges_.end() || it->second.input_edge != kNone) continue;
+      if (it == edges_.end() || it->second.input_edge != kNone || settled(it->second)) continue;
       if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
       if (flip_edge(key, true) || flip_edge(key, false)) ++flips;
     }
-    edge_keys_.erase(std::remove_if(edge_keys_.begin(), edge_keys_.end(),
-                                    [&](uint64_t key) { return !edges_.count(key); }),
-                     edge_keys_.end());
+    drop_settled_keys();
     out_.stats.flips += flips;
     // Protect every triangle present, then split the missing ones.
     std::vector<uint32_t> missing;
