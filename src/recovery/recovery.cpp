@@ -180,17 +180,7 @@ void Recoverer::ball(uint32_t v, std::vector<uint32_t>& tets) {
 // is not in the mesh.
 bool Recoverer::mark_edge(uint32_t u, uint32_t w, bool on) {
   ball(u, scratch_);
-  bool found = false;
-  for (uint32_t t : scratch_)
-    for (int k = 0; k < 6; ++k) {
-      const uint32_t a = mesh_.vertex(t, kEdgeVertex[k][0]), b = mesh_.vertex(t, kEdgeVertex[k][1]);
-      if (!((a == u && b == w) || (a == w && b == u))) continue;
-      found = true;
-      const auto bit = uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
-      if (on) mesh_.tet_flags[t] |= bit;
-      else mesh_.tet_flags[t] &= uint16_t(~bit);
-    }
-  return found;
+  return set_edge_constrained(mesh_, scratch_, u, w, on);
 }
 
 bool Recoverer::has_edge(uint32_t u, uint32_t v) {

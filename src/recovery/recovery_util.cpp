@@ -32,6 +32,20 @@ void keep_regions(TetMesh& mesh, const std::vector<int32_t>& comp, const std::ve
   }
 }
 
+bool set_edge_constrained(TetMesh& mesh, const std::vector<uint32_t>& ball, uint32_t a, uint32_t b, bool on) {
+  bool found = false;
+  for (uint32_t t : ball)
+    for (int k = 0; k < 6; ++k) {
+      const uint32_t x = mesh.vertex(t, kEdgeVertex[k][0]), y = mesh.vertex(t, kEdgeVertex[k][1]);
+      if (!((x == a && y == b) || (x == b && y == a))) continue;
+      found = true;
+      const auto bit = uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
+      if (on) mesh.tet_flags[t] |= bit;
+      else mesh.tet_flags[t] &= uint16_t(~bit);
+    }
+  return found;
+}
+
 size_t count_live_tets(const TetMesh& mesh) {
   size_t tets = 0;
   for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)

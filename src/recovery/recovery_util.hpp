@@ -77,6 +77,10 @@ Status delaunay_of_surface_points(TetMesh& mesh, const SurfaceMesh& S);
 // are deleted otherwise (their kept neighbours' facets then have no neighbour).
 void keep_regions(TetMesh& mesh, const std::vector<int32_t>& comp, const std::vector<int32_t>& region);
 
+// Sets (or clears) the constrained bit of edge (a b) in every tet of `ball` (tets around a) that
+// has it; false when none has it.
+bool set_edge_constrained(TetMesh& mesh, const std::vector<uint32_t>& ball, uint32_t a, uint32_t b, bool on);
+
 // Live tets that are not ghosts.
 size_t count_live_tets(const TetMesh& mesh);
 

@@ -230,12 +230,7 @@ void SplitRecoverer::protect(uint32_t k) {
 }
 
 void SplitRecoverer::mark_edge_constrained(uint32_t a, uint32_t b) {
-  for (uint32_t t : ball(a))
-    for (int k = 0; k < 6; ++k) {
-      const uint32_t x = mesh_.vertex(t, kEdgeVertex[k][0]), y = mesh_.vertex(t, kEdgeVertex[k][1]);
-      if ((x == a && y == b) || (x == b && y == a))
-        mesh_.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
-    }
+  set_edge_constrained(mesh_, ball(a), a, b, true);
 }
 
 double SplitRecoverer::param_on(uint32_t v, uint32_t e) const {
