@@ -255,6 +255,19 @@ Result<QualityReport> quality_detail::compute_quality_report_keep(const VolumeMe
     r.max_dihedral_deg = *std::max_element(d.max_dihedral.begin(), d.max_dihedral.end());
   }
 
+  if (mesh.region.size() == r.tets && r.tets > 0) {
+    std::vector<int32_t> ids(mesh.region);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    if (ids.size() > 1) {
+      std::vector<uint8_t> select(r.tets);
+      for (int32_t id : ids) {
+        for (size_t t = 0; t < r.tets; ++t) select[t] = mesh.region[t] == id;
+        r.by_region.push_back({id, quality_detail::split_quality(d, select, 1)});
+      }
+    }
+  }
+
   boundary.clear();
   classify_faces(mesh, options.parallel, boundary, r.faces_shared_by_more_than_two);
   r.boundary_faces = boundary.size() / 3;

@@ -40,6 +40,11 @@ struct QualitySplit {  // quality of a subset of the tets
   double bad_fraction = 0.0;   // radius ratio < 0.1
 };
 
+struct RegionQuality {  // the tets of one region (VolumeMesh::region)
+  int32_t region = 0;
+  QualitySplit quality;
+};
+
 struct SurfaceMatchReport {
   bool present = false;  // an input surface was given
   size_t input_vertices = 0;
@@ -87,6 +92,9 @@ struct QualityReport {
   size_t tets_dihedral_lt_5deg = 0;
   size_t tets_dihedral_lt_10deg = 0;
   std::vector<size_t> rr_histogram;  // radius ratio over [0, 1] in equal bins (1.0 in the last)
+  // Quality per region, in increasing region order, only when the mesh has two regions or more
+  // (a boundary layer is a region of its own: its thin tets are meant to be flat).
+  std::vector<RegionQuality> by_region;
 
   SurfaceMatchReport surface;
   double seconds = 0.0;  // time spent computing

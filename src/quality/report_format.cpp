@@ -78,6 +78,15 @@ std::string quality_report_json(const QualityReport& r, int indent) {
                   {"tets_dihedral_lt_5deg", r.tets_dihedral_lt_5deg},
                   {"tets_dihedral_lt_10deg", r.tets_dihedral_lt_10deg}};
   j["radius_ratio_histogram"] = r.rr_histogram;
+  if (!r.by_region.empty()) {
+    nlohmann::ordered_json regions = nlohmann::ordered_json::array();
+    for (const RegionQuality& q : r.by_region) {
+      nlohmann::ordered_json one = {{"region", q.region}};
+      one.update(split_json(q.quality));
+      regions.push_back(one);
+    }
+    j["quality_by_region"] = regions;
+  }
   const SurfaceMatchReport& s = r.surface;
   if (s.present) {
     j["input_vertices"] = s.input_vertices;
@@ -148,6 +157,10 @@ std::string quality_report_text(const QualityReport& r) {
       size_t bar = (c * kWidth + peak - 1) / peak;  // any non-zero bin shows at least one mark
       os << "  " << fmt("%.2f", bin_edge(i, n)) << "-" << fmt("%.2f", bin_edge(i + 1, n)) << " |"
          << std::string(bar, '#') << std::string(kWidth - bar, ' ') << " " << c << "\n";
+    }
+    for (const RegionQuality& q : r.by_region) {
+      const std::string name = "region " + std::to_string(q.region) + ": ";
+      os << split_line(name.c_str(), q.quality);
     }
   }
   const SurfaceMatchReport& s = r.surface;

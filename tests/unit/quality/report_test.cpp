@@ -240,6 +240,36 @@ TEST(QualityReport, GridSplitAndParallelAgree) {
   EXPECT_EQ(std::accumulate(a.rr_histogram.begin(), a.rr_histogram.end(), size_t(0)), a.tets);
 }
 
+TEST(QualityReport, QualityPerRegionOnlyWithTwoRegionsOrMore) {
+  VolumeMesh grid = test::kuhn_grid(2);
+  EXPECT_TRUE(report_of(grid, nullptr).by_region.empty());  // no region array: one region
+  grid.region.assign(grid.num_tets(), 4);
+  EXPECT_TRUE(report_of(grid, nullptr).by_region.empty());  // one region
+  // Squash the top layer of vertices: the tets there (region 7) get worse, the rest stay Kuhn.
+  for (size_t v = 0; v < grid.num_vertices(); ++v)
+    if (grid.xyz[3 * v + 2] > 1.5) grid.xyz[3 * v + 2] = 1.1;
+  size_t top = 0;
+  for (size_t t = 0; t < grid.num_tets(); ++t) {
+    bool high = false;
+    for (int k = 0; k < 4; ++k) high = high || grid.xyz[3 * size_t(grid.tet[4 * t + k]) + 2] > 1.05;
+    grid.region[t] = high ? 7 : 4;
+    top += high;
+  }
+  const QualityReport r = report_of(grid, nullptr);
+  ASSERT_EQ(r.by_region.size(), 2u);
+  EXPECT_EQ(r.by_region[0].region, 4);
+  EXPECT_EQ(r.by_region[1].region, 7);
+  EXPECT_EQ(r.by_region[1].quality.tets, top);
+  EXPECT_EQ(r.by_region[0].quality.tets + top, r.tets);
+  EXPECT_NEAR(r.by_region[0].quality.radius_ratio.min, r.by_region[0].quality.radius_ratio.max, 1e-14);
+  EXPECT_LT(r.by_region[1].quality.radius_ratio.max, r.by_region[0].quality.radius_ratio.min);
+  const nlohmann::json j = nlohmann::json::parse(quality_report_json(r));
+  ASSERT_EQ(j["quality_by_region"].size(), 2u);
+  EXPECT_EQ(j["quality_by_region"][1]["region"], 7);
+  EXPECT_EQ(j["quality_by_region"][1]["tets"], top);
+  EXPECT_NE(quality_report_text(r).find("region 7: "), std::string::npos);
+}
+
 TEST(QualityReport, BadIndexAndNonFiniteCoordinateAreErrors) {
   VolumeMesh cube = test::kuhn_grid(1);
   cube.tet[5] = 99;
