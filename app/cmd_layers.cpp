@@ -129,10 +129,7 @@ int run_mesh_layers(MeshArgs& args) {
   vm.bnd_patch = surface.patch;
   vm.bnd_tri.insert(vm.bnd_tri.end(), r.front_tri.begin(), r.front_tri.end());
   vm.bnd_patch.insert(vm.bnd_patch.end(), r.num_front_triangles(), front_label);
-  if (Status st = write_volume_mesh(vm, args.output, args.patch_names); !st.ok()) {
-    std::cerr << cmd << ": cannot write '" << args.output << "': " << st.message() << "\n";
-    return kExitReadError;
-  }
+  if (const int code = write_outputs(args, vm); code != kExitOk) return code;
   const std::string front_file = front_path(args.output);
   if (Status st = write_surface(front_surface(r), front_file); !st.ok()) {
     std::cerr << cmd << ": cannot write '" << front_file << "': " << st.message() << "\n";

@@ -30,10 +30,7 @@ int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
   VolumeMesh vm = out.mesh.to_volume_mesh(/*drop_unused_vertices=*/false);
   vm.bnd_tri = out.s2_tri;
   vm.bnd_patch = out.s2_patch;
-  if (Status s = write_volume_mesh(vm, args.output, args.patch_names); !s.ok()) {
-    std::cerr << "anitet recover: cannot write '" << args.output << "': " << s.message() << "\n";
-    return kExitReadError;
-  }
+  if (const int code = write_outputs(args, vm); code != kExitOk) return code;
   if (!args.quiet) {
     const RecoveryStats& st = out.stats;
     std::cout << "anitet recover: wrote '" << args.output << "': " << vm.num_vertices() << " vertices, "
@@ -52,9 +49,27 @@ int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
 }  // namespace
 
 int check_output_path(const MeshArgs& args) {
-  if (Status s = check_writable_volume_path(args.output); !s.ok()) {
-    std::cerr << "anitet " << args.command << ": cannot write '" << args.output << "': " << s.message() << "\n";
-    return s.code() == Error::NotImplemented ? kExitNotImplemented : kExitUsage;
+  for (const std::string& path : output_paths(args)) {
+    if (Status s = check_writable_volume_path(path); !s.ok()) {
+      std::cerr << "anitet " << args.command << ": cannot write '" << path << "': " << s.message() << "\n";
+      return s.code() == Error::NotImplemented ? kExitNotImplemented : kExitUsage;
+    }
+  }
+  return kExitOk;
+}
+
+std::vector<std::string> output_paths(const MeshArgs& args) {
+  std::vector<std::string> paths{args.output};
+  paths.insert(paths.end(), args.also_write.begin(), args.also_write.end());
+  return paths;
+}
+
+int write_outputs(const MeshArgs& args, const VolumeMesh& mesh) {
+  for (const std::string& path : output_paths(args)) {
+    if (Status s = write_volume_mesh(mesh, path, args.patch_names); !s.ok()) {
+      std::cerr << "anitet " << args.command << ": cannot write '" << path << "': " << s.message() << "\n";
+      return kExitReadError;
+    }
   }
   return kExitOk;
 }

@@ -152,10 +152,7 @@ int run_mesh_pipeline(MeshArgs& args) {
   // surface bit for bit.
   if (!input_xyz.empty() && r.mesh.xyz.size() >= input_xyz.size())
     std::copy(input_xyz.begin(), input_xyz.end(), r.mesh.xyz.begin());
-  if (Status st = write_volume_mesh(r.mesh, args.output, args.patch_names); !st.ok()) {
-    std::cerr << cmd << ": cannot write '" << args.output << "': " << st.message() << "\n";
-    return kExitReadError;
-  }
+  if (const int code = write_outputs(args, r.mesh); code != kExitOk) return code;
   const BoundaryLayerReport& bl = r.boundary_layer;
   if (args.json) {
     nlohmann::json stages = nlohmann::json::array();
@@ -172,7 +169,7 @@ int run_mesh_pipeline(MeshArgs& args) {
         {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range}}},
         {"boundary_layer", {{"layers", bl.layers}, {"first_height", args.bl_first_height}, {"yplus", args.bl_yplus}, {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
-                            {"vertices", bl.vertices}, {"full_columns", bl.full_columns},
+                            {"vertices", bl.vertices}, {"full_columns", bl.full_columns}, {"columns_reaching", bl.columns_reaching},
                             {"nominal_columns", bl.nominal_columns}, {"reduced_vertices", bl.reduced_vertices},
                             {"reduced_share", r.layers.bl_reduced_share},
                             {"first_height_min", bl.first_height_min}, {"first_height_mean", bl.first_height_mean},
@@ -201,6 +198,12 @@ int run_mesh_pipeline(MeshArgs& args) {
                 << " mean " << bl.first_height_mean << " max " << bl.first_height_max << "; growth "
                 << bl.growth_mean << "; BL vertices moved after stage 1 by at most " << bl.max_displacement
                 << "; " << r.layers.bl_seconds << " s\n";
+    if (bl.layers > 0) {
+      std::cout << "  boundary layer: wall vertices by layers reached:";
+      for (size_t i = 0; i < bl.columns_reaching.size(); ++i)
+        if (bl.columns_reaching[i] > 0) std::cout << " " << i << ": " << bl.columns_reaching[i];
+      std::cout << "\n";
+    }
     std::cout << "  stage 2 Steiner points on S1: " << r.recovery.steiner_on_edges << " on edges, "
               << r.recovery.steiner_on_faces << " in faces (" << recovery_strategy_name(r.recovery.strategy)
               << "); coupling split " << r.couple.edge_split_tets

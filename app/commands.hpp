@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/surface_mesh.hpp"
+#include "core/volume_mesh.hpp"
 #include "io/patch_names.hpp"
 #include "recovery/recovery.hpp"
 #include "metric_options.hpp"
@@ -38,6 +39,7 @@ struct MeshArgs {
   std::string command;  // "mesh" or "recover", for messages
   std::string input;
   std::string output;
+  std::vector<std::string> also_write;  // --also-write: more outputs of the same mesh (any format)
   bool quiet = false;
   bool json = false;
   std::string stop_after;               // "" (the whole pipeline) or "layers"
@@ -64,6 +66,10 @@ RecoveryOptions recovery_options(const MeshArgs& args);
 // Before any work: the output's format can be written. Returns kExitOk, or after printing the
 // reason kExitUsage (kExitNotImplemented for .cgns/.exo in a build without the library).
 int check_output_path(const MeshArgs& args);
+// -o and every --also-write, in that order.
+std::vector<std::string> output_paths(const MeshArgs& args);
+// Writes mesh to every output path; kExitOk, or kExitReadError after printing which failed.
+int write_outputs(const MeshArgs& args, const VolumeMesh& mesh);
 // After reading the surface: --patch-names parses and names only labels that `surface` has (or
 // one of `extra_labels`, e.g. the S1 patch of --stop-after layers). Fills args.patch_names.
 // Returns kExitOk, or kExitUsage after printing the reason.

@@ -75,6 +75,9 @@ int run(int argc, char** argv) {
                     "Output mesh: .mesh .msh .vtu, or for solvers .su2 (SU2), .cgns (CGNS), .exo/.e "
                     "(Exodus II), or a directory path ending in polyMesh (OpenFOAM, e.g. CASE/constant/polyMesh)")
         ->required();
+    cmd->add_option("--also-write", args->also_write,
+                    "Also write the same mesh to this file (any output format; repeat for more), e.g. "
+                    "-o case.cgns --also-write case.su2 --also-write case.mesh");
     cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
     cmd->add_option("--recovery", args->recovery,
                     "Stage 2 recovery strategies: all (split constraints, then the fuzzy-face ones when it "

@@ -49,6 +49,7 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
                             const std::vector<uint32_t>& vertex_origin, const std::vector<double>& t1_xyz,
                             const TetMesh& mesh, BoundaryLayerReport& r) {
   r.layers = layers;
+  r.columns_reaching.assign(size_t(std::max(layers, 0)) + 1, 0);
   const size_t nv = vertex_origin.size();
   std::vector<std::vector<uint32_t>> children(nv);
   for (uint32_t v = 0; v < nv; ++v)
@@ -64,12 +65,10 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
     ++r.wall_vertices;
     uint32_t at = v;
     double worst = 0.0, first = 0.0, last = 0.0;
-    bool full = layers > 0;
+    int reached = 0;
     for (int i = 0; i < layers; ++i) {
-      if (at >= nv || children[at].empty()) {
-        full = false;
-        break;
-      }
+      if (at >= nv || children[at].empty()) break;
+      ++reached;
       const uint32_t next = children[at].back();
       const double h = distance(mesh.point(at), mesh.point(next));
       if (i == 0) first = h;
@@ -77,7 +76,8 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
       worst = std::max(worst, std::abs(h / (bl.first_height * std::pow(bl.growth, i)) - 1.0));
       at = next;
     }
-    if (!full) continue;
+    ++r.columns_reaching[size_t(reached)];
+    if (reached < layers || layers == 0) continue;
     ++r.full_columns;
     first_sum += first;
     r.first_height_min = std::min(r.first_height_min, first);

@@ -73,6 +73,7 @@ struct BoundaryLayerReport {
   size_t tets = 0;             // BL tets in the output (regions bodies .. 2 bodies - 1)
   size_t vertices = 0;         // BL vertices (wall vertices included), frozen for stages 3b/3c
   size_t full_columns = 0;     // wall vertices whose column reaches all n layers
+  std::vector<size_t> columns_reaching;  // [i]: wall vertices whose column reaches i layers (0..n)
   size_t nominal_columns = 0;  // full columns with every height within 10% of h0 r^i
   size_t reduced_vertices = 0; // wall vertices with a reduced layer (stage 1's count)
   double first_height_min = 0.0, first_height_mean = 0.0, first_height_max = 0.0;  // full columns
