@@ -39,7 +39,8 @@ std::string describe_example(const ProblemExample& e) {
 
 int load_and_validate(const std::string& command, const std::string& path, CheckedSurface& out,
                       bool print_invalid) {
-  Result<SurfaceMesh> read = read_surface(path);
+  out.names.clear();
+  Result<SurfaceMesh> read = read_surface(path, &out.names);
   if (!read.ok()) {
     std::cerr << "anitet " << command << ": cannot read surface '" << path << "': "
               << read.status().message() << " [" << error_name(read.status().code()) << "]\n";

@@ -91,7 +91,7 @@ int run_mesh_layers(MeshArgs& args) {
   const SurfaceMesh& surface = checked.surface;
   int32_t front_label = 1;  // S1's patch in the output: one more than the input's labels
   for (int32_t label : surface.patch) front_label = std::max(front_label, label + 1);
-  if (const int code = check_patch_names(args, surface, {front_label}); code != kExitOk) return code;
+  if (const int code = check_patch_names(args, checked, {front_label}); code != kExitOk) return code;
 
   LayersOptions options;
   options.layers = args.layers;

@@ -74,15 +74,17 @@ int write_outputs(const MeshArgs& args, const VolumeMesh& mesh) {
   return kExitOk;
 }
 
-int check_patch_names(MeshArgs& args, const SurfaceMesh& surface, const std::vector<int32_t>& extra_labels) {
-  if (args.patch_names_spec.empty()) return kExitOk;
+int check_patch_names(MeshArgs& args, const CheckedSurface& input, const std::vector<int32_t>& extra_labels) {
   const std::string cmd = "anitet " + args.command;
+  // The file's own names (SU2 markers) first; --patch-names renames on top of them.
+  args.patch_names = input.names;
+  if (args.patch_names_spec.empty()) return kExitOk;
   Result<PatchNames> names = parse_patch_names(args.patch_names_spec);
   if (!names.ok()) {
     std::cerr << cmd << ": --patch-names: " << names.status().message() << "\n";
     return kExitUsage;
   }
-  std::set<int32_t> labels(surface.patch.begin(), surface.patch.end());
+  std::set<int32_t> labels(input.surface.patch.begin(), input.surface.patch.end());
   labels.insert(extra_labels.begin(), extra_labels.end());
   for (const auto& [label, name] : names.value()) {
     if (!labels.count(label)) {
@@ -90,8 +92,14 @@ int check_patch_names(MeshArgs& args, const SurfaceMesh& surface, const std::vec
                 << " (named '" << name << "')\n";
       return kExitUsage;
     }
+    args.patch_names[label] = name;
   }
-  args.patch_names = std::move(names).value();
+  // No two labels with one name once the file's names and the given ones are merged.
+  if (Result<std::vector<NamedPatch>> named = named_patches(std::vector<int32_t>(labels.begin(), labels.end()), args.patch_names);
+      !named.ok()) {
+    std::cerr << cmd << ": --patch-names: " << named.status().message() << "\n";
+    return kExitUsage;
+  }
   return kExitOk;
 }
 
@@ -100,7 +108,7 @@ int run_mesh(MeshArgs& args) {
   if (const int code = check_output_path(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate(args.command, args.input, checked); code != kExitOk) return code;
-  if (const int code = check_patch_names(args, checked.surface); code != kExitOk) return code;
+  if (const int code = check_patch_names(args, checked); code != kExitOk) return code;
   if (!args.quiet) {
     std::cout << "anitet " << args.command << ": '" << args.input << "' is a valid surface ("
               << checked.surface.num_vertices() << " vertices, " << checked.surface.num_triangles()

@@ -65,7 +65,7 @@ int run_mesh_pipeline(MeshArgs& args) {
   if (const int code = check_output_path(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
-  if (const int code = check_patch_names(args, checked.surface); code != kExitOk) return code;
+  if (const int code = check_patch_names(args, checked); code != kExitOk) return code;
 
   // --geodetic: the surface to a local frame in metres (validated again there: the checks are
   // geometric), the mesh back to longitude, latitude, height at the end with --geodetic-output.

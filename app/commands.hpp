@@ -10,6 +10,7 @@
 #include "io/patch_names.hpp"
 #include "recovery/recovery.hpp"
 #include "metric_options.hpp"
+#include "surface_check.hpp"
 
 namespace anitet::cli {
 
@@ -70,10 +71,11 @@ int check_output_path(const MeshArgs& args);
 std::vector<std::string> output_paths(const MeshArgs& args);
 // Writes mesh to every output path; kExitOk, or kExitReadError after printing which failed.
 int write_outputs(const MeshArgs& args, const VolumeMesh& mesh);
-// After reading the surface: --patch-names parses and names only labels that `surface` has (or
-// one of `extra_labels`, e.g. the S1 patch of --stop-after layers). Fills args.patch_names.
+// After reading the surface: args.patch_names gets the names the file carries (SU2 markers),
+// then those of --patch-names, which may name only labels the surface has (or one of
+// `extra_labels`, e.g. the S1 patch of --stop-after layers); no two labels may share a name.
 // Returns kExitOk, or kExitUsage after printing the reason.
-int check_patch_names(MeshArgs& args, const SurfaceMesh& surface, const std::vector<int32_t>& extra_labels = {});
+int check_patch_names(MeshArgs& args, const CheckedSurface& input, const std::vector<int32_t>& extra_labels = {});
 // `mesh`: the whole pipeline (cmd_pipeline.cpp).
 int run_mesh_pipeline(MeshArgs& args);
 // `mesh --stop-after layers`: stage 1 alone (cmd_layers.cpp).

@@ -24,7 +24,7 @@ int run(int argc, char** argv) {
   CheckSurfaceArgs check;
   CLI::App* check_cmd = app.add_subcommand(
       "check-surface", "Read and validate a triangulated surface; report problems and safe repairs");
-  check_cmd->add_option("IN", check.input, "Surface file (.off .obj .stl .ply .mesh .msh)")->required();
+  check_cmd->add_option("IN", check.input, "Surface file (.off .obj .stl .ply .mesh .msh, or .su2: its boundary markers)")->required();
   check_cmd->add_flag("--json", check.json, "Print the report as JSON");
 
   QualityArgs quality;
@@ -70,7 +70,7 @@ int run(int argc, char** argv) {
   CLI::App* recover_cmd = app.add_subcommand(
       "recover", "Delaunay mesh of the surface's points with the surface recovered conformingly (Steiner points on it)");
   for (auto [cmd, args] : {std::pair{mesh_cmd, &mesh}, std::pair{recover_cmd, &recover}}) {
-    cmd->add_option("IN", args->input, "Closed surface file")->required();
+    cmd->add_option("IN", args->input, "Closed surface file (.off .obj .stl .ply .mesh .msh, or .su2: its boundary markers as named patches)")->required();
     cmd->add_option("-o,--output", args->output,
                     "Output mesh: .mesh .msh .vtu, or for solvers .su2 (SU2), .cgns (CGNS), .exo/.e "
                     "(Exodus II), or a directory path ending in polyMesh (OpenFOAM, e.g. CASE/constant/polyMesh)")

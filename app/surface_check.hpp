@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/surface_mesh.hpp"
+#include "io/patch_names.hpp"
 #include "validate/validate.hpp"
 
 namespace anitet::cli {
@@ -11,6 +12,7 @@ namespace anitet::cli {
 struct CheckedSurface {
   SurfaceMesh surface;  // after the safe repairs
   ValidationReport report;
+  PatchNames names;     // the patch names the file carries (SU2 markers), else empty
 };
 
 // Reads and validates `path`. Returns kExitOk, kExitReadError or kExitInvalidInput; on failure

@@ -13,8 +13,9 @@ Result<SurfaceFormat> surface_format_from_path(const std::string& path) {
   if (ext == "ply") return SurfaceFormat::Ply;
   if (ext == "mesh") return SurfaceFormat::Medit;
   if (ext == "msh") return SurfaceFormat::Gmsh;
+  if (ext == "su2") return SurfaceFormat::Su2;
   return Status(Error::UnsupportedFormat, path + ": unknown surface format '." + ext +
-                                              "' (expected .off, .obj, .stl, .ply, .mesh or .msh)");
+                                              "' (expected .off, .obj, .stl, .ply, .mesh, .msh or .su2)");
 }
 
 Result<SurfaceMesh> read_surface(std::string_view data, SurfaceFormat format,
@@ -32,15 +33,18 @@ Result<SurfaceMesh> read_surface(std::string_view data, SurfaceFormat format,
       return read_medit_surface(data, name);
     case SurfaceFormat::Gmsh:
       return read_gmsh_surface(data, name);
+    case SurfaceFormat::Su2:
+      return read_su2_surface(data, name);
   }
   return Status(Error::UnsupportedFormat, name + ": unknown surface format");
 }
 
-Result<SurfaceMesh> read_surface(const std::string& path) {
+Result<SurfaceMesh> read_surface(const std::string& path, PatchNames* names) {
   Result<SurfaceFormat> format = surface_format_from_path(path);
   if (!format.ok()) return format.status();
   Result<std::string> bytes = read_file_bytes(path);
   if (!bytes.ok()) return bytes.status();
+  if (format.value() == SurfaceFormat::Su2) return read_su2_surface(bytes.value(), path, names);
   return read_surface(bytes.value(), format.value(), path);
 }
 

@@ -13,16 +13,18 @@
 
 #include "core/status.hpp"
 #include "core/surface_mesh.hpp"
+#include "io/patch_names.hpp"
 
 namespace anitet {
 
-enum class SurfaceFormat { Off, Obj, Stl, Ply, Medit, Gmsh };
+enum class SurfaceFormat { Off, Obj, Stl, Ply, Medit, Gmsh, Su2 };
 
-// From the extension, case-insensitive: .off .obj .stl .ply .mesh .msh.
+// From the extension, case-insensitive: .off .obj .stl .ply .mesh .msh .su2.
 Result<SurfaceFormat> surface_format_from_path(const std::string& path);
 
-// Reads a file, choosing the format from its extension.
-Result<SurfaceMesh> read_surface(const std::string& path);
+// Reads a file, choosing the format from its extension. `names`, when given, receives the patch
+// names the file carries (SU2 markers; other formats: none).
+Result<SurfaceMesh> read_surface(const std::string& path, PatchNames* names = nullptr);
 Result<SurfaceMesh> read_surface(std::string_view data, SurfaceFormat format,
                                  const std::string& name);
 
@@ -42,6 +44,12 @@ Result<SurfaceMesh> read_medit_surface(std::string_view data, const std::string&
 // Gmsh .msh 4.1 (ASCII or binary) or 2.2 (ASCII): triangles (type 2); patch = the entity tag of
 // the surface the triangle is on (the elementary tag in 2.2).
 Result<SurfaceMesh> read_gmsh_surface(std::string_view data, const std::string& name);
+
+// SU2 native mesh: the triangles (and split quadrilaterals) of its boundary markers, marker i in
+// file order as patch label i + 1, its MARKER_TAG in `names` (a tag that is no valid patch
+// name, see patch_names.hpp, is an error when names are asked for). Volume elements are
+// skipped; 2D and multi-zone files are UnsupportedFormat.
+Result<SurfaceMesh> read_su2_surface(std::string_view data, const std::string& name, PatchNames* names = nullptr);
 
 // Writes a file, choosing the format from its extension: .off .obj .stl (binary) .mesh.
 Status write_surface(const SurfaceMesh& mesh, const std::string& path);

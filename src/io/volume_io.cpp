@@ -59,8 +59,10 @@ Result<VolumeMesh> read_volume_mesh(const std::string& path) {
   if (!format.ok()) return format.status();
   if (format.value() == VolumeFormat::Su2 || format.value() == VolumeFormat::OpenFoam ||
       format.value() == VolumeFormat::Cgns || format.value() == VolumeFormat::Exodus) {
-    return Status(Error::UnsupportedFormat, path + ": anitet writes this format but does not read it "
-                                                   "(it reads .mesh, .msh, .node/.ele and .vtu)");
+    return Status(Error::UnsupportedFormat,
+                  path + ": anitet writes this format but does not read it as a volume mesh (it reads .mesh, .msh, "
+                         ".node/.ele and .vtu" +
+                      std::string(format.value() == VolumeFormat::Su2 ? "; an .su2 file's boundary is read as a surface)" : ")"));
   }
   if (format.value() == VolumeFormat::TetGen) {
     const std::string base = path.substr(0, path.size() - lower_extension(path).size() - 1);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "io/mesh_faces.hpp"
+#include "io/surface_io.hpp"
 #include "io/volume_io.hpp"
 #include "io_test_util.hpp"
 
@@ -445,6 +446,44 @@ TEST(SolverFormats, WriteFailuresNameTheFile) {
     EXPECT_NE(s.message().find(parent), std::string::npos) << s.message();
   }
   EXPECT_EQ(test::load(parent), "x");  // untouched
+}
+
+TEST(Su2, BoundaryReadBackAsASurfaceWithItsMarkerNames) {
+  const VolumeMesh m = grid_mesh(3, 5);
+  Result<std::string> text = to_su2(m, kNames);
+  ASSERT_TRUE(text.ok()) << text.status().message();
+  PatchNames names;
+  Result<SurfaceMesh> read = read_su2_surface(text.value(), "grid.su2", &names);
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  const SurfaceMesh& s = read.value();
+  ASSERT_EQ(s.xyz, m.xyz);  // every point, bit for bit (the volume's too)
+  // Markers in increasing label order, labels 1..6 here: the same labels, names and triangles.
+  const PatchNames expect = {{1, "wall"}, {2, "FarField_out"}, {3, "patch3"}, {4, "patch4"}, {5, "symmetry_bottom"}, {6, "patch6"}};
+  EXPECT_EQ(names, expect);
+  std::map<int32_t, std::set<Tri>> got;
+  for (size_t t = 0; t < s.num_triangles(); ++t)
+    got[s.patch[t]].insert(sorted({s.tri[3 * t], s.tri[3 * t + 1], s.tri[3 * t + 2]}));
+  EXPECT_EQ(got, triangles_by_patch(m));
+  // Oriented out of the domain: the enclosed volume is the grid's, 3 x 3 x 1.5.
+  double vol6 = 0.0;
+  const double origin[3] = {0, 0, 0};
+  for (size_t t = 0; t < s.num_triangles(); ++t)
+    vol6 += volume6(origin, s.point(s.tri[3 * t]), s.point(s.tri[3 * t + 1]), s.point(s.tri[3 * t + 2]));
+  EXPECT_NEAR(vol6 / 6.0, 13.5, 1e-12);
+  // Through read_surface by the extension, and refusals naming what is wrong.
+  EXPECT_EQ(surface_format_from_path("a.SU2").value(), SurfaceFormat::Su2);
+  const std::string head = "NDIME= 3\nNELEM= 0\nNPOIN= 3\n0 0 0\n1 0 0\n0 1 0\nNMARK= 1\nMARKER_TAG= w\n";
+  auto code = [](const std::string& t) { return read_su2_surface(t, "t.su2").status().code(); };
+  EXPECT_EQ(code(head + "MARKER_ELEMS= 1\n5 0 1 2\n"), Error::Ok);
+  EXPECT_EQ(code(head + "MARKER_ELEMS= 1\n9 0 1 2 0\n"), Error::Ok);
+  EXPECT_EQ(code(head + "MARKER_ELEMS= 1\n5 0 1 3\n"), Error::BadIndex);
+  EXPECT_EQ(code(head + "MARKER_ELEMS= 1\n3 0 1\n"), Error::UnsupportedFormat);
+  EXPECT_EQ(code(head + "MARKER_ELEMS= 2\n5 0 1 2\n"), Error::Parse);
+  EXPECT_EQ(code(head + "MARKER_ELEMS= 0\n"), Error::EmptyInput);
+  EXPECT_EQ(code("NDIME= 2\n"), Error::UnsupportedFormat);
+  EXPECT_EQ(code("NPOIN= 1\n0 0 0\nNPOIN= 1\n0 0 0\n"), Error::UnsupportedFormat);
+  EXPECT_EQ(read_su2_surface(head + "MARKER_TAG= my-wall\nMARKER_ELEMS= 1\n5 0 1 2\n", "t.su2", &names).status().code(),
+            Error::Parse);  // not a valid patch name
 }
 
 TEST(SolverFormats, ReadersSayTheyOnlyWrite) {
