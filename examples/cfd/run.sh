@@ -7,7 +7,8 @@
 #
 #   examples/cfd/run.sh [BODY.obj [OUTDIR]]
 #
-# Environment: YPLUS (default 100), REYNOLDS (5e6), BL_LAYERS (5), BL_GROWTH (1.2).
+# Environment: YPLUS (default 100), REYNOLDS (5e6), BL_LAYERS (5), BL_GROWTH (1.2), HGRAD (1.3:
+# sizes grow by at most 30% from one cell to the next, from the wall out to the farfield).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 body=${1:-$root/../shared/data/surfaces/airplane.obj}
@@ -33,7 +34,7 @@ size=$(echo "$info" | sed -n 's/.*body size \([0-9.eE+-]*\),.*/\1/p')
 "$anitet" mesh "$domain" -o "$out/$name.cgns" --also-write "$out/$name.su2" --also-write "$out/$name.mesh" \
     --layers 2 --patch-names 1=wall,2=farfield \
     --bl-patches 1 --bl-yplus "${YPLUS:-100}" --bl-reynolds "${REYNOLDS:-5e6}" --bl-ref-length "$size" \
-    --bl-layers "${BL_LAYERS:-5}" --bl-growth "${BL_GROWTH:-1.2}"
+    --bl-layers "${BL_LAYERS:-5}" --bl-growth "${BL_GROWTH:-1.2}" --hgrad "${HGRAD:-1.3}"
 
 echo
 echo "SU2 file $out/$name.su2:"
@@ -43,3 +44,8 @@ if command -v cgnscheck >/dev/null 2>&1; then
   echo "cgnscheck -w3 $out/$name.cgns:"
   cgnscheck -w3 "$out/$name.cgns" | tail -n 3
 fi
+
+echo
+echo "Cell size away from the wall (examples/cfd/grading.py):"
+py=python3; $py -c 'import numpy, meshio' 2>/dev/null || py=/usr/bin/python3
+$py "$root/examples/cfd/grading.py" "$out/$name.mesh"
