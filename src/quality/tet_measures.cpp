@@ -65,7 +65,11 @@ TetMeasures tet_measures(const double* a, const double* b, const double* c, cons
                              std::sqrt(l2[2] * l2[3]));
     if (s > 0.0) {
       const double circum = std::sqrt(s) / (24.0 * av);
-      m.radius_ratio = 3.0 * r_in / circum;
+      // The circumsphere holds every edge (R >= l_max / 2), so 3 r / R <= 6 r / l_max <= 1. For
+      // a nearly flat tet, V and s are both rounding noise and their ratio may break the bound
+      // (values above 1 were seen); r alone is as accurate as V.
+      const double l_max = std::sqrt(*std::max_element(l2, l2 + 6));
+      m.radius_ratio = std::min({3.0 * r_in / circum, 6.0 * r_in / l_max, 1.0});
     }
   }
 

@@ -125,6 +125,37 @@ TEST(TetMeasures, AgreesWithIndependentFormulaOnRandomTets) {
   }
 }
 
+TEST(TetMeasures, NearlyFlatTetsStayBelowTheirBound) {
+  // Four points on a circle of radius 0.1 at 1000 from the origin, lifted by at most 1e-13: the
+  // volume and the circumradius product are both rounding noise (the ratio once came out 75).
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> angle(0.0, 6.283185307179586), lift(-1e-13, 1e-13);
+  size_t positive = 0;
+  for (int k = 0; k < 2000; ++k) {
+    double p[4][3];
+    for (auto& q : p) {
+      const double t = angle(rng);
+      q[0] = 1000.0 + 0.1 * std::cos(t);
+      q[1] = 1000.0 + 0.1 * std::sin(t);
+      q[2] = 1000.0 + lift(rng);
+    }
+    const TetMeasures m = tet_measures(p[0], p[1], p[2], p[3]);
+    positive += m.radius_ratio > 0.0;
+    EXPECT_GE(m.radius_ratio, 0.0) << "tet " << k;
+    EXPECT_LT(m.radius_ratio, 1e-6) << "tet " << k;  // flat: 6 r / l_max is at most ~1e-9 here
+  }
+  EXPECT_GT(positive, 0u);
+  // Three corners within 3e-12 of each other, 0.18 from the fourth (a stage 1 tet of the airplane
+  // with 15 BL layers): the Heron form of R gave a radius ratio of 75.
+  const double a[3] = {-6.29441166845605, -0.6266023338334077, 2.060429610114084};
+  const double b[3] = {-6.463989589033079, -0.5857328680914512, 2.0234233880687387};
+  const double c[3] = {-6.463989589032781, -0.5857328680896993, 2.023423388065967};
+  const double d[3] = {-6.463989589033034, -0.5857328680911862, 2.0234233880683172};
+  const TetMeasures m = tet_measures(a, b, c, d);
+  EXPECT_GE(m.radius_ratio, 0.0);
+  EXPECT_LT(m.radius_ratio, 1e-5);
+}
+
 TEST(TetMeasures, ScaleAndTranslationInvariant) {
   const double a[3] = {0, 0, 0}, b[3] = {1, 0.1, 0}, c[3] = {0.2, 1, 0.1}, d[3] = {0.3, 0.2, 0.9};
   const TetMeasures m = tet_measures(a, b, c, d);
