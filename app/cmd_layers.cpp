@@ -51,7 +51,7 @@ nlohmann::json layers_json(const LayersOutput& r, const LayersCheck& check) {
                       {"max_halvings", s.max_push_halvings}, {"halved_share", share(s.pushes_halved, s.pushes)},
                       {"deferred", s.deferred_pushes}, {"partial", s.partial_pushes},
                       {"fallbacks", s.push_fallbacks}, {"stopped_vertices", s.stopped_vertices},
-                      {"improved_vertices", s.improved_vertices}}},
+                      {"improved_vertices", s.improved_vertices}, {"smoothed_vertices", s.smoothed_vertices}}},
           {"epsilon_halving", {{"loops", s.halving_loops}, {"halved_columns", s.halved_columns},
                                {"halved_column_share", s.halved_column_share}}},
           {"boundary_layer", {{"layers", s.bl_layers}, {"wall_vertices", s.bl_wall_vertices},
@@ -155,7 +155,8 @@ int run_mesh_layers(MeshArgs& args) {
               << s.seconds << " s\n"
               << "  pushes halved: " << s.pushes_halved << " of " << s.pushes << " (" << s.push_halvings
               << " halvings, at most " << s.max_push_halvings << "); vertices moved after their layer: "
-              << s.improved_vertices << ", left in place: " << s.stopped_vertices;
+              << s.improved_vertices << ", left in place: " << s.stopped_vertices
+              << "; interior vertex moves after the last layer: " << s.smoothed_vertices;
     if (s.faces)
       std::cout << "; face tets halved: " << s.faces_halved << " of " << s.faces << " ("
                 << s.face_halvings << " halvings)";

@@ -265,4 +265,83 @@ void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
   }
 }
 
+void LayerBuilder::smooth_interior(int passes) {
+  if (passes <= 0) return;
+  const uint32_t nv = uint32_t(mesh_.num_vertices());
+  std::vector<std::vector<uint32_t>> tets(nv);
+  std::vector<uint8_t> movable(nv, 0);
+  for (uint32_t v = uint32_t(s_.num_vertices()); v < nv; ++v) movable[v] = front_.star(v).empty();
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
+    const bool bl = t < mesh_.tet_region.size() && mesh_.tet_region[t] != 0;
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t u = mesh_.vertex(t, i);
+      tets[u].push_back(t);
+      if (bl) movable[u] = 0;  // BL heights stay as built
+    }
+  }
+  for (int pass = 0; pass < passes; ++pass) {
+    size_t moved = 0;
+    for (uint32_t v = 0; v < nv; ++v) {
+      if (!movable[v] || tets[v].empty()) continue;
+      const double* p = mesh_.point(v);
+      double best_q = worst_tet_with(v, p, tets[v]);
+      if (best_q >= opt_.improve_below) continue;
+      // From the centroid of the star's other vertices (or v when that is worse), a compass
+      // search on the worst tet, with steps from a tenth of the mean edge at v.
+      std::array<double, 3> best = {p[0], p[1], p[2]}, mean = {0, 0, 0};
+      double edge = 0.0;
+      size_t count = 0;
+      for (uint32_t t : tets[v])
+        for (int i = 0; i < 4; ++i) {
+          const uint32_t u = mesh_.vertex(t, i);
+          if (u == v) continue;
+          const double* q = mesh_.point(u);
+          const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+          edge += std::sqrt(dot3(e, e));
+          for (int k = 0; k < 3; ++k) mean[size_t(k)] += q[k];
+          ++count;
+        }
+      if (count == 0) continue;
+      edge /= double(count);
+      for (double& x : mean) x /= double(count);
+      const double start_q = best_q;
+      if (const double q = worst_tet_with(v, mean.data(), tets[v]); q > best_q) {
+        best_q = q;
+        best = mean;
+      }
+      for (double step = 0.1 * edge; step > 0.002 * edge;) {
+        bool moved_here = false;
+        for (int k = 0; k < 3; ++k)
+          for (double sign : {-1.0, 1.0}) {
+            std::array<double, 3> c = best;
+            c[size_t(k)] += sign * step;
+            const double q = worst_tet_with(v, c.data(), tets[v]);
+            if (q > best_q + 1e-6) {
+              best_q = q;
+              best = c;
+              moved_here = true;
+            }
+          }
+        if (!moved_here) step *= 0.5;
+      }
+      if (!(best_q > start_q + 1e-3)) continue;
+      bool positive = true;
+      for (size_t j = 0; j < tets[v].size() && positive; ++j) {
+        const uint32_t t = tets[v][j];
+        const double* q[4];
+        for (int i = 0; i < 4; ++i) {
+          const uint32_t u = mesh_.vertex(t, i);
+          q[i] = u == v ? best.data() : mesh_.point(u);
+        }
+        positive = predicates::orient3d(q[0], q[1], q[2], q[3]) > 0;
+      }
+      if (!positive) continue;
+      std::copy_n(best.data(), 3, &mesh_.xyz[3 * size_t(v)]);
+      ++moved;
+      ++out_.stats.smoothed_vertices;
+    }
+    if (moved == 0) break;
+  }
+}
+
 }  // namespace anitet::layers

@@ -76,6 +76,10 @@ class LayerBuilder {
   // Moves the layer's new front vertices whose worst tet is below `below`, when valid (see the
   // file).
   void improve_layer(uint32_t first_new_vertex, double below);
+  // After the last layer: moves T1's interior vertices (off S, off the final front, in no BL
+  // tet) to raise the worst tet around each, a move kept only when every tet around stays
+  // positive (exact). Their link is fixed, so the tets still tile the same star.
+  void smooth_interior(int passes);
   // The worst radius ratio of `tets` with v placed at `at` (-1 when one is not positive).
   double worst_tet_with(uint32_t v, const double* at, const std::vector<uint32_t>& tets) const;
   bool relocate_if_valid(uint32_t v, const double to[3], const std::vector<uint32_t>& tets);

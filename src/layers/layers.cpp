@@ -233,6 +233,7 @@ Status LayerBuilder::run() {
     if (ls.boundary_layer) out_.stats.bl_seconds += ls.seconds;
     out_.stats.per_layer.push_back(ls);
   }
+  smooth_interior(opt_.interior_smoothing_passes);
   Status st = finish();
   out_.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return st;

@@ -150,6 +150,9 @@ struct LayersOptions {
   // ratio below improve_below (last layer) or improve_below_inner (the layers before: a move
   // into the region takes room from the next layer) further in, each checked exactly (0: off).
   int improve_passes = 3;
+  // After the last layer: passes over T1's interior vertices (see LayerBuilder::smooth_interior),
+  // each moved only to raise the worst tet around it. 0: off.
+  int interior_smoothing_passes = 3;
   double improve_below = 0.3;
   double improve_below_inner = 0.06;
   BoundaryLayerOptions boundary_layer;
@@ -181,6 +184,7 @@ struct LayersStats {
   size_t stopped_vertices = 0;    // front vertices left in place by a layer (no push fitted)
   size_t push_fallbacks = 0;      // whole-star pushes that never fit, redone as partial pushes
   size_t improved_vertices = 0;   // front vertices moved after their layer (improve_passes)
+  size_t smoothed_vertices = 0;   // interior T1 vertex moves after the last layer
   uint64_t fit_tests = 0, fit_candidates = 0, tri_tests = 0;
   // The epsilon-halving loop: halvings made in all (faces and pushes), and per layer the share of
   // the front's columns (input triangles) where some tet came from a halved apex or push.
