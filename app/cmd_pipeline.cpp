@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -15,9 +16,11 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "io/file_bytes.hpp"
 #include "io/volume_io.hpp"
 #include "metric_options.hpp"
 #include "pipeline/mesher.hpp"
+#include "quality/html_report.hpp"
 #include "quality/quality_report.hpp"
 #include "surface_check.hpp"
 
@@ -44,6 +47,39 @@ class ProgressBar {
   bool enabled_;
   std::chrono::steady_clock::time_point start_;
 };
+
+// The run's figures for the HTML report's "Meshing run" table.
+std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r) {
+  auto fixed = [](double x, const char* format) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, format, x);
+    return std::string(buf);
+  };
+  std::vector<std::pair<std::string, std::string>> rows;
+  rows.emplace_back("total time", fixed(r.seconds, "%.3f s") + " (" +
+                                      fixed(r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0, "%.0f") +
+                                      " tets/s)");
+  for (const StageReport& st : r.stages)
+    rows.emplace_back("stage " + st.name, fixed(st.seconds, "%.3f s") + ", " + std::to_string(st.tets) + " tets");
+  rows.emplace_back("advancing-front layers", std::to_string(r.layers_used) +
+                                          (r.layers_retries ? " (after " + std::to_string(r.layers_retries) + " retries)" : ""));
+  rows.emplace_back("stage 2 Steiner points on S1", std::to_string(r.recovery.steiner_on_edges) + " on edges, " +
+                                                        std::to_string(r.recovery.steiner_on_faces) + " in faces (" +
+                                                        recovery_strategy_name(r.recovery.strategy) + ")");
+  if (r.boundary_layer.layers > 0)
+    rows.emplace_back("boundary layer", std::to_string(r.boundary_layer.layers) + " layers on " +
+                                            std::to_string(r.boundary_layer.wall_vertices) + " wall vertices, " +
+                                            std::to_string(r.boundary_layer.tets) + " tets; first height " +
+                                            fixed(r.boundary_layer.first_height_min, "%.4g") + " .. " +
+                                            fixed(r.boundary_layer.first_height_max, "%.4g"));
+  rows.emplace_back("refinement", std::to_string(r.refine.splits) + " splits, " + std::to_string(r.refine.collapses) +
+                                      " collapses; " + fixed(100.0 * r.refine.length_in_range, "%.1f") +
+                                      "% of edges in [1/sqrt2, sqrt2]");
+  rows.emplace_back("optimization", std::to_string(r.optimize.moves) + " CVT moves, " +
+                                        std::to_string(r.optimize.edge_removals) + " edge removals, " +
+                                        std::to_string(r.optimize.perturbations) + " sliver perturbations");
+  return rows;
+}
 
 // The exit code of a library error: bad options (InvalidArgument) are usage errors, missing
 // or unreadable files read errors.
@@ -136,8 +172,29 @@ int run_mesh_pipeline(MeshArgs& args) {
       if (st.name == "sizing") st.seconds += field_seconds;
     r.seconds += field_seconds;
   }
-  // Measured in the local frame, against the surface that was meshed.
-  Result<QualityReport> quality = compute_quality_report(r.mesh, &checked.surface);
+  // Measured in the local frame, against the surface that was meshed (with --report, by the
+  // HTML report, which gives the same report).
+  Result<QualityReport> quality = Status(Error::Internal, "not measured");
+  if (args.report_html.empty()) {
+    quality = compute_quality_report(r.mesh, &checked.surface);
+  } else {
+    HtmlReportOptions html_options;
+    html_options.title = "anitet mesh: " + std::filesystem::path(args.input).filename().string();
+    html_options.mesh_name = args.output;
+    html_options.surface_name = args.input;
+    for (size_t k = 0; k < 3 && k < args.report_cut.size(); ++k) html_options.cut[k] = args.report_cut[k];
+    html_options.run_rows = run_rows(r);
+    Result<HtmlReport> html = quality_report_html(r.mesh, &checked.surface, QualityOptions(), html_options);
+    if (html.ok()) {
+      if (Status st = write_file_bytes(args.report_html, html.value().html); !st.ok()) {
+        std::cerr << cmd << ": cannot write report '" << args.report_html << "': " << st.message() << "\n";
+        return kExitReadError;
+      }
+      quality = std::move(html).value().report;
+    } else {
+      quality = html.status();
+    }
+  }
   if (!quality.ok()) {
     std::cerr << cmd << ": cannot measure the mesh: " << quality.status().message() << "\n";
     return kExitInternal;
@@ -163,7 +220,7 @@ int run_mesh_pipeline(MeshArgs& args) {
     nlohmann::json stages = nlohmann::json::array();
     for (const StageReport& s : r.stages) stages.push_back({{"stage", s.name}, {"seconds", s.seconds}, {"tets", s.tets}});
     nlohmann::json out = {
-        {"input", args.input}, {"output", args.output}, {"seconds", r.seconds}, {"stages", stages},
+        {"input", args.input}, {"output", args.output}, {"also_write", args.also_write}, {"report", args.report_html}, {"seconds", r.seconds}, {"stages", stages},
         {"tets_per_second", r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0},
         {"layers", {{"layers_used", r.layers_used}, {"retries", r.layers_retries}}},
         {"recovery", {{"steiner_on_s1_edges", r.recovery.steiner_on_edges},
@@ -223,6 +280,7 @@ int run_mesh_pipeline(MeshArgs& args) {
               << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
               << "\n"
               << quality_report_text(quality.value());
+    if (!args.report_html.empty()) std::cout << "html report: " << args.report_html << "\n";
   }
   return kExitOk;
 }

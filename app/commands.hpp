@@ -41,6 +41,8 @@ struct MeshArgs {
   std::string input;
   std::string output;
   std::vector<std::string> also_write;  // --also-write: more outputs of the same mesh (any format)
+  std::string report_html;              // --report (mesh): the HTML quality report, with the run's figures
+  std::vector<double> report_cut{0.5, 0.5, 0.5};  // its cut planes
   bool quiet = false;
   bool json = false;
   std::string stop_after;               // "" (the whole pipeline) or "layers"

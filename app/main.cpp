@@ -1,5 +1,6 @@
-// anitet: the command-line tool. Subcommands: check-surface, quality, mesh, recover.
+// anitet: the command-line tool. Subcommands: check-surface, quality, report, mesh, recover.
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <new>
 #include <string>
@@ -61,6 +62,23 @@ int run(int argc, char** argv) {
                           "writes): the report's edge lengths are measured in it")
       ->needs(report_opt);
 
+  // `report`: the HTML report of a mesh, as `quality --report` writes it (default MESHSTEM.html).
+  QualityArgs report;
+  CLI::App* report_cmd = app.add_subcommand(
+      "report", "Write the self-contained HTML quality report of a mesh (histograms, cut views) and print the text report");
+  report_cmd->add_option("MESH", report.mesh, "Mesh file (.mesh .msh .vtu, TetGen .node/.ele)")->required();
+  report_cmd->add_option("--surface", report.surface, "Input surface: check that the mesh keeps it");
+  report_cmd->add_option("-o,--output", report.report_html, "The HTML page (default: MESH with .html)");
+  report_cmd->add_option("--cut", report.cut, "Cut planes: x,y,z as fractions of the bounding box")
+      ->expected(3)
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  report_cmd->add_option("--cut-max", report.cut_max, "Cross-sections drawn per cut view at most")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  report_cmd->add_option("--metric", report.metric_sol, "Per-vertex Medit .sol of MESH: edge lengths in it");
+
   MeshArgs mesh, recover;
   mesh.command = "mesh";
   recover.command = "recover";
@@ -92,6 +110,15 @@ int run(int argc, char** argv) {
                     "(Medit: comments). A name containing 'farfield' or 'symmetry' (any case) sets the CGNS BC "
                     "(BCFarfield, BCSymmetryPlane) and OpenFOAM patch type (patch, symmetry); others are walls");
   }
+  CLI::Option* mesh_report = mesh_cmd->add_option(
+      "--report", mesh.report_html,
+      "Also write the HTML quality report of the mesh here (summary with the stage timers, histograms, cut views)");
+  mesh_cmd->add_option("--cut", mesh.report_cut, "Cut planes of the HTML report: x,y,z as fractions of the bounding box")
+      ->expected(3)
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0))
+      ->needs(mesh_report);
   mesh_cmd->add_option("--stop-after", mesh.stop_after,
                        "Stop after a stage and write its result: 'layers' writes T1 (stage 1) to the "
                        "output, with S1 as one more patch, and S1 to OUTSTEM.front.off")
@@ -182,11 +209,23 @@ int run(int argc, char** argv) {
   }
   if (check_cmd->parsed()) return run_check_surface(check);
   if (quality_cmd->parsed()) return run_quality(quality);
+  if (report_cmd->parsed()) {
+    if (report.report_html.empty()) {
+      const std::filesystem::path p(report.mesh);
+      report.report_html = (p.parent_path() / p.stem()).string() + ".html";
+    }
+    return run_quality(report);
+  }
   if (mesh_cmd->parsed() && mesh.stop_after == "layers" &&
       (wants_sizing_field(mesh.metric) || mesh.metric.geodetic || !mesh.metric.background.empty())) {
     std::cerr << "anitet mesh: the sizing and geographic options (--metric, --background, --hmin, "
                  "--hmax, --hgrad, --write-metric, --write-sizing, --geodetic) apply to the whole "
                  "pipeline, not to --stop-after layers\n";
+    return kExitUsage;
+  }
+  if (mesh_cmd->parsed() && mesh.stop_after == "layers" && !mesh.report_html.empty()) {
+    std::cerr << "anitet mesh: --report applies to the whole pipeline; for stage 1 alone, run "
+                 "`anitet report OUT` on its output\n";
     return kExitUsage;
   }
   if (mesh_cmd->parsed()) return mesh.stop_after == "layers" ? run_mesh_layers(mesh) : run_mesh_pipeline(mesh);

@@ -638,6 +638,12 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
      grp([](const QualitySplit& q) { return num("%.2f%%", 100.0 * q.bad_fraction); }));
   h << "</table>\n";
 
+  if (!opt.run_rows.empty()) {
+    h << "<table><tr><th colspan=\"2\">Meshing run</th></tr>\n";
+    for (const auto& [name, value] : opt.run_rows) row(escape(name), escape(value));
+    h << "</table>\n";
+  }
+
   if (r.surface.present) {
     const SurfaceMatchReport& s = r.surface;
     h << "<table><tr><th colspan=\"2\">Against the input surface</th></tr>\n";

@@ -11,6 +11,8 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/status.hpp"
 #include "core/surface_mesh.hpp"
@@ -30,6 +32,9 @@ struct HtmlReportOptions {
   int quality_bins = 20;   // radius ratio and mean ratio over [0, 1]
   int dihedral_bins = 36;  // dihedral angles over [0, 180] degrees
   int edge_bins = 30;      // edge lengths over [0, longest]
+  // Rows of a "Meshing run" table (name, value as plain text), e.g. the stage timers of the run
+  // that made the mesh; none: no such table.
+  std::vector<std::pair<std::string, std::string>> run_rows;
 };
 
 struct HtmlReport {
