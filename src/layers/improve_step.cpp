@@ -106,6 +106,25 @@ double LayerBuilder::worst_tet_with(uint32_t v, const double* at,
   return worst;
 }
 
+void LayerBuilder::compass_search(uint32_t v, const std::vector<uint32_t>& tets, double step, double stop,
+                                  std::array<double, 3>& best, double& best_q) const {
+  while (step > stop) {
+    bool moved = false;
+    for (int k = 0; k < 3; ++k)
+      for (double sign : {-1.0, 1.0}) {
+        std::array<double, 3> c = best;
+        c[size_t(k)] += sign * step;
+        const double q = worst_tet_with(v, c.data(), tets);
+        if (q > best_q + 1e-6) {
+          best_q = q;
+          best = c;
+          moved = true;
+        }
+      }
+    if (!moved) step *= 0.5;
+  }
+}
+
 bool LayerBuilder::relocate_if_valid(uint32_t v, const double to[3],
                                      const std::vector<uint32_t>& tets) {
   for (uint32_t t : tets) {
@@ -229,21 +248,7 @@ void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
             best = c;
           }
         }
-        for (double step = 0.1 * edge; step > 0.005 * edge;) {
-          bool moved_here = false;
-          for (int k = 0; k < 3; ++k)
-            for (double sign : {-1.0, 1.0}) {
-              std::array<double, 3> c = best;
-              c[k] += sign * step;
-              const double q = worst_tet_with(v, c.data(), tets[i]);
-              if (q > best_q + 1e-6) {
-                best_q = q;
-                best = c;
-                moved_here = true;
-              }
-            }
-          if (!moved_here) step *= 0.5;
-        }
+        compass_search(v, tets[i], 0.1 * edge, 0.005 * edge, best, best_q);
         candidates.push_back(best);
       }
       const double clear_now = clear_distance(v, p, edge);
@@ -309,21 +314,7 @@ void LayerBuilder::smooth_interior(int passes) {
         best_q = q;
         best = mean;
       }
-      for (double step = 0.1 * edge; step > 0.002 * edge;) {
-        bool moved_here = false;
-        for (int k = 0; k < 3; ++k)
-          for (double sign : {-1.0, 1.0}) {
-            std::array<double, 3> c = best;
-            c[size_t(k)] += sign * step;
-            const double q = worst_tet_with(v, c.data(), tets[v]);
-            if (q > best_q + 1e-6) {
-              best_q = q;
-              best = c;
-              moved_here = true;
-            }
-          }
-        if (!moved_here) step *= 0.5;
-      }
+      compass_search(v, tets[v], 0.1 * edge, 0.002 * edge, best, best_q);
       if (!(best_q > start_q + 1e-3)) continue;
       bool positive = true;
       for (size_t j = 0; j < tets[v].size() && positive; ++j) {

@@ -2,6 +2,7 @@
 // guarantees). layers.cpp holds the driver and the face step, push_step.cpp the push step.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -82,6 +83,10 @@ class LayerBuilder {
   void smooth_interior(int passes);
   // The worst radius ratio of `tets` with v placed at `at` (-1 when one is not positive).
   double worst_tet_with(uint32_t v, const double* at, const std::vector<uint32_t>& tets) const;
+  // Moves `best` (v's position) along the axes by `step`, halved when nothing improves until
+  // below `stop`, keeping each move that raises worst_tet_with over `tets` (best_q).
+  void compass_search(uint32_t v, const std::vector<uint32_t>& tets, double step, double stop,
+                      std::array<double, 3>& best, double& best_q) const;
   bool relocate_if_valid(uint32_t v, const double to[3], const std::vector<uint32_t>& tets);
   // No front triangle outside v's ring comes within `gap` of `to`.
   bool keeps_clear(uint32_t v, const double to[3], double gap) const;
