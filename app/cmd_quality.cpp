@@ -1,5 +1,4 @@
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -8,6 +7,7 @@
 #include "io/surface_io.hpp"
 #include "io/volume_io.hpp"
 #include "metric/sol_field.hpp"
+#include "io/file_bytes.hpp"
 #include "quality/html_report.hpp"
 #include "quality/quality_report.hpp"
 
@@ -71,11 +71,8 @@ int run_quality(const QualityArgs& args) {
                 << " [" << error_name(html.status().code()) << "]\n";
       return kExitInvalidInput;
     }
-    std::ofstream out(args.report_html, std::ios::binary);
-    out << html.value().html;
-    out.close();
-    if (!out) {
-      std::cerr << "anitet quality: cannot write report '" << args.report_html << "'\n";
+    if (Status st = write_file_bytes(args.report_html, html.value().html); !st.ok()) {
+      std::cerr << "anitet quality: cannot write report '" << args.report_html << "': " << st.message() << "\n";
       return kExitReadError;
     }
     const HtmlReport& h = html.value();
@@ -88,11 +85,8 @@ int run_quality(const QualityArgs& args) {
     r = std::move(html).value().report;
   }
   if (!args.hist_csv.empty()) {
-    std::ofstream out(args.hist_csv, std::ios::binary);
-    out << quality_histogram_csv(r);
-    out.close();
-    if (!out) {
-      std::cerr << "anitet quality: cannot write histogram '" << args.hist_csv << "'\n";
+    if (Status st = write_file_bytes(args.hist_csv, quality_histogram_csv(r)); !st.ok()) {
+      std::cerr << "anitet quality: cannot write histogram '" << args.hist_csv << "': " << st.message() << "\n";
       return kExitReadError;
     }
   }

@@ -1,12 +1,14 @@
 #include "io/file_bytes.hpp"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <string>
 
 namespace anitet {
 
@@ -45,13 +47,36 @@ Result<std::string> read_file_bytes(const std::string& path) {
   return bytes;
 }
 
-Status write_file_bytes(const std::string& path, std::string_view bytes) {
+namespace {
+
+Status write_directly(const std::string& path, const std::string& shown, std::string_view bytes) {
   FilePtr file(std::fopen(path.c_str(), "wb"));
-  if (!file) return io_error("create", path, errno);
+  if (!file) return io_error("create", shown, errno);
   if (std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
-    return io_error("write", path, errno ? errno : EIO);
+    return io_error("write", shown, errno ? errno : EIO);
   }
-  if (std::fclose(file.release()) != 0) return io_error("write", path, errno ? errno : EIO);
+  if (std::fclose(file.release()) != 0) return io_error("write", shown, errno ? errno : EIO);
+  return Status::success();
+}
+
+}  // namespace
+
+Status write_file_bytes(const std::string& path, std::string_view bytes) {
+  // A regular file is written beside its final name and renamed into place, so a failed or
+  // interrupted write never leaves a truncated file that looks complete (and an old file stays
+  // whole until the new one is). Devices and pipes are written as they are.
+  struct stat info;
+  if (stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) return write_directly(path, path, bytes);
+  const std::string temp = path + ".part-" + std::to_string(getpid());
+  if (Status s = write_directly(temp, path, bytes); !s.ok()) {
+    std::remove(temp.c_str());
+    return s;
+  }
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    std::remove(temp.c_str());
+    return io_error("replace", path, err);
+  }
   return Status::success();
 }
 

@@ -12,7 +12,9 @@ namespace anitet {
 // The bytes of a file; Error::FileNotFound when it cannot be opened or read.
 Result<std::string> read_file_bytes(const std::string& path);
 
-// Writes (replaces) a file; Error::FileNotFound when it cannot be created or written.
+// Writes (replaces) a file: into PATH.part-PID, then renamed to PATH, so that PATH is never
+// left half-written (devices and pipes are written directly). Error::FileNotFound when it
+// cannot be created, written or renamed; the partial file is removed.
 Status write_file_bytes(const std::string& path, std::string_view bytes);
 
 // The extension of a path, lower case and without the dot ("" when there is none).

@@ -3,7 +3,10 @@
 // or hang (these tests also run under AddressSanitizer and UBSan).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <random>
 #include <string>
@@ -229,6 +232,41 @@ TEST(Robustness, RandomBytesBehindPlausibleHeaders) {
     std::memcpy(&data[80], &n, 4);
     checker (&read_stl)(data);
   }
+}
+
+}  // namespace
+}  // namespace anitet
+
+namespace anitet {
+namespace {
+
+// Output safety: a write goes to PATH.part-PID and is renamed, so no partial file is left
+// behind, a failed write leaves the old file whole, and no .part file survives either way.
+TEST(FileBytes, WritesAreRenamedIntoPlaceAndFailuresLeaveTheOldFile) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("anitet-write-" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "mesh.mesh").string();
+  ASSERT_TRUE(write_file_bytes(path, "old contents").ok());
+  ASSERT_TRUE(write_file_bytes(path, "new contents").ok());
+  EXPECT_EQ(read_file_bytes(path).value(), "new contents");
+  // The temporary name is taken by a directory: the write fails and the old file stays.
+  std::filesystem::create_directory(path + ".part-" + std::to_string(getpid()));
+  const Status failed = write_file_bytes(path, "newer");
+  EXPECT_EQ(failed.code(), Error::FileNotFound);
+  EXPECT_NE(failed.message().find(path), std::string::npos) << failed.message();
+  EXPECT_EQ(read_file_bytes(path).value(), "new contents");
+  std::filesystem::remove(path + ".part-" + std::to_string(getpid()));
+  // A directory cannot be replaced by a file: refused, nothing left beside it.
+  std::filesystem::create_directory(dir / "sub");
+  EXPECT_FALSE(write_file_bytes((dir / "sub").string(), "x").ok());
+  size_t entries = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    ++entries;
+    EXPECT_EQ(e.path().string().find(".part-"), std::string::npos) << e.path();
+  }
+  EXPECT_EQ(entries, 2u);  // mesh.mesh and sub
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
