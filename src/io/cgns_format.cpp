@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "io/file_bytes.hpp"
 #include "io/mesh_faces.hpp"
 #include "io/volume_io.hpp"
 
@@ -31,19 +32,20 @@ CGNS_ENUMT(BCType_t) cgns_bc_type(PatchKind kind) {
   return CGNS_ENUMV(BCWall);
 }
 
-// Closes the file on every path; a file it created is removed when the write did not finish.
+// Writes PATH.part-PID and moves it to PATH when complete; closes the file on every path and
+// removes the partial one when the write did not finish.
 class CgnsFile {
  public:
   explicit CgnsFile(std::string path) : path_(std::move(path)) {}
   ~CgnsFile() {
     if (open_) cg_close(fn_);
-    if (created_ && !done_) std::remove(path_.c_str());
+    if (created_ && !done_) std::remove(partial_.c_str());
   }
   CgnsFile(const CgnsFile&) = delete;
   CgnsFile& operator=(const CgnsFile&) = delete;
 
   Status open() {
-    if (cg_open(path_.c_str(), CG_MODE_WRITE, &fn_) != CG_OK) return error("cg_open");
+    if (cg_open(partial_.c_str(), CG_MODE_WRITE, &fn_) != CG_OK) return error("cg_open");
     open_ = created_ = true;
     return Status::success();
   }
@@ -51,7 +53,7 @@ class CgnsFile {
     open_ = false;
     if (cg_close(fn_) != CG_OK) return error("cg_close");
     done_ = true;
-    return Status::success();
+    return move_into_place(partial_, path_);
   }
   Status error(const char* call) const {
     return Status(Error::FileNotFound, path_ + ": " + call + ": " + cg_get_error());
@@ -60,6 +62,7 @@ class CgnsFile {
 
  private:
   std::string path_;
+  std::string partial_ = partial_path(path_);  // written, then moved to path_ by close()
   int fn_ = -1;
   bool open_ = false, created_ = false, done_ = false;
 };

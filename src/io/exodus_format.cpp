@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "io/file_bytes.hpp"
 #include "io/mesh_faces.hpp"
 #include "io/volume_io.hpp"
 
@@ -23,20 +24,21 @@ bool exodus_available() { return true; }
 
 namespace {
 
-// Closes the file on every path; a file it created is removed when the write did not finish.
+// Writes PATH.part-PID and moves it to PATH when complete; closes the file on every path and
+// removes the partial one when the write did not finish.
 class ExodusFile {
  public:
   explicit ExodusFile(std::string path) : path_(std::move(path)) {}
   ~ExodusFile() {
     if (id_ >= 0) ex_close(id_);
-    if (created_ && !done_) std::remove(path_.c_str());
+    if (created_ && !done_) std::remove(partial_.c_str());
   }
   ExodusFile(const ExodusFile&) = delete;
   ExodusFile& operator=(const ExodusFile&) = delete;
 
   Status create() {
     int cpu_word_size = sizeof(double), io_word_size = sizeof(double);
-    id_ = ex_create(path_.c_str(), EX_CLOBBER, &cpu_word_size, &io_word_size);
+    id_ = ex_create(partial_.c_str(), EX_CLOBBER, &cpu_word_size, &io_word_size);
     if (id_ < 0) return error("ex_create", id_);
     created_ = true;
     return Status::success();
@@ -46,7 +48,7 @@ class ExodusFile {
     id_ = -1;
     if (rc < 0) return error("ex_close", rc);
     done_ = true;
-    return Status::success();
+    return move_into_place(partial_, path_);
   }
   Status error(const char* call, int rc) const {
     // exerrval: an errno value (> 0) or a netCDF/Exodus code (< 0). (nc_strerror would need
@@ -60,6 +62,7 @@ class ExodusFile {
 
  private:
   std::string path_;
+  std::string partial_ = partial_path(path_);  // written, then moved to path_ by close()
   int id_ = -1;
   bool created_ = false, done_ = false;
 };

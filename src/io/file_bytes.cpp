@@ -67,14 +67,20 @@ Status write_file_bytes(const std::string& path, std::string_view bytes) {
   // whole until the new one is). Devices and pipes are written as they are.
   struct stat info;
   if (stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) return write_directly(path, path, bytes);
-  const std::string temp = path + ".part-" + std::to_string(getpid());
+  const std::string temp = partial_path(path);
   if (Status s = write_directly(temp, path, bytes); !s.ok()) {
     std::remove(temp.c_str());
     return s;
   }
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+  return move_into_place(temp, path);
+}
+
+std::string partial_path(const std::string& path) { return path + ".part-" + std::to_string(getpid()); }
+
+Status move_into_place(const std::string& partial, const std::string& path) {
+  if (std::rename(partial.c_str(), path.c_str()) != 0) {
     const int err = errno;
-    std::remove(temp.c_str());
+    std::remove(partial.c_str());
     return io_error("replace", path, err);
   }
   return Status::success();

@@ -17,6 +17,12 @@ Result<std::string> read_file_bytes(const std::string& path);
 // cannot be created, written or renamed; the partial file is removed.
 Status write_file_bytes(const std::string& path, std::string_view bytes);
 
+// The name a writer fills before moving it into place: PATH.part-PID.
+std::string partial_path(const std::string& path);
+// Renames `partial` to `path` (replacing it); on failure removes `partial` and returns
+// Error::FileNotFound naming `path`.
+Status move_into_place(const std::string& partial, const std::string& path);
+
 // The extension of a path, lower case and without the dot ("" when there is none).
 std::string lower_extension(const std::string& path);
 
