@@ -1,6 +1,8 @@
 // The one translation unit that includes OpenVDB (compile time: keep it that way).
 #include "metric_field.hpp"
 
+#include <unistd.h>
+
 #include <openvdb/openvdb.h>
 #include <openvdb/io/File.h>
 
@@ -8,6 +10,10 @@
 #include <atomic>
 #include <cstdint>
 #include <cmath>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <string>
 #include <fstream>
 #include <limits>
 #include <vector>
@@ -779,6 +785,7 @@ Status write_metric_vdb(const MetricField& field, const std::string& path, bool 
     return Status(Error::InvalidArgument, "write_metric_vdb: '" + path + "': the voxel size " + std::to_string(f.dx) +
                                               " is below what an OpenVDB transform holds (about 2e-5); scale the "
                                               "model up to write its field as .vdb");
+  const std::string partial = path + ".part-" + std::to_string(getpid());
   try {
     openvdb::initialize();
     openvdb::GridPtrVec grids;
@@ -814,13 +821,21 @@ Status write_metric_vdb(const MetricField& field, const std::string& path, bool 
         }
       }
     }
-    openvdb::io::File file(path);
+    // Written beside its name and renamed when complete (as io/file_bytes does for the rest).
+    openvdb::io::File file(partial);
     file.write(grids);
     file.close();
   } catch (const std::bad_alloc&) {
+    std::remove(partial.c_str());
     return Status(Error::OutOfMemory, "out of memory writing " + path);
   } catch (const std::exception& e) {
+    std::remove(partial.c_str());
     return Status(Error::FileNotFound, "cannot write " + path + ": " + e.what());
+  }
+  if (std::rename(partial.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    std::remove(partial.c_str());
+    return Status(Error::FileNotFound, "cannot replace " + path + ": " + why);
   }
   return Status::success();
 }
