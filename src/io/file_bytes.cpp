@@ -64,9 +64,10 @@ Status write_directly(const std::string& path, const std::string& shown, std::st
 Status write_file_bytes(const std::string& path, std::string_view bytes) {
   // A regular file is written beside its final name and renamed into place, so a failed or
   // interrupted write never leaves a truncated file that looks complete (and an old file stays
-  // whole until the new one is). Devices and pipes are written as they are.
+  // whole until the new one is). Devices, pipes and symbolic links (whose target a rename would
+  // not replace) are written as they are.
   struct stat info;
-  if (stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) return write_directly(path, path, bytes);
+  if (lstat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) return write_directly(path, path, bytes);
   const std::string temp = partial_path(path);
   if (Status s = write_directly(temp, path, bytes); !s.ok()) {
     std::remove(temp.c_str());

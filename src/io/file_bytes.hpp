@@ -13,8 +13,8 @@ namespace anitet {
 Result<std::string> read_file_bytes(const std::string& path);
 
 // Writes (replaces) a file: into PATH.part-PID, then renamed to PATH, so that PATH is never
-// left half-written (devices and pipes are written directly). Error::FileNotFound when it
-// cannot be created, written or renamed; the partial file is removed.
+// left half-written (devices, pipes and symbolic links are written directly).
+// Error::FileNotFound when it cannot be created, written or renamed; the partial file is removed.
 Status write_file_bytes(const std::string& path, std::string_view bytes);
 
 // The name a writer fills before moving it into place: PATH.part-PID.
