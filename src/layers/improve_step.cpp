@@ -14,6 +14,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/closest_point.hpp"
 #include "layers/geometry.hpp"
 #include "layers/layer_builder.hpp"
 #include "predicates/predicates.hpp"
@@ -23,37 +24,6 @@ namespace anitet::layers {
 namespace {
 
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// Distance from p to the triangle abc (closest point by regions of the triangle's plane).
-double point_triangle_distance(const double* p, const double* a, const double* b, const double* c) {
-  const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double ap[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-  auto at = [&](double u, double v) {
-    double q[3];
-    for (int k = 0; k < 3; ++k) q[k] = a[k] + u * ab[k] + v * ac[k] - p[k];
-    return std::sqrt(dot3(q, q));
-  };
-  const double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return at(0, 0);
-  const double bp[3] = {p[0] - b[0], p[1] - b[1], p[2] - b[2]};
-  const double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
-  if (d3 >= 0.0 && d4 <= d3) return at(1, 0);
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return at(d1 / (d1 - d3), 0);
-  const double cp[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-  const double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
-  if (d6 >= 0.0 && d5 <= d6) return at(0, 1);
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return at(0, d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return at(1 - w, w);
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  return at(vb * denom, vc * denom);
-}
 
 }  // namespace
 
