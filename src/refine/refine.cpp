@@ -8,6 +8,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include "core/bvh.hpp"
+#include "core/closest_point.hpp"
 #include "delaunay/delaunay.hpp"
 #include "predicates/predicates.hpp"
 #include "refine/edges.hpp"
@@ -128,6 +130,11 @@ class Refiner {
     size_[v] = metric_size(&metrics_[6 * size_t(v)]);
   }
   void metric_midpoint(uint32_t a, uint32_t b, double m[3]) const;
+  // The protected facets (S, and any other protected ones) in a BVH, once at the start: their
+  // vertices are never moved by refinement.
+  void index_protected_facets();
+  // Whether m (metric mm there) is within facet_clearance (metric length) of a protected facet.
+  bool too_close_to_protected_facet(const double m[3], const double mm[6]) const;
   uint32_t insert_in_metric(const double p[3], const double mp[6], int32_t region);
   size_t metric_flip_pass();
   // Up to max_sweeps metric flip passes, until one flips nothing; then the debug check.
@@ -161,6 +168,8 @@ class Refiner {
   std::vector<uint8_t> touched_;
   std::unordered_set<uint64_t> refused_;  // edges (a << 32 | b) whose collapse was refused
   std::vector<uint32_t> ball_v_, ball_w_, old_, ring_tets_, ring_;
+  std::vector<uint32_t> facet_tri_;  // protected facets, 3 vertex ids each
+  TriangleBVH facet_bvh_;
   std::vector<meshops::TetVerts> fresh_;
   bool anisotropic_ = false;  // some vertex has an anisotropic metric: metric kernel and flips
   std::vector<uint32_t> cavity_;
@@ -168,6 +177,42 @@ class Refiner {
   RefineStats stats_;
   size_t protected_facets_ = 0;
 };
+
+void Refiner::index_protected_facets() {
+  facet_tri_.clear();
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
+    if (mesh_.is_deleted(t)) continue;
+    for (int i = 0; i < 4; ++i) {
+      if (!mesh_.facet_protected(t, i)) continue;
+      uint32_t f[3] = {mesh_.vertex(t, kFacetVertex[i][0]), mesh_.vertex(t, kFacetVertex[i][1]),
+                       mesh_.vertex(t, kFacetVertex[i][2])};
+      // An interior protected facet is seen from both sides: keep one copy.
+      if (mesh_.tet_adj[4 * size_t(t) + i] != TetMesh::kNoNeighbour && mesh_.neighbour(t, i) < t) continue;
+      facet_tri_.insert(facet_tri_.end(), f, f + 3);
+    }
+  }
+  facet_bvh_.build(mesh_.xyz.data(), facet_tri_.data(), facet_tri_.size() / 3);
+}
+
+bool Refiner::too_close_to_protected_facet(const double m[3], const double mm[6]) const {
+  if (!(options_.facet_clearance > 0.0) || facet_tri_.empty()) return false;
+  const double reach = options_.facet_clearance * meshops::metric_max_size(mm);
+  Box3 box;
+  for (int k = 0; k < 3; ++k) {
+    box.lo[k] = m[k] - reach;
+    box.hi[k] = m[k] + reach;
+  }
+  bool close = false;
+  facet_bvh_.query(box, [&](uint32_t f) {
+    double q[3];
+    closest_point_on_triangle(m, mesh_.point(facet_tri_[3 * size_t(f)]), mesh_.point(facet_tri_[3 * size_t(f) + 1]),
+                              mesh_.point(facet_tri_[3 * size_t(f) + 2]), q);
+    const double offset[3] = {m[0] - q[0], m[1] - q[1], m[2] - q[2]};
+    close = metric_norm(mm, offset) < options_.facet_clearance;
+    return !close;
+  });
+  return close;
+}
 
 void Refiner::metric_midpoint(uint32_t a, uint32_t b, double m[3]) const {
   // The sizes along the edge at its ends: h_a, h_b for isotropic ends, else (up to the common
@@ -394,6 +439,10 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
         continue;
       }
     }
+    if (too_close_to_protected_facet(m, mm)) {
+      ++stats_.split_rejected;
+      continue;
+    }
     // An anisotropic metric at the midpoint: the metric kernel (the Euclidean one would connect
     // the points by Euclidean proximity, across the stretched direction).
     uint32_t nv = TetMesh::kNone;
@@ -553,6 +602,7 @@ Result<RefineStats> Refiner::run() {
     if (!mesh_.is_deleted(t) && mesh_.is_ghost(t))
       return Status(Error::InvalidArgument, "refine: the mesh has ghost tets");
   vt_.build(mesh_);
+  index_protected_facets();
   metrics_.resize(6 * mesh_.num_vertices());
   size_.resize(mesh_.num_vertices());
   for (uint32_t v = 0; v < mesh_.num_vertices(); ++v) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/closest_point.hpp"
 #include "delaunay/delaunay.hpp"
 #include "io/surface_io.hpp"
 #include "layers/shapes.hpp"
@@ -99,6 +100,38 @@ TEST(Refine, KnightWithSurfaceSizing) {
   EXPECT_NEAR(r->length_mean, 1.0, 0.15);
   // The decimated knight's own edges (kept) range widely, so its edges from S cannot all fit.
   EXPECT_GT(r->length_in_range, 0.7);
+}
+
+TEST(Refine, KeepsNewPointsOffSurfaceTrianglesMuchLargerThanTheSize) {
+  // The unit cube in 12 triangles (1.4 long), size 0.25: each split of an edge running along a
+  // face used to halve its distance to the face again (points 1e-10 from it, flat tets). New
+  // points stay facet_clearance (0.2 h) away; without the guard they do not.
+  const SurfaceMesh s = test::grid_cube(1);
+  auto nearest_to_surface = [&](const TetMesh& m, size_t first) {
+    double d = HUGE_VAL;
+    for (size_t v = first; v < m.num_vertices(); ++v)
+      for (size_t t = 0; t < s.num_triangles(); ++t)
+        d = std::min(d, point_triangle_distance(m.point(v), s.point(s.tri[3 * t]), s.point(s.tri[3 * t + 1]),
+                                                s.point(s.tri[3 * t + 2])));
+    return d;
+  };
+  for (double clearance : {0.2, 0.0}) {
+    SCOPED_TRACE(clearance);
+    Result<CoupledMesh> c = test::coupled_mesh(s);
+    ASSERT_TRUE(c.ok()) << c.status().message();
+    TetMesh mesh = std::move(c->mesh);
+    const size_t before = mesh.num_vertices();
+    RefineOptions o;
+    o.facet_clearance = clearance;
+    o.check_each_pass = true;
+    Result<RefineStats> r = refine_mesh(mesh, test::ConstantSizing(0.25), o);
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    test::expect_surface_kept(s, mesh, "cube h=0.25");
+    ASSERT_GT(mesh.num_vertices(), before);
+    const double d = nearest_to_surface(mesh, before);
+    if (clearance > 0.0) EXPECT_GE(d, 0.2 * 0.25 * (1.0 - 1e-9));
+    else EXPECT_LT(d, 1e-3);
+  }
 }
 
 TEST(Refine, RejectsBadOptionsAndGhosts) {
