@@ -14,6 +14,11 @@ struct Box3 {
   double hi[3];
 };
 
+// The cube of half-side r around p.
+inline Box3 box_around(const double* p, double r) {
+  return {{p[0] - r, p[1] - r, p[2] - r}, {p[0] + r, p[1] + r, p[2] + r}};
+}
+
 class TriangleBVH {
  public:
   TriangleBVH() = default;

@@ -32,11 +32,7 @@ double LayerBuilder::clear_distance(uint32_t v, const double at[3], double withi
   for (uint32_t f : front_.star(v)) ring.insert(ring.end(), front_.tri(f), front_.tri(f) + 3);
   std::sort(ring.begin(), ring.end());
   ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-  Box3 box;
-  for (int k = 0; k < 3; ++k) {
-    box.lo[k] = at[k] - within;
-    box.hi[k] = at[k] + within;
-  }
+  const Box3 box = box_around(at, within);
   double best = within;
   front_.near(box, [&](uint32_t f) {
     const uint32_t* t = front_.tri(f);

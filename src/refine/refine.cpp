@@ -197,13 +197,8 @@ void Refiner::index_protected_facets() {
 bool Refiner::too_close_to_protected_facet(const double m[3], const double mm[6]) const {
   if (!(options_.facet_clearance > 0.0) || facet_tri_.empty()) return false;
   const double reach = options_.facet_clearance * meshops::metric_max_size(mm);
-  Box3 box;
-  for (int k = 0; k < 3; ++k) {
-    box.lo[k] = m[k] - reach;
-    box.hi[k] = m[k] + reach;
-  }
   bool close = false;
-  facet_bvh_.query(box, [&](uint32_t f) {
+  facet_bvh_.query(box_around(m, reach), [&](uint32_t f) {
     double q[3];
     closest_point_on_triangle(m, mesh_.point(facet_tri_[3 * size_t(f)]), mesh_.point(facet_tri_[3 * size_t(f) + 1]),
                               mesh_.point(facet_tri_[3 * size_t(f) + 2]), q);
