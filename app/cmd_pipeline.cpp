@@ -251,7 +251,7 @@ int run_mesh_pipeline(MeshArgs& args) {
     if (r.layers_retries > 0)
       std::cout << "  stage 2 could not recover S1 with the requested layers; stages 1-2 retried "
                 << r.layers_retries << " time(s), " << r.layers_used << " layer(s) worked\n";
-    if (bl.layers > 0)
+    if (bl.layers > 0) {
       std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
                 << bl.tets << " tets, " << bl.vertices << " vertices kept fixed; " << bl.full_columns
                 << " full columns, " << bl.nominal_columns << " within 10% of h0 r^i (max error "
@@ -260,7 +260,6 @@ int run_mesh_pipeline(MeshArgs& args) {
                 << " mean " << bl.first_height_mean << " max " << bl.first_height_max << "; growth "
                 << bl.growth_mean << "; BL vertices moved after stage 1 by at most " << bl.max_displacement
                 << "; " << r.layers.bl_seconds << " s\n";
-    if (bl.layers > 0) {
       std::cout << "  boundary layer: wall vertices by layers reached:";
       for (size_t i = 0; i < bl.columns_reaching.size(); ++i)
         if (bl.columns_reaching[i] > 0) std::cout << " " << i << ": " << bl.columns_reaching[i];
