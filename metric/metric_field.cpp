@@ -1,8 +1,6 @@
 // The one translation unit that includes OpenVDB (compile time: keep it that way).
 #include "metric_field.hpp"
 
-#include <unistd.h>
-
 #include <openvdb/openvdb.h>
 #include <openvdb/io/File.h>
 
@@ -10,14 +8,13 @@
 #include <atomic>
 #include <cstdint>
 #include <cmath>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <fstream>
 #include <limits>
 #include <vector>
 
+#include "io/file_bytes.hpp"
 #include "spd.hpp"
 
 // The per-point helpers of the batched loops: GCC would otherwise call them out of line.
@@ -785,7 +782,7 @@ Status write_metric_vdb(const MetricField& field, const std::string& path, bool 
     return Status(Error::InvalidArgument, "write_metric_vdb: '" + path + "': the voxel size " + std::to_string(f.dx) +
                                               " is below what an OpenVDB transform holds (about 2e-5); scale the "
                                               "model up to write its field as .vdb");
-  const std::string partial = path + ".part-" + std::to_string(getpid());
+  const std::string partial = partial_path(path);
   try {
     openvdb::initialize();
     openvdb::GridPtrVec grids;
@@ -821,7 +818,7 @@ Status write_metric_vdb(const MetricField& field, const std::string& path, bool 
         }
       }
     }
-    // Written beside its name and renamed when complete (as io/file_bytes does for the rest).
+    // Written beside its name and moved into place when complete (io/file_bytes.hpp).
     openvdb::io::File file(partial);
     file.write(grids);
     file.close();
@@ -832,12 +829,7 @@ Status write_metric_vdb(const MetricField& field, const std::string& path, bool 
     std::remove(partial.c_str());
     return Status(Error::FileNotFound, "cannot write " + path + ": " + e.what());
   }
-  if (std::rename(partial.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    std::remove(partial.c_str());
-    return Status(Error::FileNotFound, "cannot replace " + path + ": " + why);
-  }
-  return Status::success();
+  return move_into_place(partial, path);
 }
 
 }  // namespace metric
