@@ -284,8 +284,17 @@ bool CavityKernel::boundary_facet_ok(const BoundaryFacet& b, const double* p) {
   return !exactly_collinear(a, bb, p);
 }
 
-bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected) {
+bool CavityKernel::keep_left() const {
+  for (size_t k = 0; k < keep_count_; ++k)
+    if (marks_.get(keep_[k]) != TetMarks::kIn) return true;
+  return false;
+}
+
+bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected, const uint32_t* keep,
+                                      size_t keep_count) {
   const double* p = pt(pid);
+  keep_ = keep;
+  keep_count_ = keep_count;
   cavity_.clear();
   marks_.clear();
   marks_.set(t0, TetMarks::kIn);
@@ -306,7 +315,7 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
       }
     }
   }
-  if (!shrink_to_star(t0, pid, respect_protected)) return false;
+  if (keep_left() || !shrink_to_star(t0, pid, respect_protected) || keep_left()) return false;
   collect_boundary(respect_protected);
   fill_cavity(pid, true);
   return true;
@@ -379,6 +388,7 @@ bool CavityKernel::closure_contains(uint32_t t, const double* p) {
 // A tet whose closure holds the new point must stay (or the point would end on the cavity's
 // boundary), so another tet of the edge's ring is chosen.
 bool CavityKernel::defend_constrained_edges(uint32_t t0, uint32_t pid) {
+  auto is_kept = [this](uint32_t t) { return std::find(keep_, keep_ + keep_count_, t) != keep_ + keep_count_; };
   bool removed = false;
   for (uint32_t c : cavity_) {
     if (marks_.get(c) != TetMarks::kIn) continue;
@@ -399,7 +409,7 @@ bool CavityKernel::defend_constrained_edges(uint32_t t0, uint32_t pid) {
           all_in = false;
           break;
         }
-        if (t != t0 && eject == TetMesh::kNone && !closure_contains(t, pt(pid))) eject = t;
+        if (t != t0 && eject == TetMesh::kNone && !closure_contains(t, pt(pid)) && !is_kept(t)) eject = t;
         const uint32_t* tv = store_->verts(t);
         int ix = -1;
         for (int i = 0; i < 4; ++i)

@@ -90,8 +90,10 @@ class CavityKernel {
 
   // Modified kernel: the cavity stops at protected facets (when asked) and at facets without a
   // neighbour, then shrinks until star-shaped from pid. Returns false, leaving the mesh
-  // unchanged, when t0 itself has to leave the cavity.
-  bool insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected);
+  // unchanged, when t0 itself has to leave the cavity, or one of the `keep` tets is not in it
+  // (the caller needs the new vertex joined to their vertices; no constrained edge ejects them).
+  bool insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected, const uint32_t* keep = nullptr,
+                          size_t keep_count = 0);
 
   // The tets created by the last insertion.
   const std::vector<uint32_t>& new_tets() const { return new_tets_; }
@@ -167,6 +169,9 @@ class CavityKernel {
 
   std::vector<uint32_t> cavity_;
   std::vector<std::pair<uint32_t, int>> shrink_queue_;  // cavity facets to test for visibility
+  bool keep_left() const;  // a tet of keep_ is out of the cavity
+  const uint32_t* keep_ = nullptr;
+  size_t keep_count_ = 0;
   std::vector<uint32_t> ejected_;                      // tets defend_constrained_edges() took out
   std::vector<BoundaryFacet> boundary_;
   TetMarks marks_;  // the constrained path's marks (the storage's marks serve the bulk build)

@@ -81,6 +81,10 @@ struct InsertOptions {
   // of their tets out of it, so both survive the insertion.
   bool respect_protected = true;
   uint8_t vertex_flags = 0;       // vflag bits of the new vertex
+  // Tets that must be in the cavity (the new vertex is then joined to all their vertices): the
+  // insertion is refused (kBlocked) when the empty-sphere test or the shrinking leaves one out.
+  const uint32_t* keep_tets = nullptr;
+  size_t keep_count = 0;
 };
 
 struct InsertResult {
