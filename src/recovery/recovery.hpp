@@ -51,7 +51,14 @@ struct RecoveryOptions {
   // Steiner cap below stop it first on the surfaces it cannot do (adis16480: 2.5 s).
   double split_max_seconds = 120;
   double split_max_steiner_per_face = 6;  // and Steiner cap (+ 1000): its successes need ~1
-  bool split_flips = true;           // a missing input-edge subsegment: one flip before a split
+  // A missing input-edge subsegment gets one flip before a split, and a missing triangle whose
+  // edges are present one edge removal (fewer Steiner points: hammer's S1 7700 -> 4800).
+  bool split_flips = true;
+  // A missing constraint edge is split at a point of it that a walk from one end shows to be
+  // joined to that end (the cavity reaches back to it), instead of at its middle or a
+  // power-of-two distance, which recovers only Delaunay pieces and cascades on needle triangles
+  // (the stage 1 fronts of hammer and casting, turbine's in 120 s).
+  bool split_walk = true;
   // First split the long edge of every input triangle with an angle above this at the apex's
   // projection (180: never).
   double split_cap_degrees = 170.0;
@@ -83,6 +90,7 @@ struct RecoveryStats {
   size_t strategy = 0;
   size_t caps_split = 0;          // split constraints: caps split at their apex's projection
   size_t flips = 0;               // constraints recovered by a flip instead of a point
+  size_t walk_splits = 0;         // split constraints: edges split at a walk's point (split_walk)
   size_t blocked_insertions = 0;  // insertions the kernel refused (another point was tried)
   size_t tets = 0;                // tets of the result
   size_t regions = 0;

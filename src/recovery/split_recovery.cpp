@@ -69,10 +69,13 @@ class SplitRecoverer {
   void protect(uint32_t k);
   void mark_edge_constrained(uint32_t a, uint32_t b);
   double param_on(uint32_t v, uint32_t e) const;
-  uint32_t insert(const double p[3], SteinerHost host, uint32_t host_id, double param, uint32_t hint);
+  uint32_t insert(const double p[3], SteinerHost host, uint32_t host_id, double param, uint32_t hint,
+                  const uint32_t* keep = nullptr, size_t keep_count = 0);
   bool split_edge(uint64_t key, double at = -1.0);
+  size_t walk_points(uint32_t a, uint32_t b);
   void split_caps();
   bool flip_in(uint32_t a, uint32_t b);
+  bool flip_in_tri(uint32_t k);
   bool sees_apex(const double* a, const double* b, const double* c, uint32_t face) const;
   bool flip_edge(uint64_t key, bool only_to_mesh);
   bool split_triangle(uint32_t k);
@@ -103,6 +106,8 @@ class SplitRecoverer {
   std::vector<uint32_t> ball_, bfs_;
   std::vector<uint32_t> tet_stamp_;
   uint32_t stamp_ = 0;
+  std::vector<double> walk_frac_;    // walk_points()
+  std::vector<uint32_t> walk_chain_;
 };
 
 std::string SplitRecoverer::describe_tri(uint32_t k) const {
@@ -240,9 +245,11 @@ double SplitRecoverer::param_on(uint32_t v, uint32_t e) const {
 }
 
 uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t host_id, double param,
-                                uint32_t hint) {
+                                uint32_t hint, const uint32_t* keep, size_t keep_count) {
   InsertOptions io;
   io.vertex_flags = vflag::kOnInputSurface;
+  io.keep_tets = keep;
+  io.keep_count = keep_count;
   const InsertResult r = inserter_.insert(p, hint, io);
   if (!r.ok()) {
     ++out_.stats.blocked_insertions;
@@ -275,6 +282,115 @@ bool SplitRecoverer::flip_in(uint32_t a, uint32_t b) {
     if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
   ++out_.stats.flips;
   return true;
+}
+
+// Points of segment a->b whose insertion would join it to a. The walk goes along the segment
+// through the tets it crosses, t_1 (in a's ball), t_2, ...; the middle of the segment's piece in
+// t_k, when it lies inside the circumspheres of t_1..t_k, has them all in its cavity, and the new
+// vertex is joined to a when none of them leaves the cavity (InsertOptions::keep_tets makes the
+// kernel refuse the point otherwise). walk_frac_[k-1] is that point's fraction of |ab|, the chain
+// is walk_chain_; returns how many points were found. A split there recovers one piece of a
+// missing segment without needing the piece to be Delaunay (the midpoint rule does, and on needle
+// triangles splits an edge down to the needles' width).
+size_t SplitRecoverer::walk_points(uint32_t a, uint32_t b) {
+  walk_frac_.clear();
+  walk_chain_.clear();
+  const double* A = mesh_.point(a);
+  const double* B = mesh_.point(b);
+  uint32_t t = kNone;
+  int entry = -1;  // facet of t the segment came in through (-1: t has a as a vertex)
+  for (uint32_t c : ball(a)) {
+    if (mesh_.is_ghost(c)) continue;
+    int ia = 0;
+    while (mesh_.vertex(c, ia) != a) ++ia;
+    // B inside the closed cone of c at a: on the side of each facet through a that the facet's
+    // opposite vertex is on, or on its plane (flat CAD faces: ab often lies in a facet's plane).
+    bool inside = true;
+    for (int j = 0; j < 4 && inside; ++j) {
+      if (j == ia) continue;
+      const double* f[3];
+      for (int k = 0; k < 3; ++k) f[k] = mesh_.point(mesh_.vertex(c, kFacetVertex[j][k]));
+      const int sb = predicates::orient3d(f[0], f[1], f[2], B);
+      const int so = predicates::orient3d(f[0], f[1], f[2], mesh_.point(mesh_.vertex(c, j)));
+      if (sb != so && sb != 0) inside = false;
+    }
+    if (inside) {
+      t = c;
+      break;
+    }
+  }
+  if (t == kNone) return 0;
+  constexpr size_t kMaxSteps = 48;
+  double last = 0.0;  // the fraction where the walk entered t
+  while (walk_chain_.size() < kMaxSteps) {
+    walk_chain_.push_back(t);
+    // The exit facet: the smallest crossing fraction among the facets B is beyond (floating
+    // point: the walk only proposes a point; the kernel's exact tests decide).
+    int exit = -1;
+    double best = INFINITY;
+    bool reached_b = false;
+    for (int j = 0; j < 4; ++j) {
+      if (j == entry) continue;
+      const uint32_t opp = mesh_.vertex(t, j);
+      if (opp == b) reached_b = true;
+      const double* f[3];
+      for (int k = 0; k < 3; ++k) f[k] = mesh_.point(mesh_.vertex(t, kFacetVertex[j][k]));
+      if (mesh_.vertex(t, j) != a && (mesh_.vertex(t, kFacetVertex[j][0]) == a ||
+                                      mesh_.vertex(t, kFacetVertex[j][1]) == a ||
+                                      mesh_.vertex(t, kFacetVertex[j][2]) == a))
+        continue;  // a facet through a: the segment does not leave through it
+      double nrm[3], u[3], w[3], da[3], db[3];
+      sub(f[1], f[0], u);
+      sub(f[2], f[0], w);
+      cross(u, w, nrm);  // points into t (kFacetVertex orientation)
+      sub(A, f[0], da);
+      sub(B, f[0], db);
+      // Signed distances times |nrm|, positive outside t: b must be outside.
+      const double pa = -dot(nrm, da), pb = -dot(nrm, db);
+      if (!(pb > 0) || !(pa < pb)) continue;
+      const double x = -pa / (pb - pa);
+      if (x < best) {
+        best = x;
+        exit = j;
+      }
+    }
+    if (reached_b || exit < 0 || !(best > last) || !(best < 1)) break;
+    // The middle of the segment's piece inside t (a point on a facet would make the cavity's
+    // exact tests depend on rounding).
+    const double mid = 0.5 * (last + best);
+    double x[3];
+    for (int d = 0; d < 3; ++d) x[d] = A[d] + mid * (B[d] - A[d]);
+    bool all_in = true;
+    for (size_t k = 0; k < walk_chain_.size() && all_in; ++k) {
+      const uint32_t c = walk_chain_[k];
+      all_in = predicates::insphere(mesh_.point(mesh_.vertex(c, 0)), mesh_.point(mesh_.vertex(c, 1)),
+                                    mesh_.point(mesh_.vertex(c, 2)), mesh_.point(mesh_.vertex(c, 3)), x) > 0;
+    }
+    if (!all_in) break;
+    walk_frac_.push_back(mid);
+    last = best;
+    const uint64_t adj = mesh_.tet_adj[4 * size_t(t) + exit];
+    if (adj == kNoNeighbour || mesh_.is_ghost(uint32_t(adj >> 2))) break;
+    const uint32_t nt = uint32_t(adj >> 2);
+    entry = int(adj & 3);
+    t = nt;
+  }
+  walk_chain_.resize(walk_frac_.size());
+  return walk_frac_.size();
+}
+
+// Makes the missing constraint triangle k (its edges present) a facet by one edge removal, and
+// protects it: no Steiner point, where a split leaves three pieces that may be missing again.
+bool SplitRecoverer::flip_in_tri(uint32_t k) {
+  const Tri t = ct_[k];
+  if (!sees_apex(mesh_.point(t[0]), mesh_.point(t[1]), mesh_.point(t[2]), ct_face_[k])) return false;
+  std::vector<uint32_t> created;
+  if (!flip_in_face(mesh_, t[0], t[1], t[2], ball(t[0]), created)) return false;
+  for (uint32_t c : created)
+    if (!mesh_.is_ghost(c)) vt_.note(mesh_, c);
+  ++out_.stats.flips;
+  protect(k);
+  return ct_state_[k] == kRecovered;
 }
 
 // A cap (an input triangle with an angle above kCapAngle) has a huge circumsphere: the Delaunay
@@ -335,7 +451,40 @@ bool SplitRecoverer::split_edge(uint64_t key, double at) {
     }
     return true;
   };
-  if (ce.input_edge != kNone) {
+  // The point at fraction s of (a b): on an input edge, computed from the input segment by its
+  // parameter (so that every point of that edge is rounded from the same two points).
+  auto point_at = [&](double frac, double p[3], double& param) {
+    if (ce.input_edge != kNone) {
+      const uint32_t e = ce.input_edge;
+      const double* A = S_.point(edge_v_[2 * e]);
+      const double* B = S_.point(edge_v_[2 * e + 1]);
+      param = param_on(a, e) + frac * (param_on(b, e) - param_on(a, e));
+      if (param < 0.5) for (int d = 0; d < 3; ++d) p[d] = A[d] + param * (B[d] - A[d]);
+      else for (int d = 0; d < 3; ++d) p[d] = B[d] + (1.0 - param) * (A[d] - B[d]);
+    } else {
+      param = 0.0;
+      for (int d = 0; d < 3; ++d) p[d] = mesh_.point(a)[d] + frac * (mesh_.point(b)[d] - mesh_.point(a)[d]);
+    }
+  };
+  const uint32_t host = ce.input_edge != kNone ? ce.input_edge
+                                               : (ce.tri[0] != kNone ? ct_face_[ce.tri[0]] : ct_face_[ce.tri[1]]);
+  const SteinerHost kind = ce.input_edge != kNone ? SteinerHost::kEdge : SteinerHost::kFace;
+  // First the walk's points, farthest first, each kept only when it is joined to a (or to b,
+  // walking from b).
+  if (at < 0 && opt_.split_walk)
+    for (int from = 0; from < 2 && v == kNone; ++from) {
+      const uint32_t u = from == 0 ? a : b, w = from == 0 ? b : a;
+      for (size_t k = walk_points(u, w); k > 0 && v == kNone; --k) {
+        const double frac = from == 0 ? walk_frac_[k - 1] : 1.0 - walk_frac_[k - 1];
+        double p[3], param;
+        point_at(frac, p, param);
+        if (!pieces_see_apex(p)) continue;
+        v = insert(p, kind, host, param, walk_chain_[0], walk_chain_.data(), k);
+      }
+    }
+  if (v != kNone) {
+    ++out_.stats.walk_splits;
+  } else if (ce.input_edge != kNone) {
     const uint32_t e = ce.input_edge;
     const double* A = S_.point(edge_v_[2 * e]);
     const double* B = S_.point(edge_v_[2 * e + 1]);
@@ -668,7 +817,9 @@ Status SplitRecoverer::run() {
       break;
     }
     for (size_t i = 0; i < missing.size(); ++i) {
-      if (ct_state_[missing[i]] == kMissing) split_triangle(missing[i]);
+      if (ct_state_[missing[i]] != kMissing) continue;
+      if (opt_.split_flips && flip_in_tri(missing[i])) continue;
+      split_triangle(missing[i]);
       if (out_.steiner.size() > cap || ((i & 255) == 255 && seconds_since(t1) > opt_.split_max_seconds)) break;
     }
   }

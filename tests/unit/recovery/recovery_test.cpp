@@ -411,9 +411,11 @@ TEST(RecoverySplit, PiecesSeeTheirFaceApex) {
   EXPECT_EQ(recover_boundary(s, bad).status().code(), Error::InvalidArgument);
 }
 
+// The flips off: the midpoint rule for missing edges (the walk's pieces need the face flips).
 TEST(RecoverySplit, FemurWithoutFlips) {
   RecoveryOptions o = split_only();
   o.split_flips = false;
+  o.split_walk = false;
   recover_file("femur.off", o, 3);
 }
 // And the fuzzy faces alone (the default's fallback).
