@@ -121,6 +121,7 @@ int run_mesh_pipeline(MeshArgs& args) {
 
   MesherOptions options;
   options.layers.layers = args.layers;
+  options.attempts_seconds = args.attempts_seconds;
   options.recovery = recovery_options(args);
   options.layers.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
   if (!args.bl_patches.empty()) {

@@ -47,6 +47,7 @@ struct MeshArgs {
   bool json = false;
   std::string stop_after;               // "" (the whole pipeline) or "layers"
   int layers = 2;                       // stage 1 layer count
+  double attempts_seconds = 240;        // MesherOptions::attempts_seconds
   std::string layer_scheme = "push";    // "push" (prism layers) or "faces" (the paper's)
   std::vector<int> bl_patches;          // boundary-layer walls (patch labels); empty: none
   double bl_first_height = 0.0;         // h0 (given, or from --bl-yplus)

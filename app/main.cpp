@@ -126,6 +126,11 @@ int run(int argc, char** argv) {
   mesh_cmd->add_option("--layers", mesh.layers, "Number of advancing-front layers (stage 1)")
       ->capture_default_str()
       ->check(CLI::Range(1, 50));
+  mesh_cmd->add_option("--attempts-seconds", mesh.attempts_seconds,
+                       "Wall time for stages 1-2 and the coupling, run again with other layer counts and "
+                       "recovery strategies when S1 is not recovered; no new attempt starts after it (0: no limit)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   mesh_cmd->add_option("--layer-scheme", mesh.layer_scheme,
                        "Stage 1 scheme: push (prism layers, each front vertex pushed off in turn) or "
                        "faces (the paper's: a tet on every face, then vertex pushes)")

@@ -155,7 +155,16 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   Result<CoupledMesh> coupled = Status(Error::Internal, "no layer count tried");
   Status first_failure;
   std::string failed_stage;
+  const auto attempts_start = Clock::now();
+  const double budget = options_.attempts_seconds;
+  size_t attempts_run = 0;
+  bool out_of_time = false;
   for (size_t attempt = 0; attempt < attempts.size(); ++attempt) {
+    if (attempt > 0 && budget > 0 && since(attempts_start) >= budget) {
+      out_of_time = true;
+      break;
+    }
+    ++attempts_run;
     auto t = Clock::now();
     LayersOptions layer_options = options_.layers;
     layer_options.layers = attempts[attempt].first;
@@ -177,6 +186,13 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
     for (size_t i = 0; i < s1.num_triangles(); ++i) {
       const uint32_t apex = layers->mesh.vertex(layers->front_tet[i], int(layers->front_facet[i]));
       std::copy(layers->mesh.point(apex), layers->mesh.point(apex) + 3, &recovery_options.face_apex[3 * i]);
+    }
+    if (budget > 0) {
+      // What is left of the budget; the fuzzy faces run up to three variants, each with max_seconds.
+      const double left = std::max(1.0, budget - since(attempts_start));
+      recovery_options.split_max_seconds = std::min(recovery_options.split_max_seconds, left);
+      const double variants = recovery_options.retry_strategies ? 3.0 : 1.0;
+      recovery_options.max_seconds = std::min(recovery_options.max_seconds, left / variants);
     }
     recovered = recover_boundary(s1, recovery_options);
     result.stages.push_back({attempt == 0 ? "recovery" : "recovery (retry)", since(t),
@@ -212,7 +228,12 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   if (!coupled.ok()) {
     std::string msg = failed_stage + first_failure.message();
     if (attempts.size() > 1)
-      msg += " (" + std::to_string(attempts.size()) + " attempts: layer counts and recovery strategies)";
+      msg += " (" + std::to_string(attempts_run) + " of " + std::to_string(attempts.size()) +
+             " attempts: layer counts and recovery strategies";
+    if (out_of_time)
+      msg += "; the others not run: the attempts' budget of " + std::to_string(int(budget)) +
+             " s ran out (attempts_seconds; --attempts-seconds on the command line)";
+    if (attempts.size() > 1) msg += ")";
     return Status(first_failure.code(), msg);
   }
   result.recovery = recovered->stats;

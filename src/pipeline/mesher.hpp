@@ -38,6 +38,11 @@ struct MesherOptions {
   // When stage 2 cannot recover S1, run stages 1 and 2 again with layers.layers - 1, ..., 1, then
   // layers.layers + 1 (each run from scratch); MesherResult::layers_used tells which count worked.
   bool retry_layer_counts = true;
+  // Wall time for those attempts together (stages 1, 2 and the coupling, each run): a recovery
+  // is given at most what is left (its own caps still apply), and no attempt starts after it ran
+  // out. Without it the attempts on an S1 no strategy recovers took 6-12 minutes (tray_bottom,
+  // turbine). <= 0: no budget.
+  double attempts_seconds = 240;
   ValidationOptions validation;
   ProgressCallback progress;  // may be empty
   // Stage 3b/3c. The sizing field they follow: `sizing` when given (a user metric; it must

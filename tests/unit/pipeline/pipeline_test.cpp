@@ -85,6 +85,25 @@ TEST(Pipeline, SharedKnight) {
   expect_boundary_constrained(s.value(), r.value(), "decimated-knight.off");
 }
 
+// The attempts' time budget: with stage 2 made to fail (no pass allowed), every layer count and
+// strategy is tried without a budget, and only the first one with a budget already spent.
+TEST(Pipeline, AttemptsStopWhenTheirBudgetRunsOut) {
+  Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/decimated-knight.off");
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  MesherOptions o;
+  o.recovery.max_passes = 0;
+  o.attempts_seconds = 0;
+  Result<MesherResult> all = Mesher(o).run(s.value());
+  ASSERT_FALSE(all.ok());
+  EXPECT_NE(all.status().message().find("(6 of 6 attempts"), std::string::npos) << all.status().message();
+  o.attempts_seconds = 1e-9;
+  Result<MesherResult> one = Mesher(o).run(s.value());
+  ASSERT_FALSE(one.ok());
+  EXPECT_EQ(one.status().code(), Error::RecoveryFailed);
+  EXPECT_NE(one.status().message().find("(1 of 6 attempts"), std::string::npos) << one.status().message();
+  EXPECT_NE(one.status().message().find("budget"), std::string::npos) << one.status().message();
+}
+
 TEST(Pipeline, SameInputSameMeshBitForBit) {
   const SurfaceMesh s = test::icosphere(2);
   Result<MesherResult> a = mesh(s), b = mesh(s);
