@@ -765,6 +765,12 @@ Status SplitRecoverer::run() {
   bool done = false, cascade = false;
   constexpr size_t kGrowthLimit = 4;
   size_t growths = 0, last_missing = ~size_t(0);
+  // The edge phase stalls (pieces split as fast as others are lost) on thin plates and needle
+  // fans: give up when its count of missing edges has not reached a new low for kStallPasses
+  // passes in a row (turbine: 148 passes and 30 s to the Steiner cap otherwise).
+  constexpr size_t kStallPasses = 30;
+  size_t fewest_missing_edges = ~size_t(0), passes_since_fewest = 0;
+  bool stalled = false;
   for (; pass < opt_.max_passes; ++pass) {
     if (out_.steiner.size() > cap || seconds_since(t1) > opt_.split_max_seconds) break;
     // Subsegments of the input edges first (the edges that already existed when the sweep
@@ -782,7 +788,16 @@ Status SplitRecoverer::run() {
       if (out_.steiner.size() > cap || ((missing_edges & 255) == 0 && seconds_since(t1) > opt_.split_max_seconds)) break;
     }
     drop_settled_keys();
-    if (missing_edges > 0) continue;
+    if (missing_edges > 0) {
+      if (missing_edges < fewest_missing_edges) {
+        fewest_missing_edges = missing_edges;
+        passes_since_fewest = 0;
+      } else if (++passes_since_fewest >= kStallPasses) {
+        stalled = true;
+        break;
+      }
+      continue;
+    }
     // An edge inside an input face is free: flip a missing one to the mesh's edge, or to the
     // face's 2D Delaunay edge.
     size_t flips = 0;
@@ -827,7 +842,9 @@ Status SplitRecoverer::run() {
   if (!done) {
     const std::string why = cascade ? " (splits cascading: the missing pieces grew " + std::to_string(kGrowthLimit) +
                                           " passes in a row)"
-                                    : "";
+                            : stalled ? " (edge splits stalled: no fewer missing edges for " +
+                                            std::to_string(kStallPasses) + " passes)"
+                                      : "";
     for (size_t i = 0; i < edge_keys_.size(); ++i) {
       const uint64_t key = edge_keys_[i];
       auto it = edges_.find(key);
