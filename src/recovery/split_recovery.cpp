@@ -76,6 +76,8 @@ class SplitRecoverer {
   void split_caps();
   bool flip_in(uint32_t a, uint32_t b);
   bool flip_in_tri(uint32_t k);
+  bool flip_along(uint32_t a, uint32_t b);
+  uint32_t entered_tet(uint32_t a, const double* B);
   bool sees_apex(const double* a, const double* b, const double* c, uint32_t face) const;
   bool flip_edge(uint64_t key, bool only_to_mesh);
   bool split_triangle(uint32_t k);
@@ -106,6 +108,8 @@ class SplitRecoverer {
   std::vector<uint32_t> ball_, bfs_;
   std::vector<uint32_t> tet_stamp_;
   uint32_t stamp_ = 0;
+  std::vector<std::array<uint32_t, 3>> crossings_;  // split_triangle(): (tet, p, r) per crossing edge
+  std::vector<uint8_t> ct_flipped_;  // per constraint triangle: its crossing edges were flipped out once
   std::vector<double> walk_frac_;    // walk_points()
   std::vector<uint32_t> walk_chain_;
 };
@@ -140,6 +144,7 @@ void SplitRecoverer::add_tri(uint32_t a, uint32_t b, uint32_t c, uint32_t face) 
   ct_.push_back({a, b, c});
   ct_face_.push_back(face);
   ct_state_.push_back(kMissing);
+  ct_flipped_.push_back(0);
   const uint32_t v[3] = {a, b, c};
   for (int i = 0; i < 3; ++i) {
     CEdge& e = edge_of(v[i], v[(i + 1) % 3], kNone);
@@ -284,6 +289,74 @@ bool SplitRecoverer::flip_in(uint32_t a, uint32_t b) {
   return true;
 }
 
+// The tet of a's ball that segment a->B enters: B inside its closed cone at a (on the side of
+// each facet through a that the facet's opposite vertex is on, or on its plane: on flat CAD faces
+// ab often lies in a facet's plane). kNone when no live tet is entered.
+uint32_t SplitRecoverer::entered_tet(uint32_t a, const double* B) {
+  for (uint32_t c : ball(a)) {
+    if (mesh_.is_ghost(c)) continue;
+    int ia = 0;
+    while (mesh_.vertex(c, ia) != a) ++ia;
+    bool inside = true;
+    for (int j = 0; j < 4 && inside; ++j) {
+      if (j == ia) continue;
+      const double* f[3];
+      for (int k = 0; k < 3; ++k) f[k] = mesh_.point(mesh_.vertex(c, kFacetVertex[j][k]));
+      const int sb = predicates::orient3d(f[0], f[1], f[2], B);
+      const int so = predicates::orient3d(f[0], f[1], f[2], mesh_.point(mesh_.vertex(c, j)));
+      if (sb != so && sb != 0) inside = false;
+    }
+    if (inside) return c;
+  }
+  return kNone;
+}
+
+// Makes the missing edge (a b) by flips along it, no Steiner point (thin plates: a long edge
+// crosses a few tets spanning the plate, where splits would go down to the plate's thickness).
+// The tet a->b enters first has a facet opposite a that the segment crosses: a 2-3 flip there
+// (the segment then crosses one tet fewer), or, when the two tets are not convex or the segment
+// passes through an edge of that facet, the removal of that facet's edge. Each flip is checked
+// exactly; constraint edges and protected facets are never removed.
+bool SplitRecoverer::flip_along(uint32_t a, uint32_t b) {
+  constexpr int kMaxFlips = 24;
+  std::vector<uint32_t> created;
+  const double* A = mesh_.point(a);
+  const double* B = mesh_.point(b);
+  for (int flips = 0; flips < kMaxFlips; ++flips) {
+    if (has_edge(a, b)) return true;
+    const uint32_t t = entered_tet(a, B);
+    if (t == kNone) return false;
+    int ia = 0;
+    while (mesh_.vertex(t, ia) != a) ++ia;
+    uint32_t f[3];
+    for (int k = 0; k < 3; ++k) f[k] = mesh_.vertex(t, kFacetVertex[ia][k]);
+    // Where the line ab meets facet f: the sign of orient3d(a, b, f_k, f_k+1) per edge (all
+    // alike: the interior; a zero: through that edge).
+    int side[3];
+    for (int k = 0; k < 3; ++k) side[k] = predicates::orient3d(A, B, mesh_.point(f[k]), mesh_.point(f[(k + 1) % 3]));
+    bool done = false;
+    created.clear();
+    if (side[0] != 0 && side[0] == side[1] && side[1] == side[2]) done = flip23(mesh_, t, ia, &created);
+    for (int k = 0; k < 3 && !done; ++k) {
+      // Only the edge the segment passes through, or, for an interior crossing, any of the three.
+      const bool through = side[k] == 0;
+      const bool interior = side[0] != 0 && side[0] == side[1] && side[1] == side[2];
+      if (!through && !interior) continue;
+      const uint32_t p = f[k], q = f[(k + 1) % 3];
+      if (edges_.count(edge_key(p, q))) continue;  // a constraint edge stays
+      EdgeRing ring;
+      if (!edge_ring(mesh_, t, p, q, ring)) continue;
+      created.clear();
+      done = remove_edge(mesh_, ring, nullptr, 0, &created);
+    }
+    if (!done) return false;
+    for (uint32_t c : created)
+      if (!mesh_.is_ghost(c)) vt_.note(mesh_, c);
+    ++out_.stats.flips;
+  }
+  return has_edge(a, b);
+}
+
 // Points of segment a->b whose insertion would join it to a. The walk goes along the segment
 // through the tets it crosses, t_1 (in a's ball), t_2, ...; the middle of the segment's piece in
 // t_k, when it lies inside the circumspheres of t_1..t_k, has them all in its cavity, and the new
@@ -297,28 +370,8 @@ size_t SplitRecoverer::walk_points(uint32_t a, uint32_t b) {
   walk_chain_.clear();
   const double* A = mesh_.point(a);
   const double* B = mesh_.point(b);
-  uint32_t t = kNone;
+  uint32_t t = entered_tet(a, B);
   int entry = -1;  // facet of t the segment came in through (-1: t has a as a vertex)
-  for (uint32_t c : ball(a)) {
-    if (mesh_.is_ghost(c)) continue;
-    int ia = 0;
-    while (mesh_.vertex(c, ia) != a) ++ia;
-    // B inside the closed cone of c at a: on the side of each facet through a that the facet's
-    // opposite vertex is on, or on its plane (flat CAD faces: ab often lies in a facet's plane).
-    bool inside = true;
-    for (int j = 0; j < 4 && inside; ++j) {
-      if (j == ia) continue;
-      const double* f[3];
-      for (int k = 0; k < 3; ++k) f[k] = mesh_.point(mesh_.vertex(c, kFacetVertex[j][k]));
-      const int sb = predicates::orient3d(f[0], f[1], f[2], B);
-      const int so = predicates::orient3d(f[0], f[1], f[2], mesh_.point(mesh_.vertex(c, j)));
-      if (sb != so && sb != 0) inside = false;
-    }
-    if (inside) {
-      t = c;
-      break;
-    }
-  }
   if (t == kNone) return 0;
   constexpr size_t kMaxSteps = 48;
   double last = 0.0;  // the fraction where the walk entered t
@@ -680,6 +733,7 @@ bool SplitRecoverer::split_triangle(uint32_t k) {
   double best_score = -1;
   uint32_t best_tet = kNone;
   const size_t limit = 20000;
+  crossings_.clear();
   for (size_t q = 0; q < bfs_.size() && q < limit; ++q) {
     const uint32_t s = bfs_[q];
     if (mesh_.is_ghost(s)) continue;
@@ -703,6 +757,7 @@ bool SplitRecoverer::split_triangle(uint32_t k) {
       const uint32_t p = mesh_.vertex(s, ev[0]), r = mesh_.vertex(s, ev[1]);
       double x[3];
       if (!line_crosses_triangle(mesh_.point(p), mesh_.point(r), A, B, C, x)) continue;
+      crossings_.push_back({s, p, r});
       const double score = inner_score(x);
       if (score > best_score) {
         best_score = score;
@@ -716,6 +771,33 @@ bool SplitRecoverer::split_triangle(uint32_t k) {
       if (tet_stamp_[nb] == stamp_) continue;
       tet_stamp_[nb] = stamp_;
       bfs_.push_back(nb);
+    }
+  }
+  // Once per triangle, first try removing the edges that cross it (no Steiner point; thin plates
+  // and needle fans, where each split leaves pieces crossed again).
+  if (opt_.split_flips && !crossings_.empty() && !ct_flipped_[k]) {
+    ct_flipped_[k] = 1;
+    bool any = false;
+    std::vector<uint32_t> created;
+    for (const auto& c : crossings_) {
+      if (mesh_.is_deleted(c[0]) || edges_.count(edge_key(c[1], c[2]))) continue;
+      EdgeRing ring;
+      if (!edge_ring(mesh_, c[0], c[1], c[2], ring)) continue;
+      bool still = false;  // the tet may have been replaced by an earlier removal
+      for (int i = 0; i < 4; ++i) still = still || mesh_.vertex(c[0], i) == c[1];
+      if (!still) continue;
+      created.clear();
+      if (!remove_edge(mesh_, ring, nullptr, 0, &created)) continue;
+      for (uint32_t nt : created)
+        if (!mesh_.is_ghost(nt)) vt_.note(mesh_, nt);
+      ++out_.stats.flips;
+      any = true;
+    }
+    if (any) {
+      uint32_t ft;
+      int fi;
+      if (find_facet(ct_[k], ft, fi)) protect(k);
+      return true;
     }
   }
   std::vector<std::array<double, 3>> tries;
@@ -783,7 +865,9 @@ Status SplitRecoverer::run() {
       if (it == edges_.end() || it->second.input_edge == kNone || settled(it->second)) continue;
       if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
       ++missing_edges;
-      if (opt_.split_flips && flip_in(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
+      if (opt_.split_flips && (flip_in(uint32_t(key >> 32), uint32_t(key & 0xffffffffu)) ||
+                               flip_along(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))))
+        continue;
       split_edge(key);
       if (out_.steiner.size() > cap || ((missing_edges & 255) == 0 && seconds_since(t1) > opt_.split_max_seconds)) break;
     }
