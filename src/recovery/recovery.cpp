@@ -792,6 +792,7 @@ const char* recovery_strategy_name(size_t strategy) {
     case 1: return "fuzzy faces with flips";
     case 2: return "fuzzy faces with defended edges";
     case 3: return "split constraints";
+    case 4: return "split constraints, crossing edges removed 3 times";
     default: return "unknown";
   }
 }
@@ -820,8 +821,19 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
     out.stats.input_vertices = S.num_vertices();
     out.stats.input_triangles = S.num_triangles();
     out.stats.strategy = 3;
-    const Status s = recovery_detail::recover_by_splitting(S, options, out);
+    Status s = recovery_detail::recover_by_splitting(S, options, out);
     if (s.ok()) return out;
+    if (s.code() == Error::RecoveryFailed && options.retry_strategies && options.split_flips &&
+        options.split_crossing_flips < 3) {
+      RecoveryOptions more = options;
+      more.split_crossing_flips = 3;
+      RecoveryOutput again;
+      again.stats.input_vertices = S.num_vertices();
+      again.stats.input_triangles = S.num_triangles();
+      again.stats.strategy = 4;
+      const Status s2 = recovery_detail::recover_by_splitting(S, more, again);
+      if (s2.ok()) return again;
+    }
     if (s.code() != Error::RecoveryFailed || !options.fuzzy_faces) return s;
     first = s;
   }

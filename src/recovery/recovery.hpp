@@ -40,7 +40,8 @@ struct RecoveryOptions {
   // The retry below uses them.
   bool use_flips = false;
   // When the recovery fails with the options above, start again with use_flips, then again with
-  // defend_edges (each from scratch); RecoveryStats::strategy tells which one succeeded.
+  // defend_edges (each from scratch); the split strategy, again with split_crossing_flips = 3.
+  // RecoveryStats::strategy tells which one succeeded.
   bool retry_strategies = true;
   // First recover by splitting the constraint triangles themselves (split_recovery.hpp): every
   // decision combinatorial. When it fails (or is off), the fuzzy-face strategies above run when
@@ -59,6 +60,10 @@ struct RecoveryOptions {
   // power-of-two distance, which recovers only Delaunay pieces and cascades on needle triangles
   // (the stage 1 fronts of hammer and casting, turbine's in 120 s).
   bool split_walk = true;
+  // How many times a missing triangle's crossing edges are removed (edge removals) before it is
+  // split instead. Once recovers tray_bottom's stage 1 front, three times turbine's (and not
+  // tray_bottom's): when the split strategy fails with 1, it runs again with 3 (retry_strategies).
+  int split_crossing_flips = 1;
   // First split the long edge of every input triangle with an angle above this at the apex's
   // projection (180: never).
   double split_cap_degrees = 170.0;
@@ -85,8 +90,9 @@ struct RecoveryStats {
   size_t input_vertices = 0, input_triangles = 0;
   size_t steiner_on_edges = 0, steiner_on_faces = 0;
   size_t passes = 0;
-  // 3: split constraints (the first try by default); 0: the options as given, 1: retried with
-  // flips, 2: with defended edges
+  // 3: split constraints (the first try by default), 4: split constraints retried with more
+  // crossing-edge removals; 0: fuzzy faces with the options as given, 1: retried with flips, 2:
+  // with defended edges
   size_t strategy = 0;
   size_t caps_split = 0;          // split constraints: caps split at their apex's projection
   size_t flips = 0;               // constraints recovered by a flip instead of a point

@@ -773,10 +773,10 @@ bool SplitRecoverer::split_triangle(uint32_t k) {
       bfs_.push_back(nb);
     }
   }
-  // Once per triangle, first try removing the edges that cross it (no Steiner point; thin plates
-  // and needle fans, where each split leaves pieces crossed again).
-  if (opt_.split_flips && !crossings_.empty() && !ct_flipped_[k]) {
-    ct_flipped_[k] = 1;
+  // First try removing the edges that cross it (no Steiner point; thin plates and needle fans,
+  // where each split leaves pieces crossed again), split_crossing_flips times per triangle.
+  if (opt_.split_flips && !crossings_.empty() && ct_flipped_[k] < opt_.split_crossing_flips) {
+    ++ct_flipped_[k];
     bool any = false;
     std::vector<uint32_t> created;
     for (const auto& c : crossings_) {
