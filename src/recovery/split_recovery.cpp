@@ -109,7 +109,7 @@ class SplitRecoverer {
   std::vector<uint32_t> tet_stamp_;
   uint32_t stamp_ = 0;
   std::vector<std::array<uint32_t, 3>> crossings_;  // split_triangle(): (tet, p, r) per crossing edge
-  std::vector<uint8_t> ct_flipped_;  // per constraint triangle: its crossing edges were flipped out once
+  std::vector<uint8_t> ct_flipped_;  // per constraint triangle: how often its crossing edges were removed
   std::vector<double> walk_frac_;    // walk_points()
   std::vector<uint32_t> walk_chain_;
 };
@@ -781,11 +781,10 @@ bool SplitRecoverer::split_triangle(uint32_t k) {
     std::vector<uint32_t> created;
     for (const auto& c : crossings_) {
       if (mesh_.is_deleted(c[0]) || edges_.count(edge_key(c[1], c[2]))) continue;
+      // The tet may have been replaced by an earlier removal: it must still hold the edge.
+      if (!meshops::tet_has_vertex(mesh_, c[0], c[1]) || !meshops::tet_has_vertex(mesh_, c[0], c[2])) continue;
       EdgeRing ring;
       if (!edge_ring(mesh_, c[0], c[1], c[2], ring)) continue;
-      bool still = false;  // the tet may have been replaced by an earlier removal
-      for (int i = 0; i < 4; ++i) still = still || mesh_.vertex(c[0], i) == c[1];
-      if (!still) continue;
       created.clear();
       if (!remove_edge(mesh_, ring, nullptr, 0, &created)) continue;
       for (uint32_t nt : created)
