@@ -382,16 +382,15 @@ size_t SplitRecoverer::walk_points(uint32_t a, uint32_t b) {
     int exit = -1;
     double best = INFINITY;
     bool reached_b = false;
+    const bool has_a = meshops::tet_has_vertex(mesh_, t, a);
     for (int j = 0; j < 4; ++j) {
       if (j == entry) continue;
-      const uint32_t opp = mesh_.vertex(t, j);
-      if (opp == b) reached_b = true;
+      if (mesh_.vertex(t, j) == b) reached_b = true;
+      // A tet with a as a vertex: every facet but the one opposite a passes through a, and the
+      // segment does not leave through it.
+      if (has_a && mesh_.vertex(t, j) != a) continue;
       const double* f[3];
       for (int k = 0; k < 3; ++k) f[k] = mesh_.point(mesh_.vertex(t, kFacetVertex[j][k]));
-      if (mesh_.vertex(t, j) != a && (mesh_.vertex(t, kFacetVertex[j][0]) == a ||
-                                      mesh_.vertex(t, kFacetVertex[j][1]) == a ||
-                                      mesh_.vertex(t, kFacetVertex[j][2]) == a))
-        continue;  // a facet through a: the segment does not leave through it
       double nrm[3], u[3], w[3], da[3], db[3];
       sub(f[1], f[0], u);
       sub(f[2], f[0], w);
@@ -506,14 +505,17 @@ bool SplitRecoverer::split_edge(uint64_t key, double at) {
   };
   // The point at fraction s of (a b): on an input edge, computed from the input segment by its
   // parameter (so that every point of that edge is rounded from the same two points).
+  auto on_input_edge = [&](uint32_t e, double param, double p[3]) {
+    const double* A = S_.point(edge_v_[2 * e]);
+    const double* B = S_.point(edge_v_[2 * e + 1]);
+    if (param < 0.5) for (int d = 0; d < 3; ++d) p[d] = A[d] + param * (B[d] - A[d]);
+    else for (int d = 0; d < 3; ++d) p[d] = B[d] + (1.0 - param) * (A[d] - B[d]);
+  };
   auto point_at = [&](double frac, double p[3], double& param) {
     if (ce.input_edge != kNone) {
       const uint32_t e = ce.input_edge;
-      const double* A = S_.point(edge_v_[2 * e]);
-      const double* B = S_.point(edge_v_[2 * e + 1]);
       param = param_on(a, e) + frac * (param_on(b, e) - param_on(a, e));
-      if (param < 0.5) for (int d = 0; d < 3; ++d) p[d] = A[d] + param * (B[d] - A[d]);
-      else for (int d = 0; d < 3; ++d) p[d] = B[d] + (1.0 - param) * (A[d] - B[d]);
+      on_input_edge(e, param, p);
     } else {
       param = 0.0;
       for (int d = 0; d < 3; ++d) p[d] = mesh_.point(a)[d] + frac * (mesh_.point(b)[d] - mesh_.point(a)[d]);
@@ -562,8 +564,7 @@ bool SplitRecoverer::split_edge(uint64_t key, double at) {
     for (double tt : tries) {
       if (!(tt > ta && tt < tb)) continue;
       double p[3];
-      if (tt < 0.5) for (int d = 0; d < 3; ++d) p[d] = A[d] + tt * (B[d] - A[d]);
-      else for (int d = 0; d < 3; ++d) p[d] = B[d] + (1.0 - tt) * (A[d] - B[d]);
+      on_input_edge(e, tt, p);
       if (!pieces_see_apex(p)) continue;
       v = insert(p, SteinerHost::kEdge, e, tt, hint);
       if (v != kNone) break;
@@ -793,9 +794,7 @@ bool SplitRecoverer::split_triangle(uint32_t k) {
       any = true;
     }
     if (any) {
-      uint32_t ft;
-      int fi;
-      if (find_facet(ct_[k], ft, fi)) protect(k);
+      protect(k);  // when the removals made it a facet
       return true;
     }
   }
