@@ -786,6 +786,22 @@ Status Recoverer::carve() {
 
 }  // namespace
 
+namespace {
+
+// The split strategy's retry removes a missing triangle's crossing edges this many times.
+constexpr int kRetryCrossingFlips = 3;
+
+// An empty result for one strategy's run on S.
+RecoveryOutput fresh_output(const SurfaceMesh& S, size_t strategy) {
+  RecoveryOutput out;
+  out.stats.input_vertices = S.num_vertices();
+  out.stats.input_triangles = S.num_triangles();
+  out.stats.strategy = strategy;
+  return out;
+}
+
+}  // namespace
+
 const char* recovery_strategy_name(size_t strategy) {
   switch (strategy) {
     case 0: return "fuzzy faces";
@@ -817,20 +833,14 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
   }
   Status first;
   if (options.split_constraints) {
-    RecoveryOutput out;
-    out.stats.input_vertices = S.num_vertices();
-    out.stats.input_triangles = S.num_triangles();
-    out.stats.strategy = 3;
+    RecoveryOutput out = fresh_output(S, 3);
     Status s = recovery_detail::recover_by_splitting(S, options, out);
     if (s.ok()) return out;
     if (s.code() == Error::RecoveryFailed && options.retry_strategies && options.split_flips &&
-        options.split_crossing_flips < 3) {
+        options.split_crossing_flips < kRetryCrossingFlips) {
       RecoveryOptions more = options;
-      more.split_crossing_flips = 3;
-      RecoveryOutput again;
-      again.stats.input_vertices = S.num_vertices();
-      again.stats.input_triangles = S.num_triangles();
-      again.stats.strategy = 4;
+      more.split_crossing_flips = kRetryCrossingFlips;
+      RecoveryOutput again = fresh_output(S, 4);
       const Status s2 = recovery_detail::recover_by_splitting(S, more, again);
       if (s2.ok()) return again;
     }
@@ -840,11 +850,8 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
   if (!options.fuzzy_faces)
     return Status(Error::InvalidArgument, "recover_boundary: no strategy enabled (split_constraints and fuzzy_faces are off)");
   for (size_t k = 0; k < attempts.size(); ++k) {
-    RecoveryOutput out;
-    out.stats.input_vertices = S.num_vertices();
-    out.stats.input_triangles = S.num_triangles();
     // 0: as asked; a retry is named by what it changed (see RecoveryStats::strategy).
-    out.stats.strategy = k == 0 ? 0 : attempts[k].use_flips ? 1 : 2;
+    RecoveryOutput out = fresh_output(S, k == 0 ? 0 : attempts[k].use_flips ? 1 : 2);
     Status s;
     {
       Recoverer r(S, attempts[k], out);
