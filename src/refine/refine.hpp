@@ -44,9 +44,10 @@ struct RefineOptions {
   double split_length = 1.4142135623730951;
   double collapse_length = 0.7071067811865476;
   double spacing = 0.7;                // min metric distance between points of one batch
-  // A split point closer than this (metric length) to the plane of a protected facet of the
-  // edge's ring is not inserted: next to a surface triangle much larger than the size, each
-  // split of an edge running along it would halve the distance again, down to flat tets.
+  // A split point closer than this (metric length, at the point) to a protected facet (S's
+  // triangles, in a BVH built once) is not inserted: next to a surface triangle much larger than
+  // the size, each split of an edge running along it would halve the distance again, down to
+  // flat tets.
   double facet_clearance = 0.2;
   double max_collapse_result = 1.3;    // longest edge a collapse may create (normalized)
   double min_collapse_quality = 0.05;  // lowest meshops::shape_quality a collapse may create
