@@ -291,7 +291,7 @@ bool CavityKernel::keep_left() const {
 }
 
 bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected, const uint32_t* keep,
-                                      size_t keep_count) {
+                                      size_t keep_count, bool force_keep) {
   const double* p = pt(pid);
   keep_ = keep;
   keep_count_ = keep_count;
@@ -299,6 +299,12 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
   marks_.clear();
   marks_.set(t0, TetMarks::kIn);
   cavity_.push_back(t0);
+  if (force_keep)
+    for (size_t k = 0; k < keep_count; ++k)
+      if (marks_.get(keep[k]) == TetMarks::kNone) {
+        marks_.set(keep[k], TetMarks::kIn);
+        cavity_.push_back(keep[k]);
+      }
   for (size_t k = 0; k < cavity_.size(); ++k) {
     const uint32_t c = cavity_[k];
     for (int i = 0; i < 4; ++i) {
@@ -402,14 +408,17 @@ bool CavityKernel::defend_constrained_edges(uint32_t t0, uint32_t pid) {
       uint32_t t = c, x = kGhost, y = kGhost;
       for (int i = 0, n = 0; i < 4; ++i)
         if (i != kEdgeVertex[k][0] && i != kEdgeVertex[k][1]) (n++ == 0 ? x : y) = cv[i];
-      bool all_in = true;
+      bool all_in = true, kept_in_ring = false;
       uint32_t eject = TetMesh::kNone;
       for (size_t steps = 0; steps < 1024; ++steps) {
         if (marks_.get(t) != TetMarks::kIn) {
           all_in = false;
           break;
         }
-        if (t != t0 && eject == TetMesh::kNone && !closure_contains(t, pt(pid)) && !is_kept(t)) eject = t;
+        if (t != t0 && eject == TetMesh::kNone && !closure_contains(t, pt(pid))) {
+          if (is_kept(t)) kept_in_ring = true;
+          else eject = t;
+        }
         const uint32_t* tv = store_->verts(t);
         int ix = -1;
         for (int i = 0; i < 4; ++i)
@@ -433,6 +442,11 @@ bool CavityKernel::defend_constrained_edges(uint32_t t0, uint32_t pid) {
         marks_.set(eject, TetMarks::kOut);
         ejected_.push_back(eject);
         removed = true;
+      } else if (all_in && kept_in_ring) {
+        // Only kept tets could leave: the edge would be lost, so the insertion is refused.
+        marks_.set(t0, TetMarks::kOut);
+        ejected_.push_back(t0);
+        return true;
       }
     }
   }

@@ -91,9 +91,11 @@ class CavityKernel {
   // Modified kernel: the cavity stops at protected facets (when asked) and at facets without a
   // neighbour, then shrinks until star-shaped from pid. Returns false, leaving the mesh
   // unchanged, when t0 itself has to leave the cavity, or one of the `keep` tets is not in it
-  // (the caller needs the new vertex joined to their vertices; no constrained edge ejects them).
+  // (the caller needs the new vertex joined to their vertices; no constrained edge ejects them:
+  // when only kept tets could leave a constrained edge's ring, the insertion is refused).
+  // force_keep: the `keep` tets start in the cavity whatever the empty-sphere test says.
   bool insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected, const uint32_t* keep = nullptr,
-                          size_t keep_count = 0);
+                          size_t keep_count = 0, bool force_keep = false);
 
   // The tets created by the last insertion.
   const std::vector<uint32_t>& new_tets() const { return new_tets_; }

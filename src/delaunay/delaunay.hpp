@@ -85,6 +85,10 @@ struct InsertOptions {
   // insertion is refused (kBlocked) when the empty-sphere test or the shrinking leaves one out.
   const uint32_t* keep_tets = nullptr;
   size_t keep_count = 0;
+  // The keep_tets join the cavity whatever the empty-sphere test says (the cavity then grows from
+  // them by that test as usual); only the star-shape shrinking may refuse the point. A point of a
+  // missing segment is then joined to its end through a chain of tets that is not Delaunay.
+  bool force_keep = false;
 };
 
 struct InsertResult {

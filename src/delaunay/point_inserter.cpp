@@ -79,7 +79,8 @@ InsertResult PointInserter::insert(const double p[3], uint32_t hint, const Inser
     case delaunay_detail::Located::kInGhost:
       break;
   }
-  if (!kernel_->insert_constrained(loc.tet, pid, options.respect_protected, options.keep_tets, options.keep_count)) {
+  if (!kernel_->insert_constrained(loc.tet, pid, options.respect_protected, options.keep_tets, options.keep_count,
+                                   options.force_keep)) {
     undo_vertex();
     result.status = InsertStatus::kBlocked;
     return result;

@@ -7,6 +7,7 @@
 #include <set>
 #include <vector>
 
+#include "core/tet_ops.hpp"
 #include "delaunay/delaunay.hpp"
 #include "test_points.hpp"
 
@@ -165,6 +166,143 @@ TEST(PointInserter, KeepTetsAreInTheCavityOrTheInsertionIsRefused) {
       for (int k = 0; k < 4; ++k) joined = joined || mesh.vertex(t, k) == w;
     EXPECT_TRUE(joined) << "vertex " << w << " of the kept tet is not joined to the new one";
   }
+}
+
+// The tet holding p strictly (kNone when p is on a facet or outside).
+uint32_t holder_of(const TetMesh& mesh, const double* p) {
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+    bool inside = true;
+    for (int i = 0; i < 4 && inside; ++i) {
+      const int* f = kFacetVertex[i];
+      inside = predicates::orient3d(mesh.point(mesh.vertex(t, f[0])), mesh.point(mesh.vertex(t, f[1])),
+                                    mesh.point(mesh.vertex(t, f[2])), p) > 0;
+    }
+    if (inside) return t;
+  }
+  return TetMesh::kNone;
+}
+
+bool joined_to_all(const TetMesh& mesh, const std::vector<uint32_t>& new_tets, const uint32_t* verts) {
+  for (int k = 0; k < 4; ++k) {
+    bool joined = false;
+    for (uint32_t t : new_tets)
+      for (int j = 0; j < 4; ++j) joined = joined || mesh.vertex(t, j) == verts[k];
+    if (!joined) return false;
+  }
+  return true;
+}
+
+// force_keep: a kept tet outside the point's empty-sphere cavity joins it anyway, so the insertion
+// that keep_tets alone refuses goes through whenever the cavity is still star-shaped; the new
+// vertex is then joined to every vertex of the kept tet and the mesh stays valid.
+TEST(PointInserter, ForcedKeepTetsJoinTheCavityWhateverTheEmptySphereTest) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0.2 * kScale, 0.8 * kScale);
+  size_t refused_unforced = 0, forced_in = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const std::vector<double> xyz = test::random_cube(300, 100 + trial);
+    TetMesh mesh;
+    ASSERT_TRUE(delaunay_tetrahedralize(mesh, xyz.data(), 300).ok());
+    const double p[3] = {u(rng), u(rng), u(rng)};
+    const uint32_t holder = holder_of(mesh, p);
+    if (holder == TetMesh::kNone) continue;
+    // A neighbour of the holder's neighbours whose circumsphere misses p.
+    uint32_t far = TetMesh::kNone;
+    for (int i = 0; i < 4 && far == TetMesh::kNone; ++i) {
+      const uint32_t n = mesh.neighbour(holder, i);
+      for (int j = 0; j < 4 && far == TetMesh::kNone; ++j) {
+        const uint32_t m = mesh.neighbour(n, j);
+        if (mesh.is_ghost(m) || m == holder) continue;
+        if (predicates::insphere(mesh.point(mesh.vertex(m, 0)), mesh.point(mesh.vertex(m, 1)),
+                                 mesh.point(mesh.vertex(m, 2)), mesh.point(mesh.vertex(m, 3)), p) < 0)
+          far = m;
+      }
+    }
+    if (far == TetMesh::kNone) continue;
+    const uint32_t n = [&] {
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+          if (mesh.neighbour(mesh.neighbour(holder, i), j) == far) return mesh.neighbour(holder, i);
+      return TetMesh::kNone;
+    }();
+    const uint32_t chain[3] = {holder, n, far};
+    uint32_t far_v[4];
+    for (int k = 0; k < 4; ++k) far_v[k] = mesh.vertex(far, k);
+    InsertOptions plain;
+    plain.keep_tets = chain;
+    plain.keep_count = 3;
+    TetMesh copy = mesh;
+    EXPECT_EQ(insert_point(copy, p, TetMesh::kNone, plain).status, InsertStatus::kBlocked);
+    ++refused_unforced;
+    InsertOptions forced = plain;
+    forced.force_keep = true;
+    std::vector<uint32_t> new_tets;
+    const InsertResult r = insert_point(mesh, p, TetMesh::kNone, forced, &new_tets);
+    if (r.status == InsertStatus::kBlocked) continue;
+    ASSERT_EQ(r.status, InsertStatus::kInserted);
+    ++forced_in;
+    EXPECT_TRUE(joined_to_all(mesh, new_tets, far_v));
+    const Status st = check_mesh(mesh);
+    ASSERT_TRUE(st.ok()) << st.message();
+  }
+  EXPECT_GT(refused_unforced, 10u);
+  EXPECT_GT(forced_in, 0u) << "force_keep never let a non-conflicting tet into a cavity";
+}
+
+// A constrained edge whose whole ring is kept (forced) cannot keep a tet out of the cavity: the
+// insertion is refused rather than the edge lost.
+TEST(PointInserter, ForcedKeepNeverDestroysAConstrainedEdge) {
+  size_t refused = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const std::vector<double> xyz = test::random_cube(300, 200 + trial);
+    TetMesh mesh;
+    ASSERT_TRUE(delaunay_tetrahedralize(mesh, xyz.data(), 300).ok());
+    // An interior edge (no ghost around it) of a tet near the middle.
+    const double mid[3] = {0.5 * kScale, 0.5 * kScale, 0.5 * kScale};
+    const uint32_t t0 = holder_of(mesh, mid);
+    ASSERT_NE(t0, TetMesh::kNone);
+    const uint32_t a = mesh.vertex(t0, 0), b = mesh.vertex(t0, 1);
+    std::vector<uint32_t> ring, ring_v;
+    ASSERT_TRUE(meshops::edge_ring(mesh, a, b, t0, ring, ring_v));
+    if (std::count(ring_v.begin(), ring_v.end(), TetMesh::kGhost) > 0) continue;
+    for (uint32_t t : ring)
+      for (int k = 0; k < 6; ++k) {
+        const uint32_t x = mesh.vertex(t, kEdgeVertex[k][0]), y = mesh.vertex(t, kEdgeVertex[k][1]);
+        if ((x == a && y == b) || (x == b && y == a))
+          mesh.tet_flags[t] = uint16_t(mesh.tet_flags[t] | (1u << (tflag::kEdgeConstrainedShift + k)));
+      }
+    // Near the edge's middle, inside t0.
+    double p[3];
+    for (int d = 0; d < 3; ++d) {
+      double c = 0;
+      for (int k = 0; k < 4; ++k) c += 0.25 * mesh.point(mesh.vertex(t0, k))[d];
+      p[d] = 0.9 * 0.5 * (mesh.point(a)[d] + mesh.point(b)[d]) + 0.1 * c;
+    }
+    if (holder_of(mesh, p) != t0) continue;
+    InsertOptions forced;
+    forced.keep_tets = ring.data();
+    forced.keep_count = ring.size();
+    forced.force_keep = true;
+    const InsertResult r = insert_point(mesh, p, TetMesh::kNone, forced);
+    if (r.status == InsertStatus::kBlocked) {
+      ++refused;
+      continue;
+    }
+    ASSERT_EQ(r.status, InsertStatus::kInserted);
+    bool edge_left = false;
+    for (uint32_t t = 0; t < mesh.num_tet_slots() && !edge_left; ++t) {
+      if (mesh.is_deleted(t)) continue;
+      bool has_a = false, has_b = false;
+      for (int k = 0; k < 4; ++k) {
+        has_a = has_a || mesh.vertex(t, k) == a;
+        has_b = has_b || mesh.vertex(t, k) == b;
+      }
+      edge_left = has_a && has_b;
+    }
+    EXPECT_TRUE(edge_left) << "the constrained edge was destroyed";
+  }
+  EXPECT_GT(refused, 0u);
 }
 
 TEST(PointInserter, InvalidInputs) {
