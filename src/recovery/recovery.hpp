@@ -60,6 +60,19 @@ struct RecoveryOptions {
   // power-of-two distance, which recovers only Delaunay pieces and cascades on needle triangles
   // (the stage 1 fronts of hammer and casting, turbine's in 120 s).
   bool split_walk = true;
+  // The walk's chain of tets joins the cavity of its point whatever the empty-sphere test says
+  // (InsertOptions::force_keep): a point far along a missing edge is joined to the edge's end
+  // through tets that are not Delaunay, where the empty-sphere rule stops the walk within a step
+  // or two on needle fans.
+  bool split_forced_walk = true;
+  // An input-edge subsegment is marked constrained (the kernel keeps it) as soon as a sweep finds
+  // it present, and so are the pieces of a split: later points no longer destroy what earlier
+  // ones recovered. On adis16480's stage 1 front the count of missing edges then falls to 0 in 20
+  // passes, where it grew from pass to pass (48k points to the Steiner cap).
+  bool split_defend_edges = true;
+  // A missing edge inside an input face that flips within the face do not make is made by flips
+  // of the mesh along it, or split (with its two triangles) like an input edge.
+  bool split_face_edges = true;
   // How many times a missing triangle's crossing edges are removed (edge removals) before it is
   // split instead. Once recovers tray_bottom's stage 1 front, three times turbine's (and not
   // tray_bottom's): when the split strategy fails with 1, it runs again with 3 (retry_strategies).

@@ -70,8 +70,11 @@ class SplitRecoverer {
   void mark_edge_constrained(uint32_t a, uint32_t b);
   double param_on(uint32_t v, uint32_t e) const;
   uint32_t insert(const double p[3], SteinerHost host, uint32_t host_id, double param, uint32_t hint,
-                  const uint32_t* keep = nullptr, size_t keep_count = 0);
+                  const uint32_t* keep = nullptr, size_t keep_count = 0, bool force_keep = false);
   bool split_edge(uint64_t key, double at = -1.0);
+  void defend(uint32_t a, uint32_t b);
+  void defend_split(uint64_t key);
+  size_t recover_face_edges(size_t cap);
   size_t walk_points(uint32_t a, uint32_t b);
   void split_caps();
   bool flip_in(uint32_t a, uint32_t b);
@@ -243,6 +246,18 @@ void SplitRecoverer::mark_edge_constrained(uint32_t a, uint32_t b) {
   set_edge_constrained(mesh_, ball(a), a, b, true);
 }
 
+// Marks edge (a b) constrained when it is in the mesh (RecoveryOptions::split_defend_edges).
+void SplitRecoverer::defend(uint32_t a, uint32_t b) {
+  if (opt_.split_defend_edges && has_edge(a, b)) mark_edge_constrained(a, b);
+}
+
+// After split_edge(key) made vertex v (the last Steiner point): defends the two pieces.
+void SplitRecoverer::defend_split(uint64_t key) {
+  const uint32_t v = out_.steiner.back().vertex;
+  defend(uint32_t(key >> 32), v);
+  defend(v, uint32_t(key & 0xffffffffu));
+}
+
 double SplitRecoverer::param_on(uint32_t v, uint32_t e) const {
   if (v == edge_v_[2 * e]) return 0.0;
   if (v == edge_v_[2 * e + 1]) return 1.0;
@@ -250,11 +265,12 @@ double SplitRecoverer::param_on(uint32_t v, uint32_t e) const {
 }
 
 uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t host_id, double param,
-                                uint32_t hint, const uint32_t* keep, size_t keep_count) {
+                                uint32_t hint, const uint32_t* keep, size_t keep_count, bool force_keep) {
   InsertOptions io;
   io.vertex_flags = vflag::kOnInputSurface;
   io.keep_tets = keep;
   io.keep_count = keep_count;
+  io.force_keep = force_keep;
   const InsertResult r = inserter_.insert(p, hint, io);
   if (!r.ok()) {
     ++out_.stats.blocked_insertions;
@@ -364,7 +380,9 @@ bool SplitRecoverer::flip_along(uint32_t a, uint32_t b) {
 // kernel refuse the point otherwise). walk_frac_[k-1] is that point's fraction of |ab|, the chain
 // is walk_chain_; returns how many points were found. A split there recovers one piece of a
 // missing segment without needing the piece to be Delaunay (the midpoint rule does, and on needle
-// triangles splits an edge down to the needles' width).
+// triangles splits an edge down to the needles' width). With split_forced_walk the empty-sphere
+// condition is dropped: the chain is forced into the cavity, and only the kernel's star-shape
+// shrinking refuses a point (split_edge() tries the farthest first).
 size_t SplitRecoverer::walk_points(uint32_t a, uint32_t b) {
   walk_frac_.clear();
   walk_chain_.clear();
@@ -413,7 +431,7 @@ size_t SplitRecoverer::walk_points(uint32_t a, uint32_t b) {
     double x[3];
     for (int d = 0; d < 3; ++d) x[d] = A[d] + mid * (B[d] - A[d]);
     bool all_in = true;
-    for (size_t k = 0; k < walk_chain_.size() && all_in; ++k) {
+    for (size_t k = 0; k < walk_chain_.size() && all_in && !opt_.split_forced_walk; ++k) {
       const uint32_t c = walk_chain_[k];
       all_in = predicates::insphere(mesh_.point(mesh_.vertex(c, 0)), mesh_.point(mesh_.vertex(c, 1)),
                                     mesh_.point(mesh_.vertex(c, 2)), mesh_.point(mesh_.vertex(c, 3)), x) > 0;
@@ -534,7 +552,7 @@ bool SplitRecoverer::split_edge(uint64_t key, double at) {
         double p[3], param;
         point_at(frac, p, param);
         if (!pieces_see_apex(p)) continue;
-        v = insert(p, kind, host, param, walk_chain_[0], walk_chain_.data(), k);
+        v = insert(p, kind, host, param, walk_chain_[0], walk_chain_.data(), k, opt_.split_forced_walk);
       }
     }
   if (v != kNone) {
@@ -681,6 +699,29 @@ bool SplitRecoverer::flip_edge(uint64_t key, bool only_to_mesh) {
   add_tri(x, v, y, f);
   add_tri(y, z, x, f);
   return true;
+}
+
+// The edges inside input faces that the flips within faces left missing: made by flips of the
+// mesh along them, else split (with their two triangles) at a walk's point like an input edge;
+// present ones are defended. Returns how many were missing.
+size_t SplitRecoverer::recover_face_edges(size_t cap) {
+  size_t missing = 0;
+  const size_t n_keys = edge_keys_.size();
+  for (size_t i = 0; i < n_keys && out_.steiner.size() <= cap; ++i) {
+    const uint64_t key = edge_keys_[i];
+    auto it = edges_.find(key);
+    if (it == edges_.end() || it->second.input_edge != kNone || settled(it->second)) continue;
+    const auto a = uint32_t(key >> 32), b = uint32_t(key & 0xffffffffu);
+    if (has_edge(a, b)) {
+      defend(a, b);
+      continue;
+    }
+    ++missing;
+    if (flip_along(a, b)) defend(a, b);
+    else if (split_edge(key)) defend_split(key);
+  }
+  drop_settled_keys();
+  return missing;
 }
 
 // Splits the missing constraint triangle k (its edges present) at the point where a mesh edge
@@ -861,12 +902,15 @@ Status SplitRecoverer::run() {
       const uint64_t key = edge_keys_[i];
       auto it = edges_.find(key);
       if (it == edges_.end() || it->second.input_edge == kNone || settled(it->second)) continue;
-      if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
+      if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) {
+        defend(uint32_t(key >> 32), uint32_t(key & 0xffffffffu));
+        continue;
+      }
       ++missing_edges;
       if (opt_.split_flips && (flip_in(uint32_t(key >> 32), uint32_t(key & 0xffffffffu)) ||
                                flip_along(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))))
         continue;
-      split_edge(key);
+      if (split_edge(key)) defend_split(key);
       if (out_.steiner.size() > cap || ((missing_edges & 255) == 0 && seconds_since(t1) > opt_.split_max_seconds)) break;
     }
     drop_settled_keys();
@@ -882,16 +926,24 @@ Status SplitRecoverer::run() {
     }
     // An edge inside an input face is free: flip a missing one to the mesh's edge, or to the
     // face's 2D Delaunay edge.
+    // Sweeps until none flips, so each face's pieces reach its 2D Delaunay triangulation (short
+    // rungs across a needle instead of the fans its edge splits made), at most kFlipSweeps.
+    constexpr int kFlipSweeps = 100;
     size_t flips = 0;
-    for (size_t i = 0; i < edge_keys_.size(); ++i) {
-      const uint64_t key = edge_keys_[i];
-      auto it = edges_.find(key);
-      if (it == edges_.end() || it->second.input_edge != kNone || settled(it->second)) continue;
-      if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
-      if (flip_edge(key, true) || flip_edge(key, false)) ++flips;
+    for (int sweep = 0; sweep < kFlipSweeps; ++sweep) {
+      const size_t before = flips;
+      for (size_t i = 0; i < edge_keys_.size(); ++i) {
+        const uint64_t key = edge_keys_[i];
+        auto it = edges_.find(key);
+        if (it == edges_.end() || it->second.input_edge != kNone || settled(it->second)) continue;
+        if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
+        if (flip_edge(key, true) || flip_edge(key, false)) ++flips;
+      }
+      drop_settled_keys();
+      if (flips == before) break;
     }
-    drop_settled_keys();
     out_.stats.flips += flips;
+    if (opt_.split_face_edges) recover_face_edges(cap);
     // Protect every triangle present, then split the missing ones.
     std::vector<uint32_t> missing;
     for (uint32_t k = 0; k < ct_.size(); ++k) {

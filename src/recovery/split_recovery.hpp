@@ -3,10 +3,13 @@
 //
 // The surface to recover is kept as a list of constraint triangles, at first the input's. When a
 // subsegment of an input edge is missing from the mesh, one flip makes it when one can (no
-// point), else a Steiner point is inserted on the input segment (near the middle, or at a
-// power-of-two distance from an input vertex) and the edge's two triangles are split there. An
-// edge inside an input face is free: a missing one is flipped within the face (to the mesh's edge,
-// or the face's 2D Delaunay one). When a triangle whose input-edge subsegments are present is
+// point), else a Steiner point is inserted on the input segment (at a point a walk from one end
+// shows joined to it, the walk's chain of tets forced into the cavity; else near the middle, or at
+// a power-of-two distance from an input vertex) and the edge's two triangles are split there.
+// Present subsegments are defended (constrained in the kernel) so later points do not destroy
+// them. An edge inside an input face is free: a missing one is flipped within the face (to the
+// mesh's edge, or the face's 2D Delaunay one, sweeping until no flip is left), else made by flips
+// of the mesh along it, or split like an input edge. When a triangle whose input-edge subsegments are
 // missing, a point is inserted where a mesh edge crosses it (kept away from its edges), else at
 // its centroid, and the triangle is split into three. With RecoveryOptions::face_apex, no split
 // or flip may leave a piece that does not see its face's apex (the coupling's cones). Before all
