@@ -198,7 +198,7 @@ bool joined_to_all(const TetMesh& mesh, const std::vector<uint32_t>& new_tets, c
 // vertex is then joined to every vertex of the kept tet and the mesh stays valid.
 TEST(PointInserter, ForcedKeepTetsJoinTheCavityWhateverTheEmptySphereTest) {
   std::mt19937_64 rng(21);
-  std::uniform_real_distribution<double> u(0.2 * kScale, 0.8 * kScale);
+  std::uniform_real_distribution<double> u(0.2, 0.8);
   size_t refused_unforced = 0, forced_in = 0;
   for (int trial = 0; trial < 60; ++trial) {
     const std::vector<double> xyz = test::random_cube(300, 100 + trial);
@@ -259,7 +259,7 @@ TEST(PointInserter, ForcedKeepNeverDestroysAConstrainedEdge) {
     TetMesh mesh;
     ASSERT_TRUE(delaunay_tetrahedralize(mesh, xyz.data(), 300).ok());
     // An interior edge (no ghost around it) of a tet near the middle.
-    const double mid[3] = {0.5 * kScale, 0.5 * kScale, 0.5 * kScale};
+    const double mid[3] = {0.5, 0.5, 0.5};
     const uint32_t t0 = holder_of(mesh, mid);
     ASSERT_NE(t0, TetMesh::kNone);
     const uint32_t a = mesh.vertex(t0, 0), b = mesh.vertex(t0, 1);
