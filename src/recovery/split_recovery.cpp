@@ -74,7 +74,7 @@ class SplitRecoverer {
   bool split_edge(uint64_t key, double at = -1.0);
   void defend(uint32_t a, uint32_t b);
   void defend_split(uint64_t key);
-  size_t recover_face_edges(size_t cap);
+  void recover_face_edges(size_t cap);
   size_t walk_points(uint32_t a, uint32_t b);
   void split_caps();
   bool flip_in(uint32_t a, uint32_t b);
@@ -703,9 +703,8 @@ bool SplitRecoverer::flip_edge(uint64_t key, bool only_to_mesh) {
 
 // The edges inside input faces that the flips within faces left missing: made by flips of the
 // mesh along them, else split (with their two triangles) at a walk's point like an input edge;
-// present ones are defended. Returns how many were missing.
-size_t SplitRecoverer::recover_face_edges(size_t cap) {
-  size_t missing = 0;
+// present ones are defended.
+void SplitRecoverer::recover_face_edges(size_t cap) {
   const size_t n_keys = edge_keys_.size();
   for (size_t i = 0; i < n_keys && out_.steiner.size() <= cap; ++i) {
     const uint64_t key = edge_keys_[i];
@@ -716,12 +715,10 @@ size_t SplitRecoverer::recover_face_edges(size_t cap) {
       defend(a, b);
       continue;
     }
-    ++missing;
     if (flip_along(a, b)) defend(a, b);
     else if (split_edge(key)) defend_split(key);
   }
   drop_settled_keys();
-  return missing;
 }
 
 // Splits the missing constraint triangle k (its edges present) at the point where a mesh edge
@@ -925,9 +922,9 @@ Status SplitRecoverer::run() {
       continue;
     }
     // An edge inside an input face is free: flip a missing one to the mesh's edge, or to the
-    // face's 2D Delaunay edge.
-    // Sweeps until none flips, so each face's pieces reach its 2D Delaunay triangulation (short
-    // rungs across a needle instead of the fans its edge splits made), at most kFlipSweeps.
+    // face's 2D Delaunay edge, sweeping until none flips (at most kFlipSweeps), so each face's
+    // pieces reach its 2D Delaunay triangulation: short rungs across a needle instead of the fans
+    // its edge splits made.
     constexpr int kFlipSweeps = 100;
     size_t flips = 0;
     for (int sweep = 0; sweep < kFlipSweeps; ++sweep) {
