@@ -71,9 +71,9 @@ class SplitRecoverer {
   double param_on(uint32_t v, uint32_t e) const;
   uint32_t insert(const double p[3], SteinerHost host, uint32_t host_id, double param, uint32_t hint,
                   const uint32_t* keep = nullptr, size_t keep_count = 0, bool force_keep = false);
-  bool split_edge(uint64_t key, double at = -1.0);
+  uint32_t split_edge(uint64_t key, double at = -1.0);
   void defend(uint32_t a, uint32_t b);
-  void defend_split(uint64_t key);
+  void defend_split(uint64_t key, uint32_t v);
   void recover_face_edges(size_t cap);
   size_t walk_points(uint32_t a, uint32_t b);
   void split_caps();
@@ -251,9 +251,8 @@ void SplitRecoverer::defend(uint32_t a, uint32_t b) {
   if (opt_.split_defend_edges && has_edge(a, b)) mark_edge_constrained(a, b);
 }
 
-// After split_edge(key) made vertex v (the last Steiner point): defends the two pieces.
-void SplitRecoverer::defend_split(uint64_t key) {
-  const uint32_t v = out_.steiner.back().vertex;
+// After split_edge(key) made vertex v: defends the two pieces.
+void SplitRecoverer::defend_split(uint64_t key, uint32_t v) {
   defend(uint32_t(key >> 32), v);
   defend(v, uint32_t(key & 0xffffffffu));
 }
@@ -492,7 +491,7 @@ void SplitRecoverer::split_caps() {
       const double ta = param_on(a, e), tb = param_on(b, e);
       const double lo = std::min(ta, tb), hi = std::max(ta, tb);
       const double tp = std::min(std::max(dot(pc, pq) / dot(pq, pq), lo + 0.05 * (hi - lo)), hi - 0.05 * (hi - lo));
-      if (split_edge(it->first, tp)) ++out_.stats.caps_split;
+      if (split_edge(it->first, tp) != kNone) ++out_.stats.caps_split;
       break;
     }
   }
@@ -501,8 +500,9 @@ void SplitRecoverer::split_caps() {
 // Splits the missing constraint edge `key` and its two triangles at a new point. On an input
 // edge the point is on the input segment (by its parameter), at a power-of-two distance from an
 // input vertex when the edge ends at one (concentric shells: segments meeting at a small angle
-// do not split each other forever), else at the middle; inside a face, at the middle.
-bool SplitRecoverer::split_edge(uint64_t key, double at) {
+// do not split each other forever), else at the middle; inside a face, at the middle. Returns
+// the new vertex (kNone when every point tried was refused).
+uint32_t SplitRecoverer::split_edge(uint64_t key, double at) {
   const CEdge ce = edges_.at(key);
   const auto a = uint32_t(key >> 32), b = uint32_t(key & 0xffffffffu);
   uint32_t v = kNone;
@@ -599,7 +599,7 @@ bool SplitRecoverer::split_edge(uint64_t key, double at) {
       if (v != kNone) break;
     }
   }
-  if (v == kNone) return false;
+  if (v == kNone) return kNone;
   // The triangles on (a b) become two each, on either side of v.
   uint32_t tris[2] = {ce.tri[0], ce.tri[1]};
   Tri old[2];
@@ -621,7 +621,7 @@ bool SplitRecoverer::split_edge(uint64_t key, double at) {
     add_tri(x, v, z, faces[s]);
     add_tri(v, y, z, faces[s]);
   }
-  return true;
+  return v;
 }
 
 // Flips the constraint edge `key` inside its input face: its triangles (v z x) and (z v y) become
@@ -716,7 +716,7 @@ void SplitRecoverer::recover_face_edges(size_t cap) {
       continue;
     }
     if (flip_along(a, b)) defend(a, b);
-    else if (split_edge(key)) defend_split(key);
+    else if (const uint32_t v = split_edge(key); v != kNone) defend_split(key, v);
   }
   drop_settled_keys();
 }
@@ -907,7 +907,7 @@ Status SplitRecoverer::run() {
       if (opt_.split_flips && (flip_in(uint32_t(key >> 32), uint32_t(key & 0xffffffffu)) ||
                                flip_along(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))))
         continue;
-      if (split_edge(key)) defend_split(key);
+      if (const uint32_t v = split_edge(key); v != kNone) defend_split(key, v);
       if (out_.steiner.size() > cap || ((missing_edges & 255) == 0 && seconds_since(t1) > opt_.split_max_seconds)) break;
     }
     drop_settled_keys();
