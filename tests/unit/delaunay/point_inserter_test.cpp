@@ -121,53 +121,6 @@ TEST(PointInserter, DuplicateLeavesMeshUnchanged) {
   EXPECT_EQ(mesh.tet_flags, before.tet_flags);
 }
 
-// keep_tets: a tet the point's Delaunay cavity does not reach makes the insertion refused, with
-// the mesh unchanged; tets it does reach go, and the new vertex is joined to all their vertices.
-TEST(PointInserter, KeepTetsAreInTheCavityOrTheInsertionIsRefused) {
-  const std::vector<double> xyz = test::random_cube(400, 15);
-  TetMesh mesh;
-  ASSERT_TRUE(delaunay_tetrahedralize(mesh, xyz.data(), 400).ok());
-  const double p[3] = {0.5, 0.5, 0.5};
-  // A live tet whose circumsphere misses p (the far corner's), and the tet holding p.
-  uint32_t far = TetMesh::kNone, holder = TetMesh::kNone;
-  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
-    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
-    const double* v[4] = {mesh.point(mesh.vertex(t, 0)), mesh.point(mesh.vertex(t, 1)), mesh.point(mesh.vertex(t, 2)),
-                          mesh.point(mesh.vertex(t, 3))};
-    if (far == TetMesh::kNone && predicates::insphere(v[0], v[1], v[2], v[3], p) < 0) far = t;
-    bool inside = true;
-    for (int i = 0; i < 4; ++i) {
-      const int* f = kFacetVertex[i];
-      inside = inside && predicates::orient3d(v[f[0]], v[f[1]], v[f[2]], p) > 0;
-    }
-    if (inside) holder = t;
-  }
-  ASSERT_NE(far, TetMesh::kNone);
-  ASSERT_NE(holder, TetMesh::kNone);
-  const TetMesh before = mesh;
-  InsertOptions keep_far;
-  keep_far.keep_tets = &far;
-  keep_far.keep_count = 1;
-  EXPECT_EQ(insert_point(mesh, p, TetMesh::kNone, keep_far).status, InsertStatus::kBlocked);
-  EXPECT_EQ(mesh.xyz, before.xyz);
-  EXPECT_EQ(mesh.tet_v, before.tet_v);
-  EXPECT_EQ(mesh.tet_adj, before.tet_adj);
-  uint32_t holder_v[4];
-  for (int k = 0; k < 4; ++k) holder_v[k] = mesh.vertex(holder, k);
-  InsertOptions keep_holder;
-  keep_holder.keep_tets = &holder;
-  keep_holder.keep_count = 1;
-  std::vector<uint32_t> new_tets;
-  const InsertResult r = insert_point(mesh, p, TetMesh::kNone, keep_holder, &new_tets);
-  ASSERT_EQ(r.status, InsertStatus::kInserted);
-  for (uint32_t w : holder_v) {
-    bool joined = false;
-    for (uint32_t t : new_tets)
-      for (int k = 0; k < 4; ++k) joined = joined || mesh.vertex(t, k) == w;
-    EXPECT_TRUE(joined) << "vertex " << w << " of the kept tet is not joined to the new one";
-  }
-}
-
 // The tet holding p strictly (kNone when p is on a facet or outside).
 uint32_t holder_of(const TetMesh& mesh, const double* p) {
   for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
@@ -191,6 +144,43 @@ bool joined_to_all(const TetMesh& mesh, const std::vector<uint32_t>& new_tets, c
     if (!joined) return false;
   }
   return true;
+}
+
+// keep_tets: a tet the point's Delaunay cavity does not reach makes the insertion refused, with
+// the mesh unchanged; tets it does reach go, and the new vertex is joined to all their vertices.
+TEST(PointInserter, KeepTetsAreInTheCavityOrTheInsertionIsRefused) {
+  const std::vector<double> xyz = test::random_cube(400, 15);
+  TetMesh mesh;
+  ASSERT_TRUE(delaunay_tetrahedralize(mesh, xyz.data(), 400).ok());
+  const double p[3] = {0.5, 0.5, 0.5};
+  // A live tet whose circumsphere misses p (the far corner's), and the tet holding p.
+  uint32_t far = TetMesh::kNone;
+  for (uint32_t t = 0; t < mesh.num_tet_slots() && far == TetMesh::kNone; ++t) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+    if (predicates::insphere(mesh.point(mesh.vertex(t, 0)), mesh.point(mesh.vertex(t, 1)),
+                             mesh.point(mesh.vertex(t, 2)), mesh.point(mesh.vertex(t, 3)), p) < 0)
+      far = t;
+  }
+  uint32_t holder = holder_of(mesh, p);
+  ASSERT_NE(far, TetMesh::kNone);
+  ASSERT_NE(holder, TetMesh::kNone);
+  const TetMesh before = mesh;
+  InsertOptions keep_far;
+  keep_far.keep_tets = &far;
+  keep_far.keep_count = 1;
+  EXPECT_EQ(insert_point(mesh, p, TetMesh::kNone, keep_far).status, InsertStatus::kBlocked);
+  EXPECT_EQ(mesh.xyz, before.xyz);
+  EXPECT_EQ(mesh.tet_v, before.tet_v);
+  EXPECT_EQ(mesh.tet_adj, before.tet_adj);
+  uint32_t holder_v[4];
+  for (int k = 0; k < 4; ++k) holder_v[k] = mesh.vertex(holder, k);
+  InsertOptions keep_holder;
+  keep_holder.keep_tets = &holder;
+  keep_holder.keep_count = 1;
+  std::vector<uint32_t> new_tets;
+  const InsertResult r = insert_point(mesh, p, TetMesh::kNone, keep_holder, &new_tets);
+  ASSERT_EQ(r.status, InsertStatus::kInserted);
+  EXPECT_TRUE(joined_to_all(mesh, new_tets, holder_v)) << "a vertex of the kept tet is not joined to the new one";
 }
 
 // force_keep: a kept tet outside the point's empty-sphere cavity joins it anyway, so the insertion
