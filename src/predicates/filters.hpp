@@ -153,6 +153,19 @@ inline int orient3d(const double* a, const double* b, const double* c, const dou
   return detail::orient3d_exact(a, b, c, d);
 }
 
+inline int orient3d_certified(const double* a, const double* b, const double* c, const double* d) {
+  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+  const double wx = d[0] - a[0], wy = d[1] - a[1], wz = d[2] - a[2];
+  const double det = detail::orient3d_det(ux, uy, uz, vx, vy, vz, wx, wy, wz);
+  const double mx = detail::absmax3(ux, vx, wx);
+  const double my = detail::absmax3(uy, vy, wy);
+  const double mz = detail::absmax3(uz, vz, wz);
+  if (!detail::in_range(detail::kOrient3dMin, detail::kOrient3dMax, mx, my, mz)) return 0;
+  const double bound = 4.0 * detail::kOrient3dBound * mx * my * mz;
+  return det > bound ? 1 : det < -bound ? -1 : 0;
+}
+
 inline int insphere(const double* a, const double* b, const double* c, const double* d,
                     const double* e) {
   ++detail::tls_counters.insphere_calls;

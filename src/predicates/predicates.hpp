@@ -57,6 +57,12 @@ inline int insphere_sos(const double* a, const double* b, const double* c, const
                         const double* e, uint32_t ia, uint32_t ib, uint32_t ic, uint32_t id,
                         uint32_t ie);
 
+// The sign of orient3d that a plain double evaluation gets right whatever its operand order:
+// +1 or -1 when the determinant computed in doubles clears four times the filter's error bound,
+// 0 otherwise (the tet is flat to rounding: valid for the exact predicates, yet a solver or a
+// checker computing its volume in doubles may find it zero or negative). Never exact arithmetic.
+inline int orient3d_certified(const double* a, const double* b, const double* c, const double* d);
+
 // How often each level was reached, counted per thread (no shared writes on the hot path).
 struct PredicateCounters {
   uint64_t orient2d_calls = 0, orient2d_exact = 0;

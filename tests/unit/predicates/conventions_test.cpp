@@ -132,6 +132,44 @@ TEST(PredicatesCounters, PerThread) {
   EXPECT_EQ(thread_counters().orient3d_calls, 1u);
 }
 
+// orient3d_certified: a point off a tilted plane by rounding only is valid for the exact test but
+// not certified; a clear one is; a certified sign never disagrees with the exact one.
+TEST(PredicatesConventions, Orient3dCertified) {
+  const double a[3] = {1, 0, 0}, b[3] = {0, 1, 0}, c[3] = {0, 0, 1};
+  const double third = 1.0 / 3.0;  // rounded down: (t, t, t) is off the plane x + y + z = 1
+  const double near[3] = {third, third, third};
+  ASSERT_NE(orient3d(a, b, c, near), 0);
+  EXPECT_EQ(orient3d_certified(a, b, c, near), 0);
+  const double above[3] = {third, third, third + 1e-3}, below[3] = {third, third, third - 1e-3};
+  EXPECT_EQ(orient3d_certified(a, b, c, above), orient3d(a, b, c, above));
+  EXPECT_EQ(orient3d_certified(a, b, c, below), orient3d(a, b, c, below));
+  EXPECT_NE(orient3d_certified(a, b, c, above), 0);
+  uint64_t seed = 12345;
+  auto unit = [&seed] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return double(seed >> 11) * 0x1p-53;
+  };
+  int certified = 0;
+  for (int i = 0; i < 20000; ++i) {
+    double p[4][3];
+    for (auto& q : p)
+      for (double& x : q) x = unit();
+    // Every other tet nearly flat: its last point moved onto the plane of the first three.
+    if (i % 2) {
+      const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+      const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+      for (int k = 0; k < 3; ++k) p[3][k] = p[0][k] + 0.3 * u[k] + 0.4 * v[k];
+    }
+    const int s = orient3d_certified(p[0], p[1], p[2], p[3]);
+    if (s != 0) {
+      ++certified;
+      EXPECT_EQ(s, orient3d(p[0], p[1], p[2], p[3]));
+    }
+  }
+  EXPECT_GT(certified, 9000);
+  EXPECT_LT(certified, 11000);
+}
+
 TEST(PredicatesConventions, NonFiniteGivesZero) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
