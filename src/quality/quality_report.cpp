@@ -123,7 +123,8 @@ TetData measure_tets(const VolumeMesh& mesh, bool parallel) {
         m.radius_ratio = 0.0;
         m.mean_ratio = 0.0;
       }
-      d.orient[t] = static_cast<int8_t>(o);
+      // 2: positive, but a double evaluation of the volume could find it zero or negative.
+      d.orient[t] = static_cast<int8_t>(o > 0 && predicates::orient3d_certified(a, b, c, e) <= 0 ? 2 : o);
       d.volume[t] = m.volume;
       d.radius_ratio[t] = m.radius_ratio;
       d.mean_ratio[t] = m.mean_ratio;
@@ -229,6 +230,7 @@ Result<QualityReport> quality_detail::compute_quality_report_keep(const VolumeMe
       r.flat_tets += d.orient[t] == 0;
       if (r.nonpositive_examples.size() < options.max_listed) r.nonpositive_examples.push_back(uint32_t(t));
     }
+    r.rounding_flat_tets += d.orient[t] == 2;
     const double x = d.volume[t], sum = vol + x;
     comp += std::fabs(vol) >= std::fabs(x) ? (vol - sum) + x : (x - sum) + vol;
     vol = sum;

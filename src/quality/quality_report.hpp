@@ -76,6 +76,9 @@ struct QualityReport {
   size_t nonpositive_tets = 0;  // exact orient3d <= 0
   size_t inverted_tets = 0;     // exact orient3d < 0
   size_t flat_tets = 0;         // exact orient3d == 0
+  // Valid (exact orient3d > 0) but flat to rounding: a double evaluation of the volume (a
+  // solver's, a checker's) could find it zero or negative (predicates::orient3d_certified).
+  size_t rounding_flat_tets = 0;
   std::vector<uint32_t> nonpositive_examples;  // tet ids (at most max_listed)
   size_t faces_shared_by_more_than_two = 0;
   size_t boundary_faces = 0;

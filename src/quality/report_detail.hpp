@@ -11,7 +11,7 @@ namespace anitet::quality_detail {
 // Per-tet measures of the whole mesh, index = tet id.
 struct TetData {
   std::vector<double> volume, radius_ratio, mean_ratio, min_dihedral, max_dihedral;
-  std::vector<int8_t> orient;  // exact orient3d sign
+  std::vector<int8_t> orient;  // exact orient3d sign; 2: positive, not certified in doubles
 };
 
 // Statistics of the values (taken by value: the percentile reorders them). Empty gives zeros.

@@ -64,6 +64,7 @@ std::string quality_report_json(const QualityReport& r, int indent) {
   j["nonpositive_tets"] = r.nonpositive_tets;
   j["inverted_tets"] = r.inverted_tets;
   j["flat_tets"] = r.flat_tets;
+  j["rounding_flat_tets"] = r.rounding_flat_tets;
   j["nonpositive_tet_examples"] = r.nonpositive_examples;
   j["faces_shared_by_more_than_two"] = r.faces_shared_by_more_than_two;
   j["boundary_faces"] = r.boundary_faces;
@@ -134,7 +135,8 @@ std::string quality_report_text(const QualityReport& r) {
      << " tets, " << r.boundary_faces << " boundary faces\n";
   os << "validity: " << (r.valid ? "VALID" : "INVALID") << " (exact orientation: " << r.nonpositive_tets
      << " non-positive tets [" << r.inverted_tets << " inverted, " << r.flat_tets << " flat]; "
-     << r.faces_shared_by_more_than_two << " faces shared by more than two tets)\n";
+     << r.faces_shared_by_more_than_two << " faces shared by more than two tets; " << r.rounding_flat_tets
+     << " tets valid but flat to double rounding)\n";
   if (r.nonpositive_tets > 0) {
     os << "  non-positive tets: " << id_list(r.nonpositive_examples, r.nonpositive_tets) << "\n";
   }

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "predicates/predicates.hpp"
 #include "quality/quality_report.hpp"
 #include "quality/report_detail.hpp"
 #include "test_meshes.hpp"
@@ -185,6 +186,21 @@ TEST(QualityReport, FlatTetIsNonPositiveByExactOrientation) {
   EXPECT_EQ(r.radius_ratio.max, 0.0);
   EXPECT_EQ(r.rr_histogram[0], 1u);
   EXPECT_FALSE(r.surface.present);
+}
+
+// Positive for the exact test but flat to rounding: valid, and counted apart.
+TEST(QualityReport, TetFlatToRoundingIsValidButCounted) {
+  VolumeMesh m;
+  const double third = 1.0 / 3.0;  // rounded down: off the plane x + y + z = 1 by rounding only
+  const double p[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {third, third, third}};
+  for (const auto& q : p) m.xyz.insert(m.xyz.end(), q, q + 3);
+  // (a c b d) is the positive order when d is on the origin's side of the plane.
+  ASSERT_GT(predicates::orient3d(p[0], p[2], p[1], p[3]), 0);
+  m.tet = {0, 2, 1, 3};
+  const QualityReport r = report_of(m, nullptr);
+  EXPECT_TRUE(r.valid);
+  EXPECT_EQ(r.nonpositive_tets, 0u);
+  EXPECT_EQ(r.rounding_flat_tets, 1u);
 }
 
 TEST(QualityReport, DuplicatedTetBreaksConformity) {
