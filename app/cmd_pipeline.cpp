@@ -77,7 +77,9 @@ std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r)
                                       "% of edges in [1/sqrt2, sqrt2]");
   rows.emplace_back("optimization", std::to_string(r.optimize.moves) + " CVT moves, " +
                                         std::to_string(r.optimize.edge_removals) + " edge removals, " +
-                                        std::to_string(r.optimize.perturbations) + " sliver perturbations");
+                                        std::to_string(r.optimize.perturbations) + " sliver perturbations, " +
+                                        std::to_string(r.optimize.flat_found - r.optimize.flat_left) + " of " +
+                                        std::to_string(r.optimize.flat_found) + " tets flat to rounding opened");
   return rows;
 }
 
@@ -240,7 +242,8 @@ int run_mesh_pipeline(MeshArgs& args) {
                             {"growth_mean", bl.growth_mean}, {"max_displacement", bl.max_displacement},
                             {"stage1_seconds", r.layers.bl_seconds}}},
         {"optimize", {{"moves", r.optimize.moves}, {"flips23", r.optimize.flips23},
-                      {"edge_removals", r.optimize.edge_removals}, {"perturbations", r.optimize.perturbations}}},
+                      {"edge_removals", r.optimize.edge_removals}, {"perturbations", r.optimize.perturbations},
+                      {"flat_found", r.optimize.flat_found}, {"flat_left", r.optimize.flat_left}}},
         {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
     std::cout << out.dump(1) << "\n";
   } else if (!args.quiet) {
@@ -276,7 +279,8 @@ int run_mesh_pipeline(MeshArgs& args) {
               << ", " << 100.0 * r.refine.length_in_range << "% in [1/sqrt2, sqrt2]\n"
               << "  optimization: " << r.optimize.moves << " CVT moves, " << r.optimize.flips23 << " 2-3 flips, "
               << r.optimize.edge_removals << " edge removals, " << r.optimize.perturbations
-              << " sliver perturbations; radius ratio min " << r.optimize.before.min << " -> "
+              << " sliver perturbations, " << r.optimize.flat_found - r.optimize.flat_left << " of "
+              << r.optimize.flat_found << " tets flat to rounding opened; radius ratio min " << r.optimize.before.min << " -> "
               << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
               << "\n"
               << quality_report_text(quality.value());

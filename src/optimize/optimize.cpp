@@ -46,6 +46,12 @@ class Optimizer {
   void cvt_target(uint32_t v, double target[3]);
   size_t cvt_pass();
   size_t perturb_pass();
+  bool opening_direction(uint32_t t, int i, double nrm[3]) const;
+  double shortest_edge(uint32_t t) const;
+  bool certified(uint32_t t) const;
+  bool try_certify(uint32_t v, const double p[3], size_t flat);
+  size_t certify_pass();
+  void certify_round(const std::vector<uint32_t>& flat);
   double next_unit() {
     rng_ ^= rng_ << 13;
     rng_ ^= rng_ >> 7;
@@ -182,16 +188,8 @@ size_t Optimizer::perturb_pass() {
       const double start[3] = {x[0], x[1], x[2]};
       double best[3] = {x[0], x[1], x[2]};
       // Away from the opposite facet (the direction that opens the tet), then random ones.
-      const int* f = kFacetVertex[i];
-      const double* A = mesh_.point(mesh_.vertex(t, f[0]));
-      const double* B = mesh_.point(mesh_.vertex(t, f[1]));
-      const double* C = mesh_.point(mesh_.vertex(t, f[2]));
-      const double u[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
-      const double w[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
-      double nrm[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-      if (len > 0.0)
-        for (double& c : nrm) c /= len;
+      double nrm[3];
+      opening_direction(t, i, nrm);  // zero when the facet is degenerate
       double scale = 0.0;
       for (uint32_t s : ball_)
         for (int k = 0; k < 4; ++k) {
@@ -222,6 +220,117 @@ size_t Optimizer::perturb_pass() {
   return moved;
 }
 
+// The unit normal of facet i of t pointing into t: the direction that opens t when its vertex i
+// moves along it. False (nrm zero) when the facet is degenerate.
+bool Optimizer::opening_direction(uint32_t t, int i, double nrm[3]) const {
+  const int* f = kFacetVertex[i];
+  const double* A = mesh_.point(mesh_.vertex(t, f[0]));
+  const double* B = mesh_.point(mesh_.vertex(t, f[1]));
+  const double* C = mesh_.point(mesh_.vertex(t, f[2]));
+  const double u[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
+  const double w[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+  nrm[0] = u[1] * w[2] - u[2] * w[1];
+  nrm[1] = u[2] * w[0] - u[0] * w[2];
+  nrm[2] = u[0] * w[1] - u[1] * w[0];
+  const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+  if (!(len > 0.0)) {
+    nrm[0] = nrm[1] = nrm[2] = 0.0;
+    return false;
+  }
+  for (int k = 0; k < 3; ++k) nrm[k] /= len;
+  return true;
+}
+
+double Optimizer::shortest_edge(uint32_t t) const {
+  double shortest = INFINITY;
+  for (const auto& e : kEdgeVertex) {
+    const double* p = mesh_.point(mesh_.vertex(t, e[0]));
+    const double* q = mesh_.point(mesh_.vertex(t, e[1]));
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k) d2 += (p[k] - q[k]) * (p[k] - q[k]);
+    shortest = std::min(shortest, std::sqrt(d2));
+  }
+  return shortest;
+}
+
+bool Optimizer::certified(uint32_t t) const {
+  return predicates::orient3d_certified(mesh_.point(mesh_.vertex(t, 0)), mesh_.point(mesh_.vertex(t, 1)),
+                                        mesh_.point(mesh_.vertex(t, 2)), mesh_.point(mesh_.vertex(t, 3))) > 0;
+}
+
+// Tries v at p for certify_pass(): accepted when the ball stays positive (exact), fewer of its
+// tets are uncertified than the `flat` it had, and its worst quality does not drop (no per-tet
+// floor: the ball's other tets may give a little so that a flat one opens). Leaves v where it
+// was otherwise.
+bool Optimizer::try_certify(uint32_t v, const double p[3], size_t flat) {
+  double* x = &mesh_.xyz[3 * size_t(v)];
+  const double saved[3] = {x[0], x[1], x[2]};
+  std::copy_n(p, 3, x);
+  double q_min = 1.0;
+  size_t still_flat = 0;
+  for (size_t k = 0; k < ball_.size() && still_flat < flat; ++k) {
+    q_min = std::min(q_min, meshops::tet_shape_quality(mesh_, ball_[k]));
+    still_flat += !certified(ball_[k]);
+  }
+  if (still_flat < flat && q_min >= old_min_ && meshops::all_positive(mesh_, ball_)) return true;
+  std::copy_n(saved, 3, x);
+  return false;
+}
+
+// Tets flat to rounding (positive for the exact orient3d, but not certified for a double
+// evaluation: a solver or checker computing volumes in doubles may find them zero or inverted)
+// that the sliver pass could not open: each free vertex is tried at steps from twice the tet's
+// shortest edge down, away from its opposite facet and in pseudo-random directions, until the
+// tet is certified; rounds repeat while they open some (a neighbour's move can free a stuck
+// one). Returns how many such tets are left.
+size_t Optimizer::certify_pass() {
+  std::vector<uint32_t> flat;
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
+    if (!mesh_.is_deleted(t) && !certified(t)) flat.push_back(t);
+  stats_.flat_found = flat.size();
+  constexpr int kRounds = 4;
+  for (int round = 0; round < kRounds && !flat.empty(); ++round) {
+    const size_t before = flat.size();
+    certify_round(flat);
+    flat.erase(std::remove_if(flat.begin(), flat.end(), [&](uint32_t t) { return mesh_.is_deleted(t) || certified(t); }),
+               flat.end());
+    if (flat.size() == before) break;
+  }
+  return flat.size();
+}
+
+void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
+  constexpr int kLevels = 20, kTrials = 80;
+  for (uint32_t t : flat) {
+    for (int i = 0; i < 4 && !mesh_.is_deleted(t) && !certified(t); ++i) {
+      const uint32_t v = mesh_.vertex(t, i);
+      if (!movable(v)) continue;
+      meshops::vertex_ball(mesh_, v, t, ball_);
+      measure_ball();
+      const double shortest = shortest_edge(t);
+      double nrm[3];
+      const bool has_normal = opening_direction(t, i, nrm);
+      const double start[3] = {mesh_.point(v)[0], mesh_.point(v)[1], mesh_.point(v)[2]};
+      for (int trial = 0; trial < kTrials && !certified(t); ++trial) {
+        const double r = 2.0 * shortest * std::ldexp(1.0, -(trial % kLevels));
+        double d[3];
+        if (trial < kLevels && has_normal) {
+          for (int k = 0; k < 3; ++k) d[k] = r * nrm[k];
+        } else {
+          for (int k = 0; k < 3; ++k) d[k] = r * (2.0 * next_unit() - 1.0);
+        }
+        const double q[3] = {start[0] + d[0], start[1] + d[1], start[2] + d[2]};
+        size_t flat_in_ball = 0;
+        for (uint32_t b : ball_) flat_in_ball += !certified(b);
+        if (try_certify(v, q, flat_in_ball)) {
+          measure_ball();  // the new position is the next trial's reference
+          if (v < sizes_.size()) sizes_[v] = -1.0;
+        }
+      }
+    }
+  }
+}
+
 Result<OptimizeStats> Optimizer::run() {
   const auto start = Clock::now();
   for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
@@ -241,6 +350,7 @@ Result<OptimizeStats> Optimizer::run() {
     if (moved == 0) break;
   }
   optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
+  stats_.flat_left = certify_pass();
   stats_.flips23 = flips_.flips23;
   stats_.edge_removals = flips_.edge_removals;
   stats_.after = summarize_quality(mesh_);

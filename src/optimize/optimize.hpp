@@ -17,6 +17,11 @@
 //     worst quality of its ball (no tet ending below min(its old quality, the midpoint of the
 //     ball's old worst quality and sliver_quality)), interleaved with flips, for sliver_rounds
 //     rounds.
+//   - Flat tets: a tet positive for the exact orient3d but flat to rounding (a double evaluation
+//     could find it zero or inverted: predicates::orient3d_certified) has its free vertices moved
+//     (steps from twice its shortest edge down) until it is certified: a move is accepted when
+//     fewer tets of the ball are uncertified and its worst quality does not drop (no per-tet
+//     floor there). Last, so that nothing after it flattens a tet again.
 // Deterministic: same mesh and options, same result.
 #pragma once
 
@@ -52,6 +57,9 @@ struct OptimizeStats {
   size_t moves = 0, moves_rejected = 0;
   size_t flips23 = 0, edge_removals = 0;
   size_t perturbations = 0;
+  // Tets flat to rounding (predicates::orient3d_certified not positive) found by the last pass,
+  // and how many of them no vertex move could open.
+  size_t flat_found = 0, flat_left = 0;
   QualitySummary before, after;
   double seconds = 0.0;
 };

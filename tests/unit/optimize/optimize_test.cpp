@@ -3,14 +3,18 @@
 // are kept, and the result is deterministic.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <memory>
+#include <vector>
 #include <string>
 
 #include "io/surface_io.hpp"
 #include "layers/shapes.hpp"
 #include "metric/surface_sizing.hpp"
+#include "core/tet_ops.hpp"
 #include "optimize/optimize.hpp"
+#include "predicates/predicates.hpp"
 #include "refine/coupled_fixture.hpp"
 #include "refine/mesh_ops.hpp"
 #include "refine/refine.hpp"
@@ -119,6 +123,57 @@ TEST(Optimize, Deterministic) {
   }
   EXPECT_EQ(m[0].xyz, m[1].xyz);
   EXPECT_EQ(m[0].tet_v, m[1].tet_v);
+}
+
+// A tet flat to rounding (a free vertex moved onto its opposite facet: positive for the exact
+// orient3d, but a double evaluation of its volume could give zero or less) is opened by the last
+// pass alone (no CVT, sliver or flip pass here), and none is left.
+TEST(Optimize, OpensTetsFlatToRounding) {
+  const SurfaceMesh s = test::icosphere(2);
+  Result<CoupledMesh> c = test::coupled_mesh(s);
+  ASSERT_TRUE(c.ok()) << c.status().message();
+  TetMesh& mesh = c->mesh;
+  ASSERT_TRUE(refine_mesh(mesh, test::ConstantSizing(0.15)).ok());
+  auto certified = [&mesh](uint32_t t) {
+    return predicates::orient3d_certified(mesh.point(mesh.vertex(t, 0)), mesh.point(mesh.vertex(t, 1)),
+                                          mesh.point(mesh.vertex(t, 2)), mesh.point(mesh.vertex(t, 3))) > 0;
+  };
+  size_t flattened = 0;
+  std::vector<uint32_t> ball;
+  for (uint32_t t = 0; t < mesh.num_tet_slots() && flattened < 3; ++t) {
+    if (mesh.is_deleted(t)) continue;
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t v = mesh.vertex(t, i);
+      if (mesh.vflags[v] & (vflag::kOnInputSurface | vflag::kLocked)) continue;
+      meshops::vertex_ball(mesh, v, t, ball);
+      double* x = &mesh.xyz[3 * size_t(v)];
+      const double saved[3] = {x[0], x[1], x[2]};
+      for (int k = 0; k < 3; ++k) {
+        double sum = 0.0;
+        for (int j = 0; j < 3; ++j) sum += mesh.point(mesh.vertex(t, kFacetVertex[i][j]))[k];
+        x[k] = sum / 3.0;  // the opposite facet's centroid, off its plane by rounding only
+      }
+      if (meshops::all_positive(mesh, ball) && !certified(t)) {
+        ++flattened;
+        break;
+      }
+      std::copy_n(saved, 3, x);
+    }
+  }
+  ASSERT_EQ(flattened, 3u) << "no tet could be flattened to rounding";
+  OptimizeOptions o;
+  o.cvt_iterations = 0;
+  o.sliver_rounds = 0;
+  o.flip_quality = 0.0;
+  Result<OptimizeStats> r = optimize_mesh(mesh, test::ConstantSizing(0.15), o);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_GE(r->flat_found, 3u);
+  EXPECT_EQ(r->flat_left, 0u);
+  size_t flat_left = 0;
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) flat_left += !mesh.is_deleted(t) && !certified(t);
+  EXPECT_EQ(flat_left, 0u);
+  EXPECT_TRUE(check_mesh(mesh).ok());
+  test::expect_surface_kept(s, mesh, "icosphere");
 }
 
 TEST(Optimize, RejectsNegativeCounts) {
