@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""transform.py IN OUT.mesh VARIANT: the surface IN moved by VARIANT and written as a Medit .mesh
+with every coordinate in full double precision. VARIANT is rotate (a random rotation, seeded by the
+file name so reruns match), scale1e-4, scale1e4 or translate1e6. Exactly equal input points are
+merged first (STL repeats them per triangle). back1e6 moves a Medit mesh by -1e6 exactly (to
+check a translated result where digits are not lost to cancellation)."""
+import hashlib
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "peers"))
+import to_medit  # noqa: E402  (its OBJ and OFF readers)
+
+
+def read(path):
+    low = path.lower()
+    if low.endswith(".obj"):
+        points, tris = to_medit.read_obj(path)
+    elif low.endswith(".off"):
+        points, tris = to_medit.read_off(path)
+    else:
+        import meshio
+        m = meshio.read(path)
+        points, tris = m.points, m.cells_dict["triangle"]
+    points = np.asarray(points, dtype=float)
+    tris = np.asarray(tris, dtype=np.int64)
+    unique, inverse = np.unique(points, axis=0, return_inverse=True)
+    return unique, inverse.reshape(-1)[tris]
+
+
+def random_rotation(seed):
+    rng = np.random.default_rng(seed)
+    q, r = np.linalg.qr(rng.normal(size=(3, 3)))
+    q = q @ np.diag(np.sign(np.diag(r)))
+    if np.linalg.det(q) < 0:
+        q[:, 0] = -q[:, 0]
+    return q
+
+
+def shift_back(src, dst):
+    """A Medit mesh (ours or anitet's) moved by -1e6, exactly: every coordinate x is near 1e6,
+    so x - 1e6 is exact (Sterbenz), written with all its digits, cells and labels kept."""
+    import meshio
+    m = meshio.read(src)
+    m.points = m.points - 1e6
+    meshio.write(dst, m, file_format="medit", float_fmt=".17e")
+
+
+def main():
+    src, dst, variant = sys.argv[1:4]
+    if variant == "back1e6":
+        return shift_back(src, dst)
+    points, tris = read(src)
+    if variant == "rotate":
+        seed = int(hashlib.sha256(os.path.basename(src).encode()).hexdigest()[:8], 16)
+        points = points @ random_rotation(seed).T
+    elif variant == "scale1e-4":
+        points = points * 1e-4
+    elif variant == "scale1e4":
+        points = points * 1e4
+    elif variant == "translate1e6":
+        points = points + 1e6
+    else:
+        sys.exit("transform.py: unknown variant " + variant)
+    with open(dst, "w") as f:
+        f.write(f"MeshVersionFormatted 2\nDimension 3\nVertices\n{len(points)}\n")
+        for p in points:
+            f.write(f"{float(p[0])!r} {float(p[1])!r} {float(p[2])!r} 0\n")
+        f.write(f"Triangles\n{len(tris)}\n")
+        for t in tris:
+            f.write(f"{t[0] + 1} {t[1] + 1} {t[2] + 1} 1\n")
+        f.write("End\n")
+
+
+if __name__ == "__main__":
+    main()
