@@ -72,13 +72,16 @@ double shape_quality(const double* a, const double* b, const double* c, const do
   cross(ab, ac, nd);
   const double v6 = dot(ab, nb);
   if (v6 == 0.0) return 0.0;
-  const double la = norm(na), lb = norm(nb), lc = norm(nc), ld = norm(nd);
-  // sin(dihedral at edge ij) = v6 |ij| / (|N_k| |N_l|), k and l the other two vertices.
-  const double s = std::min({norm(ab) / (lc * ld), norm(ac) / (lb * ld), norm(ad) / (lb * lc),
-                             norm(bc) / (la * ld), norm(bd) / (la * lc), norm(cd) / (la * lb)});
-  const double sin_term = v6 * s / 0.9428090415820634;  // sin(acos(1/3)) = sqrt(8/9)
-  // Radius ratio from the same pieces.
+  const double qa = dot(na, na), qb = dot(nb, nb), qc = dot(nc, nc), qd = dot(nd, nd);
   const double lab = dot(ab, ab), lac = dot(ac, ac), lad = dot(ad, ad);
+  // sin(dihedral at edge ij) = v6 |ij| / (|N_k| |N_l|), k and l the other two vertices; the
+  // smallest is found on squares (one square root instead of six: this is the optimizer's and
+  // refinement's hottest function).
+  const double s2 = std::min({lab / (qc * qd), lac / (qb * qd), lad / (qb * qc), dot(bc, bc) / (qa * qd),
+                              dot(bd, bd) / (qa * qc), dot(cd, cd) / (qa * qb)});
+  const double sin_term = v6 * std::sqrt(s2) / 0.9428090415820634;  // sin(acos(1/3)) = sqrt(8/9)
+  // Radius ratio from the same pieces.
+  const double la = std::sqrt(qa), lb = std::sqrt(qb), lc = std::sqrt(qc), ld = std::sqrt(qd);
   double o[3];
   for (int k = 0; k < 3; ++k) o[k] = lab * nb[k] + lac * nc[k] + lad * nd[k];
   const double r_circ = norm(o) / (2.0 * std::fabs(v6));
