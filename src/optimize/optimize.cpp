@@ -66,7 +66,8 @@ class Optimizer {
   optimize_detail::FlipContext flips_;
   std::vector<double> sizes_;  // lazily computed scalar size per vertex (-1: unknown)
   std::vector<uint32_t> ball_;
-  std::vector<double> old_q_;
+  std::vector<double> old_q_, new_q_;
+  std::vector<double> tet_q_;  // per tet slot, during cvt_pass() only (empty otherwise)
   double old_min_ = 1.0;
   OptimizeStats stats_;
   uint64_t rng_;
@@ -76,7 +77,7 @@ void Optimizer::measure_ball() {
   old_q_.resize(ball_.size());
   old_min_ = 1.0;
   for (size_t k = 0; k < ball_.size(); ++k) {
-    old_q_[k] = meshops::tet_shape_quality(mesh_, ball_[k]);
+    old_q_[k] = tet_q_.empty() ? meshops::tet_shape_quality(mesh_, ball_[k]) : tet_q_[ball_[k]];
     old_min_ = std::min(old_min_, old_q_[k]);
   }
 }
@@ -89,14 +90,18 @@ bool Optimizer::try_move(uint32_t v, const double p[3], double floor, double* qu
   std::copy_n(p, 3, x);
   double q_min = 1.0;
   bool ok = true;
+  new_q_.resize(ball_.size());
   for (size_t k = 0; k < ball_.size() && ok; ++k) {
     const double q = meshops::tet_shape_quality(mesh_, ball_[k]);
+    new_q_[k] = q;
     q_min = std::min(q_min, q);
     ok = q > 0.0 && q >= std::min(old_q_[k], floor);
   }
   // quality_out asks for a strict gain of the worst tet (perturbation).
   if (ok && quality_out) ok = q_min > old_min_ + 1e-9;
   if (ok && meshops::all_positive(mesh_, ball_)) {
+    if (!tet_q_.empty())
+      for (size_t k = 0; k < ball_.size(); ++k) tet_q_[ball_[k]] = new_q_[k];
     if (quality_out) *quality_out = q_min;
     if (quality_out) measure_ball();  // the new position is the next trial's reference
     return true;
@@ -146,6 +151,12 @@ void Optimizer::cvt_target(uint32_t v, double target[3]) {
 size_t Optimizer::cvt_pass() {
   size_t moved = 0;
   const auto nv = static_cast<uint32_t>(mesh_.num_vertices());
+  // Every tet's quality once, kept up to date by the accepted moves: each tet is in four balls,
+  // so measuring balls from scratch would compute it four times. Dropped at the end (the flips
+  // that follow change the tets).
+  tet_q_.assign(mesh_.num_tet_slots(), 0.0);
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
+    if (!mesh_.is_deleted(t)) tet_q_[t] = meshops::tet_shape_quality(mesh_, t);
   for (uint32_t v = 0; v < nv; ++v) {
     if (!movable(v)) continue;
     const uint32_t t = vt_.tet_of(mesh_, v);
@@ -169,6 +180,7 @@ size_t Optimizer::cvt_pass() {
       ++stats_.moves_rejected;
     }
   }
+  tet_q_.clear();
   return moved;
 }
 
