@@ -5,6 +5,10 @@
 #include <cmath>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
 #include "optimize/flips.hpp"
 #include "predicates/predicates.hpp"
 #include "refine/mesh_ops.hpp"
@@ -37,13 +41,21 @@ class Optimizer {
     }
     return sizes_[v];
   }
-  // Qualities of ball_'s tets before a move (old_q_, old_min_).
-  void measure_ball();
+  // Scratch of one worker: the CVT pass runs two at once (see cvt_pass()).
+  struct Work {
+    std::vector<uint32_t> ball;
+    std::vector<double> old_q, new_q;
+    double old_min = 1.0;
+    size_t moved = 0, rejected = 0;
+  };
+  // Qualities of w.ball's tets before a move (w.old_q, w.old_min).
+  void measure_ball(Work& w);
   // Tries v at p: accepted when the ball stays positive (exact) and no tet falls below
-  // min(its quality in old_q_, floor); with quality_out, the worst one must also rise. Leaves v
-  // where it was otherwise. The ball is ball_; call measure_ball() first.
-  bool try_move(uint32_t v, const double p[3], double floor, double* quality_out);
-  void cvt_target(uint32_t v, double target[3]);
+  // min(its quality in w.old_q, floor); with quality_out, the worst one must also rise. Leaves v
+  // where it was otherwise. The ball is w.ball; call measure_ball() first.
+  bool try_move(Work& w, uint32_t v, const double p[3], double floor, double* quality_out);
+  void cvt_target(const Work& w, uint32_t v, double target[3]);
+  void cvt_move(Work& w, uint32_t v);
   size_t cvt_pass();
   size_t perturb_pass();
   bool opening_direction(uint32_t t, int i, double nrm[3]) const;
@@ -65,24 +77,23 @@ class Optimizer {
   meshops::VertexTets vt_;
   optimize_detail::FlipContext flips_;
   std::vector<double> sizes_;  // lazily computed scalar size per vertex (-1: unknown)
-  std::vector<uint32_t> ball_;
-  std::vector<double> old_q_, new_q_;
+  Work work_;                  // the sequential passes' scratch
+  std::vector<uint8_t> side_;  // cvt_pass(): per vertex, its side of the split (2: seam bit)
   std::vector<double> tet_q_;  // per tet slot, during cvt_pass() only (empty otherwise)
-  double old_min_ = 1.0;
   OptimizeStats stats_;
   uint64_t rng_;
 };
 
-void Optimizer::measure_ball() {
-  old_q_.resize(ball_.size());
-  old_min_ = 1.0;
-  for (size_t k = 0; k < ball_.size(); ++k) {
-    old_q_[k] = tet_q_.empty() ? meshops::tet_shape_quality(mesh_, ball_[k]) : tet_q_[ball_[k]];
-    old_min_ = std::min(old_min_, old_q_[k]);
+void Optimizer::measure_ball(Work& w) {
+  w.old_q.resize(w.ball.size());
+  w.old_min = 1.0;
+  for (size_t k = 0; k < w.ball.size(); ++k) {
+    w.old_q[k] = tet_q_.empty() ? meshops::tet_shape_quality(mesh_, w.ball[k]) : tet_q_[w.ball[k]];
+    w.old_min = std::min(w.old_min, w.old_q[k]);
   }
 }
 
-bool Optimizer::try_move(uint32_t v, const double p[3], double floor, double* quality_out) {
+bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, double* quality_out) {
   // Per tet: no tet may end below min(its old quality, floor). A max-min test on the ball alone
   // would let every tet but the worst one decay down to the worst one's level.
   double* x = &mesh_.xyz[3 * size_t(v)];
@@ -90,29 +101,29 @@ bool Optimizer::try_move(uint32_t v, const double p[3], double floor, double* qu
   std::copy_n(p, 3, x);
   double q_min = 1.0;
   bool ok = true;
-  new_q_.resize(ball_.size());
-  for (size_t k = 0; k < ball_.size() && ok; ++k) {
-    const double q = meshops::tet_shape_quality(mesh_, ball_[k]);
-    new_q_[k] = q;
+  w.new_q.resize(w.ball.size());
+  for (size_t k = 0; k < w.ball.size() && ok; ++k) {
+    const double q = meshops::tet_shape_quality(mesh_, w.ball[k]);
+    w.new_q[k] = q;
     q_min = std::min(q_min, q);
-    ok = q > 0.0 && q >= std::min(old_q_[k], floor);
+    ok = q > 0.0 && q >= std::min(w.old_q[k], floor);
   }
   // quality_out asks for a strict gain of the worst tet (perturbation).
-  if (ok && quality_out) ok = q_min > old_min_ + 1e-9;
-  if (ok && meshops::all_positive(mesh_, ball_)) {
+  if (ok && quality_out) ok = q_min > w.old_min + 1e-9;
+  if (ok && meshops::all_positive(mesh_, w.ball)) {
     if (!tet_q_.empty())
-      for (size_t k = 0; k < ball_.size(); ++k) tet_q_[ball_[k]] = new_q_[k];
+      for (size_t k = 0; k < w.ball.size(); ++k) tet_q_[w.ball[k]] = w.new_q[k];
     if (quality_out) *quality_out = q_min;
-    if (quality_out) measure_ball();  // the new position is the next trial's reference
+    if (quality_out) measure_ball(w);  // the new position is the next trial's reference
     return true;
   }
   std::copy_n(saved, 3, x);
   return false;
 }
 
-void Optimizer::cvt_target(uint32_t v, double target[3]) {
+void Optimizer::cvt_target(const Work& w, uint32_t v, double target[3]) {
   double sum_w = 0.0, acc[3] = {0.0, 0.0, 0.0};
-  for (uint32_t t : ball_) {
+  for (uint32_t t : w.ball) {
     const double* P[4];
     double h = 0.0;
     for (int i = 0; i < 4; ++i) {
@@ -127,7 +138,7 @@ void Optimizer::cvt_target(uint32_t v, double target[3]) {
     const double v6 = ab[0] * cx + ab[1] * cy + ab[2] * cz;
     if (!(v6 > 0.0)) continue;
     const double rho = 1.0 / (h * h * h * h * h);
-    const double w = rho * v6;
+    const double weight = rho * v6;
     double c[3];
     if (options_.centroid == CentroidKind::kOdt) {
       // Circumcentre: a + (|ab|^2 (ac x ad) + |ac|^2 (ad x ab) + |ad|^2 (ab x ac)) / (2 v6).
@@ -141,47 +152,98 @@ void Optimizer::cvt_target(uint32_t v, double target[3]) {
     } else {
       for (int k = 0; k < 3; ++k) c[k] = 0.25 * (P[0][k] + P[1][k] + P[2][k] + P[3][k]);
     }
-    for (int k = 0; k < 3; ++k) acc[k] += w * c[k];
-    sum_w += w;
+    for (int k = 0; k < 3; ++k) acc[k] += weight * c[k];
+    sum_w += weight;
   }
   const double* p = mesh_.point(v);
   for (int k = 0; k < 3; ++k) target[k] = sum_w > 0.0 ? acc[k] / sum_w : p[k];
 }
 
+void Optimizer::cvt_move(Work& w, uint32_t v) {
+  const uint32_t t = vt_.tet_of(mesh_, v);
+  if (t == TetMesh::kNone) return;
+  meshops::vertex_ball(mesh_, v, t, w.ball);
+  double target[3];
+  cvt_target(w, v, target);
+  measure_ball(w);
+  const double p[3] = {mesh_.point(v)[0], mesh_.point(v)[1], mesh_.point(v)[2]};
+  bool ok = false;
+  for (double step = 1.0; step > 0.2 && !ok; step *= 0.5) {
+    const double q[3] = {p[0] + step * (target[0] - p[0]), p[1] + step * (target[1] - p[1]),
+                         p[2] + step * (target[2] - p[2])};
+    ok = try_move(w, v, q, options_.accept_floor, nullptr);
+  }
+  if (ok) {
+    ++w.moved;
+    sizes_[v] = -1.0;
+  } else {
+    ++w.rejected;
+  }
+}
+
+// One Lloyd sweep over the free vertices, on two cores: the vertices are split by the median
+// plane across the mesh's longest extent; a vertex all of whose tets lie on one side moves in
+// that side's task (the two tasks then touch disjoint tets, read only their own side's points,
+// and fill the lazy size cache only for their own side's vertices), in index order; the seam
+// vertices (in a tet with points on both sides) move afterwards, in index order. The result does
+// not depend on the threads' timing.
 size_t Optimizer::cvt_pass() {
-  size_t moved = 0;
   const auto nv = static_cast<uint32_t>(mesh_.num_vertices());
+  const uint32_t n_slots = mesh_.num_tet_slots();
+  sizes_.resize(nv, -1.0);  // no resizing inside the parallel tasks
+  // Repairs stale vertex -> tet entries now (a repair writes the map and a shared counter); moves
+  // do not change the topology, so the tasks below only read them.
+  for (uint32_t v = 0; v < nv; ++v)
+    if (movable(v)) vt_.tet_of(mesh_, v);
   // Every tet's quality once, kept up to date by the accepted moves: each tet is in four balls,
   // so measuring balls from scratch would compute it four times. Dropped at the end (the flips
   // that follow change the tets).
-  tet_q_.assign(mesh_.num_tet_slots(), 0.0);
-  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
-    if (!mesh_.is_deleted(t)) tet_q_[t] = meshops::tet_shape_quality(mesh_, t);
-  for (uint32_t v = 0; v < nv; ++v) {
-    if (!movable(v)) continue;
-    const uint32_t t = vt_.tet_of(mesh_, v);
-    if (t == TetMesh::kNone) continue;
-    meshops::vertex_ball(mesh_, v, t, ball_);
-    double target[3];
-    cvt_target(v, target);
-    measure_ball();
-    const double floor = options_.accept_floor;
-    const double p[3] = {mesh_.point(v)[0], mesh_.point(v)[1], mesh_.point(v)[2]};
-    bool ok = false;
-    for (double step = 1.0; step > 0.2 && !ok; step *= 0.5) {
-      const double q[3] = {p[0] + step * (target[0] - p[0]), p[1] + step * (target[1] - p[1]),
-                           p[2] + step * (target[2] - p[2])};
-      ok = try_move(v, q, floor, nullptr);
+  tet_q_.assign(n_slots, 0.0);
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_slots, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t t = r.begin(); t < r.end(); ++t)
+      if (!mesh_.is_deleted(t)) tet_q_[t] = meshops::tet_shape_quality(mesh_, t);
+  });
+  // The split: side 0 or 1 per vertex, then kSeam for the vertices of tets across it.
+  constexpr uint8_t kSeam = 2;
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (uint32_t v = 0; v < nv; ++v)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], mesh_.point(v)[k]);
+      hi[k] = std::max(hi[k], mesh_.point(v)[k]);
     }
-    if (ok) {
-      ++moved;
-      if (v < sizes_.size()) sizes_[v] = -1.0;
-    } else {
-      ++stats_.moves_rejected;
-    }
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+  std::vector<double> coords(nv);
+  for (uint32_t v = 0; v < nv; ++v) coords[v] = mesh_.point(v)[axis];
+  double cut = 0.0;
+  if (nv > 0) {
+    std::nth_element(coords.begin(), coords.begin() + nv / 2, coords.end());
+    cut = coords[nv / 2];
   }
+  side_.resize(nv);
+  for (uint32_t v = 0; v < nv; ++v) side_[v] = mesh_.point(v)[axis] < cut ? 0 : 1;
+  for (uint32_t t = 0; t < n_slots; ++t) {
+    if (mesh_.is_deleted(t)) continue;
+    const uint32_t* tv = &mesh_.tet_v[4 * size_t(t)];
+    uint8_t seen = 0;
+    for (int i = 0; i < 4; ++i) seen |= uint8_t(1u << (side_[tv[i]] & 1u));
+    if (seen == 3)
+      for (int i = 0; i < 4; ++i) side_[tv[i]] |= kSeam;
+  }
+  Work halves[2];
+  auto sweep_side = [&](uint8_t which) {
+    for (uint32_t v = 0; v < nv; ++v)
+      if (side_[v] == which && movable(v)) cvt_move(halves[which], v);
+  };
+  tbb::parallel_invoke([&] { sweep_side(0); }, [&] { sweep_side(1); });
+  Work& seam = work_;
+  seam.moved = seam.rejected = 0;
+  for (uint32_t v = 0; v < nv; ++v)
+    if ((side_[v] & kSeam) && movable(v)) cvt_move(seam, v);
   tet_q_.clear();
-  return moved;
+  stats_.moves_rejected += halves[0].rejected + halves[1].rejected + seam.rejected;
+  return halves[0].moved + halves[1].moved + seam.moved;
 }
 
 size_t Optimizer::perturb_pass() {
@@ -194,8 +256,8 @@ size_t Optimizer::perturb_pass() {
       if (mesh_.is_deleted(t) || meshops::tet_shape_quality(mesh_, t) >= options_.sliver_quality) break;
       const uint32_t v = mesh_.vertex(t, i);
       if (!movable(v)) continue;
-      meshops::vertex_ball(mesh_, v, t, ball_);
-      measure_ball();
+      meshops::vertex_ball(mesh_, v, t, work_.ball);
+      measure_ball(work_);
       const double* x = mesh_.point(v);
       const double start[3] = {x[0], x[1], x[2]};
       double best[3] = {x[0], x[1], x[2]};
@@ -203,7 +265,7 @@ size_t Optimizer::perturb_pass() {
       double nrm[3];
       opening_direction(t, i, nrm);  // zero when the facet is degenerate
       double scale = 0.0;
-      for (uint32_t s : ball_)
+      for (uint32_t s : work_.ball)
         for (int k = 0; k < 4; ++k) {
           const double* y = mesh_.point(mesh_.vertex(s, k));
           scale = std::max(scale, std::fabs(y[0] - start[0]) + std::fabs(y[1] - start[1]) + std::fabs(y[2] - start[2]));
@@ -219,7 +281,7 @@ size_t Optimizer::perturb_pass() {
         }
         const double q[3] = {best[0] + d[0], best[1] + d[1], best[2] + d[2]};
         double got = 0.0;
-        if (try_move(v, q, 0.5 * (old_min_ + options_.sliver_quality), &got)) {
+        if (try_move(work_, v, q, 0.5 * (work_.old_min + options_.sliver_quality), &got)) {
           std::copy_n(q, 3, best);
         }
       }
@@ -280,11 +342,11 @@ bool Optimizer::try_certify(uint32_t v, const double p[3], size_t flat) {
   std::copy_n(p, 3, x);
   double q_min = 1.0;
   size_t still_flat = 0;
-  for (size_t k = 0; k < ball_.size() && still_flat < flat; ++k) {
-    q_min = std::min(q_min, meshops::tet_shape_quality(mesh_, ball_[k]));
-    still_flat += !certified(ball_[k]);
+  for (size_t k = 0; k < work_.ball.size() && still_flat < flat; ++k) {
+    q_min = std::min(q_min, meshops::tet_shape_quality(mesh_, work_.ball[k]));
+    still_flat += !certified(work_.ball[k]);
   }
-  if (still_flat < flat && q_min >= old_min_ && meshops::all_positive(mesh_, ball_)) return true;
+  if (still_flat < flat && q_min >= work_.old_min && meshops::all_positive(mesh_, work_.ball)) return true;
   std::copy_n(saved, 3, x);
   return false;
 }
@@ -317,8 +379,8 @@ void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
     for (int i = 0; i < 4 && !mesh_.is_deleted(t) && !certified(t); ++i) {
       const uint32_t v = mesh_.vertex(t, i);
       if (!movable(v)) continue;
-      meshops::vertex_ball(mesh_, v, t, ball_);
-      measure_ball();
+      meshops::vertex_ball(mesh_, v, t, work_.ball);
+      measure_ball(work_);
       const double shortest = shortest_edge(t);
       double nrm[3];
       const bool has_normal = opening_direction(t, i, nrm);
@@ -333,9 +395,9 @@ void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
         }
         const double q[3] = {start[0] + d[0], start[1] + d[1], start[2] + d[2]};
         size_t flat_in_ball = 0;
-        for (uint32_t b : ball_) flat_in_ball += !certified(b);
+        for (uint32_t b : work_.ball) flat_in_ball += !certified(b);
         if (try_certify(v, q, flat_in_ball)) {
-          measure_ball();  // the new position is the next trial's reference
+          measure_ball(work_);  // the new position is the next trial's reference
           if (v < sizes_.size()) sizes_[v] = -1.0;
         }
       }

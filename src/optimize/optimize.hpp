@@ -7,7 +7,10 @@
 //     circumcentres (kOdt). A move is accepted only when every tet of the ball stays positive by
 //     the exact orient3d and no tet of the ball ends below min(its old quality, accept_floor)
 //     (a per-tet test: a max-min test on the ball would let all but its worst tet decay);
-//     otherwise half and quarter steps are tried. Quality here is meshops::shape_quality.
+//     otherwise half and quarter steps are tried. Quality here is meshops::shape_quality. Each
+//     sweep runs on two cores (TBB): the vertices on either side of the median plane across the
+//     longest extent move in two tasks, those of tets across the plane after them; the result
+//     does not depend on the threads.
 //   - Topology: quality-driven flips (2-3 on facets, 3-2 / 4-4 / n-2(n-2) edge removal with the
 //     best triangulation of the edge's ring, n <= 7) around tets whose radius ratio is below
 //     flip_quality; a flip is applied only when it raises the worst radius ratio of the tets it
