@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 
 #include "optimize/flips.hpp"
 #include "predicates/predicates.hpp"
@@ -199,10 +200,10 @@ size_t Optimizer::cvt_pass() {
   // so measuring balls from scratch would compute it four times. Dropped at the end (the flips
   // that follow change the tets).
   tet_q_.assign(n_slots, 0.0);
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_slots, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
-    for (uint32_t t = r.begin(); t < r.end(); ++t)
+  auto measure = [&](uint32_t begin, uint32_t end) {
+    for (uint32_t t = begin; t < end; ++t)
       if (!mesh_.is_deleted(t)) tet_q_[t] = meshops::tet_shape_quality(mesh_, t);
-  });
+  };
   // The split: side 0 or 1 per vertex, then kSeam for the vertices of tets across it.
   constexpr uint8_t kSeam = 2;
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -236,7 +237,23 @@ size_t Optimizer::cvt_pass() {
     for (uint32_t v = 0; v < nv; ++v)
       if (side_[v] == which && movable(v)) cvt_move(halves[which], v);
   };
-  tbb::parallel_invoke([&] { sweep_side(0); }, [&] { sweep_side(1); });
+  if (options_.num_threads == 1) {
+    measure(0, n_slots);
+    sweep_side(0);
+    sweep_side(1);
+  } else {
+    auto parallel = [&] {
+      tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_slots, 4096),
+                        [&](const tbb::blocked_range<uint32_t>& r) { measure(r.begin(), r.end()); });
+      tbb::parallel_invoke([&] { sweep_side(0); }, [&] { sweep_side(1); });
+    };
+    if (options_.num_threads > 1) {
+      tbb::task_arena arena(options_.num_threads);
+      arena.execute(parallel);
+    } else {
+      parallel();
+    }
+  }
   Work& seam = work_;
   seam.moved = seam.rejected = 0;
   for (uint32_t v = 0; v < nv; ++v)
