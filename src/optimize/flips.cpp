@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "predicates/predicates.hpp"
 
 namespace anitet::optimize_detail {
@@ -97,13 +100,24 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
   return true;
 }
 
+std::vector<uint32_t> tets_below(const TetMesh& m, double quality) {
+  const uint32_t n = m.num_tet_slots();
+  std::vector<uint8_t> below(n, 0);
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1u << 14), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t t = r.begin(); t < r.end(); ++t)
+      below[t] = !m.is_deleted(t) && meshops::tet_shape_quality(m, t) < quality;
+  });
+  std::vector<uint32_t> out;
+  for (uint32_t t = 0; t < n; ++t)
+    if (below[t]) out.push_back(t);
+  return out;
+}
+
 size_t flip_sweep(FlipContext& c, double quality, int rounds) {
   TetMesh& m = c.mesh;
   size_t total = 0;
-  std::vector<uint32_t> bad, fresh_bad;
   // The first round scans the mesh; later ones only revisit the tets the flips created.
-  for (uint32_t t = 0; t < m.num_tet_slots(); ++t)
-    if (!m.is_deleted(t) && meshops::tet_shape_quality(m, t) < quality) bad.push_back(t);
+  std::vector<uint32_t> bad = tets_below(m, quality), fresh_bad;
   for (int round = 0; round < rounds && !bad.empty(); ++round) {
     fresh_bad.clear();
     size_t flips = 0;

@@ -27,6 +27,8 @@ struct FlipContext {
 bool try_flip23(FlipContext& c, uint32_t t, int i);
 // Removes edge k (kEdgeVertex order) of tet t.
 bool try_remove_edge(FlipContext& c, uint32_t t, int k);
+// The live tets whose shape quality is below `quality`, in slot order (measured on every core).
+std::vector<uint32_t> tets_below(const TetMesh& m, double quality);
 // Tries edge removals then 2-3 flips on every live tet below `quality`, then for at most
 // `rounds` - 1 more rounds on the new tets still below it. Returns the number of flips.
 size_t flip_sweep(FlipContext& c, double quality, int rounds);

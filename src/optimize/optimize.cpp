@@ -237,23 +237,9 @@ size_t Optimizer::cvt_pass() {
     for (uint32_t v = 0; v < nv; ++v)
       if (side_[v] == which && movable(v)) cvt_move(halves[which], v);
   };
-  if (options_.num_threads == 1) {
-    measure(0, n_slots);
-    sweep_side(0);
-    sweep_side(1);
-  } else {
-    auto parallel = [&] {
-      tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_slots, 4096),
-                        [&](const tbb::blocked_range<uint32_t>& r) { measure(r.begin(), r.end()); });
-      tbb::parallel_invoke([&] { sweep_side(0); }, [&] { sweep_side(1); });
-    };
-    if (options_.num_threads > 1) {
-      tbb::task_arena arena(options_.num_threads);
-      arena.execute(parallel);
-    } else {
-      parallel();
-    }
-  }
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_slots, 4096),
+                    [&](const tbb::blocked_range<uint32_t>& r) { measure(r.begin(), r.end()); });
+  tbb::parallel_invoke([&] { sweep_side(0); }, [&] { sweep_side(1); });
   Work& seam = work_;
   seam.moved = seam.rejected = 0;
   for (uint32_t v = 0; v < nv; ++v)
@@ -264,9 +250,7 @@ size_t Optimizer::cvt_pass() {
 }
 
 size_t Optimizer::perturb_pass() {
-  std::vector<uint32_t> bad;
-  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
-    if (!mesh_.is_deleted(t) && meshops::tet_shape_quality(mesh_, t) < options_.sliver_quality) bad.push_back(t);
+  const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, options_.sliver_quality);
   size_t moved = 0;
   for (uint32_t t : bad) {
     for (int i = 0; i < 4; ++i) {
@@ -472,8 +456,12 @@ QualitySummary summarize_quality(const TetMesh& mesh) {
 Result<OptimizeStats> optimize_mesh(TetMesh& mesh, const SizingField& field, const OptimizeOptions& options) {
   if (options.cvt_iterations < 0 || options.sliver_rounds < 0 || options.perturb_trials < 0)
     return Status(Error::InvalidArgument, "optimize: iteration counts must be >= 0");
+  if (options.num_threads < 0) return Status(Error::InvalidArgument, "optimize: num_threads must be >= 0");
   Optimizer optimizer(mesh, field, options);
-  return optimizer.run();
+  if (options.num_threads == 0) return optimizer.run();
+  // Every parallel loop inside runs in this arena (one thread: the same result, sequentially).
+  tbb::task_arena arena(options.num_threads);
+  return arena.execute([&] { return optimizer.run(); });
 }
 
 }  // namespace anitet

@@ -47,7 +47,7 @@ struct OptimizeOptions {
   double sliver_quality = 0.3;    // perturbation targets tets below this radius ratio
   int sliver_rounds = 6;
   int perturb_trials = 24;        // trial positions per vertex and round
-  int num_threads = 0;            // CVT sweeps: 0 TBB's default, 1 one thread (same result)
+  int num_threads = 0;            // 0: TBB's default; n: an arena of n threads (same result)
   uint64_t seed = 0x5eed;
 };
 
