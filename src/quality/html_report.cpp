@@ -598,6 +598,7 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
   row("valid", r.valid ? "<span class=\"ok\">yes</span>" : "<span class=\"bad\">no</span>");
   row("non-positive tets (inverted, flat)",
       std::to_string(r.nonpositive_tets) + " (" + std::to_string(r.inverted_tets) + ", " + std::to_string(r.flat_tets) + ")");
+  row("valid tets flat to double rounding", std::to_string(r.rounding_flat_tets));
   row("faces shared by &gt; 2 tets", std::to_string(r.faces_shared_by_more_than_two));
   row(out.metric_edge_lengths ? "edge length in the metric: min / mean / max" : "edge length: min / mean / max",
       num("%.4g", len_min) + " / " + num("%.4g", len_mean) + " / " + num("%.4g", len_max));
