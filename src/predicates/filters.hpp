@@ -136,34 +136,31 @@ inline int orient2d(const double* a, const double* b, const double* c) {
   return detail::orient2d_exact(a, b, c);
 }
 
-inline int orient3d(const double* a, const double* b, const double* c, const double* d) {
-  ++detail::tls_counters.orient3d_calls;
+namespace detail {
+// The orient3d filter with its error bound scaled by `margin` (>= 1): the sign when the double
+// determinant clears the bound, 0 when it does not or the coordinates are out of its range.
+inline int orient3d_filter(const double* a, const double* b, const double* c, const double* d, double margin) {
   const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
   const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
   const double wx = d[0] - a[0], wy = d[1] - a[1], wz = d[2] - a[2];
-  const double det = detail::orient3d_det(ux, uy, uz, vx, vy, vz, wx, wy, wz);
-  const double mx = detail::absmax3(ux, vx, wx);
-  const double my = detail::absmax3(uy, vy, wy);
-  const double mz = detail::absmax3(uz, vz, wz);
-  if (detail::in_range(detail::kOrient3dMin, detail::kOrient3dMax, mx, my, mz)) {
-    const double bound = detail::kOrient3dBound * mx * my * mz;
-    if (det > bound) return 1;
-    if (det < -bound) return -1;
-  }
-  return detail::orient3d_exact(a, b, c, d);
+  const double det = orient3d_det(ux, uy, uz, vx, vy, vz, wx, wy, wz);
+  const double mx = absmax3(ux, vx, wx);
+  const double my = absmax3(uy, vy, wy);
+  const double mz = absmax3(uz, vz, wz);
+  if (!in_range(kOrient3dMin, kOrient3dMax, mx, my, mz)) return 0;
+  const double bound = margin * kOrient3dBound * mx * my * mz;
+  return det > bound ? 1 : det < -bound ? -1 : 0;
+}
+}  // namespace detail
+
+inline int orient3d(const double* a, const double* b, const double* c, const double* d) {
+  ++detail::tls_counters.orient3d_calls;
+  const int s = detail::orient3d_filter(a, b, c, d, 1.0);
+  return s != 0 ? s : detail::orient3d_exact(a, b, c, d);
 }
 
 inline int orient3d_certified(const double* a, const double* b, const double* c, const double* d) {
-  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
-  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
-  const double wx = d[0] - a[0], wy = d[1] - a[1], wz = d[2] - a[2];
-  const double det = detail::orient3d_det(ux, uy, uz, vx, vy, vz, wx, wy, wz);
-  const double mx = detail::absmax3(ux, vx, wx);
-  const double my = detail::absmax3(uy, vy, wy);
-  const double mz = detail::absmax3(uz, vz, wz);
-  if (!detail::in_range(detail::kOrient3dMin, detail::kOrient3dMax, mx, my, mz)) return 0;
-  const double bound = 4.0 * detail::kOrient3dBound * mx * my * mz;
-  return det > bound ? 1 : det < -bound ? -1 : 0;
+  return detail::orient3d_filter(a, b, c, d, 4.0);
 }
 
 inline int insphere(const double* a, const double* b, const double* c, const double* d,
