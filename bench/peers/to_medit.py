@@ -36,16 +36,19 @@ def read_off(path):
     return points, tris
 
 
-def main():
-    path = sys.argv[1]
+def read_surface(path):
+    """(points, triangles) of a surface file: OBJ and OFF here, other formats through meshio."""
     if path.lower().endswith(".obj"):
-        points, tris = read_obj(path)
-    elif path.lower().endswith(".off"):
-        points, tris = read_off(path)
-    else:
-        m = meshio.read(path)
-        points, tris = m.points, m.cells_dict["triangle"]
-    with open(sys.argv[2], "w") as f:
+        return read_obj(path)
+    if path.lower().endswith(".off"):
+        return read_off(path)
+    m = meshio.read(path)
+    return m.points, m.cells_dict["triangle"]
+
+
+def write_medit(path, points, tris):
+    """The surface as a Medit .mesh, every coordinate in full double precision (repr)."""
+    with open(path, "w") as f:
         f.write(f"MeshVersionFormatted 2\nDimension 3\nVertices\n{len(points)}\n")
         for p in points:
             f.write(f"{float(p[0])!r} {float(p[1])!r} {float(p[2])!r} 0\n")
@@ -53,6 +56,11 @@ def main():
         for t in tris:
             f.write(f"{t[0] + 1} {t[1] + 1} {t[2] + 1} 1\n")
         f.write("End\n")
+
+
+def main():
+    points, tris = read_surface(sys.argv[1])
+    write_medit(sys.argv[2], points, tris)
 
 
 if __name__ == "__main__":

@@ -11,19 +11,11 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "peers"))
-import to_medit  # noqa: E402  (its OBJ and OFF readers)
+import to_medit  # noqa: E402  (its surface reader and Medit writer)
 
 
 def read(path):
-    low = path.lower()
-    if low.endswith(".obj"):
-        points, tris = to_medit.read_obj(path)
-    elif low.endswith(".off"):
-        points, tris = to_medit.read_off(path)
-    else:
-        import meshio
-        m = meshio.read(path)
-        points, tris = m.points, m.cells_dict["triangle"]
+    points, tris = to_medit.read_surface(path)
     points = np.asarray(points, dtype=float)
     tris = np.asarray(tris, dtype=np.int64)
     unique, inverse = np.unique(points, axis=0, return_inverse=True)
@@ -64,14 +56,7 @@ def main():
         points = points + 1e6
     else:
         sys.exit("transform.py: unknown variant " + variant)
-    with open(dst, "w") as f:
-        f.write(f"MeshVersionFormatted 2\nDimension 3\nVertices\n{len(points)}\n")
-        for p in points:
-            f.write(f"{float(p[0])!r} {float(p[1])!r} {float(p[2])!r} 0\n")
-        f.write(f"Triangles\n{len(tris)}\n")
-        for t in tris:
-            f.write(f"{t[0] + 1} {t[1] + 1} {t[2] + 1} 1\n")
-        f.write("End\n")
+    to_medit.write_medit(dst, points, tris)
 
 
 if __name__ == "__main__":
