@@ -59,6 +59,7 @@ class Optimizer {
   void cvt_move(Work& w, uint32_t v);
   size_t cvt_pass();
   size_t perturb_pass();
+  void trial_offset(int trial, int levels, double top, const double* nrm, double d[3]);
   bool opening_direction(uint32_t t, int i, double nrm[3]) const;
   double shortest_edge(uint32_t t) const;
   bool certified(uint32_t t) const;
@@ -274,12 +275,7 @@ size_t Optimizer::perturb_pass() {
       scale *= 0.2;
       for (int trial = 0; trial < options_.perturb_trials; ++trial) {
         double d[3];
-        const double r = scale * std::ldexp(1.0, -(trial % 4));
-        if (trial < 4) {
-          for (int k = 0; k < 3; ++k) d[k] = r * nrm[k];
-        } else {
-          for (int k = 0; k < 3; ++k) d[k] = r * (2.0 * next_unit() - 1.0);
-        }
+        trial_offset(trial, 4, scale, nrm, d);
         const double q[3] = {best[0] + d[0], best[1] + d[1], best[2] + d[2]};
         double got = 0.0;
         if (try_move(work_, v, q, 0.5 * (work_.old_min + options_.sliver_quality), &got)) {
@@ -293,6 +289,18 @@ size_t Optimizer::perturb_pass() {
     }
   }
   return moved;
+}
+
+// The offset of trial `trial` of a vertex move: lengths halve from `top` over `levels` trials
+// and start again; the first `levels` go along nrm (when given), the others in pseudo-random
+// directions.
+void Optimizer::trial_offset(int trial, int levels, double top, const double* nrm, double d[3]) {
+  const double r = top * std::ldexp(1.0, -(trial % levels));
+  if (nrm && trial < levels) {
+    for (int k = 0; k < 3; ++k) d[k] = r * nrm[k];
+  } else {
+    for (int k = 0; k < 3; ++k) d[k] = r * (2.0 * next_unit() - 1.0);
+  }
 }
 
 // The unit normal of facet i of t pointing into t: the direction that opens t when its vertex i
@@ -386,19 +394,19 @@ void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
       double nrm[3];
       const bool has_normal = opening_direction(t, i, nrm);
       const double start[3] = {mesh_.point(v)[0], mesh_.point(v)[1], mesh_.point(v)[2]};
+      auto flat_in_ball = [&] {
+        size_t n = 0;
+        for (uint32_t b : work_.ball) n += !certified(b);
+        return n;
+      };
+      size_t flat_now = flat_in_ball();
       for (int trial = 0; trial < kTrials && !certified(t); ++trial) {
-        const double r = 2.0 * shortest * std::ldexp(1.0, -(trial % kLevels));
         double d[3];
-        if (trial < kLevels && has_normal) {
-          for (int k = 0; k < 3; ++k) d[k] = r * nrm[k];
-        } else {
-          for (int k = 0; k < 3; ++k) d[k] = r * (2.0 * next_unit() - 1.0);
-        }
+        trial_offset(trial, kLevels, 2.0 * shortest, has_normal ? nrm : nullptr, d);
         const double q[3] = {start[0] + d[0], start[1] + d[1], start[2] + d[2]};
-        size_t flat_in_ball = 0;
-        for (uint32_t b : work_.ball) flat_in_ball += !certified(b);
-        if (try_certify(v, q, flat_in_ball)) {
+        if (try_certify(v, q, flat_now)) {
           measure_ball(work_);  // the new position is the next trial's reference
+          flat_now = flat_in_ball();
           if (v < sizes_.size()) sizes_[v] = -1.0;
         }
       }
