@@ -11,6 +11,7 @@
 #include "core/bvh.hpp"
 #include "core/closest_point.hpp"
 #include "delaunay/delaunay.hpp"
+#include "delaunay/spatial_sort.hpp"
 #include "predicates/predicates.hpp"
 #include "refine/edges.hpp"
 #include "refine/mesh_ops.hpp"
@@ -152,6 +153,14 @@ class Refiner {
                                          mesh_.point(v[3]));
   }
   size_t split_pass(const std::vector<refine_detail::Edge>& edges);
+  // A live tet holding edge e's end a: the tet it was collected from when that still holds both
+  // ends, else one of a's tets.
+  uint32_t edge_hint(const refine_detail::Edge& e) {
+    return holds_edge(e) ? e.tet : vt_.tet_of(mesh_, e.a);
+  }
+  bool holds_edge(const refine_detail::Edge& e) const {
+    return meshops::tet_has_vertex(mesh_, e.tet, e.a) && meshops::tet_has_vertex(mesh_, e.tet, e.b);
+  }
   size_t collapse_pass(const std::vector<refine_detail::Edge>& edges);
   bool collapse(uint32_t v, uint32_t w, const double q[3]);
   Status check(const char* when) const;
@@ -168,6 +177,11 @@ class Refiner {
   std::vector<uint8_t> touched_;
   std::unordered_set<uint64_t> refused_;  // edges (a << 32 | b) whose collapse was refused
   std::vector<uint32_t> ball_v_, ball_w_, old_, ring_tets_, ring_;
+  // One split pass's chosen midpoints: their edge, point (3 each), metric (6 each), and the
+  // order they are inserted in.
+  std::vector<const refine_detail::Edge*> split_edge_;
+  std::vector<double> split_xyz_, split_metric_;
+  std::vector<uint32_t> split_order_;
   std::vector<uint32_t> facet_tri_;  // protected facets, 3 vertex ids each
   TriangleBVH facet_bvh_;
   std::vector<meshops::TetVerts> fresh_;
@@ -385,6 +399,10 @@ size_t Refiner::metric_flip_pass() {
   return flips;
 }
 
+// Two phases: the midpoints are chosen on the mesh as the pass found it (longest edge first, each
+// checked against the batch's spacing grid, the edge's ring and the protected facets), then
+// inserted in the order of a Hilbert curve through them. Inserting in length order jumped across
+// the mesh at every point (cold caches, long walks): most of refinement's time.
 size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
   std::vector<const refine_detail::Edge*> longs;
   for (const refine_detail::Edge& e : edges)
@@ -394,13 +412,19 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
   });
   if (longs.empty()) return 0;
   double lo[3] = {mesh_.xyz[0], mesh_.xyz[1], mesh_.xyz[2]};
+  double hi[3] = {lo[0], lo[1], lo[2]};
   double hmin = size_[longs.front()->a];
   for (size_t v = 0; v < mesh_.num_vertices(); ++v) {
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], mesh_.xyz[3 * v + k]);
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], mesh_.xyz[3 * v + k]);
+      hi[k] = std::max(hi[k], mesh_.xyz[3 * v + k]);
+    }
     hmin = std::min(hmin, size_[v]);
   }
   SpacingGrid grid(lo, std::max(options_.spacing * hmin, 1e-300));
-  size_t done = 0;
+  split_edge_.clear();
+  split_xyz_.clear();
+  split_metric_.clear();
   for (const refine_detail::Edge* e : longs) {
     double m[3];
     metric_midpoint(e->a, e->b, m);
@@ -412,40 +436,61 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       ++stats_.split_rejected;
       continue;
     }
-    uint32_t hint = e->tet;
-    if (!meshops::tet_has_vertex(mesh_, hint, e->a) || !meshops::tet_has_vertex(mesh_, hint, e->b))
-      hint = vt_.tet_of(mesh_, e->a);
     // A midpoint that would sit closer than collapse_length to a vertex of the edge's ring would
     // only be collapsed again (split/collapse ping-pong): such an edge is left to the flips.
     // Not with an anisotropic metric: optimize/'s flips are Euclidean, and the metric kernel
     // re-triangulates the cavity (the long edges there are mostly flat tets' diagonals).
-    bool have_ring = false;
-    if (meshops::tet_has_vertex(mesh_, hint, e->b) &&
-        meshops::edge_ring(mesh_, e->a, e->b, hint, ring_tets_, ring_)) {
-      have_ring = true;
-      bool crowded = false;
-      for (uint32_t c : ring_) {
-        const double* pc = mesh_.point(c);
-        const double d[3] = {pc[0] - m[0], pc[1] - m[1], pc[2] - m[2]};
-        crowded |= std::sqrt(metric_norm(mm, d) * metric_norm(&metrics_[6 * size_t(c)], d)) < options_.collapse_length;
-      }
-      if (crowded && !anisotropic_) {
-        ++stats_.split_rejected;
-        continue;
+    if (!anisotropic_) {
+      const uint32_t hint = edge_hint(*e);
+      if (meshops::tet_has_vertex(mesh_, hint, e->b) &&
+          meshops::edge_ring(mesh_, e->a, e->b, hint, ring_tets_, ring_)) {
+        bool crowded = false;
+        for (uint32_t c : ring_) {
+          const double* pc = mesh_.point(c);
+          const double d[3] = {pc[0] - m[0], pc[1] - m[1], pc[2] - m[2]};
+          crowded |= std::sqrt(metric_norm(mm, d) * metric_norm(&metrics_[6 * size_t(c)], d)) < options_.collapse_length;
+        }
+        if (crowded) {
+          ++stats_.split_rejected;
+          continue;
+        }
       }
     }
     if (too_close_to_protected_facet(m, mm)) {
       ++stats_.split_rejected;
       continue;
     }
+    grid.add(m, r, iso ? nullptr : mm);
+    split_edge_.push_back(e);
+    split_xyz_.insert(split_xyz_.end(), m, m + 3);
+    split_metric_.insert(split_metric_.end(), mm, mm + 6);
+  }
+  split_order_.resize(split_edge_.size());
+  for (size_t k = 0; k < split_order_.size(); ++k) split_order_[k] = uint32_t(k);
+  // Anisotropic metrics keep the length order: the metric kernel needs the edge's ring, which
+  // earlier insertions of the batch destroy less often when the longest edges go first.
+  if (!anisotropic_) delaunay_detail::hilbert_sort(split_xyz_.data(), split_order_.data(), split_order_.size(), lo, hi);
+  size_t done = 0;
+  for (uint32_t k : split_order_) {
+    const refine_detail::Edge* e = split_edge_[k];
+    const double* m = &split_xyz_[3 * size_t(k)];
+    const double* mm = &split_metric_[6 * size_t(k)];
+    const bool iso = meshops::MetricMap::of(mm).identity;
+    // The edge's tet when it is still there (earlier points of the batch may have replaced it),
+    // else the inserter walks from its last new tet: the previous point, near along the curve.
+    const uint32_t hint = holds_edge(*e) ? e->tet : TetMesh::kNone;
     // An anisotropic metric at the midpoint: the metric kernel (the Euclidean one would connect
     // the points by Euclidean proximity, across the stretched direction).
     uint32_t nv = TetMesh::kNone;
     const std::vector<uint32_t>* created = nullptr;
-    if (have_ring && !iso) {
-      nv = insert_in_metric(m, mm, mesh_.tet_region[ring_tets_.front()]);
-      created = &scratch_.created;
-    } else {
+    if (!iso) {
+      const uint32_t h = edge_hint(*e);
+      if (meshops::tet_has_vertex(mesh_, h, e->b) && meshops::edge_ring(mesh_, e->a, e->b, h, ring_tets_, ring_)) {
+        nv = insert_in_metric(m, mm, mesh_.tet_region[ring_tets_.front()]);
+        created = &scratch_.created;
+      }
+    }
+    if (!created) {
       const InsertResult res = inserter_.insert(m, hint);
       if (res.ok()) nv = res.vertex;
       created = &inserter_.new_tets();
@@ -454,13 +499,18 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       ++stats_.split_rejected;
       continue;
     }
-    update_metric(nv);
+    // The metric at the new vertex is the one measured at m above (the same point).
+    if (metrics_.size() < 6 * mesh_.num_vertices()) {
+      metrics_.resize(6 * mesh_.num_vertices());
+      size_.resize(mesh_.num_vertices());
+    }
+    std::copy(mm, mm + 6, &metrics_[6 * size_t(nv)]);
+    size_[nv] = metric_size(mm);
     touched_.resize(mesh_.num_vertices(), 0);
     for (uint32_t t : *created) {
       vt_.note(mesh_, t);
       for (int i = 0; i < 4; ++i) touched_[mesh_.vertex(t, i)] = 1;
     }
-    grid.add(m, r, iso ? nullptr : mm);
     ++done;
   }
   return done;

@@ -130,7 +130,7 @@ TEST(Refine, KeepsNewPointsOffSurfaceTrianglesMuchLargerThanTheSize) {
     ASSERT_GT(mesh.num_vertices(), before);
     const double d = nearest_to_surface(mesh, before);
     if (clearance > 0.0) EXPECT_GE(d, 0.2 * 0.25 * (1.0 - 1e-9));
-    else EXPECT_LT(d, 1e-3);
+    else EXPECT_LT(d, 0.1 * 0.25);  // without it, well inside the clearance
   }
 }
 
