@@ -33,11 +33,14 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
   };
   for_each_edge([&](uint32_t a, uint32_t, uint32_t, bool) { ++start[a + 1]; });
   for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<Edge>& all = scratch.all;
+  // 8 bytes per tet edge (the buckets hold six per tet: their memory traffic is most of the cost).
+  std::vector<EdgeScratch::Entry>& all = scratch.all;
   all.resize(start[nv]);
   std::vector<uint32_t>& fill = scratch.fill;
   fill.assign(start.begin(), start.end() - 1);
-  for_each_edge([&](uint32_t a, uint32_t b, uint32_t t, bool s) { all[fill[a]++] = {a, b, t, s, 0.0}; });
+  for_each_edge([&](uint32_t a, uint32_t b, uint32_t t, bool s) {
+    all[fill[a]++] = {b, t | (s ? EdgeScratch::Entry::kSurface : 0u)};
+  });
   // Duplicates within a bucket found with a per-vertex mark (no sort): seen[b] holds 1 + the
   // index in `edges` of the copy kept for (a, b) while bucket a is scanned.
   edges.clear();
@@ -47,13 +50,14 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
   owner.assign(nv, TetMesh::kNone);
   for (size_t v = 0; v < nv; ++v) {
     for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
-      const Edge& e = all[k];
+      const EdgeScratch::Entry& e = all[k];
+      const bool on_surface = (e.tet & EdgeScratch::Entry::kSurface) != 0;
       if (owner[e.b] == v) {
-        edges[seen[e.b] - 1].on_surface |= e.on_surface;
+        edges[seen[e.b] - 1].on_surface |= on_surface;
         continue;
       }
       owner[e.b] = static_cast<uint32_t>(v);
-      edges.push_back(e);
+      edges.push_back({static_cast<uint32_t>(v), e.b, e.tet & ~EdgeScratch::Entry::kSurface, on_surface, 0.0});
       seen[e.b] = static_cast<uint32_t>(edges.size());
     }
   }

@@ -18,12 +18,18 @@ struct Edge {
 
 // Working memory of collect_edges, kept between calls (large meshes: page faults dominated).
 struct EdgeScratch {
+  struct Entry {                                 // one tet's edge (a, b), in a's bucket
+    static constexpr uint32_t kSurface = 1u << 31;  // tet's top bit: the edge is on a protected facet
+    uint32_t b;
+    uint32_t tet;
+  };
   std::vector<uint32_t> start, fill, seen, owner;
-  std::vector<Edge> all;
+  std::vector<Entry> all;
 };
 
 // Every edge of the live tets once, a < b, grouped by a (ascending); within a group the order
-// follows the tets (deterministic). metrics: 6 per vertex.
+// follows the tets (deterministic). metrics: 6 per vertex. The mesh must have fewer than 2^31
+// tet slots.
 void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std::vector<Edge>& edges,
                    EdgeScratch& scratch);
 
