@@ -82,6 +82,9 @@ class Optimizer {
   Work work_;                  // the sequential passes' scratch
   std::vector<uint8_t> side_;  // cvt_pass(): per vertex, its side of the split (2: seam bit)
   std::vector<double> tet_q_;  // per tet slot, during cvt_pass() only (empty otherwise)
+  // The tets of vertex v's ball are ball_tets_[ball_start_[v] .. ball_start_[v + 1]), during
+  // cvt_pass() only (built at its start; released after the CVT iterations).
+  std::vector<uint32_t> ball_start_, ball_tets_;
   OptimizeStats stats_;
   uint64_t rng_;
 };
@@ -162,9 +165,8 @@ void Optimizer::cvt_target(const Work& w, uint32_t v, double target[3]) {
 }
 
 void Optimizer::cvt_move(Work& w, uint32_t v) {
-  const uint32_t t = vt_.tet_of(mesh_, v);
-  if (t == TetMesh::kNone) return;
-  meshops::vertex_ball(mesh_, v, t, w.ball);
+  w.ball.assign(ball_tets_.begin() + ball_start_[v], ball_tets_.begin() + ball_start_[v + 1]);
+  if (w.ball.empty()) return;
   double target[3];
   cvt_target(w, v, target);
   measure_ball(w);
@@ -193,14 +195,24 @@ size_t Optimizer::cvt_pass() {
   const auto nv = static_cast<uint32_t>(mesh_.num_vertices());
   const uint32_t n_slots = mesh_.num_tet_slots();
   sizes_.resize(nv, -1.0);  // no resizing inside the parallel tasks
-  // Repairs stale vertex -> tet entries now (a repair writes the map and a shared counter); moves
-  // do not change the topology, so the tasks below only read them.
-  for (uint32_t v = 0; v < nv; ++v)
-    if (movable(v)) vt_.tet_of(mesh_, v);
   // Every tet's quality once, kept up to date by the accepted moves: each tet is in four balls,
   // so measuring balls from scratch would compute it four times. Dropped at the end (the flips
   // that follow change the tets).
   tet_q_.assign(n_slots, 0.0);
+  // Every vertex's ball, in tet order (moves keep the topology, so one scan of the tets serves
+  // the whole sweep instead of a traversal per vertex).
+  ball_start_.assign(size_t(nv) + 1, 0);
+  for (uint32_t t = 0; t < n_slots; ++t)
+    if (!mesh_.is_deleted(t))
+      for (int i = 0; i < 4; ++i) ++ball_start_[size_t(mesh_.vertex(t, i)) + 1];
+  for (size_t v = 0; v < nv; ++v) ball_start_[v + 1] += ball_start_[v];
+  ball_tets_.resize(ball_start_[nv]);
+  {
+    std::vector<uint32_t> fill(ball_start_.begin(), ball_start_.end() - 1);
+    for (uint32_t t = 0; t < n_slots; ++t)
+      if (!mesh_.is_deleted(t))
+        for (int i = 0; i < 4; ++i) ball_tets_[fill[mesh_.vertex(t, i)]++] = t;
+  }
   auto measure = [&](uint32_t begin, uint32_t end) {
     for (uint32_t t = begin; t < end; ++t)
       if (!mesh_.is_deleted(t)) tet_q_[t] = meshops::tet_shape_quality(mesh_, t);
@@ -426,6 +438,8 @@ Result<OptimizeStats> Optimizer::run() {
     stats_.moves += cvt_pass();
     optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
   }
+  std::vector<uint32_t>().swap(ball_start_);
+  std::vector<uint32_t>().swap(ball_tets_);
   for (int round = 0; round < options_.sliver_rounds; ++round) {
     optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
     const size_t moved = perturb_pass();
