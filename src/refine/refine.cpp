@@ -6,6 +6,7 @@
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include "core/bvh.hpp"
@@ -23,43 +24,34 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // Points inserted in the current batch, in a hash grid per size level so that a query only
-// looks at 27 cells per level: a point q of radius r_q = spacing * (the largest size of M_q, see
-// meshops::metric_max_size) sits at the level whose cell is at least r_q, and two points p, q
+// looks at 8 cells per level: a point q of radius r_q = spacing * (the largest size of M_q, see
+// meshops::metric_max_size) sits at the level whose cell is at least 2 r_q, and two points p, q
 // conflict when their distance is below `spacing` in both metrics M_p and M_q (isotropic:
-// closer than spacing * min(h_p, h_q)). The radii bound the Euclidean extent of those balls.
+// closer than spacing * min(h_p, h_q)). The radii bound the Euclidean extent of those balls, so
+// a conflicting q lies within half a cell of p on every axis: in the 2x2x2 cells around p.
 class SpacingGrid {
  public:
   SpacingGrid(const double origin[3], double base) : base_(base) { std::copy_n(origin, 3, origin_); }
-  void clear() {
-    cells_.clear();
-    pts_.clear();
-    radius_.clear();
-    metric_.clear();
-    aniso_.clear();
-    next_.clear();
-    levels_used_ = 0;
-  }
   // m: the metric at p, or nullptr when isotropic (then r = spacing * h_p).
   bool conflicts(const double p[3], double r, const double* m, double spacing) const {
     for (int level = 0; level < kLevels; ++level) {
       if (!(levels_used_ & (1u << level))) continue;
+      const double cell = std::ldexp(base_, level);
       int64_t c[3];
-      cell_of(p, level, c);
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dz = -1; dz <= 1; ++dz) {
-            auto it = cells_.find(key(level, c[0] + dx, c[1] + dy, c[2] + dz));
-            if (it == cells_.end()) continue;
-            for (uint32_t q = it->second; q != kEnd; q = next_[q]) {
-              const double* x = &pts_[3 * size_t(q)];
+      for (int k = 0; k < 3; ++k) c[k] = static_cast<int64_t>(std::floor((p[k] - origin_[k]) / cell - 0.5));
+      for (int dx = 0; dx <= 1; ++dx)
+        for (int dy = 0; dy <= 1; ++dy)
+          for (int dz = 0; dz <= 1; ++dz) {
+            for (uint32_t q = cells_.find(key(level, c[0] + dx, c[1] + dy, c[2] + dz)); q != kEnd; q = next_[q]) {
+              const double* x = pts_[q].x;
               const double d2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
                                 (x[2] - p[2]) * (x[2] - p[2]);
-              const double rr = std::min(r, radius_[q]);
+              const double rr = std::min(r, pts_[q].r);
               if (!(d2 < rr * rr)) continue;
               if (!m && !aniso_[q]) return true;  // both isotropic: closer than spacing * min(h)
               const double d[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]};
               const double lp = m ? metric_norm(m, d) : std::sqrt(d2) * spacing / r;
-              const double lq = aniso_[q] ? metric_norm(&metric_[6 * size_t(q)], d) : std::sqrt(d2) * spacing / radius_[q];
+              const double lq = aniso_[q] ? metric_norm(&metric_[6 * size_t(q)], d) : std::sqrt(d2) * spacing / pts_[q].r;
               if (std::max(lp, lq) < spacing) return true;
             }
           }
@@ -67,24 +59,69 @@ class SpacingGrid {
     return false;
   }
   void add(const double p[3], double r, const double* m) {
-    const int level = level_of(r);
+    const int level = level_of(2.0 * r);
+    const double cell = std::ldexp(base_, level);
     int64_t c[3];
-    cell_of(p, level, c);
-    const auto id = static_cast<uint32_t>(radius_.size());
-    pts_.insert(pts_.end(), p, p + 3);
-    radius_.push_back(r);
+    for (int k = 0; k < 3; ++k) c[k] = static_cast<int64_t>(std::floor((p[k] - origin_[k]) / cell));
+    const auto id = static_cast<uint32_t>(pts_.size());
+    pts_.push_back({{p[0], p[1], p[2]}, r});
     aniso_.push_back(m != nullptr);
     if (m) metric_.insert(metric_.end(), m, m + 6);
     else metric_.resize(metric_.size() + 6, 0.0);
-    auto [it, fresh] = cells_.try_emplace(key(level, c[0], c[1], c[2]), id);
-    next_.push_back(fresh ? kEnd : it->second);
-    if (!fresh) it->second = id;
+    next_.push_back(cells_.exchange(key(level, c[0], c[1], c[2]), id));
     levels_used_ |= 1u << level;
   }
 
  private:
   static constexpr int kLevels = 24;
   static constexpr uint32_t kEnd = ~0u;
+  // Cell key -> the last point added to the cell (the others follow through next_): open
+  // addressing with linear probing, where a node-based map's pointer chasing dominated the
+  // refinement's choice of points.
+  class CellMap {
+   public:
+    uint32_t find(uint64_t k) const {
+      if (keys_.empty()) return kEnd;
+      for (size_t i = slot(k);; i = (i + 1) & mask_) {
+        if (keys_[i] == k) return heads_[i];
+        if (keys_[i] == kEmpty) return kEnd;
+      }
+    }
+    // Makes v the cell's head; returns the previous head (kEnd for a new cell).
+    uint32_t exchange(uint64_t k, uint32_t v) {
+      if (2 * (count_ + 1) > keys_.size()) grow();
+      for (size_t i = slot(k);; i = (i + 1) & mask_) {
+        if (keys_[i] == k) return std::exchange(heads_[i], v);
+        if (keys_[i] == kEmpty) {
+          keys_[i] = k;
+          heads_[i] = v;
+          ++count_;
+          return kEnd;
+        }
+      }
+    }
+
+   private:
+    static constexpr uint64_t kEmpty = ~uint64_t(0);  // not a key: level < 24 leaves the top bits 0
+    size_t slot(uint64_t k) const { return size_t((k * 0x9E3779B97F4A7C15ull) >> 32) & mask_; }
+    void grow() {
+      std::vector<uint64_t> keys(std::max<size_t>(1024, 2 * keys_.size()), kEmpty);
+      std::vector<uint32_t> heads(keys.size(), kEnd);
+      keys.swap(keys_);
+      heads.swap(heads_);
+      mask_ = keys_.size() - 1;
+      for (size_t j = 0; j < keys.size(); ++j) {
+        if (keys[j] == kEmpty) continue;
+        size_t i = slot(keys[j]);
+        while (keys_[i] != kEmpty) i = (i + 1) & mask_;
+        keys_[i] = keys[j];
+        heads_[i] = heads[j];
+      }
+    }
+    std::vector<uint64_t> keys_;
+    std::vector<uint32_t> heads_;
+    size_t mask_ = 0, count_ = 0;
+  };
   int level_of(double r) const {
     int level = 0;
     double cell = base_;
@@ -94,19 +131,18 @@ class SpacingGrid {
     }
     return level;
   }
-  void cell_of(const double p[3], int level, int64_t c[3]) const {
-    const double cell = std::ldexp(base_, level);
-    for (int k = 0; k < 3; ++k) c[k] = static_cast<int64_t>(std::floor((p[k] - origin_[k]) / cell));
-  }
   static uint64_t key(int level, int64_t i, int64_t j, int64_t k) {
     const uint64_t m = (uint64_t(1) << 19) - 1;
     return (uint64_t(level) << 57) | ((uint64_t(i) & m) << 38) | ((uint64_t(j) & m) << 19) | (uint64_t(k) & m);
   }
   double origin_[3];
   double base_;
-  std::unordered_map<uint64_t, uint32_t> cells_;
-  std::vector<double> pts_;
-  std::vector<double> radius_;
+  CellMap cells_;
+  struct Point {  // a point and its radius together: one cache line to read per candidate
+    double x[3];
+    double r;
+  };
+  std::vector<Point> pts_;
   std::vector<double> metric_;  // 6 per point (unused for isotropic points)
   std::vector<uint8_t> aniso_;  // 1 per point: its metric is anisotropic
   std::vector<uint32_t> next_;
