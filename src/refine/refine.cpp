@@ -11,6 +11,7 @@
 
 #include "core/bvh.hpp"
 #include "core/closest_point.hpp"
+#include "core/flat_key_map.hpp"
 #include "delaunay/delaunay.hpp"
 #include "delaunay/spatial_sort.hpp"
 #include "predicates/predicates.hpp"
@@ -68,60 +69,14 @@ class SpacingGrid {
     aniso_.push_back(m != nullptr);
     if (m) metric_.insert(metric_.end(), m, m + 6);
     else metric_.resize(metric_.size() + 6, 0.0);
-    next_.push_back(cells_.exchange(key(level, c[0], c[1], c[2]), id));
+    // The cell's list is headed by its last point (the others follow through next_).
+    next_.push_back(std::exchange(cells_.find_or_insert(key(level, c[0], c[1], c[2]), kEnd), id));
     levels_used_ |= 1u << level;
   }
 
  private:
   static constexpr int kLevels = 24;
-  static constexpr uint32_t kEnd = ~0u;
-  // Cell key -> the last point added to the cell (the others follow through next_): open
-  // addressing with linear probing, where a node-based map's pointer chasing dominated the
-  // refinement's choice of points.
-  class CellMap {
-   public:
-    uint32_t find(uint64_t k) const {
-      if (keys_.empty()) return kEnd;
-      for (size_t i = slot(k);; i = (i + 1) & mask_) {
-        if (keys_[i] == k) return heads_[i];
-        if (keys_[i] == kEmpty) return kEnd;
-      }
-    }
-    // Makes v the cell's head; returns the previous head (kEnd for a new cell).
-    uint32_t exchange(uint64_t k, uint32_t v) {
-      if (2 * (count_ + 1) > keys_.size()) grow();
-      for (size_t i = slot(k);; i = (i + 1) & mask_) {
-        if (keys_[i] == k) return std::exchange(heads_[i], v);
-        if (keys_[i] == kEmpty) {
-          keys_[i] = k;
-          heads_[i] = v;
-          ++count_;
-          return kEnd;
-        }
-      }
-    }
-
-   private:
-    static constexpr uint64_t kEmpty = ~uint64_t(0);  // not a key: level < 24 leaves the top bits 0
-    size_t slot(uint64_t k) const { return size_t((k * 0x9E3779B97F4A7C15ull) >> 32) & mask_; }
-    void grow() {
-      std::vector<uint64_t> keys(std::max<size_t>(1024, 2 * keys_.size()), kEmpty);
-      std::vector<uint32_t> heads(keys.size(), kEnd);
-      keys.swap(keys_);
-      heads.swap(heads_);
-      mask_ = keys_.size() - 1;
-      for (size_t j = 0; j < keys.size(); ++j) {
-        if (keys[j] == kEmpty) continue;
-        size_t i = slot(keys[j]);
-        while (keys_[i] != kEmpty) i = (i + 1) & mask_;
-        keys_[i] = keys[j];
-        heads_[i] = heads[j];
-      }
-    }
-    std::vector<uint64_t> keys_;
-    std::vector<uint32_t> heads_;
-    size_t mask_ = 0, count_ = 0;
-  };
+  static constexpr uint32_t kEnd = FlatKeyMap::kAbsent;
   int level_of(double r) const {
     int level = 0;
     double cell = base_;
@@ -137,7 +92,7 @@ class SpacingGrid {
   }
   double origin_[3];
   double base_;
-  CellMap cells_;
+  FlatKeyMap cells_;  // cell key -> its last point
   struct Point {  // a point and its radius together: one cache line to read per candidate
     double x[3];
     double r;
