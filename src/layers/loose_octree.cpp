@@ -6,6 +6,7 @@
 namespace anitet::layers {
 
 void LooseOctree::reset(const Box3& bounds) {
+  node_of_.clear();
   nodes_.clear();
   item_key_.clear();
   num_items_ = 0;
@@ -47,7 +48,7 @@ void LooseOctree::insert(uint32_t id, const Box3& box) {
   for (int l = 0; l <= level; ++l) {
     const int shift = level - l;
     const uint64_t x = c[0] >> shift, y = c[1] >> shift, z = c[2] >> shift;
-    Node& node = nodes_[make_key(l, x, y, z)];
+    Node& node = node_at(make_key(l, x, y, z));
     ++node.count;
     if (l < level) {
       const int ch = int((c[0] >> (shift - 1)) & 1) | (int((c[1] >> (shift - 1)) & 1) << 1) |
@@ -72,7 +73,7 @@ void LooseOctree::erase(uint32_t id) {
   const uint64_t c[3] = {(key >> 38) & mask, (key >> 19) & mask, key & mask};
   for (int l = 0; l <= level; ++l) {
     const int shift = level - l;
-    Node& node = nodes_[make_key(l, c[0] >> shift, c[1] >> shift, c[2] >> shift)];
+    Node& node = node_at(make_key(l, c[0] >> shift, c[1] >> shift, c[2] >> shift));
     --node.count;
     if (l == level) {
       auto it = std::find(node.items.begin(), node.items.end(), id);

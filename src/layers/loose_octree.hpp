@@ -1,5 +1,5 @@
 // A dynamic spatial index over boxes (the advancing front's triangles): a loose octree whose
-// nodes live in a hash map, so that inserting and erasing are O(depth) and only occupied parts of
+// nodes live in a hash map (open addressing: FlatKeyMap), so that inserting and erasing are O(depth) and only occupied parts of
 // space cost memory. Handles any mix of large and tiny boxes (CAD surfaces), unlike a uniform grid.
 //
 // An item whose box has extent e and centre c is stored in the deepest cell of size s >= e that
@@ -9,10 +9,10 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "core/bvh.hpp"  // Box3
+#include "core/flat_key_map.hpp"
 
 namespace anitet::layers {
 
@@ -43,7 +43,15 @@ class LooseOctree {
     return (uint64_t(level) << 57) | (x << 38) | (y << 19) | z;
   }
 
-  std::unordered_map<uint64_t, Node> nodes_;
+  // The node of key k is nodes_[node_of_.find(k)]; nodes are never removed before reset().
+  Node& node_at(uint64_t key) {
+    const auto next = static_cast<uint32_t>(nodes_.size());
+    const uint32_t i = node_of_.find_or_insert(key, next);
+    if (i == next) nodes_.emplace_back();
+    return nodes_[i];
+  }
+  FlatKeyMap node_of_;
+  std::vector<Node> nodes_;
   std::vector<uint64_t> item_key_;  // per item id: its node, or kNoKey
   double origin_[3] = {0, 0, 0};
   double size_ = 1.0;  // root cell edge
@@ -62,8 +70,8 @@ void LooseOctree::query(const Box3& box, Visit&& visit) const {
   stack[top++] = Frame{0, 0, 0, 0};
   while (top > 0) {
     const Frame f = stack[--top];
-    const auto it = nodes_.find(make_key(f.level, f.x, f.y, f.z));
-    if (it == nodes_.end() || it->second.count == 0) continue;
+    const uint32_t index = node_of_.find(make_key(f.level, f.x, f.y, f.z));
+    if (index == FlatKeyMap::kAbsent || nodes_[index].count == 0) continue;
     const double s = size_ / double(uint64_t(1) << f.level);
     const uint64_t c[3] = {f.x, f.y, f.z};
     bool overlap = true;
@@ -73,7 +81,7 @@ void LooseOctree::query(const Box3& box, Visit&& visit) const {
       overlap = box.lo[k] <= hi && lo <= box.hi[k];
     }
     if (!overlap) continue;
-    const Node& node = it->second;
+    const Node& node = nodes_[index];
     for (uint32_t id : node.items)
       if (!visit(id)) return;
     if (f.level == kMaxDepth) continue;
