@@ -43,6 +43,7 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
   out.validation.orient_shells = o.orient_shells != 0;
   out.validation.check_self_intersections = o.check_self_intersections != 0;
   out.validation.num_threads = o.num_threads;
+  out.refine.num_threads = o.num_threads;
   out.optimize.num_threads = o.num_threads;
   out.layers.layers = o.layers;
   out.layers.scheme = static_cast<anitet::LayerScheme>(o.layer_scheme);

@@ -9,6 +9,10 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include "core/bvh.hpp"
 #include "core/closest_point.hpp"
 #include "core/flat_key_map.hpp"
@@ -168,8 +172,17 @@ class Refiner {
   std::vector<uint8_t> touched_;
   std::unordered_set<uint64_t> refused_;  // edges (a << 32 | b) whose collapse was refused
   std::vector<uint32_t> ball_v_, ball_w_, old_, ring_tets_, ring_;
-  // One split pass's chosen midpoints: their edge, point (3 each), metric (6 each), and the
-  // order they are inserted in.
+  // One split pass's candidate midpoints (one per long edge, in length order) ...
+  struct Candidate {
+    double m[3];   // the metric midpoint
+    double mm[6];  // the metric there
+    double r;      // its radius in the spacing grid
+    bool iso;      // mm is isotropic
+    bool vetoed;   // crowded by the edge's ring, or too close to a protected facet
+  };
+  std::vector<Candidate> candidates_;
+  // ... and the chosen ones: their edge, point (3 each), metric (6 each), and the order they are
+  // inserted in.
   std::vector<const refine_detail::Edge*> split_edge_;
   std::vector<double> split_xyz_, split_metric_;
   std::vector<uint32_t> split_order_;
@@ -413,48 +426,47 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
     hmin = std::min(hmin, size_[v]);
   }
   SpacingGrid grid(lo, std::max(options_.spacing * hmin, 1e-300));
+  // Each edge's midpoint, metric and local vetoes, on every core (the mesh is only read), then
+  // the spacing filter in length order (sequential: each point is checked against the ones
+  // chosen before it). The same points are chosen as in one sequential loop.
+  candidates_.resize(longs.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, longs.size(), 512), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<uint32_t> ring_tets, ring;
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      const refine_detail::Edge* e = longs[i];
+      Candidate& c = candidates_[i];
+      metric_midpoint(e->a, e->b, c.m);
+      field_.metric(c.m, c.mm);
+      c.iso = meshops::MetricMap::of(c.mm).identity;
+      c.r = options_.spacing * (c.iso ? metric_size(c.mm) : meshops::metric_max_size(c.mm));
+      // A midpoint that would sit closer than collapse_length to a vertex of the edge's ring would
+      // only be collapsed again (split/collapse ping-pong): such an edge is left to the flips.
+      // Not with an anisotropic metric: optimize/'s flips are Euclidean, and the metric kernel
+      // re-triangulates the cavity (the long edges there are mostly flat tets' diagonals).
+      // (e->tet holds the edge: the edges were collected on this mesh.)
+      bool crowded = false;
+      if (!anisotropic_ && holds_edge(*e) && meshops::edge_ring(mesh_, e->a, e->b, e->tet, ring_tets, ring))
+        for (uint32_t v : ring) {
+          const double* pv = mesh_.point(v);
+          const double d[3] = {pv[0] - c.m[0], pv[1] - c.m[1], pv[2] - c.m[2]};
+          crowded |= std::sqrt(metric_norm(c.mm, d) * metric_norm(&metrics_[6 * size_t(v)], d)) < options_.collapse_length;
+        }
+      c.vetoed = crowded || too_close_to_protected_facet(c.m, c.mm);
+    }
+  });
   split_edge_.clear();
   split_xyz_.clear();
   split_metric_.clear();
-  for (const refine_detail::Edge* e : longs) {
-    double m[3];
-    metric_midpoint(e->a, e->b, m);
-    double mm[6];
-    field_.metric(m, mm);
-    const bool iso = meshops::MetricMap::of(mm).identity;
-    const double r = options_.spacing * (iso ? metric_size(mm) : meshops::metric_max_size(mm));
-    if (grid.conflicts(m, r, iso ? nullptr : mm, options_.spacing)) {
+  for (size_t i = 0; i < longs.size(); ++i) {
+    const Candidate& c = candidates_[i];
+    if (c.vetoed || grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing)) {
       ++stats_.split_rejected;
       continue;
     }
-    // A midpoint that would sit closer than collapse_length to a vertex of the edge's ring would
-    // only be collapsed again (split/collapse ping-pong): such an edge is left to the flips.
-    // Not with an anisotropic metric: optimize/'s flips are Euclidean, and the metric kernel
-    // re-triangulates the cavity (the long edges there are mostly flat tets' diagonals).
-    if (!anisotropic_) {
-      const uint32_t hint = edge_hint(*e);
-      if (meshops::tet_has_vertex(mesh_, hint, e->b) &&
-          meshops::edge_ring(mesh_, e->a, e->b, hint, ring_tets_, ring_)) {
-        bool crowded = false;
-        for (uint32_t c : ring_) {
-          const double* pc = mesh_.point(c);
-          const double d[3] = {pc[0] - m[0], pc[1] - m[1], pc[2] - m[2]};
-          crowded |= std::sqrt(metric_norm(mm, d) * metric_norm(&metrics_[6 * size_t(c)], d)) < options_.collapse_length;
-        }
-        if (crowded) {
-          ++stats_.split_rejected;
-          continue;
-        }
-      }
-    }
-    if (too_close_to_protected_facet(m, mm)) {
-      ++stats_.split_rejected;
-      continue;
-    }
-    grid.add(m, r, iso ? nullptr : mm);
-    split_edge_.push_back(e);
-    split_xyz_.insert(split_xyz_.end(), m, m + 3);
-    split_metric_.insert(split_metric_.end(), mm, mm + 6);
+    grid.add(c.m, c.r, c.iso ? nullptr : c.mm);
+    split_edge_.push_back(longs[i]);
+    split_xyz_.insert(split_xyz_.end(), c.m, c.m + 3);
+    split_metric_.insert(split_metric_.end(), c.mm, c.mm + 6);
   }
   split_order_.resize(split_edge_.size());
   for (size_t k = 0; k < split_order_.size(); ++k) split_order_[k] = uint32_t(k);
@@ -709,9 +721,12 @@ size_t count_protected_facets(const TetMesh& mesh) {
 }
 
 Result<RefineStats> refine_mesh(TetMesh& mesh, const SizingField& field, const RefineOptions& options) {
+  if (options.num_threads < 0) return Status(Error::InvalidArgument, "refine: num_threads must be >= 0");
   const ScaledSizing scaled(field, options.size_scale > 0.0 ? options.size_scale : 1.0);
   Refiner refiner(mesh, scaled, options);
-  return refiner.run();
+  if (options.num_threads == 0) return refiner.run();
+  tbb::task_arena arena(options.num_threads);
+  return arena.execute([&] { return refiner.run(); });
 }
 
 }  // namespace anitet

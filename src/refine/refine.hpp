@@ -54,6 +54,9 @@ struct RefineOptions {
   int max_passes = 30;
   double stop_fraction = 1e-3;  // stop when a pass changes fewer than this share of the edges
   bool collapse = true;
+  // Threads for the split points' measures (midpoint, metric, vetoes): 0 TBB's default, n an
+  // arena of n threads. The mesh does not depend on it.
+  int num_threads = 0;
   // check_mesh() and the protected-facet count after every pass (on by default in debug builds).
 #ifdef NDEBUG
   bool check_each_pass = false;

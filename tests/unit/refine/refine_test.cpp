@@ -57,6 +57,24 @@ TEST(Refine, LengthsConverge) {
   EXPECT_GT(r->tets_after, 5 * r->tets_before);
 }
 
+// The split points are measured in parallel, chosen and inserted in one order: the same mesh
+// with one thread as with the default.
+TEST(Refine, SameMeshWithOneThreadOrMany) {
+  TetMesh m[2] = {coupled_sphere(), coupled_sphere()};
+  for (int k = 0; k < 2; ++k) {
+    RefineOptions o;
+    o.num_threads = k == 0 ? 0 : 1;
+    Result<RefineStats> r = refine_mesh(m[k], test::ConstantSizing(0.1), o);
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    EXPECT_GT(r->splits, 1000u);
+  }
+  EXPECT_EQ(m[0].xyz, m[1].xyz);
+  EXPECT_EQ(m[0].tet_v, m[1].tet_v);
+  RefineOptions bad;
+  bad.num_threads = -1;
+  EXPECT_EQ(refine_mesh(m[0], test::ConstantSizing(0.1), bad).status().code(), Error::InvalidArgument);
+}
+
 TEST(Refine, SizeScaleMakesItCoarser) {
   TetMesh fine = coupled_sphere(), coarse = coupled_sphere();
   RefineOptions o;
