@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Issue 11's scale run: one surface, the unit sphere (Gmsh -2 with size 0.04: about 19,000
+# triangles), meshed by anitet at three global sizes that give about 1e5, 1e6 and 1e7 tets
+# (`--size` 2.0, 0.9 and 0.42 by default). Per run: tets, the pipeline's seconds (anitet's own
+# figure, without reading, writing and the report) and the wall seconds, the peak resident memory
+# (GNU time), bytes per tet at that peak, and the pipeline's seconds per n log2 n relative to the
+# first run (1.0: time grows as n log n; below: slower growth). Each mesh is checked by anitet's
+# own quality report (validity and boundary preservation against the sphere) and then deleted.
+#
+#   bench/scale/run.sh [-o OUTDIR] [SIZE ...]
+#
+# OUTDIR defaults to out/bench-scale; results.txt there. Not run by CI (the 1e7 run takes
+# minutes and about 2 GB). Environment: BUILD_DIR (anitet's build, default build/).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+out=$root/out/bench-scale
+if [[ ${1:-} == "-o" ]]; then out=$2; shift 2; fi
+sizes=("$@")
+[[ ${#sizes[@]} -gt 0 ]] || sizes=(2.0 0.9 0.42)
+"$root/scripts/setup.sh" gmsh time
+build=${BUILD_DIR:-$root/build}
+if [ -f "$build/CMakeCache.txt" ]; then "$root/scripts/build.sh"; else "$root/scripts/build.sh" -DANITET_BUILD_TESTS=OFF; fi
+anitet=$build/app/anitet
+py=python3; $py -c 'import numpy, meshio' 2>/dev/null || py=/usr/bin/python3
+mkdir -p "$out"
+cat > "$out/sphere.geo" <<GEO
+SetFactory("OpenCASCADE");
+Sphere(1) = {0, 0, 0, 1};
+Mesh.MeshSizeMin = 0.04;
+Mesh.MeshSizeMax = 0.04;
+GEO
+gmsh "$out/sphere.geo" -2 -format msh4 -o "$out/sphere-surface.msh" > "$out/sphere-surface.log" 2>&1
+# As OFF, every coordinate in full double precision.
+$py - "$out/sphere-surface.msh" "$out/sphere.off" <<'PY'
+import sys
+import meshio
+m = meshio.read(sys.argv[1])
+tris = m.cells_dict["triangle"]
+used = sorted(set(tris.ravel().tolist()))
+index = {v: i for i, v in enumerate(used)}
+with open(sys.argv[2], "w") as f:
+    f.write("OFF\n%d %d 0\n" % (len(used), len(tris)))
+    for v in used:
+        f.write("%r %r %r\n" % tuple(float(x) for x in m.points[v]))
+    for t in tris:
+        f.write("3 %d %d %d\n" % tuple(index[int(v)] for v in t))
+print("sphere surface: %d vertices, %d triangles" % (len(used), len(tris)))
+PY
+{
+  echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"
+  echo "anitet: $(cd "$root" && git describe --always --dirty 2>/dev/null || echo unknown)"
+  echo "cpu: $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) cores; memory: $(free -g | awk '/^Mem:/ {print $2}') GB"
+  printf '%-6s %10s %10s %10s %10s %10s %12s %s\n' size tets pipeline_s wall_s peak_MB bytes/tet s/nlogn_rel verdict
+} | tee "$out/results.txt"
+first=""
+for s in "${sizes[@]}"; do
+  log=$out/size-$s.log
+  t0=$(date +%s.%N)
+  rc=0
+  /usr/bin/time -f '%M' -o "$out/size-$s.rss" "$anitet" mesh "$out/sphere.off" -o "$out/size-$s.mesh" --size "$s" > "$log" 2>&1 || rc=$?
+  t1=$(date +%s.%N)
+  rm -f "$out/size-$s.mesh"
+  if [[ $rc != 0 ]]; then
+    printf '%-6s failed (exit %s), see %s\n' "$s" "$rc" "$log" | tee -a "$out/results.txt"
+    continue
+  fi
+  # "anitet mesh: IN -> OUT: V vertices, T tets in S s (...)"
+  read -r tets secs < <(sed -n 's/^anitet mesh: .*: [0-9]* vertices, \([0-9]*\) tets in \([0-9.e+-]*\) s .*/\1 \2/p' "$log")
+  verdict=$(grep -q "boundary constrained: YES" "$log" && grep -q "^validity: VALID" "$log" && echo "valid, boundary constrained" || echo "NOT VALID or surface lost")
+  kb=$(cat "$out/size-$s.rss")
+  wall=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
+  per=$(awk -v n="$tets" -v t="$secs" 'BEGIN { printf "%.6e", t / (n * log(n) / log(2)) }')
+  [[ -n $first ]] || first=$per
+  awk -v s="$s" -v n="$tets" -v t="$secs" -v w="$wall" -v kb="$kb" -v per="$per" -v first="$first" -v v="$verdict" \
+    'BEGIN { printf "%-6s %10d %10.1f %10s %10.0f %10.0f %12.2f %s\n", s, n, t, w, kb / 1024, kb * 1024 / n, per / first, v }' |
+    tee -a "$out/results.txt"
+done
