@@ -12,6 +12,7 @@ packages=(
   libcgns-dev libexodusii-dev  # the .cgns and Exodus II writers (optional at build time)
   cgns-convert openfoam python3-h5py python3-netcdf4  # their consumers in the `solver` tests
   doxygen  # renders the C API reference; its test fails on an undocumented declaration
+  clang  # libFuzzer, for the fuzz targets of fuzz/ (scripts/fuzz.sh)
 )
 packages+=("$@")  # extra packages a caller wants (bench/ adds gmsh, tetgen, libcgal-dev)
 

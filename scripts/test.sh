@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs, builds and runs the whole test suite: a Release build, then the same suite under
-# AddressSanitizer + UndefinedBehaviorSanitizer. Set ANITET_SKIP_SANITIZERS=1 to skip the second.
+# AddressSanitizer + UndefinedBehaviorSanitizer, then a short fuzz run (scripts/fuzz.sh: every
+# fuzz target for a few seconds over its seed corpus). Set ANITET_SKIP_SANITIZERS=1 to skip the
+# second, ANITET_SKIP_FUZZ=1 the third.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
@@ -25,4 +27,10 @@ if [[ ${ANITET_SKIP_SANITIZERS:-0} != 1 ]]; then
   asan_skip+='|^RecoverySplit\.(Hammer|Skull)$|^Stage2\.'
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$root/build-asan" -j "$jobs" --output-on-failure --no-tests=error -LE slow -E "$asan_skip"
+fi
+
+if [[ ${ANITET_SKIP_FUZZ:-0} != 1 ]]; then
+  echo "== Short fuzz run (clang libFuzzer + ASan + UBSan)"
+  # About 6 minutes on 2 cores: 3 to build with clang, 3 to run the 11 targets (FUZZ_SECONDS each).
+  "$root/scripts/fuzz.sh" "${FUZZ_SECONDS:-16}"
 fi

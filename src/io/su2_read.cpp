@@ -4,6 +4,7 @@
 #include <string>
 
 #include "io/patch_names.hpp"
+#include "io/reader_util.hpp"
 #include "io/surface_io.hpp"
 #include "io/text_scanner.hpp"
 
@@ -24,9 +25,7 @@ bool keyword_value(std::string_view line, std::string_view key, std::string_view
   return true;
 }
 
-}  // namespace
-
-Result<SurfaceMesh> read_su2_surface(std::string_view data, const std::string& name, PatchNames* names) {
+Result<SurfaceMesh> parse_su2_surface(std::string_view data, const std::string& name, PatchNames* names) {
   TextScanner in(data, name, '%');
   SurfaceMesh mesh;
   uint64_t npoin = 0;
@@ -53,6 +52,10 @@ Result<SurfaceMesh> read_su2_surface(std::string_view data, const std::string& n
     } else if (keyword_value(line, "NPOIN", value)) {
       if (have_points) return in.error(Error::UnsupportedFormat, "a second NPOIN: multi-zone SU2 files are not read");
       if (Status s = count_of(value, "NPOIN", npoin); !s.ok()) return s;
+      // A point takes a line of at least "x y z": a bogus count is refused before anything is
+      // reserved for it (found by fuzzing: a 50-byte file asked for 36 GB).
+      if (!fits(npoin, 6, in.remaining() + 1))
+        return in.error(Error::Parse, "NPOIN= " + std::to_string(npoin) + ": the points do not fit in the file");
       mesh.xyz.reserve(3 * npoin);
       for (uint64_t i = 0; i < npoin; ++i) {
         double p[3];
@@ -100,6 +103,12 @@ Result<SurfaceMesh> read_su2_surface(std::string_view data, const std::string& n
   }
   if (mesh.num_triangles() == 0) return Status(Error::EmptyInput, name + ": no boundary marker triangles");
   return mesh;
+}
+
+}  // namespace
+
+Result<SurfaceMesh> read_su2_surface(std::string_view data, const std::string& name, PatchNames* names) {
+  return catch_bad_alloc(name, [&] { return parse_su2_surface(data, name, names); });
 }
 
 }  // namespace anitet

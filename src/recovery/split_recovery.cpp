@@ -23,7 +23,6 @@ double seconds_since(Clock::time_point t0) {
 }
 
 constexpr uint32_t kNone = TetMesh::kNone;
-constexpr uint32_t kGhost = TetMesh::kGhost;
 constexpr uint64_t kNoNeighbour = TetMesh::kNoNeighbour;
 
 class SplitRecoverer {

@@ -482,6 +482,7 @@ TEST(Su2, BoundaryReadBackAsASurfaceWithItsMarkerNames) {
   EXPECT_EQ(code(head + "MARKER_ELEMS= 0\n"), Error::EmptyInput);
   EXPECT_EQ(code("NDIME= 2\n"), Error::UnsupportedFormat);
   EXPECT_EQ(code("NPOIN= 1\n0 0 0\nNPOIN= 1\n0 0 0\n"), Error::UnsupportedFormat);
+  EXPECT_EQ(code("NPOIN= 1511610054\n0 0 0\n"), Error::Parse);  // more points than the file holds
   EXPECT_EQ(read_su2_surface(head + "MARKER_TAG= my-wall\nMARKER_ELEMS= 1\n5 0 1 2\n", "t.su2", &names).status().code(),
             Error::Parse);  // not a valid patch name
 }
