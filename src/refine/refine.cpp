@@ -118,12 +118,18 @@ class Refiner {
  private:
   bool fixed(uint32_t v) const { return (mesh_.vflags[v] & (vflag::kOnInputSurface | vflag::kLocked)) != 0; }
   void update_metric(uint32_t v) {
+    double m[6];
+    field_.metric(mesh_.point(v), m);
+    set_metric(v, m);
+  }
+  // v's metric, already measured at its point.
+  void set_metric(uint32_t v, const double m[6]) {
     if (metrics_.size() < 6 * mesh_.num_vertices()) {
       metrics_.resize(6 * mesh_.num_vertices());
       size_.resize(mesh_.num_vertices());
     }
-    field_.metric(mesh_.point(v), &metrics_[6 * size_t(v)]);
-    size_[v] = metric_size(&metrics_[6 * size_t(v)]);
+    std::copy(m, m + 6, &metrics_[6 * size_t(v)]);
+    size_[v] = metric_size(m);
   }
   void metric_midpoint(uint32_t a, uint32_t b, double m[3]) const;
   // The protected facets (S, and any other protected ones) in a BVH, once at the start: their
@@ -181,10 +187,10 @@ class Refiner {
     bool vetoed;   // crowded by the edge's ring, or too close to a protected facet
   };
   std::vector<Candidate> candidates_;
-  // ... and the chosen ones: their edge, point (3 each), metric (6 each), and the order they are
-  // inserted in.
-  std::vector<const refine_detail::Edge*> split_edge_;
-  std::vector<double> split_xyz_, split_metric_;
+  // ... and the chosen ones: their indices in candidates_, their points packed for the Hilbert
+  // sort (3 each), and the order they are inserted in (indices in chosen_).
+  std::vector<uint32_t> chosen_;
+  std::vector<double> chosen_xyz_;
   std::vector<uint32_t> split_order_;
   std::vector<uint32_t> facet_tri_;  // protected facets, 3 vertex ids each
   TriangleBVH facet_bvh_;
@@ -454,9 +460,8 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       c.vetoed = crowded || too_close_to_protected_facet(c.m, c.mm);
     }
   });
-  split_edge_.clear();
-  split_xyz_.clear();
-  split_metric_.clear();
+  chosen_.clear();
+  chosen_xyz_.clear();
   for (size_t i = 0; i < longs.size(); ++i) {
     const Candidate& c = candidates_[i];
     if (c.vetoed || grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing)) {
@@ -464,21 +469,21 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       continue;
     }
     grid.add(c.m, c.r, c.iso ? nullptr : c.mm);
-    split_edge_.push_back(longs[i]);
-    split_xyz_.insert(split_xyz_.end(), c.m, c.m + 3);
-    split_metric_.insert(split_metric_.end(), c.mm, c.mm + 6);
+    chosen_.push_back(static_cast<uint32_t>(i));
+    chosen_xyz_.insert(chosen_xyz_.end(), c.m, c.m + 3);
   }
-  split_order_.resize(split_edge_.size());
+  split_order_.resize(chosen_.size());
   for (size_t k = 0; k < split_order_.size(); ++k) split_order_[k] = uint32_t(k);
   // Anisotropic metrics keep the length order: the metric kernel needs the edge's ring, which
   // earlier insertions of the batch destroy less often when the longest edges go first.
-  if (!anisotropic_) delaunay_detail::hilbert_sort(split_xyz_.data(), split_order_.data(), split_order_.size(), lo, hi);
+  if (!anisotropic_) delaunay_detail::hilbert_sort(chosen_xyz_.data(), split_order_.data(), split_order_.size(), lo, hi);
   size_t done = 0;
   for (uint32_t k : split_order_) {
-    const refine_detail::Edge* e = split_edge_[k];
-    const double* m = &split_xyz_[3 * size_t(k)];
-    const double* mm = &split_metric_[6 * size_t(k)];
-    const bool iso = meshops::MetricMap::of(mm).identity;
+    const refine_detail::Edge* e = longs[chosen_[k]];
+    const Candidate& c = candidates_[chosen_[k]];
+    const double* m = c.m;
+    const double* mm = c.mm;
+    const bool iso = c.iso;
     // The edge's tet when it is still there (earlier points of the batch may have replaced it),
     // else the inserter walks from its last new tet: the previous point, near along the curve.
     const uint32_t hint = holds_edge(*e) ? e->tet : TetMesh::kNone;
@@ -502,13 +507,7 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       ++stats_.split_rejected;
       continue;
     }
-    // The metric at the new vertex is the one measured at m above (the same point).
-    if (metrics_.size() < 6 * mesh_.num_vertices()) {
-      metrics_.resize(6 * mesh_.num_vertices());
-      size_.resize(mesh_.num_vertices());
-    }
-    std::copy(mm, mm + 6, &metrics_[6 * size_t(nv)]);
-    size_[nv] = metric_size(mm);
+    set_metric(nv, mm);  // measured at m above, the new vertex's point
     touched_.resize(mesh_.num_vertices(), 0);
     for (uint32_t t : *created) {
       vt_.note(mesh_, t);
