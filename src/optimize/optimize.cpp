@@ -10,6 +10,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
+#include "core/buckets.hpp"
 #include "optimize/flips.hpp"
 #include "predicates/predicates.hpp"
 #include "refine/mesh_ops.hpp"
@@ -201,17 +202,16 @@ size_t Optimizer::cvt_pass() {
   tet_q_.assign(n_slots, 0.0);
   // Every vertex's ball, in tet order (moves keep the topology, so one scan of the tets serves
   // the whole sweep instead of a traversal per vertex).
-  ball_start_.assign(size_t(nv) + 1, 0);
-  for (uint32_t t = 0; t < n_slots; ++t)
-    if (!mesh_.is_deleted(t))
-      for (int i = 0; i < 4; ++i) ++ball_start_[size_t(mesh_.vertex(t, i)) + 1];
-  for (size_t v = 0; v < nv; ++v) ball_start_[v + 1] += ball_start_[v];
-  ball_tets_.resize(ball_start_[nv]);
   {
-    std::vector<uint32_t> fill(ball_start_.begin(), ball_start_.end() - 1);
-    for (uint32_t t = 0; t < n_slots; ++t)
-      if (!mesh_.is_deleted(t))
-        for (int i = 0; i < 4; ++i) ball_tets_[fill[mesh_.vertex(t, i)]++] = t;
+    std::vector<uint32_t> fill;
+    bucket_by_key(
+        nv,
+        [&](auto&& emit) {
+          for (uint32_t t = 0; t < n_slots; ++t)
+            if (!mesh_.is_deleted(t))
+              for (int i = 0; i < 4; ++i) emit(mesh_.vertex(t, i), t);
+        },
+        ball_start_, ball_tets_, fill);
   }
   auto measure = [&](uint32_t begin, uint32_t end) {
     for (uint32_t t = begin; t < end; ++t)

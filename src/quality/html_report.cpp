@@ -13,6 +13,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/buckets.hpp"
 #include "quality/parallel_for.hpp"
 #include "quality/report_detail.hpp"
 
@@ -488,23 +489,23 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
   std::vector<double> lengths;
   std::vector<uint8_t> edge_bnd;
   {
-    std::vector<size_t> start(nv + 1, 0);
-    static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-    for (size_t t = 0; t < nt; ++t) {
-      const uint32_t* v = &mesh.tet[4 * t];
-      for (const auto& e : kEdge) ++start[std::min(v[e[0]], v[e[1]]) + 1];
-    }
-    for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-    std::vector<uint32_t> other(6 * nt);
+    std::vector<size_t> start;
+    std::vector<uint32_t> other;  // the larger end, bucketed by the smaller
     {
-      std::vector<size_t> fill(start.begin(), start.end() - 1);
-      for (size_t t = 0; t < nt; ++t) {
-        const uint32_t* v = &mesh.tet[4 * t];
-        for (const auto& e : kEdge) {
-          const uint32_t a = v[e[0]], b = v[e[1]];
-          other[fill[std::min(a, b)]++] = std::max(a, b);
-        }
-      }
+      std::vector<size_t> fill;
+      bucket_by_key(
+          nv,
+          [&](auto&& emit) {
+            static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+            for (size_t t = 0; t < nt; ++t) {
+              const uint32_t* v = &mesh.tet[4 * t];
+              for (const auto& e : kEdge) {
+                const uint32_t a = v[e[0]], b = v[e[1]];
+                emit(std::min(a, b), std::max(a, b));
+              }
+            }
+          },
+          start, other, fill);
     }
       std::vector<size_t> unique_count(nv, 0);
     quality_detail::for_chunks(nv, parallel, [&](size_t begin, size_t end) {

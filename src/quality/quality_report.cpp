@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/buckets.hpp"
 #include "predicates/predicates.hpp"
 #include "quality/parallel_for.hpp"
 #include "quality/report_detail.hpp"
@@ -152,25 +153,22 @@ void classify_faces(const VolumeMesh& mesh, bool parallel, std::vector<uint32_t>
     if (f[1] > f[2]) std::swap(f[1], f[2]);
     if (f[0] > f[1]) std::swap(f[0], f[1]);
   };
-  std::vector<size_t> start(nv + 1, 0);
-  for (size_t t = 0; t < nt; ++t) {
-    for (int i = 0; i < 4; ++i) {
-      uint32_t f[3];
-      face_of(t, i, f);
-      ++start[f[0] + 1];
-    }
-  }
-  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<uint64_t> rest(4 * nt);  // (middle << 32) | largest, bucketed by the smallest
+  std::vector<size_t> start;
+  std::vector<uint64_t> rest;  // (middle << 32) | largest, bucketed by the smallest
   {
-    std::vector<size_t> fill(start.begin(), start.end() - 1);
-    for (size_t t = 0; t < nt; ++t) {
-      for (int i = 0; i < 4; ++i) {
-        uint32_t f[3];
-        face_of(t, i, f);
-        rest[fill[f[0]]++] = (uint64_t(f[1]) << 32) | f[2];
-      }
-    }
+    std::vector<size_t> fill;
+    bucket_by_key(
+        nv,
+        [&](auto&& emit) {
+          for (size_t t = 0; t < nt; ++t) {
+            for (int i = 0; i < 4; ++i) {
+              uint32_t f[3];
+              face_of(t, i, f);
+              emit(f[0], (uint64_t(f[1]) << 32) | f[2]);
+            }
+          }
+        },
+        start, rest, fill);
   }
   for_chunks(nv, parallel, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) std::sort(rest.begin() + start[v], rest.begin() + start[v + 1]);

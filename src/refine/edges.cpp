@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/buckets.hpp"
 #include "core/sizing.hpp"
 
 namespace anitet::refine_detail {
@@ -12,8 +13,6 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
   // Bucketed by the lower end (a counting sort), then deduplicated per bucket: linear in the
   // tets, where one global sort of every tet's six edges dominated refinement.
   const size_t nv = mesh.num_vertices();
-  std::vector<uint32_t>& start = scratch.start;
-  start.assign(nv + 1, 0);
   auto for_each_edge = [&mesh](auto&& f) {
     for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
       if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
@@ -31,16 +30,17 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
       }
     }
   };
-  for_each_edge([&](uint32_t a, uint32_t, uint32_t, bool) { ++start[a + 1]; });
-  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
   // 8 bytes per tet edge (the buckets hold six per tet: their memory traffic is most of the cost).
-  std::vector<EdgeScratch::Entry>& all = scratch.all;
-  all.resize(start[nv]);
-  std::vector<uint32_t>& fill = scratch.fill;
-  fill.assign(start.begin(), start.end() - 1);
-  for_each_edge([&](uint32_t a, uint32_t b, uint32_t t, bool s) {
-    all[fill[a]++] = {b, t | (s ? EdgeScratch::Entry::kSurface : 0u)};
-  });
+  bucket_by_key(
+      nv,
+      [&](auto&& emit) {
+        for_each_edge([&](uint32_t a, uint32_t b, uint32_t t, bool s) {
+          emit(a, EdgeScratch::Entry{b, t | (s ? EdgeScratch::Entry::kSurface : 0u)});
+        });
+      },
+      scratch.start, scratch.all, scratch.fill);
+  const std::vector<uint32_t>& start = scratch.start;
+  const std::vector<EdgeScratch::Entry>& all = scratch.all;
   // Duplicates within a bucket found with a per-vertex mark (no sort): seen[b] holds 1 + the
   // index in `edges` of the copy kept for (a, b) while bucket a is scanned.
   edges.clear();
