@@ -6,6 +6,8 @@
 #include <cmath>
 #include <string>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "delaunay/delaunay.hpp"
 #include "predicates/predicates.hpp"
@@ -102,8 +104,8 @@ std::string Recoverer::describe_face(uint32_t f) const {
 }
 
 Status Recoverer::build_delaunay() {
-  if (Status s = delaunay_of_surface_points(mesh_, S_); !s.ok()) return s;
-  vert_tet_.assign(n_in_, kNone);
+  if (Status s = delaunay_of_surface_points(mesh_, S_, opt_.remove_outside); !s.ok()) return s;
+  vert_tet_.assign(mesh_.num_vertices(), kNone);
   for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
     if (mesh_.is_deleted(t)) continue;
     for (int k = 0; k < 4; ++k) {
@@ -111,8 +113,8 @@ Status Recoverer::build_delaunay() {
       if (v != kGhost) vert_tet_[v] = t;
     }
   }
-  vhost_kind_.assign(n_in_, -1);
-  vhost_.assign(n_in_, kNone);
+  vhost_kind_.assign(mesh_.num_vertices(), -1);  // the box corners too (kBoxCorners)
+  vhost_.assign(mesh_.num_vertices(), kNone);
   return Status::success();
 }
 
@@ -831,18 +833,24 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
     for (const RecoveryOptions& o : {flips, defend})
       if (o.use_flips != options.use_flips || o.defend_edges != options.defend_edges) attempts.push_back(o);
   }
+  // A strategy's success, without the box corners its Delaunay mesh had.
+  auto finished = [&](RecoveryOutput& out) -> Result<RecoveryOutput> {
+    if (options.remove_outside)
+      if (Status s = recovery_detail::drop_box_corners(out, S.num_vertices()); !s.ok()) return s;
+    return std::move(out);
+  };
   Status first;
   if (options.split_constraints) {
     RecoveryOutput out = fresh_output(S, 3);
     Status s = recovery_detail::recover_by_splitting(S, options, out);
-    if (s.ok()) return out;
+    if (s.ok()) return finished(out);
     if (s.code() == Error::RecoveryFailed && options.retry_strategies && options.split_flips &&
         options.split_crossing_flips < kRetryCrossingFlips) {
       RecoveryOptions more = options;
       more.split_crossing_flips = kRetryCrossingFlips;
       RecoveryOutput again = fresh_output(S, 4);
       const Status s2 = recovery_detail::recover_by_splitting(S, more, again);
-      if (s2.ok()) return again;
+      if (s2.ok()) return finished(again);
     }
     if (s.code() != Error::RecoveryFailed || !options.fuzzy_faces) return s;
     first = s;
@@ -857,7 +865,7 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
       Recoverer r(S, attempts[k], out);
       s = r.run();
     }
-    if (s.ok()) return out;
+    if (s.ok()) return finished(out);
     if (s.code() != Error::RecoveryFailed) return s;
     if (first.ok()) first = s;
   }

@@ -1,18 +1,61 @@
 #include "recovery/recovery_util.hpp"
 
+#include <algorithm>
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "delaunay/delaunay.hpp"
 
 namespace anitet::recovery_detail {
 
-Status delaunay_of_surface_points(TetMesh& mesh, const SurfaceMesh& S) {
-  Result<DelaunayStats> d = delaunay_tetrahedralize(mesh, S.xyz.data(), S.num_vertices());
+Status delaunay_of_surface_points(TetMesh& mesh, const SurfaceMesh& S, bool box) {
+  const size_t n = S.num_vertices();
+  std::vector<double> xyz(S.xyz.begin(), S.xyz.begin() + std::ptrdiff_t(3 * n));
+  if (box && n > 0) {
+    // Half the largest extent beyond S's bounding box on every side: far from S's points, near
+    // enough that the corners' coordinates keep S's scale.
+    double lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) lo[d] = hi[d] = xyz[size_t(d)];
+    for (size_t i = 0; i < n; ++i)
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], xyz[3 * i + size_t(d)]);
+        hi[d] = std::max(hi[d], xyz[3 * i + size_t(d)]);
+      }
+    double margin = 0;
+    for (int d = 0; d < 3; ++d) margin = std::max(margin, 0.5 * (hi[d] - lo[d]));
+    for (uint32_t c = 0; c < kBoxCorners; ++c)
+      for (int d = 0; d < 3; ++d) xyz.push_back((c >> d) & 1u ? hi[d] + margin : lo[d] - margin);
+  }
+  Result<DelaunayStats> d = delaunay_tetrahedralize(mesh, xyz.data(), xyz.size() / 3);
   if (!d.ok()) return d.status();
   if (!d->duplicates.empty())
     return Status(Error::DuplicatePoint, "recover_boundary: input vertex " + std::to_string(d->duplicates[0].point) +
                                              " has the coordinates of vertex " +
                                              std::to_string(d->duplicates[0].same_as));
+  return Status::success();
+}
+
+Status drop_box_corners(RecoveryOutput& out, size_t n_in) {
+  TetMesh& mesh = out.mesh;
+  const size_t first = n_in, last = n_in + kBoxCorners;  // [first, last) go
+  if (mesh.num_vertices() < last) return Status(Error::InvalidMesh, "drop_box_corners: the mesh has no box corners");
+  auto renumber = [&](uint32_t& v) {
+    if (v >= last && v != TetMesh::kGhost && v != TetMesh::kNone) v -= kBoxCorners;
+  };
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    if (mesh.is_deleted(t)) continue;
+    for (int k = 0; k < 4; ++k) {
+      uint32_t& v = mesh.tet_v[4 * size_t(t) + k];
+      if (v >= first && v < last)
+        return Status(Error::InvalidMesh, "drop_box_corners: a tet kept after carving has a box corner");
+      renumber(v);
+    }
+  }
+  mesh.xyz.erase(mesh.xyz.begin() + std::ptrdiff_t(3 * first), mesh.xyz.begin() + std::ptrdiff_t(3 * last));
+  mesh.vflags.erase(mesh.vflags.begin() + std::ptrdiff_t(first), mesh.vflags.begin() + std::ptrdiff_t(last));
+  for (SteinerPoint& s : out.steiner) renumber(s.vertex);
+  for (uint32_t& v : out.s2_tri) renumber(v);
   return Status::success();
 }
 

@@ -12,6 +12,7 @@
 #include "core/surface_mesh.hpp"
 #include "core/tet_mesh.hpp"
 #include "predicates/predicates.hpp"
+#include "recovery/recovery.hpp"
 
 namespace anitet::recovery_detail {
 
@@ -69,9 +70,18 @@ inline bool line_crosses_triangle(const double* P, const double* Q, const double
   return true;
 }
 
-// The Delaunay tetrahedralization of S's points into mesh; Error::DuplicatePoint names two
-// input vertices with the same coordinates.
-Status delaunay_of_surface_points(TetMesh& mesh, const SurfaceMesh& S);
+// The Delaunay tetrahedralization of S's points into mesh (vertex i is S's vertex i), and with
+// `box` of the 8 corners of a box around them as well (vertices n..n+7, kBoxCorners): then no
+// point of S is on the convex hull. Points of S on a hull face (a flat face of a CAD part, its
+// Steiner points on it) sit on ghost tets, which no flip and no forced cavity may touch: there
+// the pieces of a missing edge were split down to 1e-18 (adis16480). Error::DuplicatePoint
+// names two input vertices with the same coordinates.
+constexpr uint32_t kBoxCorners = 8;
+Status delaunay_of_surface_points(TetMesh& mesh, const SurfaceMesh& S, bool box);
+
+// After the carving, which leaves them in no tet: removes the box corners (vertices n_in ..
+// n_in + kBoxCorners - 1) from out's mesh and shifts the later vertex ids (Steiner points, S2).
+Status drop_box_corners(RecoveryOutput& out, size_t n_in);
 
 // Carving's last step: tets of component comp[t] get region region[comp[t]] when it is >= 0 and
 // are deleted otherwise (their kept neighbours' facets then have no neighbour).

@@ -123,11 +123,11 @@ std::string SplitRecoverer::describe_tri(uint32_t k) const {
 }
 
 Status SplitRecoverer::build_delaunay() {
-  if (Status s = delaunay_of_surface_points(mesh_, S_); !s.ok()) return s;
+  if (Status s = delaunay_of_surface_points(mesh_, S_, opt_.remove_outside); !s.ok()) return s;
   vt_.build(mesh_);
-  vhost_kind_.assign(n_in_, -1);
-  vhost_.assign(n_in_, kNone);
-  vparam_.assign(n_in_, 0.0);
+  vhost_kind_.assign(mesh_.num_vertices(), -1);
+  vhost_.assign(mesh_.num_vertices(), kNone);
+  vparam_.assign(mesh_.num_vertices(), 0.0);
   return Status::success();
 }
 
