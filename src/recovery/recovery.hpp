@@ -65,6 +65,10 @@ struct RecoveryOptions {
   // through tets that are not Delaunay, where the empty-sphere rule stops the walk within a step
   // or two on needle fans.
   bool split_forced_walk = true;
+  // A missing edge that runs through (or within rounding of) an edge of the first facet it meets
+  // is split where it passes that edge, the edge's ring forced into the cavity, before the walk's
+  // points are tried (the walk's points creep towards such a crossing without reaching it).
+  bool split_edge_crossings = true;
   // An input-edge subsegment is marked constrained (the kernel keeps it) as soon as a sweep finds
   // it present, and so are the pieces of a split: later points no longer destroy what earlier
   // ones recovered. On adis16480's stage 1 front the count of missing edges then falls to 0 in 20
@@ -110,6 +114,7 @@ struct RecoveryStats {
   size_t caps_split = 0;          // split constraints: caps split at their apex's projection
   size_t flips = 0;               // constraints recovered by a flip instead of a point
   size_t walk_splits = 0;         // split constraints: edges split at a walk's point (split_walk)
+  size_t edge_crossing_splits = 0;  // of which: where the segment passes a mesh edge (its ring forced)
   size_t blocked_insertions = 0;  // insertions the kernel refused (another point was tried)
   size_t tets = 0;                // tets of the result
   size_t regions = 0;

@@ -75,6 +75,7 @@ class SplitRecoverer {
   void defend_split(uint64_t key, uint32_t v);
   void recover_face_edges(size_t cap);
   size_t walk_points(uint32_t a, uint32_t b);
+  uint32_t crossed_edge_point(uint32_t u, uint32_t w, double& frac);
   void split_caps();
   bool flip_in(uint32_t a, uint32_t b);
   bool flip_in_tri(uint32_t k);
@@ -114,6 +115,7 @@ class SplitRecoverer {
   std::vector<uint8_t> ct_flipped_;  // per constraint triangle: how often its crossing edges were removed
   std::vector<double> walk_frac_;    // walk_points()
   std::vector<uint32_t> walk_chain_;
+  EdgeRing crossed_ring_;            // crossed_edge_point()
 };
 
 std::string SplitRecoverer::describe_tri(uint32_t k) const {
@@ -371,6 +373,61 @@ bool SplitRecoverer::flip_along(uint32_t a, uint32_t b) {
   return has_edge(a, b);
 }
 
+// When segment u->w, from u, first meets the facet opposite u of the tet it enters at (or within
+// rounding of) an edge pq of that facet, and pq is not a constraint edge: the fraction of |uw| where
+// it passes nearest to line pq (in (0.01, 0.99)) and pq's ring (crossed_ring_); returns the tet
+// entered, kNone otherwise.
+uint32_t SplitRecoverer::crossed_edge_point(uint32_t u, uint32_t w, double& frac) {
+  const double* U = mesh_.point(u);
+  const double* W = mesh_.point(w);
+  const uint32_t t = entered_tet(u, W);
+  if (t == kNone) return kNone;
+  int iu = 0;
+  while (mesh_.vertex(t, iu) != u) ++iu;
+  uint32_t f[3];
+  for (int k = 0; k < 3; ++k) f[k] = mesh_.vertex(t, kFacetVertex[iu][k]);
+  // Where line uw meets the facet's plane, as barycentric weights (floating point: the exact
+  // zeros of orient3d(u, w, f_k, f_k+1) say "through the edge" on flat faces).
+  double vol[3], total = 0;
+  int zero = -1;
+  for (int k = 0; k < 3; ++k) {
+    const double* P = mesh_.point(f[k]);
+    const double* Q = mesh_.point(f[(k + 1) % 3]);
+    if (predicates::orient3d(U, W, P, Q) == 0) zero = k;
+    double up[3], uq[3], uw[3], c[3];
+    sub(P, U, up);
+    sub(Q, U, uq);
+    sub(W, U, uw);
+    cross(up, uq, c);
+    vol[k] = dot(c, uw);
+    total += vol[k];
+  }
+  constexpr double kNearEdge = 1e-9;
+  int k = zero;
+  if (k < 0 && total != 0)
+    for (int j = 0; j < 3; ++j)
+      if (std::fabs(vol[j] / total) < kNearEdge && (k < 0 || std::fabs(vol[j]) < std::fabs(vol[k]))) k = j;
+  if (k < 0) return kNone;
+  const uint32_t p = f[k], q = f[(k + 1) % 3];
+  if (edges_.count(edge_key(p, q))) return kNone;
+  // Nearest points of lines u + s (w - u) and p + r (q - p).
+  const double* P = mesh_.point(p);
+  const double* Q = mesh_.point(q);
+  double d1[3], d2[3], r0[3];
+  sub(W, U, d1);
+  sub(Q, P, d2);
+  sub(U, P, r0);
+  const double a11 = dot(d1, d1), a12 = dot(d1, d2), a22 = dot(d2, d2);
+  const double b1 = dot(d1, r0), b2 = dot(d2, r0);
+  const double den = a11 * a22 - a12 * a12;
+  if (!(den > 0)) return kNone;
+  const double sfrac = (a12 * b2 - a22 * b1) / den;
+  if (!(sfrac > 0.01 && sfrac < 0.99)) return kNone;
+  if (!edge_ring(mesh_, t, p, q, crossed_ring_, 64)) return kNone;
+  frac = sfrac;
+  return t;
+}
+
 // Points of segment a->b whose insertion would join it to a. The walk goes along the segment
 // through the tets it crosses, t_1 (in a's ball), t_2, ...; the middle of the segment's piece in
 // t_k, when it lies inside the circumspheres of t_1..t_k, has them all in its cavity, and the new
@@ -541,7 +598,24 @@ uint32_t SplitRecoverer::split_edge(uint64_t key, double at) {
   const uint32_t host = ce.input_edge != kNone ? ce.input_edge
                                                : (ce.tri[0] != kNone ? ct_face_[ce.tri[0]] : ct_face_[ce.tri[1]]);
   const SteinerHost kind = ce.input_edge != kNone ? SteinerHost::kEdge : SteinerHost::kFace;
-  // First the walk's points, farthest first, each kept only when it is joined to a (or to b,
+  // A segment that runs through an edge pq of the first facet it meets (exactly, on flat faces,
+  // or within rounding) is split where it passes pq, with pq's ring of tets forced into the
+  // cavity: the point is then joined to the segment's end and to everything around pq. A walk's
+  // point short of pq is joined to the end too, but the rest of the segment crosses pq again,
+  // and the splits creep towards pq without reaching it (down to pieces of 1e-18 on adis16480).
+  if (at < 0 && opt_.split_walk && opt_.split_edge_crossings)
+    for (int from = 0; from < 2 && v == kNone; ++from) {
+      const uint32_t u = from == 0 ? a : b, w = from == 0 ? b : a;
+      double frac = 0;
+      const uint32_t t = crossed_edge_point(u, w, frac);
+      if (t == kNone) continue;
+      double p[3], param;
+      point_at(from == 0 ? frac : 1.0 - frac, p, param);
+      if (!pieces_see_apex(p)) continue;
+      v = insert(p, kind, host, param, t, crossed_ring_.tets.data(), crossed_ring_.tets.size(), true);
+      if (v != kNone) ++out_.stats.edge_crossing_splits;
+    }
+  // Then the walk's points, farthest first, each kept only when it is joined to a (or to b,
   // walking from b).
   if (at < 0 && opt_.split_walk)
     for (int from = 0; from < 2 && v == kNone; ++from) {
