@@ -810,7 +810,7 @@ const char* recovery_strategy_name(size_t strategy) {
     case 1: return "fuzzy faces with flips";
     case 2: return "fuzzy faces with defended edges";
     case 3: return "split constraints";
-    case 4: return "split constraints, crossing edges removed 3 times";
+    case 4: return "split constraints, crossing edges removed 3 times, edge-crossing splits switched";
     default: return "unknown";
   }
 }
@@ -848,6 +848,9 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
         options.split_crossing_flips < kRetryCrossingFlips) {
       RecoveryOptions more = options;
       more.split_crossing_flips = kRetryCrossingFlips;
+      // and the other way round for edge crossings: adis16480's 2-layer front needs them off,
+      // where turbine and tray_bottom standalone need them on.
+      more.split_edge_crossings = !options.split_edge_crossings;
       RecoveryOutput again = fresh_output(S, 4);
       const Status s2 = recovery_detail::recover_by_splitting(S, more, again);
       if (s2.ok()) return finished(again);

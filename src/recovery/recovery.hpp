@@ -40,7 +40,8 @@ struct RecoveryOptions {
   // The retry below uses them.
   bool use_flips = false;
   // When the recovery fails with the options above, start again with use_flips, then again with
-  // defend_edges (each from scratch); the split strategy, again with split_crossing_flips = 3.
+  // defend_edges (each from scratch); the split strategy, again with split_crossing_flips = 3 and
+  // split_edge_crossings switched.
   // RecoveryStats::strategy tells which one succeeded.
   bool retry_strategies = true;
   // First recover by splitting the constraint triangles themselves (split_recovery.hpp): every
@@ -65,7 +66,7 @@ struct RecoveryOptions {
   // through tets that are not Delaunay, where the empty-sphere rule stops the walk within a step
   // or two on needle fans.
   bool split_forced_walk = true;
-  // A missing edge that runs through (or within rounding of) an edge of the first facet it meets
+  // A missing edge that runs through (or near) an edge of the first facet it meets
   // is split where it passes that edge, the edge's ring forced into the cavity, before the walk's
   // points are tried (the walk's points creep towards such a crossing without reaching it).
   bool split_edge_crossings = true;
@@ -108,7 +109,7 @@ struct RecoveryStats {
   size_t steiner_on_edges = 0, steiner_on_faces = 0;
   size_t passes = 0;
   // 3: split constraints (the first try by default), 4: split constraints retried with more
-  // crossing-edge removals; 0: fuzzy faces with the options as given, 1: retried with flips, 2:
+  // crossing-edge removals and split_edge_crossings switched; 0: fuzzy faces with the options as given, 1: retried with flips, 2:
   // with defended edges
   size_t strategy = 0;
   size_t caps_split = 0;          // split constraints: caps split at their apex's projection
