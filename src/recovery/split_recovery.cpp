@@ -86,6 +86,7 @@ class SplitRecoverer {
   bool split_triangle(uint32_t k);
   Status carve();
   std::string describe_tri(uint32_t k) const;
+  std::string shown_id(uint32_t v) const;
 
   const SurfaceMesh& S_;
   const RecoveryOptions& opt_;
@@ -117,6 +118,12 @@ class SplitRecoverer {
   std::vector<uint32_t> walk_chain_;
   EdgeRing crossed_ring_;            // crossed_edge_point()
 };
+
+// A vertex id as the result would number it (without the box corners).
+std::string SplitRecoverer::shown_id(uint32_t v) const {
+  const bool box = opt_.remove_outside && v >= n_in_;
+  return std::to_string(box && v >= n_in_ + kBoxCorners ? v - kBoxCorners : v);
+}
 
 std::string SplitRecoverer::describe_tri(uint32_t k) const {
   const uint32_t f = ct_face_[k];
@@ -1062,7 +1069,7 @@ Status SplitRecoverer::run() {
       if (has_edge(a, b)) continue;
       const uint32_t k = it->second.tri[0] != kNone ? it->second.tri[0] : it->second.tri[1];
       return Status(Error::RecoveryFailed,
-                    "recover_boundary: an edge (" + std::to_string(a) + " " + std::to_string(b) +
+                    "recover_boundary: an edge (" + shown_id(a) + " " + shown_id(b) +
                         ") of " + describe_tri(k) + " not recovered after " + std::to_string(pass) +
                         " passes, " + std::to_string(out_.steiner.size()) + " Steiner points and " +
                         std::to_string(seconds_since(t1)) + " s" + why);
