@@ -377,20 +377,40 @@ bool Optimizer::try_certify(uint32_t v, const double p[3], size_t flat) {
 // that the sliver pass could not open: each free vertex is tried at steps from twice the tet's
 // shortest edge down, away from its opposite facet and in pseudo-random directions, until the
 // tet is certified; rounds repeat while they open some (a neighbour's move can free a stuck
-// one). Returns how many such tets are left.
+// one). Then flips on the ones left, and the moves again. Returns how many such tets are left.
 size_t Optimizer::certify_pass() {
-  std::vector<uint32_t> flat;
-  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
-    if (!mesh_.is_deleted(t) && !certified(t)) flat.push_back(t);
+  auto uncertified = [&] {
+    std::vector<uint32_t> flat;
+    for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
+      if (!mesh_.is_deleted(t) && !certified(t)) flat.push_back(t);
+    return flat;
+  };
+  auto move_rounds = [&](std::vector<uint32_t>& flat) {
+    constexpr int kRounds = 4;
+    for (int round = 0; round < kRounds && !flat.empty(); ++round) {
+      const size_t before = flat.size();
+      certify_round(flat);
+      flat.erase(std::remove_if(flat.begin(), flat.end(), [&](uint32_t t) { return mesh_.is_deleted(t) || certified(t); }),
+                 flat.end());
+      if (flat.size() == before) break;
+    }
+  };
+  std::vector<uint32_t> flat = uncertified();
   stats_.flat_found = flat.size();
-  constexpr int kRounds = 4;
-  for (int round = 0; round < kRounds && !flat.empty(); ++round) {
-    const size_t before = flat.size();
-    certify_round(flat);
-    flat.erase(std::remove_if(flat.begin(), flat.end(), [&](uint32_t t) { return mesh_.is_deleted(t) || certified(t); }),
-               flat.end());
-    if (flat.size() == before) break;
+  move_rounds(flat);
+  if (flat.empty()) return 0;
+  // The ones no move opens (every move of their vertices inverts a neighbour): a flip that raises
+  // the worst quality of the tets it replaces at all (the sweeps ask for a gain of 1e-6, which a
+  // tet among nearly flat ones may not reach), then the moves again on what is still flat.
+  const double gain = flips_.gain;
+  flips_.gain = 0.0;
+  for (uint32_t t : flat) {
+    for (int k = 0; k < 6 && !mesh_.is_deleted(t); ++k) optimize_detail::try_remove_edge(flips_, t, k);
+    for (int i = 0; i < 4 && !mesh_.is_deleted(t); ++i) optimize_detail::try_flip23(flips_, t, i);
   }
+  flips_.gain = gain;
+  flat = uncertified();
+  move_rounds(flat);
   return flat.size();
 }
 

@@ -24,7 +24,8 @@
 //     could find it zero or inverted: predicates::orient3d_certified) has its free vertices moved
 //     (steps from twice its shortest edge down) until it is certified: a move is accepted when
 //     fewer tets of the ball are uncertified and its worst quality does not drop (no per-tet
-//     floor there). Last, so that nothing after it flattens a tet again.
+//     floor there); then the ones left get any flip that raises the worst quality of the tets it
+//     replaces, and the moves again. Last, so that nothing after it flattens a tet again.
 // Deterministic: same mesh and options, same result.
 #pragma once
 
