@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 
 #include "core/sizing.hpp"
@@ -110,8 +111,51 @@ Result<MesherResult> Mesher::run(const SurfaceMesh& surface) const {
   return run_validated(repaired);
 }
 
+namespace {
+
+// The coordinate range the pipeline is measured to mesh: stage 1's floating-point tests overflow
+// on a cube of half-side 1e100 and underflow on one of 1e-100 (both mesh at 1e30 and 1e-30).
+// Outside it the Mesher says so instead of failing in stage 1 with a message about a vertex.
+constexpr double kMaxCoordinate = 1e30;
+constexpr double kMinExtent = 1e-30;
+
+Status check_coordinate_range(const SurfaceMesh& s) {
+  if (s.num_vertices() == 0) return Status::success();
+  double largest = 0, extent = 0;
+  for (int d = 0; d < 3; ++d) {
+    double lo = s.xyz[size_t(d)], hi = lo;
+    for (size_t i = 0; i < s.num_vertices(); ++i) {
+      lo = std::min(lo, s.xyz[3 * i + size_t(d)]);
+      hi = std::max(hi, s.xyz[3 * i + size_t(d)]);
+    }
+    largest = std::max({largest, std::fabs(lo), std::fabs(hi)});
+    extent = std::max(extent, hi - lo);
+  }
+  char msg[320];
+  if (largest > kMaxCoordinate) {
+    std::snprintf(msg, sizeof msg,
+                  "meshing a surface with coordinates beyond %g in magnitude is not implemented (this one "
+                  "reaches %g; stage 1's floating-point tests would overflow): scale it by a power of two, "
+                  "which is exact, and the mesh back",
+                  kMaxCoordinate, largest);
+    return Status(Error::NotImplemented, msg);
+  }
+  if (extent < kMinExtent) {
+    std::snprintf(msg, sizeof msg,
+                  "meshing a surface whose bounding box is smaller than %g across is not implemented (this "
+                  "one is %g; stage 1's floating-point tests would underflow): scale it by a power of two, "
+                  "which is exact, and the mesh back",
+                  kMinExtent, extent);
+    return Status(Error::NotImplemented, msg);
+  }
+  return Status::success();
+}
+
+}  // namespace
+
 Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   const auto start = Clock::now();
+  if (Status st = check_coordinate_range(surface); !st.ok()) return st;
   auto progress = [&](const char* stage, double fraction) -> Status {
     if (options_.progress && !options_.progress(stage, fraction))
       return Status(Error::Cancelled, std::string("cancelled at stage '") + stage + "'");

@@ -539,7 +539,7 @@ TEST(HostileCoordinates, HugeCoordinatesValidate) {
 
 TEST(HostileCoordinates, HugeCoordinatesMesherNeverLies) {
   // The Mesher either meshes the box (finite points) or says why it cannot; today it says why
-  // (see the DISABLED_ test below).
+  // (see LargeCoordinatesAreRefusedByRange below).
   SurfaceMesh m = cube(-1e300, 1e300);
   Result<MesherResult> r = Mesher(fast_options()).run(m);
   if (!r.ok()) {
@@ -550,12 +550,22 @@ TEST(HostileCoordinates, HugeCoordinatesMesherNeverLies) {
   for (double c : r->mesh.xyz) EXPECT_TRUE(std::isfinite(c));
 }
 
-// DEFECT (stage 1, src/layers; not fixable in io/validate): a cube of half-side 1e100 (also
-// 1e150, 1e200, 1e300) passes validation but stage 1 fails with "layer 1: vertex 0 ...: no part
-// of its front star is visible" (floating-point overflow in the visibility test); 1e30 meshes.
-// Expected: the mesh, or an error that names the coordinate range as the cause.
-TEST(HostileCoordinates, DISABLED_LargeCoordinatesMesh) {
-  Result<MesherResult> r = Mesher(fast_options()).run(cube(-1e100, 1e100));
+// A cube of half-side 1e100 (also 1e150, 1e200, 1e300) passes validation, but stage 1's
+// floating-point visibility test overflows there: the Mesher refuses it as not implemented,
+// naming the coordinate range, before stage 1 (which failed with "layer 1: vertex 0 ...: no part
+// of its front star is visible").
+TEST(HostileCoordinates, LargeCoordinatesAreRefusedByRange) {
+  for (double h : {1e100, 1e300}) {
+    Result<MesherResult> r = Mesher(fast_options()).run(cube(-h, h));
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.status().code(), Error::NotImplemented);
+    EXPECT_NE(r.status().message().find("beyond 1e+30 in magnitude"), std::string::npos) << r.status().message();
+  }
+}
+
+// The largest the range allows: a cube of half-side 1e30 meshes.
+TEST(HostileCoordinates, LargeCoordinatesMeshUpToTheRange) {
+  Result<MesherResult> r = Mesher(fast_options()).run(cube(-1e30, 1e30));
   ASSERT_TRUE(r.ok()) << r.status().message();
   EXPECT_GT(r->mesh.num_tets(), 0u);
 }
@@ -568,13 +578,14 @@ TEST(HostileCoordinates, SmallCoordinatesMesh) {
   EXPECT_GT(r->mesh.num_tets(), 0u);
 }
 
-// DEFECT (stage 1, src/layers): a cube of half-side 1e-100 passes validation (exact predicates)
-// but stage 1 refuses it with "triangle 0 is degenerate" (a floating-point area test that
-// underflows): the two stages disagree about the same triangle.
-TEST(HostileCoordinates, DISABLED_TinyCoordinatesMesh) {
+// A cube of half-side 1e-100 passes validation (exact predicates), but stage 1's floating-point
+// area test underflows there ("triangle 0 is degenerate" before): the Mesher refuses it as not
+// implemented, naming the size.
+TEST(HostileCoordinates, TinyCoordinatesAreRefusedByRange) {
   Result<MesherResult> r = Mesher(fast_options()).run(cube(-1e-100, 1e-100));
-  ASSERT_TRUE(r.ok()) << r.status().message();
-  EXPECT_GT(r->mesh.num_tets(), 0u);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), Error::NotImplemented);
+  EXPECT_NE(r.status().message().find("smaller than 1e-30 across"), std::string::npos) << r.status().message();
 }
 
 TEST(HostileCoordinates, TinyCoordinatesValidate) {
