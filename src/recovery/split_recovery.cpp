@@ -381,9 +381,9 @@ bool SplitRecoverer::flip_along(uint32_t a, uint32_t b) {
 }
 
 // When segment u->w, from u, first meets the facet opposite u of the tet it enters at (or near:
-// a barycentric weight below kNearEdge) an edge pq of that facet, and pq is not a constraint edge: the fraction of |uw| where
-// it passes nearest to line pq (in (0.01, 0.99)) and pq's ring (crossed_ring_); returns the tet
-// entered, kNone otherwise.
+// a barycentric weight below kNearEdge) an edge pq of that facet, and pq is not a constraint
+// edge: sets frac, the fraction of |uw| where it passes nearest to line pq (in (0.01, 0.99)), and
+// crossed_ring_, pq's ring; returns the tet entered, kNone otherwise.
 uint32_t SplitRecoverer::crossed_edge_point(uint32_t u, uint32_t w, double& frac) {
   const double* U = mesh_.point(u);
   const double* W = mesh_.point(w);
@@ -409,10 +409,10 @@ uint32_t SplitRecoverer::crossed_edge_point(uint32_t u, uint32_t w, double& frac
     vol[k] = dot(c, uw);
     total += vol[k];
   }
-  // "Within rounding": on nearly flat fans the rest of the segment is nearly in the facet's plane,
-  // and a crossing this near an edge is where the walk's points would creep to (adis16480, also
-  // translated by 1e6, whose needle fans are flat only to rounding). The kernel still refuses
-  // the point when pq's ring is not star-shaped from it.
+  // Near an edge: on nearly flat fans the segment runs nearly in the facet's plane, and a
+  // crossing this near an edge is where the walk's points would creep to (adis16480, also
+  // translated by 1e6, whose needle fans are flat only to rounding; 1e-9 left it stalling). The
+  // kernel still refuses the point when pq's ring is not star-shaped from it.
   constexpr double kNearEdge = 1e-3;
   int k = zero;
   if (k < 0 && total != 0)
