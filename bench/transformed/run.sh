@@ -6,7 +6,7 @@
 # kept to 1e-9. One line per run, then a summary.
 # Needs python3-numpy and python3-meshio. Not run by CI (about half an hour on 2 cores).
 set -u
-anitet=$(realpath "${1:?usage: run.sh ANITET [rotate scale1e-4 scale1e4 translate1e6]}"); shift
+anitet=$(realpath "${1:?usage: run.sh ANITET [rotate scale1e-4 scale1e4 translate1e6 (default), also scale1e-6 scale1e6]}"); shift
 variants=${*:-rotate scale1e-4 scale1e4 translate1e6}
 here=$(cd "$(dirname "$0")" && pwd)
 shared=$here/../../../shared
