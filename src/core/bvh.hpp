@@ -3,6 +3,7 @@
 // Built once over a fixed set of triangles; queries are const and thread-safe.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -13,6 +14,17 @@ struct Box3 {
   double lo[3];
   double hi[3];
 };
+
+// The box of n >= 1 points (xyz: 3 doubles per point).
+inline Box3 bounding_box(const double* xyz, size_t n) {
+  Box3 b = {{xyz[0], xyz[1], xyz[2]}, {xyz[0], xyz[1], xyz[2]}};
+  for (size_t i = 1; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      b.lo[d] = std::min(b.lo[d], xyz[3 * i + size_t(d)]);
+      b.hi[d] = std::max(b.hi[d], xyz[3 * i + size_t(d)]);
+    }
+  return b;
+}
 
 // The cube of half-side r around p.
 inline Box3 box_around(const double* p, double r) {

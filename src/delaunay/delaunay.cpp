@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/bvh.hpp"
 #include "delaunay/cavity_kernel.hpp"
 #include "delaunay/spatial_sort.hpp"
 #include "delaunay/tet_storage.hpp"
@@ -101,14 +102,8 @@ Result<DelaunayStats> delaunay_tetrahedralize(TetMesh& mesh, const double* xyz, 
   std::vector<double> coords(3 * n);
   for (size_t r = 0; r < n; ++r) std::copy_n(xyz + 3 * size_t(order[r]), 3, &coords[3 * r]);
 
-  double lo[3], hi[3];
-  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = xyz[d];
-  for (size_t i = 1; i < n; ++i)
-    for (int d = 0; d < 3; ++d) {
-      lo[d] = std::min(lo[d], xyz[3 * i + d]);
-      hi[d] = std::max(hi[d], xyz[3 * i + d]);
-    }
-  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const Box3 box = bounding_box(xyz, n);
+  const double extent = std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
 
   DelaunayStats stats;
   stats.num_points = n;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "core/bvh.hpp"
 #include "core/sizing.hpp"
 
 namespace anitet {
@@ -121,15 +122,11 @@ constexpr double kMinExtent = 1e-30;
 
 Status check_coordinate_range(const SurfaceMesh& s) {
   if (s.num_vertices() == 0) return Status::success();
+  const Box3 b = bounding_box(s.xyz.data(), s.num_vertices());
   double largest = 0, extent = 0;
   for (int d = 0; d < 3; ++d) {
-    double lo = s.xyz[size_t(d)], hi = lo;
-    for (size_t i = 0; i < s.num_vertices(); ++i) {
-      lo = std::min(lo, s.xyz[3 * i + size_t(d)]);
-      hi = std::max(hi, s.xyz[3 * i + size_t(d)]);
-    }
-    largest = std::max({largest, std::fabs(lo), std::fabs(hi)});
-    extent = std::max(extent, hi - lo);
+    largest = std::max({largest, std::fabs(b.lo[d]), std::fabs(b.hi[d])});
+    extent = std::max(extent, b.hi[d] - b.lo[d]);
   }
   char msg[320];
   if (largest > kMaxCoordinate) {

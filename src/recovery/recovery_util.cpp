@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/bvh.hpp"
 #include "delaunay/delaunay.hpp"
 
 namespace anitet::recovery_detail {
@@ -15,17 +16,11 @@ Status delaunay_of_surface_points(TetMesh& mesh, const SurfaceMesh& S, bool box)
   if (box && n > 0) {
     // Half the largest extent beyond S's bounding box on every side: far from S's points, near
     // enough that the corners' coordinates keep S's scale.
-    double lo[3], hi[3];
-    for (int d = 0; d < 3; ++d) lo[d] = hi[d] = xyz[size_t(d)];
-    for (size_t i = 0; i < n; ++i)
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], xyz[3 * i + size_t(d)]);
-        hi[d] = std::max(hi[d], xyz[3 * i + size_t(d)]);
-      }
+    const Box3 b = bounding_box(S.xyz.data(), n);
     double margin = 0;
-    for (int d = 0; d < 3; ++d) margin = std::max(margin, 0.5 * (hi[d] - lo[d]));
+    for (int d = 0; d < 3; ++d) margin = std::max(margin, 0.5 * (b.hi[d] - b.lo[d]));
     for (uint32_t c = 0; c < kBoxCorners; ++c)
-      for (int d = 0; d < 3; ++d) xyz.push_back((c >> d) & 1u ? hi[d] + margin : lo[d] - margin);
+      for (int d = 0; d < 3; ++d) xyz.push_back((c >> d) & 1u ? b.hi[d] + margin : b.lo[d] - margin);
   }
   Result<DelaunayStats> d = delaunay_tetrahedralize(mesh, xyz.data(), xyz.size() / 3);
   if (!d.ok()) return d.status();
