@@ -128,23 +128,20 @@ Status check_coordinate_range(const SurfaceMesh& s) {
     largest = std::max({largest, std::fabs(b.lo[d]), std::fabs(b.hi[d])});
     extent = std::max(extent, b.hi[d] - b.lo[d]);
   }
-  char msg[320];
-  if (largest > kMaxCoordinate) {
+  // "meshing a surface <what> %g <unit> is not implemented (this one <is> %g; ... <flow>)".
+  auto refuse = [](const char* what, double limit, const char* unit, const char* is, double value,
+                   const char* flow) {
+    char msg[320];
     std::snprintf(msg, sizeof msg,
-                  "meshing a surface with coordinates beyond %g in magnitude is not implemented (this one "
-                  "reaches %g; stage 1's floating-point tests would overflow): scale it by a power of two, "
-                  "which is exact, and the mesh back",
-                  kMaxCoordinate, largest);
+                  "meshing a surface %s %g %s is not implemented (this one %s %g; stage 1's floating-point "
+                  "tests would %s): scale it by a power of two, which is exact, and the mesh back",
+                  what, limit, unit, is, value, flow);
     return Status(Error::NotImplemented, msg);
-  }
-  if (extent < kMinExtent) {
-    std::snprintf(msg, sizeof msg,
-                  "meshing a surface whose bounding box is smaller than %g across is not implemented (this "
-                  "one is %g; stage 1's floating-point tests would underflow): scale it by a power of two, "
-                  "which is exact, and the mesh back",
-                  kMinExtent, extent);
-    return Status(Error::NotImplemented, msg);
-  }
+  };
+  if (largest > kMaxCoordinate)
+    return refuse("with coordinates beyond", kMaxCoordinate, "in magnitude", "reaches", largest, "overflow");
+  if (extent < kMinExtent)
+    return refuse("whose bounding box is smaller than", kMinExtent, "across", "is", extent, "underflow");
   return Status::success();
 }
 
