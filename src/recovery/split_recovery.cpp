@@ -81,6 +81,7 @@ class SplitRecoverer {
   bool flip_in_tri(uint32_t k);
   bool flip_along(uint32_t a, uint32_t b);
   uint32_t entered_tet(uint32_t a, const double* B);
+  uint32_t entered_facet(uint32_t a, const double* B, int& ia, uint32_t f[3]);
   bool sees_apex(const double* a, const double* b, const double* c, uint32_t face) const;
   bool flip_edge(uint64_t key, bool only_to_mesh);
   bool split_triangle(uint32_t k);
@@ -334,6 +335,17 @@ uint32_t SplitRecoverer::entered_tet(uint32_t a, const double* B) {
   return kNone;
 }
 
+// entered_tet(a, B), with a's index in it (ia) and the vertices of its facet opposite a (f, in
+// kFacetVertex order).
+uint32_t SplitRecoverer::entered_facet(uint32_t a, const double* B, int& ia, uint32_t f[3]) {
+  const uint32_t t = entered_tet(a, B);
+  if (t == kNone) return kNone;
+  ia = 0;
+  while (mesh_.vertex(t, ia) != a) ++ia;
+  for (int k = 0; k < 3; ++k) f[k] = mesh_.vertex(t, kFacetVertex[ia][k]);
+  return t;
+}
+
 // Makes the missing edge (a b) by flips along it, no Steiner point (thin plates: a long edge
 // crosses a few tets spanning the plate, where splits would go down to the plate's thickness).
 // The tet a->b enters first has a facet opposite a that the segment crosses: a 2-3 flip there
@@ -347,12 +359,10 @@ bool SplitRecoverer::flip_along(uint32_t a, uint32_t b) {
   const double* B = mesh_.point(b);
   for (int flips = 0; flips < kMaxFlips; ++flips) {
     if (has_edge(a, b)) return true;
-    const uint32_t t = entered_tet(a, B);
-    if (t == kNone) return false;
-    int ia = 0;
-    while (mesh_.vertex(t, ia) != a) ++ia;
+    int ia;
     uint32_t f[3];
-    for (int k = 0; k < 3; ++k) f[k] = mesh_.vertex(t, kFacetVertex[ia][k]);
+    const uint32_t t = entered_facet(a, B, ia, f);
+    if (t == kNone) return false;
     // Where the line ab meets facet f: the sign of orient3d(a, b, f_k, f_k+1) per edge (all
     // alike: the interior; a zero: through that edge).
     int side[3];
@@ -387,12 +397,10 @@ bool SplitRecoverer::flip_along(uint32_t a, uint32_t b) {
 uint32_t SplitRecoverer::crossed_edge_point(uint32_t u, uint32_t w, double& frac) {
   const double* U = mesh_.point(u);
   const double* W = mesh_.point(w);
-  const uint32_t t = entered_tet(u, W);
-  if (t == kNone) return kNone;
-  int iu = 0;
-  while (mesh_.vertex(t, iu) != u) ++iu;
+  int iu;
   uint32_t f[3];
-  for (int k = 0; k < 3; ++k) f[k] = mesh_.vertex(t, kFacetVertex[iu][k]);
+  const uint32_t t = entered_facet(u, W, iu, f);
+  if (t == kNone) return kNone;
   // Where line uw meets the facet's plane, as barycentric weights (floating point: the exact
   // zeros of orient3d(u, w, f_k, f_k+1) say "through the edge" on flat faces).
   double vol[3], total = 0;
