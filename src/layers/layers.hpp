@@ -110,6 +110,11 @@ struct BoundaryLayerOptions {
   int gradation_rings = 3;            // up to this many edges away from a reduced vertex
   double gap_share = 0.4;             // the BL may fill this share of the free distance across
   int32_t region = 1;                 // tet_region of BL tets
+  // A vertex that is not an input vertex whose planned BL height is below this fraction of
+  // h0 r^i (fronts colliding: thin gaps, trailing edges) stops for that layer (reported) instead
+  // of moving that little: such pushes left S1 vertices 1e-14 apart in folded BL fronts, which
+  // stage 2 cannot recover (airplane, 15 layers).
+  double min_height_ratio = 0.05;
 
   bool enabled() const { return !wall_patches.empty(); }
 };

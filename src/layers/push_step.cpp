@@ -141,6 +141,15 @@ Status LayerBuilder::push_step(const std::vector<uint32_t>& vertices, int layer)
   out_.stats.deferred_pushes += deferred.size();
   order.insert(order.end(), deferred.begin(), deferred.end());
   for (uint32_t v : order) {
+    // A BL height cut to a sliver of h0 r^i (fronts colliding) stops the vertex for this layer
+    // (BoundaryLayerOptions::min_height_ratio), like a vertex no push can take off.
+    if (bl_index_ >= 0 && v >= s_.num_vertices() && plan_[v].valid &&
+        plan_[v].height < opt_.boundary_layer.min_height_ratio * bl_nominal()) {
+      plan_[v].waiting = false;
+      ++out_.stats.stopped_vertices;
+      mark_bl_reduced(v);
+      continue;
+    }
     Status st = push_vertex(v, layer);
     if (st.ok()) continue;
     // An input vertex must leave the front (S hidden). A later front vertex whose star no push

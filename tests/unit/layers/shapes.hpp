@@ -144,4 +144,24 @@ inline SurfaceMesh icosphere(int levels, double radius = 1.0) {
   return s;
 }
 
+// Patch labels of body_in_box().
+constexpr int32_t kBodyWall = 1, kBoxFarfield = 2;
+
+// The body as a hole (its triangles reversed: normals into the body, out of the fluid) labelled
+// kBodyWall, inside the box [c - half, c + half] (`cells` grid cells per edge) labelled
+// kBoxFarfield: a boundary-layer case.
+inline SurfaceMesh body_in_box(const SurfaceMesh& body, const double center[3], double half, int cells) {
+  SurfaceMesh s;
+  const double lo[3] = {center[0] - half, center[1] - half, center[2] - half};
+  const double hi[3] = {center[0] + half, center[1] + half, center[2] + half};
+  const int n[3] = {cells, cells, cells};
+  add_grid_box(s, lo, hi, n);
+  s.patch.assign(s.num_triangles(), kBoxFarfield);
+  const auto offset = static_cast<uint32_t>(s.num_vertices());
+  s.xyz.insert(s.xyz.end(), body.xyz.begin(), body.xyz.end());
+  for (size_t t = 0; t < body.num_triangles(); ++t)
+    s.add_triangle(offset + body.tri[3 * t], offset + body.tri[3 * t + 2], offset + body.tri[3 * t + 1], kBodyWall);
+  return s;
+}
+
 }  // namespace anitet::test
