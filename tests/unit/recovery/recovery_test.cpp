@@ -426,9 +426,14 @@ TEST(RecoveryFuzzy, DecimatedKnight) { recover_file("decimated-knight.off", fuzz
 TEST(RecoveryFuzzy, Fandisk) { recover_file("fandisk.off", fuzzy_only()); }
 
 // Known failure (issue 4): standalone (unlike its stage 1 front, which Stage2.AdisFrontIsRecovered
-// recovers), the split strategy's edge phase stalls with 4 missing pieces, all in the fan of 15
-// needle triangles around vertex 1489 (apex angles 0.012-0.04 degrees, in a 45-degree plane flat
-// only to rounding), split to 1e-11; the fuzzy faces fail too.
+// recovers), the split strategy's edge phase stalls with missing pieces of 1e-18, all in the fan
+// of 15 needle triangles around vertex 1489 (apex angles 0.012-0.04 degrees, in the plane
+// y - z = 0.026935767, flat only to rounding); the fuzzy faces fail too. Traced: nearly every
+// such piece lies under a mesh edge joining two points of the same input edge past the pieces'
+// ends (a "spanning" edge, left by insertions whose tets with it would be flat); the rings of
+// these edges hold tets flat to 1e-13, so neither an edge removal nor a forced insertion undoes
+// them. Refusing tets flatter than 1e-10 in the kernel and the flips clears this fan but stalls
+// the quads of a thin pin (needles of 0.2 degrees, rounding-coplanar pairs) instead.
 TEST(RecoveryShared, DISABLED_Adis16480) { recover_file("adis16480.stl"); }
 
 }  // namespace
