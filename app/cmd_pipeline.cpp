@@ -137,6 +137,11 @@ int run_mesh_pipeline(MeshArgs& args) {
     bl.growth = args.bl_growth;
     bl.layers = args.bl_layers;
   }
+  if (args.bl_sizing && (args.bl_patches.empty() || !(args.bl_growth > 1.0))) {
+    std::cerr << cmd << ": --bl-sizing needs --bl-patches and --bl-growth above 1\n";
+    return kExitUsage;
+  }
+  options.boundary_layer_sizing = args.bl_sizing;
   options.refine.size_scale = args.size;
   options.run_refine = !args.no_refine;
   options.run_optimize = !args.no_optimize;

@@ -175,6 +175,13 @@ int run(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1, 1000))
       ->group(bl_group);
+  mesh_cmd->add_flag("--bl-sizing", mesh.bl_sizing,
+                     "Refine the interior to continue the boundary layer's heights: the sizing field is "
+                     "intersected with a metric of normal size h0 + (r - 1) d at distance d from the walls, "
+                     "so the tets on the BL's top are about as thin as its last layer instead of jumping to "
+                     "the surface's sizes. Anisotropic near the walls: refinement is slower. Needs "
+                     "--bl-patches and --bl-growth above 1")
+      ->group(bl_group);
   mesh_cmd->add_option("--size", mesh.size,
                        "Scale every target edge length of the sizing field (--metric's, or the paper's "
                        "grid from the surface's triangle sizes), after --hmin/--hmax/--hgrad: 0.5 = "

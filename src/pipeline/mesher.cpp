@@ -8,6 +8,7 @@
 
 #include "core/bvh.hpp"
 #include "core/sizing.hpp"
+#include "metric/boundary_layer.hpp"
 
 namespace anitet {
 
@@ -160,6 +161,9 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   if (options_.layers.boundary_layer.enabled() && options_.layers.boundary_layer.region == 0)
     return Status(Error::InvalidArgument,
                   "boundary layer: region must be nonzero (coupling tells the BL tets by it)");
+  if (options_.boundary_layer_sizing &&
+      !(options_.layers.boundary_layer.enabled() && options_.layers.boundary_layer.growth > 1.0))
+    return Status(Error::InvalidArgument, "boundary-layer sizing needs a boundary layer (wall patches) with growth above 1");
   if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
   // Stages 1 and 2. When stage 2 cannot recover S1, stage 1 is run again with another number of
   // layers (fewer first, down to 1, then one more): S1 changes shape and its recovery may then
@@ -290,6 +294,20 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
       if (!built.ok()) return Status(built.status().code(), "sizing field: " + built.status().message());
       grid.emplace(std::move(built).value());
       field = &*grid;
+    }
+    // boundary_layer_sizing: the interior's sizes continue the layers' heights (normal size
+    // h0 + (r - 1) d at distance d from the walls, intersected with the field above), so the tets
+    // on the BL's top are about as thin as its last layer and grow from there.
+    std::optional<metric::BoundaryLayerField> bl_field;
+    if (bl.enabled() && options_.boundary_layer_sizing) {
+      metric::BoundaryLayerOptions bo;
+      bo.first_height = bl.first_height;
+      bo.growth = bl.growth;
+      bo.wall_patches = bl.wall_patches;
+      Result<metric::BoundaryLayerField> built = metric::BoundaryLayerField::create(surface, *field, bo);
+      if (!built.ok()) return Status(built.status().code(), "boundary-layer sizing: " + built.status().message());
+      bl_field.emplace(std::move(built).value());
+      field = &*bl_field;
     }
     result.stages.push_back({"sizing", since(t), 0});
     const ScaledSizing scaled(*field, options_.refine.size_scale > 0.0 ? options_.refine.size_scale : 1.0);
