@@ -3,6 +3,7 @@
 // material (a cavity's box faces into the cavity).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -162,6 +163,21 @@ inline SurfaceMesh body_in_box(const SurfaceMesh& body, const double center[3], 
   for (size_t t = 0; t < body.num_triangles(); ++t)
     s.add_triangle(offset + body.tri[3 * t], offset + body.tri[3 * t + 2], offset + body.tri[3 * t + 1], kBodyWall);
   return s;
+}
+
+// body_in_box() with a box 10x the body's size (its bounding box's largest extent, set in `size`)
+// around the bounding box's centre, 3 cells per edge: issue 5's farfield case.
+inline SurfaceMesh in_farfield_box(const SurfaceMesh& body, double& size) {
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = body.xyz[size_t(k)];
+  for (size_t v = 0; v < body.num_vertices(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], body.point(v)[k]);
+      hi[k] = std::max(hi[k], body.point(v)[k]);
+    }
+  size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const double center[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+  return body_in_box(body, center, 5.0 * size, 3);
 }
 
 }  // namespace anitet::test

@@ -250,16 +250,8 @@ TEST(Pipeline, AirplaneInAFarfieldBoxWith15BoundaryLayers) {
   Result<SurfaceMesh> read = read_surface(std::string(ANITET_SURFACES_DIR) + "/airplane.obj");
   ASSERT_TRUE(read.ok()) << read.status().message();
   const SurfaceMesh body = std::move(read).value();
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = body.xyz[k];
-  for (size_t v = 0; v < body.num_vertices(); ++v)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], body.point(v)[k]);
-      hi[k] = std::max(hi[k], body.point(v)[k]);
-    }
-  const double size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  const double center[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
-  const SurfaceMesh s = test::body_in_box(body, center, 5.0 * size, 3);
+  double size = 0.0;
+  const SurfaceMesh s = test::in_farfield_box(body, size);
   MesherOptions options;
   BoundaryLayerOptions& bl = options.layers.boundary_layer;
   bl.wall_patches = {test::kBodyWall};
