@@ -253,6 +253,10 @@ TEST(Pipeline, AirplaneInAFarfieldBoxWith15BoundaryLayers) {
   double size = 0.0;
   const SurfaceMesh s = test::in_farfield_box(body, size);
   MesherOptions options;
+  // Stages 1, 2 and the coupling are what this case tests (the BL is frozen afterwards); the CLI
+  // run with refinement and optimization is in the README.
+  options.run_refine = false;
+  options.run_optimize = false;
   BoundaryLayerOptions& bl = options.layers.boundary_layer;
   bl.wall_patches = {test::kBodyWall};
   bl.first_height = 1e-3 * size;
