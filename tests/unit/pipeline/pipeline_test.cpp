@@ -242,10 +242,11 @@ TEST(Stage2, AdisFrontIsRecovered) {
   EXPECT_FALSE(recover_boundary(f.s1, old).ok()) << "recovered without them: they are no longer what this tests";
 }
 
-// Issue 5's CFD case through the whole pipeline: airplane.obj inside a farfield box 10x its size,
-// walls on the airplane, h0 = 1e-3 x its size, r = 1.2, 15 BL layers. Stage 2 recovers S1 (it
-// could not while pushes cut to 1e-12 of h0 left S1 vertices 1e-14 apart), the mesh is valid and
-// boundary constrained, and the heights are h0 r^i within 10% on the columns not reduced.
+// Issue 5's CFD case through the Mesher (stages 1, 2 and the coupling): airplane.obj inside a
+// farfield box 10x its size, walls on the airplane, h0 = 1e-3 x its size, r = 1.2, 15 BL layers.
+// Stage 2 recovers S1 (it could not while pushes cut to 1e-12 of h0 left S1 vertices 1e-14
+// apart), the mesh is valid and boundary constrained, and the heights are h0 r^i within 10% on
+// the columns not reduced.
 TEST(Pipeline, AirplaneInAFarfieldBoxWith15BoundaryLayers) {
   Result<SurfaceMesh> read = read_surface(std::string(ANITET_SURFACES_DIR) + "/airplane.obj");
   ASSERT_TRUE(read.ok()) << read.status().message();
