@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/bvh.hpp"
 #include "core/surface_mesh.hpp"
 
 namespace anitet::test {
@@ -168,15 +169,9 @@ inline SurfaceMesh body_in_box(const SurfaceMesh& body, const double center[3], 
 // body_in_box() with a box 10x the body's size (its bounding box's largest extent, set in `size`)
 // around the bounding box's centre, 3 cells per edge: issue 5's farfield case.
 inline SurfaceMesh in_farfield_box(const SurfaceMesh& body, double& size) {
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = body.xyz[size_t(k)];
-  for (size_t v = 0; v < body.num_vertices(); ++v)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], body.point(v)[k]);
-      hi[k] = std::max(hi[k], body.point(v)[k]);
-    }
-  size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  const double center[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+  const Box3 b = bounding_box(body.xyz.data(), body.num_vertices());
+  size = std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
+  const double center[3] = {0.5 * (b.lo[0] + b.hi[0]), 0.5 * (b.lo[1] + b.hi[1]), 0.5 * (b.lo[2] + b.hi[2])};
   return body_in_box(body, center, 5.0 * size, 3);
 }
 
