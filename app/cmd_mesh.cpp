@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "io/volume_io.hpp"
+#include "optimize/optimize.hpp"
 #include "recovery/recovery.hpp"
 #include "surface_check.hpp"
 
@@ -26,7 +27,10 @@ int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
     std::cerr << "anitet recover: '" << args.input << "': " << r.status().message() << "\n";
     return kExitInternal;
   }
-  const RecoveryOutput& out = r.value();
+  RecoveryOutput& out = r.value();
+  // Tets flat to rounding are valid for the exact predicates, but a solver or checker computing
+  // volumes in doubles may find them inverted: flips remove them (no vertex of S can move).
+  const FlatTetFlips flat = flip_flat_tets(out.mesh);
   VolumeMesh vm = out.mesh.to_volume_mesh(/*drop_unused_vertices=*/false);
   vm.bnd_tri = out.s2_tri;
   vm.bnd_patch = out.s2_patch;
@@ -40,6 +44,8 @@ int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
               << st.steiner_on_edges << " on edges, " << st.steiner_on_faces << " on faces; "
               << st.walk_splits << " placed by a walk, " << st.edge_crossing_splits << " of them where it crosses a mesh edge), " << st.flips << " flips, " << st.passes << " passes, strategy: " << recovery_strategy_name(st.strategy)
               << "\n"
+              << "  tets flat to rounding: " << flat.found << " found, " << flat.flips << " flips, " << flat.left
+              << " left\n"
               << "  time: " << st.seconds_total << " s (delaunay " << st.seconds_delaunay
               << " s, recovery " << st.seconds_recovery << " s, carving " << st.seconds_carve << " s)\n";
   }

@@ -209,8 +209,8 @@ bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const st
 }
 
 bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
-                  VertexTets& vt, ReplaceScratch& scratch) {
-  if (!replace_tets(mesh, old_tets, fresh, scratch, ConstrainedEdges::kRefuse)) return false;
+                  VertexTets& vt, ReplaceScratch& scratch, ConstrainedEdges rule) {
+  if (!replace_tets(mesh, old_tets, fresh, scratch, rule)) return false;
   for (uint32_t t : scratch.created) vt.note(mesh, t);
   return true;
 }

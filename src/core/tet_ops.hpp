@@ -75,7 +75,7 @@ bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const st
                   ReplaceScratch& scratch, ConstrainedEdges rule = ConstrainedEdges::kRefuse);
 // The same, also pointing the new tets' vertices at them in vt.
 bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
-                  VertexTets& vt, ReplaceScratch& scratch);
+                  VertexTets& vt, ReplaceScratch& scratch, ConstrainedEdges rule = ConstrainedEdges::kRefuse);
 
 // Exact check that every tet of `tets` is positive.
 bool all_positive(const TetMesh& mesh, const std::vector<uint32_t>& tets);

@@ -31,7 +31,7 @@ bool try_flip23(FlipContext& c, uint32_t t, int i) {
     c.fresh.push_back(v);
   }
   c.old = {t, n};
-  if (!meshops::replace_tets(m, c.old, c.fresh, c.vt, c.scratch)) return false;
+  if (!meshops::replace_tets(m, c.old, c.fresh, c.vt, c.scratch, c.rule)) return false;
   ++c.flips23;
   return true;
 }
@@ -95,7 +95,7 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
     ++top;
   }
   c.old = c.ring_tets;
-  if (!meshops::replace_tets(m, c.old, c.fresh, c.vt, c.scratch)) return false;
+  if (!meshops::replace_tets(m, c.old, c.fresh, c.vt, c.scratch, c.rule)) return false;
   ++c.edge_removals;
   return true;
 }

@@ -20,6 +20,9 @@ struct FlipContext {
   std::vector<uint32_t> old;
   std::vector<meshops::TetVerts> fresh;
   double gain = 1e-6;
+  // kRefuse in the optimizer (S's edges never move); kKeep on a recovered surface, whose
+  // constrained edges are subsegments of S that no flip here can remove anyway.
+  meshops::ConstrainedEdges rule = meshops::ConstrainedEdges::kRefuse;
   size_t flips23 = 0, edge_removals = 0;
 };
 

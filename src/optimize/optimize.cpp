@@ -495,6 +495,41 @@ QualitySummary summarize_quality(const TetMesh& mesh) {
   return s;
 }
 
+FlatTetFlips flip_flat_tets(TetMesh& mesh) {
+  auto certified = [&](uint32_t t) {
+    return predicates::orient3d_certified(mesh.point(mesh.vertex(t, 0)), mesh.point(mesh.vertex(t, 1)),
+                                          mesh.point(mesh.vertex(t, 2)), mesh.point(mesh.vertex(t, 3))) > 0;
+  };
+  auto flat_tets = [&] {
+    std::vector<uint32_t> flat;
+    for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
+      if (!mesh.is_deleted(t) && !mesh.is_ghost(t) && !certified(t)) flat.push_back(t);
+    return flat;
+  };
+  FlatTetFlips out;
+  std::vector<uint32_t> flat = flat_tets();
+  out.found = out.left = flat.size();
+  if (flat.empty()) return out;
+  meshops::VertexTets vt;
+  vt.build(mesh);
+  optimize_detail::FlipContext c{mesh, vt, {}, {}, {}, {}, {}};
+  c.gain = 0.0;  // any gain: the worst tet is flat, the flip that makes it less so is wanted
+  c.rule = meshops::ConstrainedEdges::kKeep;
+  constexpr int kRounds = 4;
+  for (int round = 0; round < kRounds; ++round) {
+    for (uint32_t t : flat) {
+      for (int k = 0; k < 6 && !mesh.is_deleted(t); ++k) optimize_detail::try_remove_edge(c, t, k);
+      for (int i = 0; i < 4 && !mesh.is_deleted(t); ++i) optimize_detail::try_flip23(c, t, i);
+    }
+    flat = flat_tets();
+    const bool dropped = flat.size() < out.left;
+    out.left = flat.size();
+    if (!dropped || flat.empty()) break;
+  }
+  out.flips = c.flips23 + c.edge_removals;
+  return out;
+}
+
 Result<OptimizeStats> optimize_mesh(TetMesh& mesh, const SizingField& field, const OptimizeOptions& options) {
   if (options.cvt_iterations < 0 || options.sliver_rounds < 0 || options.perturb_trials < 0)
     return Status(Error::InvalidArgument, "optimize: iteration counts must be >= 0");

@@ -72,6 +72,19 @@ struct OptimizeStats {
 // Radius ratio statistics of the live non-ghost tets.
 QualitySummary summarize_quality(const TetMesh& mesh);
 
+struct FlatTetFlips {
+  size_t found = 0;  // tets flat to rounding (predicates::orient3d_certified not positive) before
+  size_t flips = 0;  // flips applied
+  size_t left = 0;   // flat tets after
+};
+
+// Flips only, for a mesh whose vertices may not move (every vertex on S, as in a conforming
+// recovery): each tet flat to rounding gets the first edge removal (its six edges in turn, the
+// best triangulation of the ring) or else 2-3 flip that raises the worst quality of the tets it
+// replaces, in rounds while the count of flat tets drops.
+// Protected facets and constrained edges are kept; no ghosts allowed (a ghost tet is skipped).
+FlatTetFlips flip_flat_tets(TetMesh& mesh);
+
 // Optimizes `mesh` (no ghosts, adjacency built, S = protected facets, vflag::kOnInputSurface and
 // kLocked vertices fixed). Regions and protected facets are kept.
 Result<OptimizeStats> optimize_mesh(TetMesh& mesh, const SizingField& field, const OptimizeOptions& options = {});
