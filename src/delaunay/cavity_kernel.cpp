@@ -170,6 +170,102 @@ Location CavityKernel::locate(uint32_t t, const double* p) {
   }
 }
 
+Location CavityKernel::locate_owned(uint32_t t, const double* p) {
+  const Location foreign{Located::kForeign, t, TetMesh::kNone};
+  auto enterable = [&](uint32_t n) {
+    const uint8_t o = owner(n);
+    return o == me_ || o == kNoPart;
+  };
+  if (!enterable(t)) return foreign;
+  const size_t limit = 8 * store_->num_slots() + 1024;
+  int entry = -1;
+  if (is_ghost(t)) {
+    const uint32_t* v = store_->verts(t);
+    if (orient3d(pt(v[0]), pt(v[1]), pt(v[2]), p) > 0) return {Located::kInGhost, t, TetMesh::kNone};
+    const uint64_t adj = store_->adj(t, 3);
+    t = static_cast<uint32_t>(adj >> 2);
+    if (!enterable(t)) return foreign;
+    entry = static_cast<int>(adj & 3);
+  }
+  for (size_t steps = 0; steps <= limit; ++steps) {
+    ++counters.walk_steps;
+    const uint32_t* v = store_->verts(t);
+    const double* P[4] = {pt(v[0]), pt(v[1]), pt(v[2]), pt(v[3])};
+    const int first = static_cast<int>(next_random() >> 30);
+    int exit = -1;
+    for (int k = 0; k < 4; ++k) {
+      const int i = (first + k) & 3;
+      if (i == entry) continue;
+      const int* f = kFacetVertex[i];
+      if (orient3d(P[f[0]], P[f[1]], P[f[2]], p) < 0) {
+        exit = i;
+        break;
+      }
+    }
+    if (exit < 0) {
+      for (int k = 0; k < 4; ++k)
+        if (equals_vertex(v[k], p)) return {Located::kDuplicate, t, v[k]};
+      return {Located::kInTet, t, TetMesh::kNone};
+    }
+    const uint64_t adj = store_->adj(t, exit);
+    const auto n = static_cast<uint32_t>(adj >> 2);
+    if (!enterable(n)) return foreign;
+    if (is_ghost(n)) return {Located::kInGhost, n, TetMesh::kNone};
+    t = n;
+    entry = static_cast<int>(adj & 3);
+  }
+  return foreign;
+}
+
+bool CavityKernel::insert_delaunay_owned(uint32_t t0, uint32_t pid) {
+  if (owner(t0) != me_) return false;
+  const double* p = pt(pid);
+  cavity_.clear();
+  boundary_.clear();
+  store_->set_mark(t0, kMarkIn);
+  cavity_.push_back(t0);
+  auto give_up = [&] {
+    for (uint32_t c : cavity_) store_->clear_mark(c);
+    for (const BoundaryFacet& b : boundary_) store_->clear_mark(static_cast<uint32_t>(b.outside >> 2));
+    return false;
+  };
+  for (size_t k = 0; k < cavity_.size(); ++k) {
+    const uint32_t c = cavity_[k];
+    uint64_t cadj[4];
+    for (int i = 0; i < 4; ++i) {
+      cadj[i] = store_->adj(c, i);
+      store_->prefetch_tet(static_cast<uint32_t>(cadj[i] >> 2));
+      __builtin_prefetch(tet_part_ + (cadj[i] >> 2));
+    }
+    for (int i = 0; i < 4; ++i) {
+      const uint64_t adj = cadj[i];
+      const auto n = static_cast<uint32_t>(adj >> 2);
+      // Its part first: the marks of another part's tet are not ours to read.
+      if (owner(n) != me_) return give_up();
+      const uint32_t mark = store_->mark(n);
+      if (mark == kMarkIn) continue;
+      if (mark == 0) {
+        // A hull tet's test may read the real tet behind it.
+        if (is_ghost(n) && owner(static_cast<uint32_t>(store_->adj(n, 3) >> 2)) != me_) return give_up();
+        if (in_conflict<true>(n, p, pid)) {
+          store_->set_mark(n, kMarkIn);
+          store_->prefetch_adj(n);
+          cavity_.push_back(n);
+          continue;
+        }
+        store_->set_mark(n, kMarkOut);
+        store_->prefetch_adj(n);
+      }
+      add_boundary<false>(c, i, adj);
+    }
+  }
+  const size_t nb = boundary_.size(), nc = cavity_.size();
+  if (!store_->can_take(nb > nc ? nb - nc : 0)) return give_up();
+  fill_cavity(pid, false);
+  for (uint32_t t : new_tets_) tet_part_[t] = me_;
+  return true;
+}
+
 // The last resort when a walk does not end (possible in non-Delaunay meshes): test every tet.
 Location CavityKernel::locate_by_scan(const double* p) {
   const size_t nt = store_->num_slots();

@@ -55,6 +55,7 @@ enum class Located {
   kInGhost,    // a ghost tet whose hull facet the point lies strictly beyond
   kDuplicate,  // the point equals a vertex
   kOutside,    // the walk left the mesh through a facet without neighbour
+  kForeign,    // locate_owned(): the walk met a tet of another part (or went on too long)
 };
 
 struct Location {
@@ -96,6 +97,25 @@ class CavityKernel {
   // force_keep: the `keep` tets start in the cavity whatever the empty-sphere test says.
   bool insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected, const uint32_t* keep = nullptr,
                           size_t keep_count = 0, bool force_keep = false);
+
+  // Parallel bulk build (delaunay.cpp): tet t belongs to part tet_part[t] (kNoPart: none), the
+  // part of all its real vertices; the tets a task creates are its part's. While tasks run, each
+  // on its own part with its own kernel and slot pool, a task writes only tets of its part and
+  // reads only those and kNoPart tets, which no task writes: a tet of another part is read (its
+  // part) only where it touches a tet the task stands on, and such a tet no other task can
+  // change. So the tasks need no locks, and what each does does not depend on the others' timing.
+  static constexpr uint8_t kNoPart = 0xff;
+  void set_part(uint8_t* tet_part, uint8_t me) {
+    tet_part_ = tet_part;
+    me_ = me;
+  }
+  uint8_t owner(uint32_t t) const { return tet_part_[t]; }
+  // locate() that walks only through tets of this part and kNoPart ones: kForeign when the walk
+  // would enter another part's tet, or runs long (no scan of the mesh here).
+  Location locate_owned(uint32_t start, const double* p);
+  // insert_delaunay() when t0, the cavity and every tet around it are of this part, and the slot
+  // pool has room; else false, the mesh unchanged (the caller inserts the point later).
+  bool insert_delaunay_owned(uint32_t t0, uint32_t pid);
 
   // The tets created by the last insertion.
   const std::vector<uint32_t>& new_tets() const { return new_tets_; }
@@ -164,6 +184,8 @@ class CavityKernel {
   void take_slots(size_t count);
 
   TetStorage* store_ = nullptr;
+  uint8_t* tet_part_ = nullptr;
+  uint8_t me_ = kNoPart;
   const double* coords_ = nullptr;
   const uint32_t* sos_ids_ = nullptr;
   uint32_t rng_;

@@ -28,6 +28,13 @@ struct DelaunayOptions {
   uint64_t seed = 0x5eed;  // randomization of the insertion order and of the walk
   double brio_ratio = 0.25;  // each BRIO round holds this share of the points of the next one
   size_t brio_min_round = 1024;  // the first round holds at most this many points
+  // Parallel build: a round of at least parallel_min_round points is cut into `partitions` slabs
+  // along the longest axis, each filled by its own task (on as many threads as the TBB arena has),
+  // then the points a task left (their cavity reached another slab) in slabs along the next axis,
+  // then the rest one by one. The mesh depends on `partitions`, never on the thread count.
+  // partitions = 1: one point at a time throughout.
+  int partitions = 2;
+  size_t parallel_min_round = 32768;
 };
 
 // An input point that was not inserted because an earlier point has the same coordinates.
@@ -51,6 +58,7 @@ struct DelaunayStats {
   uint64_t cavity_tets = 0;      // tets removed by cavities (sum over insertions)
   uint64_t tets_created = 0;     // tets created by cavities (sum over insertions)
   uint64_t walk_fallbacks = 0;  // walks that gave up and located the point by a full scan
+  uint64_t parallel_points = 0;  // points inserted by the parallel tasks (DelaunayOptions::partitions)
   // Predicate calls (the kernel's own static filter included) and how many reached the exact
   // stages of src/predicates (from predicates::thread_counters()).
   uint64_t orient3d_calls = 0, orient3d_exact = 0;

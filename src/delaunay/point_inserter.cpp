@@ -72,6 +72,7 @@ InsertResult PointInserter::insert(const double p[3], uint32_t hint, const Inser
       result.vertex = loc.vertex;
       return result;
     case delaunay_detail::Located::kOutside:
+    case delaunay_detail::Located::kForeign:  // only locate_owned() says so
       undo_vertex();
       result.status = InsertStatus::kOutsideMesh;
       return result;

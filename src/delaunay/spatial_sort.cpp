@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace anitet::delaunay_detail {
 
 namespace {
@@ -98,16 +101,19 @@ void hilbert_keys(const double* xyz, const uint32_t* indices, size_t count, cons
   const double scale = extent > 0 ? cells / extent : 0.0;
   const auto max_cell = static_cast<uint32_t>(cells) - 1;
   items.resize(count);
-  for (size_t k = 0; k < count; ++k) {
-    const uint32_t index = indices ? indices[k] : static_cast<uint32_t>(k);
-    const double* p = xyz + 3 * size_t(index);
-    uint32_t c[3];
-    for (int d = 0; d < 3; ++d) {
-      const double f = (p[d] - lo[d]) * scale;
-      c[d] = f <= 0 ? 0u : std::min(max_cell, static_cast<uint32_t>(f));
+  // On every core for large sets (the keys do not depend on how the range is cut).
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1 << 15), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t k = range.begin(); k < range.end(); ++k) {
+      const uint32_t index = indices ? indices[k] : static_cast<uint32_t>(k);
+      const double* p = xyz + 3 * size_t(index);
+      uint32_t c[3];
+      for (int d = 0; d < 3; ++d) {
+        const double f = (p[d] - lo[d]) * scale;
+        c[d] = f <= 0 ? 0u : std::min(max_cell, static_cast<uint32_t>(f));
+      }
+      items[k] = {hilbert_index(c[0], c[1], c[2], bits), index};
     }
-    items[k] = {hilbert_index(c[0], c[1], c[2], bits), index};
-  }
+  });
 }
 
 }  // namespace
@@ -122,7 +128,8 @@ void hilbert_sort(const double* xyz, uint32_t* order, size_t count, const double
   for (size_t k = 0; k < count; ++k) order[k] = items[k].index;
 }
 
-std::vector<uint32_t> brio_order(const double* xyz, size_t n, const BrioOptions& options) {
+std::vector<uint32_t> brio_order(const double* xyz, size_t n, const BrioOptions& options,
+                                 std::vector<size_t>* round_begin_out) {
   std::vector<uint32_t> order(n);
   if (n == 0) return order;
   double lo[3], hi[3];
@@ -173,6 +180,7 @@ std::vector<uint32_t> brio_order(const double* xyz, size_t n, const BrioOptions&
     std::reverse(order.begin() + static_cast<ptrdiff_t>(round_begin[r]),
                  order.begin() + static_cast<ptrdiff_t>(end));
   }
+  if (round_begin_out) *round_begin_out = round_begin;
   return order;
 }
 

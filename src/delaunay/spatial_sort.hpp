@@ -39,8 +39,10 @@ struct BrioOptions {
   size_t min_round = 1024;
 };
 
-// The insertion order of the n points xyz[3i..3i+2]: a permutation of 0..n-1.
-std::vector<uint32_t> brio_order(const double* xyz, size_t n, const BrioOptions& options);
+// The insertion order of the n points xyz[3i..3i+2]: a permutation of 0..n-1. round_begin, when
+// given, receives the position in it where each round starts (first round first).
+std::vector<uint32_t> brio_order(const double* xyz, size_t n, const BrioOptions& options,
+                                 std::vector<size_t>* round_begin = nullptr);
 
 // Sorts order[0..count) by the Hilbert position of their points inside the box lo..hi.
 void hilbert_sort(const double* xyz, uint32_t* order, size_t count, const double lo[3],

@@ -18,9 +18,16 @@ namespace anitet::delaunay_detail {
 constexpr uint32_t kMarkIn = 1;   // in the current cavity
 constexpr uint32_t kMarkOut = 2;  // tested, not in conflict
 
+// The slots one task of the parallel bulk build may fill: its own free list and a range of slots
+// appended for it before the task starts (the arrays are never resized while tasks run).
+struct SlotPool {
+  std::vector<uint32_t> free;
+  uint32_t next = 0, end = 0;
+};
+
 class TetStorage {
  public:
-  explicit TetStorage(TetMesh& mesh) : mesh_(&mesh) { refresh(); }
+  explicit TetStorage(TetMesh& mesh, SlotPool* pool = nullptr) : mesh_(&mesh), pool_(pool) { refresh(); }
 
   size_t num_slots() const { return mesh_->num_tet_slots(); }
   uint32_t* verts(uint32_t t) { return tv_ + 4 * size_t(t); }
@@ -45,16 +52,27 @@ class TetStorage {
   bool deleted(uint32_t t) const { return (tf_[t] & tflag::kDeleted) != 0; }
   void release(uint32_t t) {
     tf_[t] = tflag::kDeleted;
-    mesh_->free_tets.push_back(t);
+    free_list().push_back(t);
   }
   bool reuse_free(uint32_t& t) {
-    if (mesh_->free_tets.empty()) return false;
-    t = mesh_->free_tets.back();
-    mesh_->free_tets.pop_back();
+    std::vector<uint32_t>& free = free_list();
+    if (free.empty()) return false;
+    t = free.back();
+    free.pop_back();
     return true;
   }
-  // Appends `count` unset slots; returns the first.
+  // Whether `count` more slots than the cavity frees are available (always, without a pool).
+  bool can_take(size_t count) const {
+    return !pool_ || count <= pool_->free.size() + size_t(pool_->end - pool_->next);
+  }
+  // Appends `count` unset slots (with a pool: takes them from its range, can_take() said yes);
+  // returns the first.
   uint32_t append(size_t count) {
+    if (pool_) {
+      const uint32_t first = pool_->next;
+      pool_->next += static_cast<uint32_t>(count);
+      return first;
+    }
     const size_t first = num_slots();
     mesh_->tet_v.resize(4 * (first + count));
     mesh_->tet_adj.resize(4 * (first + count));
@@ -72,6 +90,7 @@ class TetStorage {
 
  private:
   static constexpr uint16_t kMarkBits = 3u << 13;
+  std::vector<uint32_t>& free_list() { return pool_ ? pool_->free : mesh_->free_tets; }
   void refresh() {
     tv_ = mesh_->tet_v.data();
     ta_ = mesh_->tet_adj.data();
@@ -80,6 +99,7 @@ class TetStorage {
   }
 
   TetMesh* mesh_;
+  SlotPool* pool_;
   uint32_t* tv_ = nullptr;
   uint64_t* ta_ = nullptr;
   uint16_t* tf_ = nullptr;

@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
+
+#include <tbb/task_arena.h>
 
 #include "delaunay/delaunay.hpp"
 #include "test_points.hpp"
@@ -124,6 +128,90 @@ TEST(Delaunay, DuplicatesAreReportedNotInserted) {
   EXPECT_EQ(r->duplicates.size(), 110u);
   EXPECT_EQ(r->num_inserted, 1000u);
   expect_delaunay_of(mesh, xyz, r.value());
+}
+
+// The live tets as sorted vertex sets: the same for any insertion order when the Delaunay
+// tetrahedralization is unique (general position, or ties broken by SoS on the point ids).
+// Coincident points are named by the first of them (which copy a build inserts depends on its
+// order).
+std::vector<std::array<uint32_t, 4>> tet_set(const TetMesh& mesh) {
+  const size_t n = mesh.num_vertices();
+  std::vector<uint32_t> by_point(n), first(n);
+  for (uint32_t i = 0; i < n; ++i) by_point[i] = i;
+  auto less = [&](uint32_t a, uint32_t b) {
+    return std::lexicographical_compare(mesh.point(a), mesh.point(a) + 3, mesh.point(b), mesh.point(b) + 3);
+  };
+  std::stable_sort(by_point.begin(), by_point.end(), less);
+  for (size_t i = 0; i < n; ++i)
+    first[by_point[i]] = (i > 0 && !less(by_point[i - 1], by_point[i])) ? first[by_point[i - 1]] : by_point[i];
+  auto name = [&](uint32_t v) { return v == TetMesh::kGhost ? v : first[v]; };
+  std::vector<std::array<uint32_t, 4>> tets;
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    if (mesh.is_deleted(t)) continue;
+    std::array<uint32_t, 4> v{name(mesh.vertex(t, 0)), name(mesh.vertex(t, 1)), name(mesh.vertex(t, 2)),
+                              name(mesh.vertex(t, 3))};
+    std::sort(v.begin(), v.end());
+    tets.push_back(v);
+  }
+  std::sort(tets.begin(), tets.end());
+  return tets;
+}
+
+Result<DelaunayStats> build_on(int threads, TetMesh& mesh, const std::vector<double>& xyz, const DelaunayOptions& o) {
+  tbb::task_arena arena(threads);
+  return arena.execute([&] { return build(mesh, xyz, o); });
+}
+
+// The parallel build (slabs filled by tasks, then the points they left): a Delaunay
+// tetrahedralization, the one the one-point-at-a-time build makes, the same arrays bit for bit on
+// 1 and 2 threads, compact (no free slot), and most points inserted by the tasks (parallel_share
+// of them).
+void expect_parallel_build(const std::vector<double>& xyz, int partitions, size_t min_round, double parallel_share = 0.75) {
+  DelaunayOptions o;
+  o.partitions = partitions;
+  o.parallel_min_round = min_round;
+  TetMesh one, two, serial;
+  auto r1 = build_on(1, one, xyz, o);
+  auto r2 = build_on(2, two, xyz, o);
+  ASSERT_TRUE(r1.ok()) << r1.status().message();
+  ASSERT_TRUE(r2.ok()) << r2.status().message();
+  expect_delaunay_of(two, xyz, r2.value());
+  EXPECT_EQ(one.tet_v, two.tet_v);
+  EXPECT_EQ(one.tet_adj, two.tet_adj);
+  EXPECT_TRUE(two.free_tets.empty());
+  EXPECT_EQ(two.num_tet_slots(), two.num_live_tets());
+  EXPECT_EQ(r1->duplicates.size(), r2->duplicates.size());
+  EXPECT_GT(double(r2->parallel_points), parallel_share * double(r2->num_inserted));
+  DelaunayOptions sequential;
+  sequential.partitions = 1;
+  auto rs = build(serial, xyz, sequential);
+  ASSERT_TRUE(rs.ok());
+  EXPECT_EQ(rs->parallel_points, 0u);
+  EXPECT_EQ(rs->duplicates.size(), r2->duplicates.size());
+  // With duplicates on ties, the copy inserted (its id) steers the SoS: another valid answer.
+  if (rs->duplicates.empty() || rs->sos_ties == 0) {
+    EXPECT_EQ(tet_set(serial), tet_set(two));
+  }
+}
+
+TEST(DelaunayParallel, RandomCube) { expect_parallel_build(test::random_cube(200000 / kScale, 7), 2, 32768 / kScale); }
+TEST(DelaunayParallel, FourPartitions) { expect_parallel_build(test::random_cube(100000 / kScale, 8), 4, 4096); }
+TEST(DelaunayParallel, PointsOnASphere) { expect_parallel_build(test::random_sphere(50000 / kScale, 9), 2, 4096); }
+// Cospherical and coplanar ties everywhere: the SoS makes the tetrahedralization unique.
+TEST(DelaunayParallel, IntegerGrid) { expect_parallel_build(test::grid(kScale == 1 ? 30 : 14), 3, 2048); }
+TEST(DelaunayParallel, PointsOnPlanesWithDuplicates) {
+  // 6,724 distinct lattice points on 4 planes, the rest copies: tets between the planes are long.
+  expect_parallel_build(test::points_on_planes(50000 / kScale, 4, 10), 2, 1024, 0.5);
+}
+
+TEST(DelaunayParallel, PartitionsOutOfRangeAreRefused) {
+  const std::vector<double> xyz = test::random_cube(100, 11);
+  for (int partitions : {0, 65}) {
+    DelaunayOptions o;
+    o.partitions = partitions;
+    TetMesh mesh;
+    EXPECT_EQ(build(mesh, xyz, o).status().code(), Error::InvalidArgument);
+  }
 }
 
 TEST(Delaunay, MinimalInputs) {
