@@ -6,7 +6,11 @@
 //
 // Prints points/s per set (best of the repeats, each tool timed alternately on the same points)
 // and the ratio, and ends with `ratio_vs_cgal: X` (anitet's points/s over CGAL's on the random
-// cube). The machines are shared and noisy: compare ratios, not times.
+// cube). anitet runs on TBB's default arena (all cores; the parallel build of
+// DelaunayOptions::partitions). Then, on the random cube, anitet with 1 and 2 threads (same
+// mesh, bit for bit) and with partitions = 1 (one point at a time), alternated, best of the
+// repeats: `speedup_2_threads: X` (1 thread over 2) and `speedup_vs_one_at_a_time: Y`.
+// The machines are shared and noisy: compare ratios, not times.
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -18,6 +22,8 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include <tbb/task_arena.h>
 
 #include "delaunay/delaunay.hpp"
 
@@ -134,6 +140,34 @@ int main(int argc, char** argv) {
                 set.name.c_str(), np, t.anitet, np / t.anitet, t.anitet_tets, t.cgal, np / t.cgal,
                 t.cgal_tets, ratio, details);
     std::fflush(stdout);
+  }
+
+  // Threads: the random cube with 1 and 2 threads and one point at a time.
+  {
+    const PointSet& set = sets[0];
+    const size_t np = set.xyz.size() / 3;
+    double best[3] = {1e30, 1e30, 1e30};
+    uint64_t hash[3] = {0, 0, 0};
+    const int threads[3] = {1, 2, 1}, partitions[3] = {2, 2, 1};
+    for (int r = 0; r < repeats; ++r)
+      for (int c = 0; c < 3; ++c) {
+        anitet::TetMesh mesh;
+        anitet::DelaunayOptions o;
+        o.partitions = partitions[c];
+        tbb::task_arena arena(threads[c]);
+        const auto t0 = Clock::now();
+        const auto result = arena.execute([&] { return anitet::delaunay_tetrahedralize(mesh, set.xyz.data(), np, o); });
+        const double sec = seconds_since(t0);
+        if (!result.ok()) return 1;
+        best[c] = std::min(best[c], sec);
+        uint64_t h = 0;
+        for (uint32_t v : mesh.tet_v) h = h * 1000003u + v;
+        hash[c] = h;
+      }
+    std::printf("random cube threads: 1 thread %.3f s, 2 threads %.3f s (same mesh: %s), one point at a time %.3f s\n",
+                best[0], best[1], hash[0] == hash[1] ? "yes" : "NO", best[2]);
+    std::printf("speedup_2_threads: %.2f\nspeedup_vs_one_at_a_time: %.2f\n", best[0] / best[1], best[2] / best[1]);
+    all_ok = all_ok && hash[0] == hash[1];
   }
 
   // Acceptance: the meshes are valid Delaunay tetrahedralizations (exact checks, not timed).
