@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "delaunay/delaunay.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet::delaunay_detail {
@@ -365,7 +366,9 @@ void CavityKernel::collect_boundary(bool respect_protected) {
 }
 
 bool CavityKernel::boundary_facet_ok(const BoundaryFacet& b, const double* p) {
-  if (b.v[2] != kGhost) return orient3d(pt(b.v[0]), pt(b.v[1]), pt(b.v[2]), p) > 0;
+  if (b.v[2] != kGhost)
+    return orient3d(pt(b.v[0]), pt(b.v[1]), pt(b.v[2]), p) > 0 &&
+           !(degeneracy_ && degeneracy_->flat(b.v[0], b.v[1], b.v[2], pid_));
   // A facet (a b ghost): the new hull triangle (b a p) must be a proper triangle and the hull must
   // stay convex at edge ab, i.e. the third vertex d of the hull triangle across is not beyond it.
   if (b.outside == kNoNeighbour) return false;
@@ -387,10 +390,12 @@ bool CavityKernel::keep_left() const {
 }
 
 bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected, const uint32_t* keep,
-                                      size_t keep_count, bool force_keep) {
+                                      size_t keep_count, bool force_keep, const DegeneracyOracle* degeneracy) {
   const double* p = pt(pid);
   keep_ = keep;
   keep_count_ = keep_count;
+  degeneracy_ = degeneracy;
+  pid_ = pid;
   cavity_.clear();
   marks_.clear();
   marks_.set(t0, TetMarks::kIn);

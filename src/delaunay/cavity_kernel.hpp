@@ -19,6 +19,10 @@
 #include "delaunay/tet_storage.hpp"
 #include "predicates/predicates.hpp"
 
+namespace anitet {
+class DegeneracyOracle;  // delaunay.hpp
+}
+
 namespace anitet::delaunay_detail {
 
 // Exact test: a, b, c on one line (all three coordinate projections degenerate).
@@ -96,7 +100,8 @@ class CavityKernel {
   // when only kept tets could leave a constrained edge's ring, the insertion is refused).
   // force_keep: the `keep` tets start in the cavity whatever the empty-sphere test says.
   bool insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected, const uint32_t* keep = nullptr,
-                          size_t keep_count = 0, bool force_keep = false);
+                          size_t keep_count = 0, bool force_keep = false,
+                          const DegeneracyOracle* degeneracy = nullptr);
 
   // Parallel bulk build (delaunay.cpp): tet t belongs to part tet_part[t] (kNoPart: none), the
   // part of all its real vertices; the tets a task creates are its part's. While tasks run, each
@@ -196,6 +201,8 @@ class CavityKernel {
   bool keep_left() const;  // a tet of keep_ is out of the cavity
   const uint32_t* keep_ = nullptr;
   size_t keep_count_ = 0;
+  const DegeneracyOracle* degeneracy_ = nullptr;  // insert_constrained()'s, else null
+  uint32_t pid_ = TetMesh::kNone;                // the point being inserted (for degeneracy_)
   std::vector<uint32_t> ejected_;                      // tets defend_constrained_edges() took out
   std::vector<BoundaryFacet> boundary_;
   TetMarks marks_;  // the constrained path's marks (the storage's marks serve the bulk build)

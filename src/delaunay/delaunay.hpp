@@ -84,6 +84,17 @@ enum class InsertStatus {
 };
 const char* insert_status_name(InsertStatus s);
 
+// Tells which tets are flat in exact geometry although their rounded points make a positive
+// one: a Steiner point computed on a segment or a plane lies on it only to rounding, so three
+// points of one input segment, or four of one plane, can pass the exact orient3d with a volume
+// of rounding size, and such slivers then hide the constraints around them from every later test.
+class DegeneracyOracle {
+ public:
+  virtual ~DegeneracyOracle() = default;
+  // True when the tet (a b c d) would be flat if every point were exactly where it belongs.
+  virtual bool flat(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const = 0;
+};
+
 struct InsertOptions {
   // Protected facets stop the cavity, and constrained edges (tflag edge bits) keep at least one
   // of their tets out of it, so both survive the insertion.
@@ -97,6 +108,10 @@ struct InsertOptions {
   // them by that test as usual); only the star-shape shrinking may refuse the point. A point of a
   // missing segment is then joined to its end through a chain of tets that is not Delaunay.
   bool force_keep = false;
+  // When set, the cavity is also shrunk where coning a boundary facet to the new point would make
+  // a tet this oracle calls flat (as the exact orient3d does with a zero volume). The new vertex
+  // is mesh.num_vertices() - 1 while it is asked.
+  const DegeneracyOracle* degeneracy = nullptr;
 };
 
 struct InsertResult {

@@ -4,6 +4,7 @@
 #include <array>
 
 #include "core/tet_ops.hpp"
+#include "delaunay/delaunay.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet {
@@ -22,10 +23,14 @@ int orient(const TetMesh& m, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
 }
 
 // The recovery's replace: constrained edges (defended subsegments) must survive a flip.
+// A flip that would make a tet the oracle calls flat is refused, as one with a zero volume is.
 bool replace(TetMesh& mesh, const std::vector<uint32_t>& old, const std::vector<uint32_t>& fresh,
-             std::vector<uint32_t>* created) {
+             std::vector<uint32_t>* created, const DegeneracyOracle* oracle) {
   thread_local meshops::ReplaceScratch scratch;
   thread_local std::vector<meshops::TetVerts> tets;
+  if (oracle)
+    for (size_t k = 0; k + 3 < fresh.size(); k += 4)
+      if (oracle->flat(fresh[k], fresh[k + 1], fresh[k + 2], fresh[k + 3])) return false;
   tets.clear();
   for (size_t k = 0; k + 3 < fresh.size(); k += 4) tets.push_back({fresh[k], fresh[k + 1], fresh[k + 2], fresh[k + 3]});
   if (!meshops::replace_tets(mesh, old, tets, scratch, meshops::ConstrainedEdges::kKeep)) return false;
@@ -51,7 +56,7 @@ bool edge_ring(const TetMesh& mesh, uint32_t t, uint32_t p, uint32_t q, EdgeRing
   return true;
 }
 
-bool flip23(TetMesh& mesh, uint32_t t, int facet, std::vector<uint32_t>* created) {
+bool flip23(TetMesh& mesh, uint32_t t, int facet, std::vector<uint32_t>* created, const DegeneracyOracle* oracle) {
   if (mesh.is_ghost(t) || mesh.facet_protected(t, facet)) return false;
   const uint64_t adj = mesh.tet_adj[4 * size_t(t) + facet];
   if (adj == kNoNeighbour) return false;
@@ -67,11 +72,11 @@ bool flip23(TetMesh& mesh, uint32_t t, int facet, std::vector<uint32_t>* created
     const uint32_t u = f[k], w = f[(k + 1) % 3];
     for (uint32_t v : {u, w, b, a}) fresh.push_back(v);
   }
-  return replace(mesh, {t, n}, fresh, created);
+  return replace(mesh, {t, n}, fresh, created, oracle);
 }
 
 bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int want_n,
-                 std::vector<uint32_t>* created) {
+                 std::vector<uint32_t>* created, const DegeneracyOracle* oracle) {
   const size_t n = ring.link.size();
   if (n < 3) return false;
   // Edge pq must not be a constraint and no facet (p q link[i]) protected.
@@ -104,7 +109,8 @@ bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int 
   // Vertex of extended index i (0..n, index n is vertex 0 again).
   auto V = [&](int i) { return ring.link[(rot + static_cast<size_t>(i)) % n]; };
   auto tri_ok = [&](int i, int k, int j) {
-    return orient(mesh, V(i), V(k), V(j), ring.q) > 0 && orient(mesh, V(i), V(j), V(k), ring.p) > 0;
+    return orient(mesh, V(i), V(k), V(j), ring.q) > 0 && orient(mesh, V(i), V(j), V(k), ring.p) > 0 &&
+           !(oracle && (oracle->flat(V(i), V(k), V(j), ring.q) || oracle->flat(V(i), V(j), V(k), ring.p)));
   };
   // ok[i][j]: the sub-polygon i..j (closed by the chord j-i) has a valid triangulation; split[i][j]
   // its apex on the chord.
@@ -156,13 +162,13 @@ bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int 
     for (uint32_t v : {V(tr[0]), V(tr[1]), V(tr[2]), ring.q}) fresh.push_back(v);
     for (uint32_t v : {V(tr[0]), V(tr[2]), V(tr[1]), ring.p}) fresh.push_back(v);
   }
-  return replace(mesh, ring.tets, fresh, created);
+  return replace(mesh, ring.tets, fresh, created, oracle);
 }
 
 // Makes (u w) an edge by one flip, when one does it: a 2-3 flip of the facet opposite u in a tet
 // whose neighbour there has apex w, or the removal of an edge of such a facet whose ring holds w.
 bool flip_in_edge(TetMesh& mesh, uint32_t u, uint32_t w, const std::vector<uint32_t>& ball,
-                  std::vector<uint32_t>& created) {
+                  std::vector<uint32_t>& created, const DegeneracyOracle* oracle) {
   const std::vector<uint32_t> tets = ball;  // the flips change the mesh under it
   EdgeRing ring;
   const uint32_t want[2] = {u, w};
@@ -174,14 +180,14 @@ bool flip_in_edge(TetMesh& mesh, uint32_t u, uint32_t w, const std::vector<uint3
     if (adj == TetMesh::kNoNeighbour) continue;
     const uint32_t n = static_cast<uint32_t>(adj >> 2);
     if (!mesh.is_ghost(n) && mesh.vertex(n, static_cast<int>(adj & 3)) == w) {
-      if (flip23(mesh, t, i, &created)) return true;
+      if (flip23(mesh, t, i, &created, oracle)) return true;
       continue;
     }
     for (int k = 0; k < 3; ++k) {
       const uint32_t p = mesh.vertex(t, kFacetVertex[i][k]), q = mesh.vertex(t, kFacetVertex[i][(k + 1) % 3]);
       if (!edge_ring(mesh, t, p, q, ring)) continue;
       if (std::find(ring.link.begin(), ring.link.end(), w) == ring.link.end()) continue;
-      if (remove_edge(mesh, ring, want, 2, &created)) return true;
+      if (remove_edge(mesh, ring, want, 2, &created, oracle)) return true;
     }
   }
   return false;
@@ -190,7 +196,7 @@ bool flip_in_edge(TetMesh& mesh, uint32_t u, uint32_t w, const std::vector<uint3
 // Makes triangle (a b c), whose edges are present, a facet by removing one edge whose ring holds
 // all three (the 3-2 flip when the ring is just a b c).
 bool flip_in_face(TetMesh& mesh, uint32_t a, uint32_t b, uint32_t c, const std::vector<uint32_t>& ball,
-                  std::vector<uint32_t>& created) {
+                  std::vector<uint32_t>& created, const DegeneracyOracle* oracle) {
   const std::vector<uint32_t> tets = ball;  // the flips change the mesh under it
   EdgeRing ring;
   const uint32_t want[3] = {a, b, c};
@@ -204,7 +210,7 @@ bool flip_in_face(TetMesh& mesh, uint32_t a, uint32_t b, uint32_t c, const std::
       if (!edge_ring(mesh, t, p, q, ring)) continue;
       const auto has = [&](uint32_t v) { return std::find(ring.link.begin(), ring.link.end(), v) != ring.link.end(); };
       if (!has(b) || !has(c)) continue;
-      if (remove_edge(mesh, ring, want, 3, &created)) return true;
+      if (remove_edge(mesh, ring, want, 3, &created, oracle)) return true;
     }
   }
   return false;

@@ -85,6 +85,9 @@ struct RecoveryOptions {
   // First split the long edge of every input triangle with an angle above this at the apex's
   // projection (180: never).
   double split_cap_degrees = 170.0;
+  // No insertion may make a tet that is flat in exact geometry: three points of one input
+  // segment, or four of one plane of exactly coplanar input triangles (DegeneracyOracle).
+  bool split_exact_degeneracies = true;
   // Optional, 3 per input triangle: a point each piece of that triangle must see on the side its
   // orientation gives it as the triangle does (the pipeline gives the T1 apex of each S1 face, so
   // that every cone of the coupling is positive). The split strategy refuses a split or flip

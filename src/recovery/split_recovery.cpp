@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -25,12 +26,16 @@ double seconds_since(Clock::time_point t0) {
 constexpr uint32_t kNone = TetMesh::kNone;
 constexpr uint64_t kNoNeighbour = TetMesh::kNoNeighbour;
 
-class SplitRecoverer {
+class SplitRecoverer : public DegeneracyOracle {
  public:
   SplitRecoverer(const SurfaceMesh& s, const RecoveryOptions& o, RecoveryOutput& out)
       : S_(s), opt_(o), out_(out), mesh_(out.mesh), inserter_(out.mesh, o.seed) {}
 
   Status run();
+
+  // Three vertices on one input segment, or four on one plane of exactly coplanar input faces:
+  // flat in exact geometry (the Steiner points are on their hosts only to rounding).
+  bool flat(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const override;
 
  private:
   // A constraint edge: the (at most two) live constraint triangles on it, and the input edge it
@@ -102,6 +107,17 @@ class SplitRecoverer {
   std::vector<int8_t> vhost_kind_;               // per vertex: -1 input vertex, 0 edge, 1 face
   std::vector<uint32_t> vhost_;                  // host input edge / face
   std::vector<double> vparam_;                   // edge-hosted: parameter from edge_v_[2e]
+  int8_t pending_kind_ = -1;                     // the host of the point being inserted
+  uint32_t pending_host_ = kNone;
+  std::vector<uint32_t> edge_face_;              // 2 per input edge: its input triangles
+  std::vector<uint32_t> face_plane_;             // per input triangle: its group of coplanar ones
+  std::vector<uint32_t> vplane_begin_, vplane_;  // per input vertex: the groups of its triangles
+  void build_planes();
+  int8_t kind_of(uint32_t v) const { return v < vhost_kind_.size() ? vhost_kind_[v] : pending_kind_; }
+  uint32_t host_of(uint32_t v) const { return v < vhost_.size() ? vhost_[v] : pending_host_; }
+  bool on_input_edge(uint32_t v, uint32_t e) const;
+  bool on_plane(uint32_t v, uint32_t plane) const;
+  const DegeneracyOracle* oracle() const { return opt_.split_exact_degeneracies ? this : nullptr; }
 
   std::vector<Tri> ct_;                          // constraint triangles, oriented like S
   std::vector<uint32_t> ct_face_;                // their input face
@@ -189,6 +205,107 @@ void SplitRecoverer::build_constraints() {
       edge_of(a, b, it->second);
     }
   for (uint32_t f = 0; f < nf; ++f) add_tri(S_.tri[3 * f], S_.tri[3 * f + 1], S_.tri[3 * f + 2], f);
+}
+
+// Groups of exactly coplanar input triangles (joined across edges where the opposite vertex is
+// on the other triangle's plane by the exact orient3d), and the groups around each input vertex.
+void SplitRecoverer::build_planes() {
+  const size_t nf = S_.num_triangles();
+  const size_t ne = edge_v_.size() / 2;
+  edge_face_.assign(2 * ne, kNone);
+  for (uint32_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t e = input_edge_id_.at(edge_key(S_.tri[3 * f + k], S_.tri[3 * f + (k + 1) % 3]));
+      (edge_face_[2 * e] == kNone ? edge_face_[2 * e] : edge_face_[2 * e + 1]) = f;
+    }
+  face_plane_.resize(nf);
+  for (uint32_t f = 0; f < nf; ++f) face_plane_[f] = f;
+  auto root = [&](uint32_t f) {
+    while (face_plane_[f] != f) f = face_plane_[f] = face_plane_[face_plane_[f]];
+    return f;
+  };
+  for (uint32_t e = 0; e < ne; ++e) {
+    const uint32_t f = edge_face_[2 * e], g = edge_face_[2 * e + 1];
+    if (f == kNone || g == kNone) continue;
+    uint32_t opposite = kNone;
+    for (int k = 0; k < 3; ++k)
+      if (S_.tri[3 * g + k] != edge_v_[2 * e] && S_.tri[3 * g + k] != edge_v_[2 * e + 1]) opposite = S_.tri[3 * g + k];
+    if (predicates::orient3d(S_.point(S_.tri[3 * f]), S_.point(S_.tri[3 * f + 1]), S_.point(S_.tri[3 * f + 2]),
+                             S_.point(opposite)) == 0)
+      face_plane_[root(f)] = root(g);
+  }
+  // Faces of one axis-aligned plane (a coordinate shared exactly by their three corners) are one
+  // group even when no chain of coplanar neighbours joins them: CAD parts have many.
+  std::map<std::pair<int, double>, uint32_t> axis_plane;
+  for (uint32_t f = 0; f < nf; ++f) {
+    const double* A = S_.point(S_.tri[3 * f]);
+    const double* B = S_.point(S_.tri[3 * f + 1]);
+    const double* C = S_.point(S_.tri[3 * f + 2]);
+    for (int d = 0; d < 3; ++d) {
+      if (!(A[d] == B[d] && B[d] == C[d])) continue;
+      auto [it, fresh] = axis_plane.emplace(std::make_pair(d, A[d] == 0 ? 0.0 : A[d]), f);
+      if (!fresh) face_plane_[root(f)] = root(it->second);
+    }
+  }
+  for (uint32_t f = 0; f < nf; ++f) face_plane_[f] = root(f);
+  std::vector<std::vector<uint32_t>> around(n_in_);
+  for (uint32_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      std::vector<uint32_t>& a = around[S_.tri[3 * f + k]];
+      if (std::find(a.begin(), a.end(), face_plane_[f]) == a.end()) a.push_back(face_plane_[f]);
+    }
+  vplane_begin_.assign(n_in_ + 1, 0);
+  for (uint32_t v = 0; v < n_in_; ++v) {
+    vplane_begin_[v + 1] = vplane_begin_[v] + static_cast<uint32_t>(around[v].size());
+    vplane_.insert(vplane_.end(), around[v].begin(), around[v].end());
+  }
+}
+
+bool SplitRecoverer::on_input_edge(uint32_t v, uint32_t e) const {
+  if (v < n_in_) return v == edge_v_[2 * e] || v == edge_v_[2 * e + 1];
+  return kind_of(v) == static_cast<int8_t>(SteinerHost::kEdge) && host_of(v) == e;
+}
+
+bool SplitRecoverer::on_plane(uint32_t v, uint32_t plane) const {
+  if (v < n_in_) return std::find(vplane_.begin() + vplane_begin_[v], vplane_.begin() + vplane_begin_[v + 1], plane) !=
+                        vplane_.begin() + vplane_begin_[v + 1];
+  const int8_t kind = kind_of(v);
+  const uint32_t h = host_of(v);
+  if (kind == static_cast<int8_t>(SteinerHost::kFace)) return face_plane_[h] == plane;
+  if (kind == static_cast<int8_t>(SteinerHost::kEdge))
+    return face_plane_[edge_face_[2 * h]] == plane ||
+           (edge_face_[2 * h + 1] != kNone && face_plane_[edge_face_[2 * h + 1]] == plane);
+  return false;  // a box corner
+}
+
+bool SplitRecoverer::flat(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
+  const uint32_t v[4] = {a, b, c, d};
+  for (int i = 0; i < 4; ++i) {
+    if (v[i] < n_in_) continue;
+    const int8_t kind = kind_of(v[i]);
+    const uint32_t h = host_of(v[i]);
+    if (kind == static_cast<int8_t>(SteinerHost::kEdge)) {
+      int on = 0;
+      for (int j = 0; j < 4; ++j)
+        if (j != i && on_input_edge(v[j], h)) ++on;
+      if (on >= 2) return true;
+    }
+    uint32_t planes[2] = {kNone, kNone};
+    if (kind == static_cast<int8_t>(SteinerHost::kFace)) {
+      planes[0] = face_plane_[h];
+    } else if (kind == static_cast<int8_t>(SteinerHost::kEdge)) {
+      planes[0] = face_plane_[edge_face_[2 * h]];
+      if (edge_face_[2 * h + 1] != kNone) planes[1] = face_plane_[edge_face_[2 * h + 1]];
+    }
+    for (uint32_t plane : planes) {
+      if (plane == kNone) continue;
+      bool all = true;
+      for (int j = 0; j < 4 && all; ++j)
+        if (j != i) all = on_plane(v[j], plane);
+      if (all) return true;
+    }
+  }
+  return false;
 }
 
 Status SplitRecoverer::check_apexes() {
@@ -279,6 +396,9 @@ uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t ho
   io.keep_tets = keep;
   io.keep_count = keep_count;
   io.force_keep = force_keep;
+  io.degeneracy = oracle();
+  pending_kind_ = static_cast<int8_t>(host);
+  pending_host_ = host_id;
   const InsertResult r = inserter_.insert(p, hint, io);
   if (!r.ok()) {
     ++out_.stats.blocked_insertions;
@@ -306,7 +426,7 @@ bool SplitRecoverer::sees_apex(const double* a, const double* b, const double* c
 // Delaunay, which the modified kernel accepts.
 bool SplitRecoverer::flip_in(uint32_t a, uint32_t b) {
   std::vector<uint32_t> created;
-  if (!flip_in_edge(mesh_, a, b, ball(a), created)) return false;
+  if (!flip_in_edge(mesh_, a, b, ball(a), created, oracle())) return false;
   for (uint32_t t : created)
     if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
   ++out_.stats.flips;
@@ -369,7 +489,7 @@ bool SplitRecoverer::flip_along(uint32_t a, uint32_t b) {
     for (int k = 0; k < 3; ++k) side[k] = predicates::orient3d(A, B, mesh_.point(f[k]), mesh_.point(f[(k + 1) % 3]));
     bool done = false;
     created.clear();
-    if (side[0] != 0 && side[0] == side[1] && side[1] == side[2]) done = flip23(mesh_, t, ia, &created);
+    if (side[0] != 0 && side[0] == side[1] && side[1] == side[2]) done = flip23(mesh_, t, ia, &created, oracle());
     for (int k = 0; k < 3 && !done; ++k) {
       // Only the edge the segment passes through, or, for an interior crossing, any of the three.
       const bool through = side[k] == 0;
@@ -380,7 +500,7 @@ bool SplitRecoverer::flip_along(uint32_t a, uint32_t b) {
       EdgeRing ring;
       if (!edge_ring(mesh_, t, p, q, ring)) continue;
       created.clear();
-      done = remove_edge(mesh_, ring, nullptr, 0, &created);
+      done = remove_edge(mesh_, ring, nullptr, 0, &created, oracle());
     }
     if (!done) return false;
     for (uint32_t c : created)
@@ -529,7 +649,7 @@ bool SplitRecoverer::flip_in_tri(uint32_t k) {
   const Tri t = ct_[k];
   if (!sees_apex(mesh_.point(t[0]), mesh_.point(t[1]), mesh_.point(t[2]), ct_face_[k])) return false;
   std::vector<uint32_t> created;
-  if (!flip_in_face(mesh_, t[0], t[1], t[2], ball(t[0]), created)) return false;
+  if (!flip_in_face(mesh_, t[0], t[1], t[2], ball(t[0]), created, oracle())) return false;
   for (uint32_t c : created)
     if (!mesh_.is_ghost(c)) vt_.note(mesh_, c);
   ++out_.stats.flips;
@@ -918,7 +1038,7 @@ bool SplitRecoverer::split_triangle(uint32_t k) {
       EdgeRing ring;
       if (!edge_ring(mesh_, c[0], c[1], c[2], ring)) continue;
       created.clear();
-      if (!remove_edge(mesh_, ring, nullptr, 0, &created)) continue;
+      if (!remove_edge(mesh_, ring, nullptr, 0, &created, oracle())) continue;
       for (uint32_t nt : created)
         if (!mesh_.is_ghost(nt)) vt_.note(mesh_, nt);
       ++out_.stats.flips;
@@ -969,6 +1089,7 @@ Status SplitRecoverer::run() {
   out_.stats.seconds_delaunay = seconds_since(t0);
   const auto t1 = Clock::now();
   build_constraints();
+  build_planes();
   if (Status st = check_apexes(); !st.ok()) return st;
   if (opt_.split_cap_degrees < 180.0) split_caps();
   const size_t cap = size_t(opt_.split_max_steiner_per_face * double(S_.num_triangles())) + 1000;

@@ -308,6 +308,60 @@ TEST(PointInserter, InvalidInputs) {
   EXPECT_STREQ(insert_status_name(InsertStatus::kBlocked), "blocked");
 }
 
+// An oracle that calls flat every tet holding vertices a and b (a hull edge) and a point inserted
+// later (as if they were on one segment): with it, no insertion makes such a tet; without it,
+// some do.
+class EdgeOracle : public DegeneracyOracle {
+ public:
+  EdgeOracle(uint32_t a, uint32_t b, uint32_t n0) : a_(a), b_(b), n0_(n0) {}
+  bool flat(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const override {
+    const uint32_t v[4] = {a, b, c, d};
+    bool has0 = false, has1 = false, later = false;
+    for (uint32_t x : v) {
+      has0 = has0 || x == a_;
+      has1 = has1 || x == b_;
+      later = later || (x >= n0_ && x != TetMesh::kGhost);
+    }
+    return has0 && has1 && later;
+  }
+
+ private:
+  uint32_t a_, b_, n0_;
+};
+
+TEST(PointInserter, DegeneracyOracleShrinksTheCavity) {
+  const std::vector<double> xyz = test::random_cube(200, 21);
+  const std::vector<double> more = test::random_cube(400, 22);
+  uint32_t a = TetMesh::kNone, b = TetMesh::kNone;
+  {
+    TetMesh mesh;
+    ASSERT_TRUE(delaunay_tetrahedralize(mesh, xyz.data(), 200).ok());
+    for (uint32_t t = 0; t < mesh.num_tet_slots() && a == TetMesh::kNone; ++t)
+      if (!mesh.is_deleted(t) && mesh.is_ghost(t)) a = mesh.vertex(t, 0), b = mesh.vertex(t, 1);
+  }
+  const EdgeOracle oracle(a, b, 200);
+  size_t flagged[2] = {0, 0};
+  for (int with = 0; with < 2; ++with) {
+    TetMesh mesh;
+    ASSERT_TRUE(delaunay_tetrahedralize(mesh, xyz.data(), 200).ok());
+    PointInserter ins(mesh);
+    InsertOptions o;
+    o.degeneracy = with ? &oracle : nullptr;
+    size_t inserted = 0;
+    for (size_t i = 0; i < 400; ++i) {
+      if (!ins.insert(&more[3 * i], TetMesh::kNone, o).ok()) continue;
+      ++inserted;
+      for (uint32_t t : ins.new_tets())  // tets this insertion made
+        flagged[with] += oracle.flat(mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3));
+    }
+    EXPECT_GT(inserted, 360u);
+    const Status st = check_mesh(mesh);
+    EXPECT_TRUE(st.ok()) << st.message();
+  }
+  EXPECT_GT(flagged[0], 0u) << "the case is not exercised";
+  EXPECT_EQ(flagged[1], 0u);
+}
+
 // A 6^3 grid with every facet of the plane z = 2 protected: a wall splitting the box.
 class ProtectedWall : public ::testing::Test {
  protected:
