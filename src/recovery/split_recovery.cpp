@@ -1,6 +1,7 @@
 #include "recovery/split_recovery.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -74,7 +75,8 @@ class SplitRecoverer : public DegeneracyOracle {
   void mark_edge_constrained(uint32_t a, uint32_t b);
   double param_on(uint32_t v, uint32_t e) const;
   uint32_t insert(const double p[3], SteinerHost host, uint32_t host_id, double param, uint32_t hint,
-                  const uint32_t* keep = nullptr, size_t keep_count = 0, bool force_keep = false);
+                  const uint32_t* keep = nullptr, size_t keep_count = 0, bool force_keep = false,
+                  std::array<uint32_t, 2> crossed = {kNone, kNone});
   uint32_t split_edge(uint64_t key, double at = -1.0);
   void defend(uint32_t a, uint32_t b);
   void defend_split(uint64_t key, uint32_t v);
@@ -109,6 +111,15 @@ class SplitRecoverer : public DegeneracyOracle {
   std::vector<double> vparam_;                   // edge-hosted: parameter from edge_v_[2e]
   int8_t pending_kind_ = -1;                     // the host of the point being inserted
   uint32_t pending_host_ = kNone;
+  // A point split where its segment crosses a mesh edge pq exactly coplanar with it stands for
+  // that crossing (a point of both in exact geometry): tets with p, q and it are flat too (else a
+  // flip makes pq again beside it, and the pieces from it cross pq within rounding of it:
+  // adis16480's plane y = 0.007946887). Not for a crossing near pq: the two are then skew.
+  std::vector<std::array<uint32_t, 2>> vcrossed_;  // per vertex: that edge, or kNone twice
+  std::array<uint32_t, 2> pending_crossed_ = {kNone, kNone};
+  std::array<uint32_t, 2> crossed_of(uint32_t v) const {
+    return v < vcrossed_.size() ? vcrossed_[v] : pending_crossed_;
+  }
   std::vector<uint32_t> edge_face_;              // 2 per input edge: its input triangles
   std::vector<uint32_t> face_plane_;             // per input triangle: its group of coplanar ones
   std::vector<uint32_t> vplane_begin_, vplane_;  // per input vertex: the groups of its triangles
@@ -134,6 +145,7 @@ class SplitRecoverer : public DegeneracyOracle {
   std::vector<double> walk_frac_;    // walk_points()
   std::vector<uint32_t> walk_chain_;
   EdgeRing crossed_ring_;            // crossed_edge_point()
+  bool crossed_coplanar_ = false;    // and the segment and that edge are exactly coplanar
 };
 
 // A vertex id as the result would number it (without the box corners).
@@ -154,6 +166,7 @@ Status SplitRecoverer::build_delaunay() {
   vhost_kind_.assign(mesh_.num_vertices(), -1);
   vhost_.assign(mesh_.num_vertices(), kNone);
   vparam_.assign(mesh_.num_vertices(), 0.0);
+  vcrossed_.assign(mesh_.num_vertices(), {kNone, kNone});
   return Status::success();
 }
 
@@ -282,6 +295,12 @@ bool SplitRecoverer::flat(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const 
   const uint32_t v[4] = {a, b, c, d};
   for (int i = 0; i < 4; ++i) {
     if (v[i] < n_in_) continue;
+    const std::array<uint32_t, 2> pq = crossed_of(v[i]);
+    if (pq[0] != kNone) {
+      int on = 0;
+      for (int j = 0; j < 4; ++j) on += v[j] == pq[0] || v[j] == pq[1];
+      if (on == 2) return true;
+    }
     const int8_t kind = kind_of(v[i]);
     const uint32_t h = host_of(v[i]);
     if (kind == static_cast<int8_t>(SteinerHost::kEdge)) {
@@ -390,7 +409,8 @@ double SplitRecoverer::param_on(uint32_t v, uint32_t e) const {
 }
 
 uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t host_id, double param,
-                                uint32_t hint, const uint32_t* keep, size_t keep_count, bool force_keep) {
+                                uint32_t hint, const uint32_t* keep, size_t keep_count, bool force_keep,
+                                std::array<uint32_t, 2> crossed) {
   InsertOptions io;
   io.vertex_flags = vflag::kOnInputSurface;
   io.keep_tets = keep;
@@ -399,6 +419,7 @@ uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t ho
   io.degeneracy = oracle();
   pending_kind_ = static_cast<int8_t>(host);
   pending_host_ = host_id;
+  pending_crossed_ = crossed;
   const InsertResult r = inserter_.insert(p, hint, io);
   if (!r.ok()) {
     ++out_.stats.blocked_insertions;
@@ -409,6 +430,7 @@ uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t ho
   vhost_kind_.push_back(static_cast<int8_t>(host));
   vhost_.push_back(host_id);
   vparam_.push_back(param);
+  vcrossed_.push_back(crossed);
   out_.steiner.push_back({r.vertex, host, host_id});
   if (host == SteinerHost::kEdge) ++out_.stats.steiner_on_edges;
   else ++out_.stats.steiner_on_faces;
@@ -543,6 +565,7 @@ uint32_t SplitRecoverer::crossed_edge_point(uint32_t u, uint32_t w, double& frac
   // kernel still refuses the point when pq's ring is not star-shaped from it.
   constexpr double kNearEdge = 1e-3;
   int k = zero;
+  crossed_coplanar_ = zero >= 0;
   if (k < 0 && total != 0)
     for (int j = 0; j < 3; ++j)
       if (std::fabs(vol[j] / total) < kNearEdge && (k < 0 || std::fabs(vol[j]) < std::fabs(vol[k]))) k = j;
@@ -752,7 +775,10 @@ uint32_t SplitRecoverer::split_edge(uint64_t key, double at) {
       double p[3], param;
       point_at(from == 0 ? frac : 1.0 - frac, p, param);
       if (!pieces_see_apex(p)) continue;
-      v = insert(p, kind, host, param, t, crossed_ring_.tets.data(), crossed_ring_.tets.size(), true);
+      v = insert(p, kind, host, param, t, crossed_ring_.tets.data(), crossed_ring_.tets.size(), true,
+                 opt_.split_exact_degeneracies && crossed_coplanar_
+                     ? std::array<uint32_t, 2>{crossed_ring_.p, crossed_ring_.q}
+                                               : std::array<uint32_t, 2>{kNone, kNone});
       if (v != kNone) ++out_.stats.edge_crossing_splits;
     }
   // Then the walk's points, farthest first, each kept only when it is joined to a (or to b,
