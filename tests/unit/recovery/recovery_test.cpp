@@ -15,11 +15,6 @@
 #include "validate/validate.hpp"
 
 namespace anitet {
-
-
-
-
-
 namespace {
 
 double tet_volume(const double* a, const double* b, const double* c, const double* d) {
@@ -395,8 +390,6 @@ TEST(RecoverySplit, BimbaLow) { recover_file("bimba_low.off", split_only(), 3); 
 // hull and splits creeping towards a crossed edge were gone (box corners, split_edge_crossings).
 TEST(RecoverySplit, TrayBottom) { recover_file("tray_bottom.stl", split_only(), 3); }
 TEST(RecoverySplit, Turbine) { recover_file("turbine.off", split_only(), 3); }
-// No strategy recovered these two before; skull needs its caps split first (a 176.6 deg one
-// cascaded). Release half only (scripts/test.sh): 4 s and 10-17 s here.
 // Without the degeneracy oracle the kernel makes tets of three points of one input segment,
 // positive only by rounding (the check above can fail).
 TEST(RecoverySplit, WithoutTheDegeneracyOracleFlatTetsAppear) {
@@ -407,6 +400,8 @@ TEST(RecoverySplit, WithoutTheDegeneracyOracleFlatTetsAppear) {
   RecoveryOutput out = recover_ok(r.value(), o);
   EXPECT_GT(tets_with_three_points_of_one_edge(out), 0u);
 }
+// No strategy recovered these two before; skull needs its caps split first (a 176.6 deg one
+// cascaded). Release half only (scripts/test.sh): 4 s and 10-17 s here.
 TEST(RecoverySplit, Hammer) { recover_file("hammer.obj", split_only(), 3); }
 TEST(RecoverySplit, Skull) { recover_file("skull.obj", split_only(), 3); }
 // face_apex: every piece of a face sees that face's apex on the side the face does (the pipeline
