@@ -126,19 +126,31 @@ bool CavityKernel::equals_vertex(uint32_t v, const double* p) const {
   return q[0] == p[0] && q[1] == p[1] && q[2] == p[2];
 }
 
-Location CavityKernel::locate(uint32_t t, const double* p) {
+// The walk of locate() and locate_owned(): kOwned enters only tets of this part and kNoPart ones
+// and gives up (kForeign) where the plain walk goes on, or falls back to a scan.
+template <bool kOwned>
+Location CavityKernel::walk(uint32_t t, const double* p) {
+  const Location foreign{Located::kForeign, t, TetMesh::kNone};
+  auto enterable = [&](uint32_t n) {
+    if constexpr (kOwned) return owner(n) == me_ || owner(n) == kNoPart;
+    (void)n;
+    return true;
+  };
+  if (!enterable(t)) return foreign;
   const size_t limit = 8 * store_->num_slots() + 1024;
   int entry = -1;  // the facet we came through: p is not beyond it
   if (is_ghost(t)) {
     const uint32_t* v = store_->verts(t);
     if (orient3d(pt(v[0]), pt(v[1]), pt(v[2]), p) > 0) return {Located::kInGhost, t, TetMesh::kNone};
     const uint64_t adj = store_->adj(t, 3);
-    if (adj == kNoNeighbour) return locate_by_scan(p);
+    if (adj == kNoNeighbour) return kOwned ? foreign : locate_by_scan(p);
     t = static_cast<uint32_t>(adj >> 2);
+    if (!enterable(t)) return foreign;
     entry = static_cast<int>(adj & 3);
   }
   for (size_t steps = 0;; ++steps) {
     if (steps > limit) {
+      if constexpr (kOwned) return foreign;
       ++counters.walk_fallbacks;
       return locate_by_scan(p);
     }
@@ -165,61 +177,21 @@ Location CavityKernel::locate(uint32_t t, const double* p) {
     const uint64_t adj = store_->adj(t, exit);
     if (adj == kNoNeighbour) return {Located::kOutside, t, TetMesh::kNone};
     const auto n = static_cast<uint32_t>(adj >> 2);
-    if (is_ghost(n)) return {Located::kInGhost, n, TetMesh::kNone};
-    t = n;
-    entry = static_cast<int>(adj & 3);
-  }
-}
-
-Location CavityKernel::locate_owned(uint32_t t, const double* p) {
-  const Location foreign{Located::kForeign, t, TetMesh::kNone};
-  auto enterable = [&](uint32_t n) {
-    const uint8_t o = owner(n);
-    return o == me_ || o == kNoPart;
-  };
-  if (!enterable(t)) return foreign;
-  const size_t limit = 8 * store_->num_slots() + 1024;
-  int entry = -1;
-  if (is_ghost(t)) {
-    const uint32_t* v = store_->verts(t);
-    if (orient3d(pt(v[0]), pt(v[1]), pt(v[2]), p) > 0) return {Located::kInGhost, t, TetMesh::kNone};
-    const uint64_t adj = store_->adj(t, 3);
-    t = static_cast<uint32_t>(adj >> 2);
-    if (!enterable(t)) return foreign;
-    entry = static_cast<int>(adj & 3);
-  }
-  for (size_t steps = 0; steps <= limit; ++steps) {
-    ++counters.walk_steps;
-    const uint32_t* v = store_->verts(t);
-    const double* P[4] = {pt(v[0]), pt(v[1]), pt(v[2]), pt(v[3])};
-    const int first = static_cast<int>(next_random() >> 30);
-    int exit = -1;
-    for (int k = 0; k < 4; ++k) {
-      const int i = (first + k) & 3;
-      if (i == entry) continue;
-      const int* f = kFacetVertex[i];
-      if (orient3d(P[f[0]], P[f[1]], P[f[2]], p) < 0) {
-        exit = i;
-        break;
-      }
-    }
-    if (exit < 0) {
-      for (int k = 0; k < 4; ++k)
-        if (equals_vertex(v[k], p)) return {Located::kDuplicate, t, v[k]};
-      return {Located::kInTet, t, TetMesh::kNone};
-    }
-    const uint64_t adj = store_->adj(t, exit);
-    const auto n = static_cast<uint32_t>(adj >> 2);
     if (!enterable(n)) return foreign;
     if (is_ghost(n)) return {Located::kInGhost, n, TetMesh::kNone};
     t = n;
     entry = static_cast<int>(adj & 3);
   }
-  return foreign;
 }
 
-bool CavityKernel::insert_delaunay_owned(uint32_t t0, uint32_t pid) {
-  if (owner(t0) != me_) return false;
+Location CavityKernel::locate(uint32_t t, const double* p) { return walk<false>(t, p); }
+Location CavityKernel::locate_owned(uint32_t t, const double* p) { return walk<true>(t, p); }
+
+// The cavity growth and filling of insert_delaunay() and insert_delaunay_owned(). kOwned gives up
+// (false, marks cleared, mesh unchanged) at a tet of another part, including the real tet behind
+// a hull tet whose test would read it, or when the slot pool has no room for the new tets.
+template <bool kOwned>
+bool CavityKernel::grow_and_fill(uint32_t t0, uint32_t pid) {
   const double* p = pt(pid);
   cavity_.clear();
   boundary_.clear();
@@ -230,24 +202,26 @@ bool CavityKernel::insert_delaunay_owned(uint32_t t0, uint32_t pid) {
     for (const BoundaryFacet& b : boundary_) store_->clear_mark(static_cast<uint32_t>(b.outside >> 2));
     return false;
   };
+  // Breadth-first growth over facets; every tet is tested at most once.
   for (size_t k = 0; k < cavity_.size(); ++k) {
     const uint32_t c = cavity_[k];
     uint64_t cadj[4];
+    // The four neighbours are usually cache misses: request them all before testing any.
     for (int i = 0; i < 4; ++i) {
       cadj[i] = store_->adj(c, i);
       store_->prefetch_tet(static_cast<uint32_t>(cadj[i] >> 2));
-      __builtin_prefetch(tet_part_ + (cadj[i] >> 2));
+      if constexpr (kOwned) __builtin_prefetch(tet_part_ + (cadj[i] >> 2));
     }
     for (int i = 0; i < 4; ++i) {
-      const uint64_t adj = cadj[i];
-      const auto n = static_cast<uint32_t>(adj >> 2);
+      const auto n = static_cast<uint32_t>(cadj[i] >> 2);
       // Its part first: the marks of another part's tet are not ours to read.
-      if (owner(n) != me_) return give_up();
+      if constexpr (kOwned)
+        if (owner(n) != me_) return give_up();
       const uint32_t mark = store_->mark(n);
       if (mark == kMarkIn) continue;
       if (mark == 0) {
-        // A hull tet's test may read the real tet behind it.
-        if (is_ghost(n) && owner(static_cast<uint32_t>(store_->adj(n, 3) >> 2)) != me_) return give_up();
+        if constexpr (kOwned)
+          if (is_ghost(n) && owner(static_cast<uint32_t>(store_->adj(n, 3) >> 2)) != me_) return give_up();
         if (in_conflict<true>(n, p, pid)) {
           store_->set_mark(n, kMarkIn);
           store_->prefetch_adj(n);
@@ -255,16 +229,23 @@ bool CavityKernel::insert_delaunay_owned(uint32_t t0, uint32_t pid) {
           continue;
         }
         store_->set_mark(n, kMarkOut);
-        store_->prefetch_adj(n);
+        store_->prefetch_adj(n);  // its link to the new tet is written soon
       }
-      add_boundary<false>(c, i, adj);
+      add_boundary<false>(c, i, cadj[i]);
     }
   }
-  const size_t nb = boundary_.size(), nc = cavity_.size();
-  if (!store_->can_take(nb > nc ? nb - nc : 0)) return give_up();
+  if constexpr (kOwned) {
+    const size_t nb = boundary_.size(), nc = cavity_.size();
+    if (!store_->can_take(nb > nc ? nb - nc : 0)) return give_up();
+  }
   fill_cavity(pid, false);
-  for (uint32_t t : new_tets_) tet_part_[t] = me_;
+  if constexpr (kOwned)
+    for (uint32_t t : new_tets_) tet_part_[t] = me_;
   return true;
+}
+
+bool CavityKernel::insert_delaunay_owned(uint32_t t0, uint32_t pid) {
+  return owner(t0) == me_ && grow_and_fill<true>(t0, pid);
 }
 
 // The last resort when a walk does not end (possible in non-Delaunay meshes): test every tet.
@@ -316,38 +297,7 @@ void CavityKernel::add_boundary(uint32_t c, int i, uint64_t outside) {
 }
 
 uint32_t CavityKernel::insert_delaunay(uint32_t t0, uint32_t pid) {
-  const double* p = pt(pid);
-  cavity_.clear();
-  boundary_.clear();
-  store_->set_mark(t0, kMarkIn);
-  cavity_.push_back(t0);
-  // Breadth-first growth over facets; every tet is tested at most once.
-  for (size_t k = 0; k < cavity_.size(); ++k) {
-    const uint32_t c = cavity_[k];
-    uint64_t cadj[4];
-    // The four neighbours are usually cache misses: request them all before testing any.
-    for (int i = 0; i < 4; ++i) {
-      cadj[i] = store_->adj(c, i);
-      store_->prefetch_tet(static_cast<uint32_t>(cadj[i] >> 2));
-    }
-    for (int i = 0; i < 4; ++i) {
-      const auto n = static_cast<uint32_t>(cadj[i] >> 2);
-      const uint32_t mark = store_->mark(n);
-      if (mark == kMarkIn) continue;
-      if (mark == 0) {
-        if (in_conflict<true>(n, p, pid)) {
-          store_->set_mark(n, kMarkIn);
-          store_->prefetch_adj(n);
-          cavity_.push_back(n);
-          continue;
-        }
-        store_->set_mark(n, kMarkOut);
-        store_->prefetch_adj(n);  // its link to the new tet is written soon
-      }
-      add_boundary<false>(c, i, cadj[i]);
-    }
-  }
-  fill_cavity(pid, false);
+  grow_and_fill<false>(t0, pid);
   return last_real_;
 }
 

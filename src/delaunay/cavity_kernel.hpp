@@ -170,6 +170,10 @@ class CavityKernel {
 
   template <bool kStorageMarks>
   bool in_conflict(uint32_t t, const double* p, uint32_t pid);
+  template <bool kOwned>
+  Location walk(uint32_t t, const double* p);
+  template <bool kOwned>
+  bool grow_and_fill(uint32_t t0, uint32_t pid);
   Location locate_by_scan(const double* p);
   bool equals_vertex(uint32_t v, const double* p) const;
 
