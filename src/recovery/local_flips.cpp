@@ -23,14 +23,10 @@ int orient(const TetMesh& m, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
 }
 
 // The recovery's replace: constrained edges (defended subsegments) must survive a flip.
-// A flip that would make a tet the oracle calls flat is refused, as one with a zero volume is.
 bool replace(TetMesh& mesh, const std::vector<uint32_t>& old, const std::vector<uint32_t>& fresh,
-             std::vector<uint32_t>* created, const DegeneracyOracle* oracle) {
+             std::vector<uint32_t>* created) {
   thread_local meshops::ReplaceScratch scratch;
   thread_local std::vector<meshops::TetVerts> tets;
-  if (oracle)
-    for (size_t k = 0; k + 3 < fresh.size(); k += 4)
-      if (oracle->flat(fresh[k], fresh[k + 1], fresh[k + 2], fresh[k + 3])) return false;
   tets.clear();
   for (size_t k = 0; k + 3 < fresh.size(); k += 4) tets.push_back({fresh[k], fresh[k + 1], fresh[k + 2], fresh[k + 3]});
   if (!meshops::replace_tets(mesh, old, tets, scratch, meshops::ConstrainedEdges::kKeep)) return false;
@@ -70,9 +66,11 @@ bool flip23(TetMesh& mesh, uint32_t t, int facet, std::vector<uint32_t>* created
   std::vector<uint32_t> fresh;
   for (int k = 0; k < 3; ++k) {
     const uint32_t u = f[k], w = f[(k + 1) % 3];
+    // A tet the oracle calls flat is refused, as one with a zero volume is.
+    if (oracle && oracle->flat(u, w, b, a)) return false;
     for (uint32_t v : {u, w, b, a}) fresh.push_back(v);
   }
-  return replace(mesh, {t, n}, fresh, created, oracle);
+  return replace(mesh, {t, n}, fresh, created);
 }
 
 bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int want_n,
@@ -162,7 +160,7 @@ bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int 
     for (uint32_t v : {V(tr[0]), V(tr[1]), V(tr[2]), ring.q}) fresh.push_back(v);
     for (uint32_t v : {V(tr[0]), V(tr[2]), V(tr[1]), ring.p}) fresh.push_back(v);
   }
-  return replace(mesh, ring.tets, fresh, created, oracle);
+  return replace(mesh, ring.tets, fresh, created);
 }
 
 // Makes (u w) an edge by one flip, when one does it: a 2-3 flip of the facet opposite u in a tet

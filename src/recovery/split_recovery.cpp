@@ -126,8 +126,9 @@ class SplitRecoverer : public DegeneracyOracle {
   void build_planes();
   int8_t kind_of(uint32_t v) const { return v < vhost_kind_.size() ? vhost_kind_[v] : pending_kind_; }
   uint32_t host_of(uint32_t v) const { return v < vhost_.size() ? vhost_[v] : pending_host_; }
-  bool on_input_edge(uint32_t v, uint32_t e) const;
+  bool lies_on_input_edge(uint32_t v, uint32_t e) const;
   bool on_plane(uint32_t v, uint32_t plane) const;
+  std::array<uint32_t, 2> steiner_planes(uint32_t v) const;
   const DegeneracyOracle* oracle() const { return opt_.split_exact_degeneracies ? this : nullptr; }
 
   std::vector<Tri> ct_;                          // constraint triangles, oriented like S
@@ -274,7 +275,7 @@ void SplitRecoverer::build_planes() {
   }
 }
 
-bool SplitRecoverer::on_input_edge(uint32_t v, uint32_t e) const {
+bool SplitRecoverer::lies_on_input_edge(uint32_t v, uint32_t e) const {
   if (v < n_in_) return v == edge_v_[2 * e] || v == edge_v_[2 * e + 1];
   return kind_of(v) == static_cast<int8_t>(SteinerHost::kEdge) && host_of(v) == e;
 }
@@ -282,13 +283,19 @@ bool SplitRecoverer::on_input_edge(uint32_t v, uint32_t e) const {
 bool SplitRecoverer::on_plane(uint32_t v, uint32_t plane) const {
   if (v < n_in_) return std::find(vplane_.begin() + vplane_begin_[v], vplane_.begin() + vplane_begin_[v + 1], plane) !=
                         vplane_.begin() + vplane_begin_[v + 1];
+  const std::array<uint32_t, 2> planes = steiner_planes(v);
+  return plane != kNone && (planes[0] == plane || planes[1] == plane);
+}
+
+// The groups a point that is not an input vertex lies on: its face's, or its edge's two faces'
+// (kNone for the rest, and twice for a box corner).
+std::array<uint32_t, 2> SplitRecoverer::steiner_planes(uint32_t v) const {
   const int8_t kind = kind_of(v);
   const uint32_t h = host_of(v);
-  if (kind == static_cast<int8_t>(SteinerHost::kFace)) return face_plane_[h] == plane;
-  if (kind == static_cast<int8_t>(SteinerHost::kEdge))
-    return face_plane_[edge_face_[2 * h]] == plane ||
-           (edge_face_[2 * h + 1] != kNone && face_plane_[edge_face_[2 * h + 1]] == plane);
-  return false;  // a box corner
+  if (kind == static_cast<int8_t>(SteinerHost::kFace)) return {face_plane_[h], kNone};
+  if (kind != static_cast<int8_t>(SteinerHost::kEdge)) return {kNone, kNone};
+  const uint32_t g = edge_face_[2 * h + 1];
+  return {face_plane_[edge_face_[2 * h]], g != kNone ? face_plane_[g] : kNone};
 }
 
 bool SplitRecoverer::flat(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
@@ -306,17 +313,10 @@ bool SplitRecoverer::flat(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const 
     if (kind == static_cast<int8_t>(SteinerHost::kEdge)) {
       int on = 0;
       for (int j = 0; j < 4; ++j)
-        if (j != i && on_input_edge(v[j], h)) ++on;
+        if (j != i && lies_on_input_edge(v[j], h)) ++on;
       if (on >= 2) return true;
     }
-    uint32_t planes[2] = {kNone, kNone};
-    if (kind == static_cast<int8_t>(SteinerHost::kFace)) {
-      planes[0] = face_plane_[h];
-    } else if (kind == static_cast<int8_t>(SteinerHost::kEdge)) {
-      planes[0] = face_plane_[edge_face_[2 * h]];
-      if (edge_face_[2 * h + 1] != kNone) planes[1] = face_plane_[edge_face_[2 * h + 1]];
-    }
-    for (uint32_t plane : planes) {
+    for (uint32_t plane : steiner_planes(v[i])) {
       if (plane == kNone) continue;
       bool all = true;
       for (int j = 0; j < 4 && all; ++j)
