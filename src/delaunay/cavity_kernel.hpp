@@ -181,6 +181,7 @@ class CavityKernel {
   void add_boundary(uint32_t c, int i, uint64_t outside);
   void collect_boundary(bool respect_protected);
   bool defend_constrained_edges(uint32_t t0, uint32_t pid);
+  bool kept_can_stay(bool respect_protected);
   bool shrink_to_star(uint32_t t0, uint32_t pid, bool respect_protected);
   bool is_boundary_facet(uint32_t c, int i, bool respect_protected) const;
   bool closure_contains(uint32_t t, const double* p);
