@@ -7,6 +7,7 @@
 #include <map>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "core/tet_ops.hpp"
@@ -44,6 +45,9 @@ class SplitRecoverer : public DegeneracyOracle {
   struct CEdge {
     uint32_t tri[2] = {kNone, kNone};
     uint32_t input_edge = kNone;
+    // Present and marked constrained (defend()): neither the kernel nor a flip removes it, so
+    // the sweeps need not look for it in the mesh again.
+    bool defended = false;
   };
   enum : uint8_t { kMissing = 0, kRecovered = 1, kDead = 2 };
   // An edge of a recovered (protected) triangle stays in the mesh: no sweep needs to look at it.
@@ -79,7 +83,9 @@ class SplitRecoverer : public DegeneracyOracle {
                   std::array<uint32_t, 2> crossed = {kNone, kNone});
   uint32_t split_edge(uint64_t key, double at = -1.0);
   void defend(uint32_t a, uint32_t b);
+  void defend_present(CEdge& e, uint32_t a, uint32_t b);
   void defend_split(uint64_t key, uint32_t v);
+  size_t flip_face_edges();
   void recover_face_edges(size_t cap);
   size_t walk_points(uint32_t a, uint32_t b);
   uint32_t crossed_edge_point(uint32_t u, uint32_t w, double& frac);
@@ -106,29 +112,32 @@ class SplitRecoverer : public DegeneracyOracle {
 
   std::vector<uint32_t> edge_v_;                 // 2 per input edge (sorted ids)
   std::unordered_map<uint64_t, uint32_t> input_edge_id_;
-  std::vector<int8_t> vhost_kind_;               // per vertex: -1 input vertex, 0 edge, 1 face
-  std::vector<uint32_t> vhost_;                  // host input edge / face
-  std::vector<double> vparam_;                   // edge-hosted: parameter from edge_v_[2e]
-  int8_t pending_kind_ = -1;                     // the host of the point being inserted
-  uint32_t pending_host_ = kNone;
-  // A point split where its segment crosses a mesh edge pq exactly coplanar with it stands for
-  // that crossing (a point of both in exact geometry): tets with p, q and it are flat too (else a
-  // flip makes pq again beside it, and the pieces from it cross pq within rounding of it:
-  // adis16480's plane y = 0.007946887). Not for a crossing near pq: the two are then skew.
-  std::vector<std::array<uint32_t, 2>> vcrossed_;  // per vertex: that edge, or kNone twice
-  std::array<uint32_t, 2> pending_crossed_ = {kNone, kNone};
-  std::array<uint32_t, 2> crossed_of(uint32_t v) const {
-    return v < vcrossed_.size() ? vcrossed_[v] : pending_crossed_;
-  }
+  // Per vertex, where it lies; one record, since flat() reads all of it for the four vertices of
+  // every facet of every cavity.
+  struct VertexHost {
+    int8_t kind = -1;      // -1 input vertex, else a SteinerHost: edge or face
+    uint32_t host = kNone;  // host input edge / face
+    // A point split where its segment crosses a mesh edge pq exactly coplanar with it stands for
+    // that crossing (a point of both in exact geometry): tets with p, q and it are flat too (else
+    // a flip makes pq again beside it, and the pieces from it cross pq within rounding of it:
+    // adis16480's plane y = 0.007946887). Not for a crossing near pq: the two are then skew.
+    std::array<uint32_t, 2> crossed = {kNone, kNone};  // that edge, or kNone twice
+    std::array<uint32_t, 2> planes = {kNone, kNone};   // host_planes()
+  };
+  std::vector<VertexHost> vhost_;
+  std::vector<double> vparam_;  // edge-hosted: parameter from edge_v_[2e]
+  VertexHost pending_;           // the point being inserted
+  const VertexHost& host_record(uint32_t v) const { return v < vhost_.size() ? vhost_[v] : pending_; }
+  std::array<uint32_t, 2> crossed_of(uint32_t v) const { return host_record(v).crossed; }
   std::vector<uint32_t> edge_face_;              // 2 per input edge: its input triangles
   std::vector<uint32_t> face_plane_;             // per input triangle: its group of coplanar ones
   std::vector<uint32_t> vplane_begin_, vplane_;  // per input vertex: the groups of its triangles
   void build_planes();
-  int8_t kind_of(uint32_t v) const { return v < vhost_kind_.size() ? vhost_kind_[v] : pending_kind_; }
-  uint32_t host_of(uint32_t v) const { return v < vhost_.size() ? vhost_[v] : pending_host_; }
-  bool lies_on_input_edge(uint32_t v, uint32_t e) const;
+  int8_t kind_of(uint32_t v) const { return host_record(v).kind; }
+  uint32_t host_of(uint32_t v) const { return host_record(v).host; }
   bool on_plane(uint32_t v, uint32_t plane) const;
-  std::array<uint32_t, 2> steiner_planes(uint32_t v) const;
+  std::array<uint32_t, 2> host_planes(int8_t kind, uint32_t host) const;
+  std::array<uint32_t, 2> planes_of(uint32_t v) const { return host_record(v).planes; }
   const DegeneracyOracle* oracle() const { return opt_.split_exact_degeneracies ? this : nullptr; }
 
   std::vector<Tri> ct_;                          // constraint triangles, oriented like S
@@ -164,10 +173,8 @@ std::string SplitRecoverer::describe_tri(uint32_t k) const {
 Status SplitRecoverer::build_delaunay() {
   if (Status s = delaunay_of_surface_points(mesh_, S_, opt_.remove_outside); !s.ok()) return s;
   vt_.build(mesh_);
-  vhost_kind_.assign(mesh_.num_vertices(), -1);
-  vhost_.assign(mesh_.num_vertices(), kNone);
+  vhost_.assign(mesh_.num_vertices(), VertexHost{});
   vparam_.assign(mesh_.num_vertices(), 0.0);
-  vcrossed_.assign(mesh_.num_vertices(), {kNone, kNone});
   return Status::success();
 }
 
@@ -275,23 +282,16 @@ void SplitRecoverer::build_planes() {
   }
 }
 
-bool SplitRecoverer::lies_on_input_edge(uint32_t v, uint32_t e) const {
-  if (v < n_in_) return v == edge_v_[2 * e] || v == edge_v_[2 * e + 1];
-  return kind_of(v) == static_cast<int8_t>(SteinerHost::kEdge) && host_of(v) == e;
-}
-
 bool SplitRecoverer::on_plane(uint32_t v, uint32_t plane) const {
   if (v < n_in_) return std::find(vplane_.begin() + vplane_begin_[v], vplane_.begin() + vplane_begin_[v + 1], plane) !=
                         vplane_.begin() + vplane_begin_[v + 1];
-  const std::array<uint32_t, 2> planes = steiner_planes(v);
+  const std::array<uint32_t, 2> planes = planes_of(v);
   return plane != kNone && (planes[0] == plane || planes[1] == plane);
 }
 
 // The groups a point that is not an input vertex lies on: its face's, or its edge's two faces'
 // (kNone for the rest, and twice for a box corner).
-std::array<uint32_t, 2> SplitRecoverer::steiner_planes(uint32_t v) const {
-  const int8_t kind = kind_of(v);
-  const uint32_t h = host_of(v);
+std::array<uint32_t, 2> SplitRecoverer::host_planes(int8_t kind, uint32_t h) const {
   if (kind == static_cast<int8_t>(SteinerHost::kFace)) return {face_plane_[h], kNone};
   if (kind != static_cast<int8_t>(SteinerHost::kEdge)) return {kNone, kNone};
   const uint32_t g = edge_face_[2 * h + 1];
@@ -300,29 +300,41 @@ std::array<uint32_t, 2> SplitRecoverer::steiner_planes(uint32_t v) const {
 
 bool SplitRecoverer::flat(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
   const uint32_t v[4] = {a, b, c, d};
-  for (int i = 0; i < 4; ++i) {
-    if (v[i] < n_in_) continue;
-    const std::array<uint32_t, 2> pq = crossed_of(v[i]);
+  const VertexHost* rec[4] = {};  // null for input vertices
+  int steiner = -1;               // the first vertex that is not an input vertex
+  for (int i = 0; i < 4; ++i)
+    if (v[i] >= n_in_) {
+      rec[i] = &host_record(v[i]);
+      if (steiner < 0) steiner = i;
+    }
+  if (steiner < 0) return false;  // input vertices only: the exact orient3d decided
+  auto on_edge = [&](int j, uint32_t e) {
+    return rec[j] ? rec[j]->kind == static_cast<int8_t>(SteinerHost::kEdge) && rec[j]->host == e
+                  : v[j] == edge_v_[2 * e] || v[j] == edge_v_[2 * e + 1];
+  };
+  for (int i = steiner; i < 4; ++i) {
+    if (!rec[i]) continue;
+    const std::array<uint32_t, 2>& pq = rec[i]->crossed;
     if (pq[0] != kNone) {
       int on = 0;
       for (int j = 0; j < 4; ++j) on += v[j] == pq[0] || v[j] == pq[1];
       if (on == 2) return true;
     }
-    const int8_t kind = kind_of(v[i]);
-    const uint32_t h = host_of(v[i]);
-    if (kind == static_cast<int8_t>(SteinerHost::kEdge)) {
+    if (rec[i]->kind == static_cast<int8_t>(SteinerHost::kEdge)) {
       int on = 0;
       for (int j = 0; j < 4; ++j)
-        if (j != i && lies_on_input_edge(v[j], h)) ++on;
+        if (j != i && on_edge(j, rec[i]->host)) ++on;
       if (on >= 2) return true;
     }
-    for (uint32_t plane : steiner_planes(v[i])) {
-      if (plane == kNone) continue;
-      bool all = true;
-      for (int j = 0; j < 4 && all; ++j)
-        if (j != i) all = on_plane(v[j], plane);
-      if (all) return true;
-    }
+  }
+  // Four points on one group: it is one of the groups of each of them, so of the first Steiner
+  // point's.
+  for (uint32_t plane : rec[steiner]->planes) {
+    if (plane == kNone) continue;
+    bool all = true;
+    for (int j = 0; j < 4 && all; ++j)
+      if (j != steiner) all = rec[j] ? rec[j]->planes[0] == plane || rec[j]->planes[1] == plane : on_plane(v[j], plane);
+    if (all) return true;
   }
   return false;
 }
@@ -393,7 +405,14 @@ void SplitRecoverer::mark_edge_constrained(uint32_t a, uint32_t b) {
 
 // Marks edge (a b) constrained when it is in the mesh (RecoveryOptions::split_defend_edges).
 void SplitRecoverer::defend(uint32_t a, uint32_t b) {
-  if (opt_.split_defend_edges && has_edge(a, b)) mark_edge_constrained(a, b);
+  if (has_edge(a, b)) defend_present(edges_.at(edge_key(a, b)), a, b);
+}
+
+// defend() of the constraint edge e = (a b), known to be in the mesh.
+void SplitRecoverer::defend_present(CEdge& e, uint32_t a, uint32_t b) {
+  if (!opt_.split_defend_edges) return;
+  mark_edge_constrained(a, b);
+  e.defended = true;
 }
 
 // After split_edge(key) made vertex v: defends the two pieces.
@@ -417,9 +436,10 @@ uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t ho
   io.keep_count = keep_count;
   io.force_keep = force_keep;
   io.degeneracy = oracle();
-  pending_kind_ = static_cast<int8_t>(host);
-  pending_host_ = host_id;
-  pending_crossed_ = crossed;
+  pending_.kind = static_cast<int8_t>(host);
+  pending_.host = host_id;
+  pending_.crossed = crossed;
+  pending_.planes = host_planes(pending_.kind, host_id);
   const InsertResult r = inserter_.insert(p, hint, io);
   if (!r.ok()) {
     ++out_.stats.blocked_insertions;
@@ -427,10 +447,8 @@ uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t ho
   }
   for (uint32_t t : inserter_.new_tets())
     if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
-  vhost_kind_.push_back(static_cast<int8_t>(host));
-  vhost_.push_back(host_id);
+  vhost_.push_back(pending_);
   vparam_.push_back(param);
-  vcrossed_.push_back(crossed);
   out_.steiner.push_back({r.vertex, host, host_id});
   if (host == SteinerHost::kEdge) ++out_.stats.steiner_on_edges;
   else ++out_.stats.steiner_on_faces;
@@ -940,6 +958,37 @@ bool SplitRecoverer::flip_edge(uint64_t key, bool only_to_mesh) {
   return true;
 }
 
+// An edge inside an input face is free: flips a missing one to the mesh's edge, or to the face's
+// 2D Delaunay edge, until none flips, so each face's pieces reach its 2D Delaunay triangulation:
+// short rungs across a needle instead of the fans its edge splits made. A work list: a flip can
+// only make the edges of its two new triangles flippable, so only those are looked at again
+// (sweeping all edges until none flipped took 2 s on adis16480's 41k flips). Returns the flips.
+size_t SplitRecoverer::flip_face_edges() {
+  std::vector<uint64_t> work;
+  std::unordered_set<uint64_t> queued;
+  auto push = [&](uint64_t key) {
+    if (queued.insert(key).second) work.push_back(key);
+  };
+  for (uint64_t key : edge_keys_) push(key);
+  // Delaunay flips end, but they are decided in floating point: a cap on the work.
+  const size_t limit = 100 * work.size() + 1000;
+  size_t flips = 0;
+  for (size_t head = 0; head < work.size() && head < limit; ++head) {
+    const uint64_t key = work[head];
+    queued.erase(key);
+    auto it = edges_.find(key);
+    if (it == edges_.end() || it->second.input_edge != kNone || settled(it->second) || it->second.defended)
+      continue;
+    if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
+    if (!flip_edge(key, true) && !flip_edge(key, false)) continue;
+    ++flips;
+    for (size_t k = ct_.size() - 2; k < ct_.size(); ++k)
+      for (int i = 0; i < 3; ++i) push(edge_key(ct_[k][i], ct_[k][(i + 1) % 3]));
+  }
+  drop_settled_keys();
+  return flips;
+}
+
 // The edges inside input faces that the flips within faces left missing: made by flips of the
 // mesh along them, else split (with their two triangles) at a walk's point like an input edge;
 // present ones are defended.
@@ -948,10 +997,11 @@ void SplitRecoverer::recover_face_edges(size_t cap) {
   for (size_t i = 0; i < n_keys && out_.steiner.size() <= cap; ++i) {
     const uint64_t key = edge_keys_[i];
     auto it = edges_.find(key);
-    if (it == edges_.end() || it->second.input_edge != kNone || settled(it->second)) continue;
+    if (it == edges_.end() || it->second.input_edge != kNone || settled(it->second) || it->second.defended)
+      continue;
     const auto a = uint32_t(key >> 32), b = uint32_t(key & 0xffffffffu);
     if (has_edge(a, b)) {
-      defend(a, b);
+      defend_present(it->second, a, b);
       continue;
     }
     if (flip_along(a, b)) defend(a, b);
@@ -1138,9 +1188,10 @@ Status SplitRecoverer::run() {
     for (size_t i = 0; i < n_keys; ++i) {
       const uint64_t key = edge_keys_[i];
       auto it = edges_.find(key);
-      if (it == edges_.end() || it->second.input_edge == kNone || settled(it->second)) continue;
+      if (it == edges_.end() || it->second.input_edge == kNone || settled(it->second) || it->second.defended)
+        continue;
       if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) {
-        defend(uint32_t(key >> 32), uint32_t(key & 0xffffffffu));
+        defend_present(it->second, uint32_t(key >> 32), uint32_t(key & 0xffffffffu));
         continue;
       }
       ++missing_edges;
@@ -1161,24 +1212,7 @@ Status SplitRecoverer::run() {
       }
       continue;
     }
-    // An edge inside an input face is free: flip a missing one to the mesh's edge, or to the
-    // face's 2D Delaunay edge, sweeping until none flips (at most kFlipSweeps), so each face's
-    // pieces reach its 2D Delaunay triangulation: short rungs across a needle instead of the fans
-    // its edge splits made.
-    constexpr int kFlipSweeps = 100;
-    size_t flips = 0;
-    for (int sweep = 0; sweep < kFlipSweeps; ++sweep) {
-      const size_t before = flips;
-      for (size_t i = 0; i < edge_keys_.size(); ++i) {
-        const uint64_t key = edge_keys_[i];
-        auto it = edges_.find(key);
-        if (it == edges_.end() || it->second.input_edge != kNone || settled(it->second)) continue;
-        if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
-        if (flip_edge(key, true) || flip_edge(key, false)) ++flips;
-      }
-      drop_settled_keys();
-      if (flips == before) break;
-    }
+    const size_t flips = flip_face_edges();
     out_.stats.flips += flips;
     if (opt_.split_face_edges) recover_face_edges(cap);
     // Protect every triangle present, then split the missing ones.
