@@ -127,7 +127,10 @@ class CavityKernel;
 
 // Inserts points one at a time into a mesh (modified Delaunay kernel). Keeps its scratch memory
 // between calls, so reuse one inserter for many points. The mesh must not be modified by others
-// between two inserts if the default hint (the last created tet) is used.
+// between two inserts if the default hint (the last created tet) is used. The kernel's static
+// filters are sized by the bounding box of the vertices the inserter has seen (each insert looks
+// at the vertices added since): a caller that moves a vertex keeps it inside that box (a move
+// inside a mesh whose boundary vertices stay put does).
 class PointInserter {
  public:
   explicit PointInserter(TetMesh& mesh, uint64_t seed = 0x5eed);
@@ -149,6 +152,10 @@ class PointInserter {
   TetMesh& mesh_;
   std::unique_ptr<delaunay_detail::CavityKernel> kernel_;
   uint32_t last_tet_ = TetMesh::kNone;
+  // Bounding box of vertices 0..seen_-1, for the static filters.
+  size_t seen_ = 0;
+  double lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
+  void see_new_vertices();
 };
 
 // One-shot insertion (allocates scratch memory on each call; prefer PointInserter in loops).

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "delaunay/cavity_kernel.hpp"
@@ -58,8 +59,10 @@ InsertResult PointInserter::insert(const double p[3], uint32_t hint, const Inser
   mesh_.add_vertex(q, options.vertex_flags);
   delaunay_detail::TetStorage store(mesh_);
   kernel_->bind(store, mesh_.xyz.data(), mesh_.num_vertices(), nullptr);
+  see_new_vertices();
   auto undo_vertex = [&] {
     mesh_.xyz.resize(3 * size_t(pid));
+    seen_ = std::min(seen_, size_t(pid));  // the next point takes its index (the box may stay larger)
     mesh_.vflags.resize(pid);
   };
 
@@ -90,6 +93,22 @@ InsertResult PointInserter::insert(const double p[3], uint32_t hint, const Inser
   result.status = InsertStatus::kInserted;
   result.vertex = pid;
   return result;
+}
+
+void PointInserter::see_new_vertices() {
+  const size_t n = mesh_.num_vertices();
+  seen_ = std::min(seen_, n);  // vertices removed at the end: the box stays a superset
+  if (seen_ == n) return;
+  if (seen_ == 0)
+    for (int k = 0; k < 3; ++k) lo_[k] = hi_[k] = mesh_.xyz[k];
+  for (size_t v = seen_; v < n; ++v)
+    for (int k = 0; k < 3; ++k) {
+      lo_[k] = std::min(lo_[k], mesh_.xyz[3 * v + k]);
+      hi_[k] = std::max(hi_[k], mesh_.xyz[3 * v + k]);
+    }
+  seen_ = n;
+  // The filters hold for coordinate differences up to the extent (non-finite: disabled).
+  kernel_->set_extent(std::max({hi_[0] - lo_[0], hi_[1] - lo_[1], hi_[2] - lo_[2]}));
 }
 
 InsertResult insert_point(TetMesh& mesh, const double p[3], uint32_t hint, const InsertOptions& options,
