@@ -148,6 +148,10 @@ class SplitRecoverer : public DegeneracyOracle {
 
   int apex_sign_ = 0;  // the orient3d sign of the input triangles with their face_apex (0: no guard)
   std::vector<uint32_t> ball_, bfs_;
+  // ball_ is the ball of this vertex until the mesh's tets change (changed()): one missing edge's
+  // sweep asks for its end's ball up to a dozen times, and needle fans' ends have thousands.
+  uint32_t ball_of_ = kNone;
+  void changed() { ball_of_ = kNone; }
   std::vector<uint32_t> tet_stamp_;
   uint32_t stamp_ = 0;
   std::vector<std::array<uint32_t, 3>> crossings_;  // split_triangle(): (tet, p, r) per crossing edge
@@ -357,12 +361,15 @@ Status SplitRecoverer::check_apexes() {
 }
 
 const std::vector<uint32_t>& SplitRecoverer::ball(uint32_t v) {
+  if (v == ball_of_) return ball_;
+  ball_of_ = kNone;
   const uint32_t t = vt_.tet_of(mesh_, v);
   if (t == kNone) {
     ball_.clear();
     return ball_;
   }
   meshops::vertex_ball(mesh_, v, t, ball_);
+  ball_of_ = v;
   return ball_;
 }
 
@@ -445,6 +452,7 @@ uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t ho
     ++out_.stats.blocked_insertions;
     return kNone;
   }
+  changed();
   for (uint32_t t : inserter_.new_tets())
     if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
   vhost_.push_back(pending_);
@@ -467,6 +475,7 @@ bool SplitRecoverer::sees_apex(const double* a, const double* b, const double* c
 bool SplitRecoverer::flip_in(uint32_t a, uint32_t b) {
   std::vector<uint32_t> created;
   if (!flip_in_edge(mesh_, a, b, ball(a), created, oracle())) return false;
+  changed();
   for (uint32_t t : created)
     if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
   ++out_.stats.flips;
@@ -543,6 +552,7 @@ bool SplitRecoverer::flip_along(uint32_t a, uint32_t b) {
       done = remove_edge(mesh_, ring, nullptr, 0, &created, oracle());
     }
     if (!done) return false;
+    changed();
     for (uint32_t c : created)
       if (!mesh_.is_ghost(c)) vt_.note(mesh_, c);
     ++out_.stats.flips;
@@ -691,6 +701,7 @@ bool SplitRecoverer::flip_in_tri(uint32_t k) {
   if (!sees_apex(mesh_.point(t[0]), mesh_.point(t[1]), mesh_.point(t[2]), ct_face_[k])) return false;
   std::vector<uint32_t> created;
   if (!flip_in_face(mesh_, t[0], t[1], t[2], ball(t[0]), created, oracle())) return false;
+  changed();
   for (uint32_t c : created)
     if (!mesh_.is_ghost(c)) vt_.note(mesh_, c);
   ++out_.stats.flips;
@@ -1115,6 +1126,7 @@ bool SplitRecoverer::split_triangle(uint32_t k) {
       if (!edge_ring(mesh_, c[0], c[1], c[2], ring)) continue;
       created.clear();
       if (!remove_edge(mesh_, ring, nullptr, 0, &created, oracle())) continue;
+      changed();
       for (uint32_t nt : created)
         if (!mesh_.is_ghost(nt)) vt_.note(mesh_, nt);
       ++out_.stats.flips;
@@ -1295,6 +1307,7 @@ Status SplitRecoverer::run() {
 // outside; any other is outside when its bounding constraint triangles, oriented outward from the
 // material, point into it (same cyclic order as the facet seen from inside the tet).
 Status SplitRecoverer::carve() {
+  changed();
   const size_t nslots = mesh_.num_tet_slots();
   std::unordered_map<Tri, uint32_t, TriHash> tri_of;
   for (uint32_t k = 0; k < ct_.size(); ++k)
