@@ -340,7 +340,8 @@ bool CavityKernel::keep_left() const {
 }
 
 bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected, const uint32_t* keep,
-                                      size_t keep_count, bool force_keep, const DegeneracyOracle* degeneracy) {
+                                      size_t keep_count, bool force_keep, const DegeneracyOracle* degeneracy,
+                                      bool early_refusal) {
   const double* p = pt(pid);
   keep_ = keep;
   keep_count_ = keep_count;
@@ -356,9 +357,12 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
         marks_.set(keep[k], TetMarks::kIn);
         cavity_.push_back(keep[k]);
       }
-  if (force_keep) {
+  if (force_keep && early_refusal) {
     const size_t forced = cavity_.size();
-    if (!kept_can_stay(respect_protected)) return false;
+    if (!kept_can_stay(respect_protected)) {
+      ++counters.early_refusals;
+      return false;
+    }
     // Forget what the test classified, so that the cavity grows in the same order (hence gives
     // the same mesh) as without it.
     marks_.clear();

@@ -31,6 +31,7 @@ bool exactly_collinear(const double* a, const double* b, const double* c);
 struct KernelCounters {
   uint64_t walk_steps = 0;
   uint64_t walk_fallbacks = 0;
+  uint64_t early_refusals = 0;
   uint64_t cavity_tets = 0;
   uint64_t tets_created = 0;
   uint64_t orient3d_calls = 0, insphere_calls = 0;  // all calls, static filter included
@@ -45,6 +46,7 @@ template <class Stats>
 void copy_counters(const KernelCounters& c, Stats& s) {
   s.walk_steps = c.walk_steps;
   s.walk_fallbacks = c.walk_fallbacks;
+  s.early_refusals = c.early_refusals;
   s.cavity_tets = c.cavity_tets;
   s.tets_created = c.tets_created;
   s.orient3d_calls = c.orient3d_calls;
@@ -99,9 +101,10 @@ class CavityKernel {
   // (the caller needs the new vertex joined to their vertices; no constrained edge ejects them:
   // when only kept tets could leave a constrained edge's ring, the insertion is refused).
   // force_keep: the `keep` tets start in the cavity whatever the empty-sphere test says.
+  // early_refusal: with force_keep, kept_can_stay() first.
   bool insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected, const uint32_t* keep = nullptr,
                           size_t keep_count = 0, bool force_keep = false,
-                          const DegeneracyOracle* degeneracy = nullptr);
+                          const DegeneracyOracle* degeneracy = nullptr, bool early_refusal = true);
 
   // Parallel bulk build (delaunay.cpp): tet t belongs to part tet_part[t] (kNoPart: none), the
   // part of all its real vertices; the tets a task creates are its part's. While tasks run, each

@@ -59,6 +59,7 @@ struct DelaunayStats {
   uint64_t tets_created = 0;     // tets created by cavities (sum over insertions)
   uint64_t walk_fallbacks = 0;  // walks that gave up and located the point by a full scan
   uint64_t parallel_points = 0;  // points inserted by the parallel tasks (DelaunayOptions::partitions)
+  uint64_t early_refusals = 0;   // PointInserter: refused before the cavity grew (InsertOptions::early_refusal)
   // Predicate calls (the kernel's own static filter included) and how many reached the exact
   // stages of src/predicates (from predicates::thread_counters()).
   uint64_t orient3d_calls = 0, orient3d_exact = 0;
@@ -112,6 +113,9 @@ struct InsertOptions {
   // a tet this oracle calls flat (as the exact orient3d does with a zero volume). The new vertex
   // is mesh.num_vertices() - 1 while it is asked.
   const DegeneracyOracle* degeneracy = nullptr;
+  // With force_keep: refuse the point before growing the cavity when a quick local test shows
+  // the shrinking would eject a kept tet (same outcome, same mesh; off only to compare).
+  bool early_refusal = true;
 };
 
 struct InsertResult {

@@ -84,7 +84,7 @@ InsertResult PointInserter::insert(const double p[3], uint32_t hint, const Inser
       break;
   }
   if (!kernel_->insert_constrained(loc.tet, pid, options.respect_protected, options.keep_tets, options.keep_count,
-                                   options.force_keep, options.degeneracy)) {
+                                   options.force_keep, options.degeneracy, options.early_refusal)) {
     undo_vertex();
     result.status = InsertStatus::kBlocked;
     return result;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <set>
 #include <vector>
@@ -293,6 +294,77 @@ TEST(PointInserter, ForcedKeepNeverDestroysAConstrainedEdge) {
     EXPECT_TRUE(edge_left) << "the constrained edge was destroyed";
   }
   EXPECT_GT(refused, 0u);
+}
+
+// InsertOptions::early_refusal only saves work: forced chains of kept tets (as the split
+// recovery's walks make them) in a mesh with protected facets and constrained edges, each point
+// inserted with and without it into two copies, give the same outcome and the same mesh, and
+// some refusals do come early.
+TEST(PointInserter, EarlyRefusalNeverChangesTheOutcome) {
+  size_t early = 0, inserted = 0, refused = 0;
+  for (int seed = 1; seed <= 3; ++seed) {
+    std::mt19937_64 rng(seed);
+    const std::vector<double> xyz = test::random_cube(300, 400 + seed);
+    TetMesh a;
+    ASSERT_TRUE(delaunay_tetrahedralize(a, xyz.data(), 300).ok());
+    for (uint32_t t = 0; t < a.num_tet_slots(); ++t) {
+      if (a.is_deleted(t) || a.is_ghost(t)) continue;
+      for (int i = 0; i < 4; ++i)
+        if (!a.is_ghost(a.neighbour(t, i)) && rng() % 8 == 0) protect(a, t, i);
+    }
+    // Constrained edges: every tet around each chosen edge carries its bit.
+    for (int e = 0; e < 40; ++e) {
+      const auto t0 = uint32_t(rng() % a.num_tet_slots());
+      if (a.is_deleted(t0) || a.is_ghost(t0)) continue;
+      const uint32_t u = a.vertex(t0, 0), w = a.vertex(t0, 1);
+      std::vector<uint32_t> ring, ring_v;
+      if (!meshops::edge_ring(a, u, w, t0, ring, ring_v)) continue;
+      for (uint32_t t : ring)
+        for (int k = 0; k < 6; ++k) {
+          const uint32_t x = a.vertex(t, kEdgeVertex[k][0]), y = a.vertex(t, kEdgeVertex[k][1]);
+          if ((x == u && y == w) || (x == w && y == u))
+            a.tet_flags[t] = uint16_t(a.tet_flags[t] | (1u << (tflag::kEdgeConstrainedShift + k)));
+        }
+    }
+    TetMesh b = a;
+    PointInserter with(a, seed), without(b, seed);
+    std::uniform_real_distribution<double> u(0.2, 0.8);
+    for (int trial = 0; trial < 400 / int(kScale); ++trial) {
+      const double p[3] = {u(rng), u(rng), u(rng)};
+      const uint32_t holder = holder_of(a, p);
+      if (holder == TetMesh::kNone) continue;
+      // A chain from the holder through 1 to 6 random neighbours.
+      std::vector<uint32_t> chain = {holder};
+      const int length = 1 + int(rng() % 6);
+      for (int step = 0; step < length; ++step) {
+        const uint32_t n = a.neighbour(chain.back(), int(rng() % 4));
+        if (n == TetMesh::kNone || a.is_ghost(n) || std::count(chain.begin(), chain.end(), n)) break;
+        chain.push_back(n);
+      }
+      InsertOptions o;
+      o.keep_tets = chain.data();
+      o.keep_count = chain.size();
+      o.force_keep = true;
+      InsertOptions plain = o;
+      plain.early_refusal = false;
+      const InsertResult ra = with.insert(p, holder, o);
+      const InsertResult rb = without.insert(p, holder, plain);
+      ASSERT_EQ(ra.status, rb.status) << "seed " << seed << ", trial " << trial;
+      ASSERT_EQ(ra.vertex, rb.vertex);
+      ASSERT_EQ(a.tet_v, b.tet_v) << "seed " << seed << ", trial " << trial;
+      ASSERT_EQ(a.tet_adj, b.tet_adj);
+      ASSERT_EQ(a.tet_flags, b.tet_flags);
+      (ra.ok() ? inserted : refused) += 1;
+    }
+    early += with.stats().early_refusals;
+    EXPECT_EQ(without.stats().early_refusals, 0u);
+    const Status st = check_mesh(a);
+    ASSERT_TRUE(st.ok()) << st.message();
+  }
+  std::printf("early refusal: %zu inserted, %zu refused, %zu of them early\n", inserted, refused, early);
+  EXPECT_GT(inserted, 0u);
+  EXPECT_GT(early, 0u);
+  EXPECT_LT(early, refused);
 }
 
 TEST(PointInserter, InvalidInputs) {
