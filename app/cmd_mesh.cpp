@@ -43,7 +43,8 @@ int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
               << "  steiner points: " << st.steiner_on_edges + st.steiner_on_faces << " ("
               << st.steiner_on_edges << " on edges, " << st.steiner_on_faces << " on faces; "
               << st.walk_splits << " placed by a walk, " << st.edge_crossing_splits << " of them where it crosses a mesh edge), " << st.flips << " flips, " << st.passes << " passes, "
-              << st.blocked_insertions << " insertions refused, strategy: " << recovery_strategy_name(st.strategy)
+              << st.blocked_insertions << " insertions refused (" << st.early_refusals
+              << " before their cavity grew), strategy: " << recovery_strategy_name(st.strategy)
               << "\n"
               << "  tets flat to rounding: " << flat.found << " found, " << flat.flips << " flips, " << flat.left
               << " left\n"

@@ -120,6 +120,7 @@ struct RecoveryStats {
   size_t walk_splits = 0;         // split constraints: edges split at a walk's point (split_walk)
   size_t edge_crossing_splits = 0;  // of which: where the segment passes a mesh edge (its ring forced)
   size_t blocked_insertions = 0;  // insertions the kernel refused (another point was tried)
+  size_t early_refusals = 0;      // of which refused before their cavity grew (InsertOptions::early_refusal)
   size_t tets = 0;                // tets of the result
   size_t regions = 0;
   double seconds_delaunay = 0, seconds_recovery = 0, seconds_carve = 0, seconds_total = 0;

@@ -1256,6 +1256,7 @@ Status SplitRecoverer::run() {
     }
   }
   out_.stats.passes = pass;
+  out_.stats.early_refusals = inserter_.stats().early_refusals;
   if (!done) {
     const std::string why = cascade ? " (splits cascading: the missing pieces grew " + std::to_string(kGrowthLimit) +
                                           " passes in a row)"
