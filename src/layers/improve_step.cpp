@@ -51,8 +51,8 @@ bool LayerBuilder::keeps_clear(uint32_t v, const double to[3], double gap) const
   return !(clear_distance(v, to, gap, gap) < gap);
 }
 
-double LayerBuilder::worst_tet_with(uint32_t v, const double* at,
-                                    const std::vector<uint32_t>& tets) const {
+double LayerBuilder::worst_tet_with(uint32_t v, const double* at, const std::vector<uint32_t>& tets,
+                                    double stop_at) const {
   double worst = 1.0;
   for (uint32_t t : tets) {
     const double* p[4];
@@ -68,6 +68,7 @@ double LayerBuilder::worst_tet_with(uint32_t v, const double* at,
                        e1[2] * (e2[0] * e3[1] - e2[1] * e3[0]);
     if (!(vol > 0.0)) return -1.0;
     worst = std::min(worst, radius_ratio(p[0], p[1], p[2], p[3]));
+    if (worst <= stop_at) return worst;
   }
   return worst;
 }
@@ -80,7 +81,7 @@ void LayerBuilder::compass_search(uint32_t v, const std::vector<uint32_t>& tets,
       for (double sign : {-1.0, 1.0}) {
         std::array<double, 3> c = best;
         c[size_t(k)] += sign * step;
-        const double q = worst_tet_with(v, c.data(), tets);
+        const double q = worst_tet_with(v, c.data(), tets, best_q + 1e-6);
         if (q > best_q + 1e-6) {
           best_q = q;
           best = c;
@@ -208,7 +209,7 @@ void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
         std::array<double, 3> best = {p[0], p[1], p[2]};
         double best_q = now;
         for (const auto& c : candidates) {
-          const double q = worst_tet_with(v, c.data(), tets[i]);
+          const double q = worst_tet_with(v, c.data(), tets[i], best_q);
           if (q > best_q) {
             best_q = q;
             best = c;
@@ -218,12 +219,14 @@ void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
         candidates.push_back(best);
       }
       const double clear_now = clear_distance(v, p, edge);
-      std::sort(candidates.begin(), candidates.end(),
-                [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-                  return worst_tet_with(v, a.data(), tets[i]) > worst_tet_with(v, b.data(), tets[i]);
-                });
-      for (const auto& c : candidates) {
-        if (!(worst_tet_with(v, c.data(), tets[i]) > now + 0.01)) break;
+      // Best first; each candidate's worst tet computed once, not at every comparison.
+      std::vector<std::pair<double, std::array<double, 3>>> ranked;
+      ranked.reserve(candidates.size());
+      for (const auto& c : candidates) ranked.push_back({worst_tet_with(v, c.data(), tets[i]), c});
+      std::sort(ranked.begin(), ranked.end(),
+                [](const auto& a, const auto& b) { return a.first > b.first; });
+      for (const auto& [q, c] : ranked) {
+        if (!(q > now + 0.01)) break;
         if (!keeps_clear(v, c.data(), std::min(0.5 * edge, 0.7 * clear_now))) continue;
         if (relocate_if_valid(v, c.data(), tets[i])) {
           ++moved;
@@ -276,7 +279,7 @@ void LayerBuilder::smooth_interior(int passes) {
       edge /= double(count);
       for (double& x : mean) x /= double(count);
       const double start_q = best_q;
-      if (const double q = worst_tet_with(v, mean.data(), tets[v]); q > best_q) {
+      if (const double q = worst_tet_with(v, mean.data(), tets[v], best_q); q > best_q) {
         best_q = q;
         best = mean;
       }
