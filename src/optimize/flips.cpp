@@ -49,11 +49,11 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
   if (predicates::orient3d(m.point(a), m.point(b), m.point(c.ring[0]), m.point(c.ring[1])) > 0)
     std::reverse(c.ring.begin(), c.ring.end());
   const uint32_t* r = c.ring.data();
-  auto tri_quality = [&](int i, int j, int l) {
-    return std::min(shape_quality(m.point(r[i]), m.point(r[j]), m.point(r[l]), m.point(a)),
-                    shape_quality(m.point(r[j]), m.point(r[i]), m.point(r[l]), m.point(b)));
-  };
-  // best[i][j]: the best worst quality of a triangulation of the sub-polygon r_i .. r_j.
+  // best[i][j]: the best worst quality of a triangulation of the sub-polygon r_i .. r_j, exact
+  // where it beats `bar` (only such a triangulation can replace the ring); a candidate that
+  // cannot beat both bar and the best so far is not measured (its value would not change the
+  // decision or the triangulation chosen), nor its second tet once the first fails.
+  const double bar = before + c.gain;
   double best[7][7];
   int split[7][7];
   for (int len = 1; len < n; ++len)
@@ -67,14 +67,20 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
       best[i][j] = -2.0;
       split[i][j] = -1;
       for (int l = i + 1; l < j; ++l) {
-        const double q = std::min({best[i][l], best[l][j], tri_quality(i, l, j)});
+        const double need = std::max(best[i][j], bar);
+        const double sub = std::min(best[i][l], best[l][j]);
+        if (!(sub > need)) continue;
+        const double qa = shape_quality(m.point(r[i]), m.point(r[l]), m.point(r[j]), m.point(a));
+        if (!(qa > need)) continue;
+        const double q =
+            std::min({sub, qa, shape_quality(m.point(r[l]), m.point(r[i]), m.point(r[j]), m.point(b))});
         if (q > best[i][j]) {
           best[i][j] = q;
           split[i][j] = l;
         }
       }
     }
-  if (best[0][n - 1] <= before + c.gain) return false;
+  if (best[0][n - 1] <= bar) return false;
   c.fresh.clear();
   int stack[16][2], top = 0;
   stack[top][0] = 0;
