@@ -132,15 +132,11 @@ size_t flip_sweep(FlipContext& c, double quality, int rounds) {
         if (meshops::tet_shape_quality(m, s) < quality) fresh_bad.push_back(s);
     };
     for (uint32_t t : bad) {
+      // t is measured once: a flip that fails leaves it as it was, one that succeeds ends its turn.
+      if (m.is_deleted(t) || meshops::tet_shape_quality(m, t) >= quality) continue;
       bool done = false;
-      for (int k = 0; k < 6 && !done; ++k) {
-        if (m.is_deleted(t) || meshops::tet_shape_quality(m, t) >= quality) break;
-        done = try_remove_edge(c, t, k);
-      }
-      for (int i = 0; i < 4 && !done; ++i) {
-        if (m.is_deleted(t) || meshops::tet_shape_quality(m, t) >= quality) break;
-        done = try_flip23(c, t, i);
-      }
+      for (int k = 0; k < 6 && !done && !m.is_deleted(t); ++k) done = try_remove_edge(c, t, k);
+      for (int i = 0; i < 4 && !done && !m.is_deleted(t); ++i) done = try_flip23(c, t, i);
       if (done) {
         ++flips;
         note_created();
