@@ -52,9 +52,10 @@ bool LayerBuilder::keeps_clear(uint32_t v, const double to[3], double gap) const
 }
 
 double LayerBuilder::worst_tet_with(uint32_t v, const double* at, const std::vector<uint32_t>& tets,
-                                    double stop_at) const {
+                                    double stop_at, size_t* stopped_at) const {
   double worst = 1.0;
-  for (uint32_t t : tets) {
+  for (size_t j = 0; j < tets.size(); ++j) {
+    const uint32_t t = tets[j];
     const double* p[4];
     for (int i = 0; i < 4; ++i) {
       const uint32_t u = mesh_.vertex(t, i);
@@ -66,22 +67,29 @@ double LayerBuilder::worst_tet_with(uint32_t v, const double* at, const std::vec
     const double vol = e1[0] * (e2[1] * e3[2] - e2[2] * e3[1]) -
                        e1[1] * (e2[0] * e3[2] - e2[2] * e3[0]) +
                        e1[2] * (e2[0] * e3[1] - e2[1] * e3[0]);
-    if (!(vol > 0.0)) return -1.0;
-    worst = std::min(worst, radius_ratio(p[0], p[1], p[2], p[3]));
-    if (worst <= stop_at) return worst;
+    if (!(vol > 0.0) || (worst = std::min(worst, radius_ratio(p[0], p[1], p[2], p[3]))) <= stop_at) {
+      if (stopped_at) *stopped_at = j;
+      return vol > 0.0 ? worst : -1.0;
+    }
   }
+  if (stopped_at) *stopped_at = tets.size();
   return worst;
 }
 
 void LayerBuilder::compass_search(uint32_t v, const std::vector<uint32_t>& tets, double step, double stop,
                                   std::array<double, 3>& best, double& best_q) const {
+  // The tet that stopped the last trial is measured first in the next: trials near each other
+  // usually fail on the same tet. (A min does not depend on the order.)
+  std::vector<uint32_t> order = tets;
   while (step > stop) {
     bool moved = false;
     for (int k = 0; k < 3; ++k)
       for (double sign : {-1.0, 1.0}) {
         std::array<double, 3> c = best;
         c[size_t(k)] += sign * step;
-        const double q = worst_tet_with(v, c.data(), tets, best_q + 1e-6);
+        size_t stopped = 0;
+        const double q = worst_tet_with(v, c.data(), order, best_q + 1e-6, &stopped);
+        if (stopped > 0 && stopped < order.size()) std::swap(order[0], order[stopped]);
         if (q > best_q + 1e-6) {
           best_q = q;
           best = c;

@@ -82,10 +82,10 @@ class LayerBuilder {
   // positive (exact). Their link is fixed, so the tets still tile the same star.
   void smooth_interior(int passes);
   // The worst radius ratio of `tets` with v placed at `at` (-1 when one is not positive). Stops
-  // at the first tet at or below `stop_at` and returns its value: callers that only ask whether
-  // the worst beats a bar pass the bar and skip the rest of the tets.
+  // at the first tet at or below `stop_at` and returns its value (its index in *stopped_at):
+  // callers that only ask whether the worst beats a bar pass the bar and skip the rest of the tets.
   double worst_tet_with(uint32_t v, const double* at, const std::vector<uint32_t>& tets,
-                        double stop_at = -2.0) const;
+                        double stop_at = -2.0, size_t* stopped_at = nullptr) const;
   // Moves `best` (v's position) along the axes by `step`, halved when nothing improves until
   // below `stop`, keeping each move that raises worst_tet_with over `tets` (best_q).
   void compass_search(uint32_t v, const std::vector<uint32_t>& tets, double step, double stop,
