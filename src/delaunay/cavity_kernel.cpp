@@ -342,7 +342,6 @@ bool CavityKernel::keep_left() const {
 bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_protected, const uint32_t* keep,
                                       size_t keep_count, bool force_keep, const DegeneracyOracle* degeneracy,
                                       bool early_refusal) {
-  const double* p = pt(pid);
   keep_ = keep;
   keep_count_ = keep_count;
   degeneracy_ = degeneracy;
@@ -374,21 +373,8 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
   shrink_queue_.clear();
   for (size_t k = 0; k < cavity_.size(); ++k) {
     const uint32_t c = cavity_[k];
-    for (int i = 0; i < 4; ++i) {
-      const uint64_t adj = store_->adj(c, i);
-      if (adj == kNoNeighbour || (respect_protected && ((store_->flags(c) >> i) & 1u))) {
-        shrink_queue_.push_back({c, i});
-        continue;
-      }
-      const auto n = static_cast<uint32_t>(adj >> 2);
-      uint32_t mark = marks_.get(n);
-      if (mark == TetMarks::kNone) {
-        mark = in_conflict<false>(n, p, pid) ? TetMarks::kIn : TetMarks::kOut;
-        marks_.set(n, mark);
-        if (mark == TetMarks::kIn) cavity_.push_back(n);
-      }
-      if (mark == TetMarks::kOut) shrink_queue_.push_back({c, i});
-    }
+    for (int i = 0; i < 4; ++i)
+      if (bounds_for_sure(c, i, respect_protected)) shrink_queue_.push_back({c, i});
   }
   if (keep_left() || !shrink_to_star(t0, pid, respect_protected) || keep_left()) return false;
   collect_boundary(respect_protected);
@@ -404,34 +390,11 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
 // holds thousands of tets (adis16480: 19 refusals in 20 caught here). Leaves marks and cavity_
 // changed (the neighbours it found in conflict join the cavity).
 bool CavityKernel::kept_can_stay(bool respect_protected) {
-  const double* p = pt(pid_);
-  auto is_kept = [this](uint32_t t) { return std::find(keep_, keep_ + keep_count_, t) != keep_ + keep_count_; };
-  // Whether facet i of cavity tet c bounds the cavity whatever else leaves it; classifies the tet
-  // across (joining the cavity when in conflict, as growth would).
-  auto bounds_for_sure = [&](uint32_t c, int i) {
-    const uint64_t adj = store_->adj(c, i);
-    if (adj == kNoNeighbour || (respect_protected && ((store_->flags(c) >> i) & 1u))) return true;
-    const auto n = static_cast<uint32_t>(adj >> 2);
-    if (marks_.get(n) == TetMarks::kNone) {
-      if (in_conflict<false>(n, p, pid_)) {
-        marks_.set(n, TetMarks::kIn);
-        cavity_.push_back(n);
-      } else {
-        marks_.set(n, TetMarks::kOut);
-      }
-    }
-    return marks_.get(n) == TetMarks::kOut;
-  };
-  auto sees = [&](uint32_t c, int i) {
-    boundary_.clear();
-    add_boundary<true>(c, i, store_->adj(c, i));
-    return boundary_facet_ok(boundary_[0], p);
-  };
   for (size_t k = 0; k < keep_count_; ++k) {
     const uint32_t c = keep_[k];
     for (int i = 0; i < 4; ++i) {
-      if (bounds_for_sure(c, i)) {
-        if (!sees(c, i)) return false;
+      if (bounds_for_sure(c, i, respect_protected)) {
+        if (!facet_sees_new_point(c, i)) return false;
         continue;
       }
       // The tet n across, in the cavity: when one of its sure boundary facets hides p, n leaves
@@ -441,11 +404,39 @@ bool CavityKernel::kept_can_stay(bool respect_protected) {
       if (is_kept(n)) continue;
       bool n_leaves = false;
       for (int j = 0; j < 4 && !n_leaves; ++j)
-        if (j != int(adj & 3) && bounds_for_sure(n, j) && !sees(n, j)) n_leaves = true;
-      if (n_leaves && !sees(c, i)) return false;
+        if (j != int(adj & 3) && bounds_for_sure(n, j, respect_protected) && !facet_sees_new_point(n, j))
+          n_leaves = true;
+      if (n_leaves && !facet_sees_new_point(c, i)) return false;
     }
   }
   return true;
+}
+
+// Whether facet i of cavity tet c bounds the cavity whatever else leaves it: no neighbour, a
+// protected facet, or a neighbour not in conflict. Classifies the neighbour when it has no mark
+// yet (joining the cavity when in conflict), as growth does; the marks it sets are final.
+bool CavityKernel::bounds_for_sure(uint32_t c, int i, bool respect_protected) {
+  const uint64_t adj = store_->adj(c, i);
+  if (adj == kNoNeighbour || (respect_protected && ((store_->flags(c) >> i) & 1u))) return true;
+  const auto n = static_cast<uint32_t>(adj >> 2);
+  uint32_t mark = marks_.get(n);
+  if (mark == TetMarks::kNone) {
+    mark = in_conflict<false>(n, pt(pid_), pid_) ? TetMarks::kIn : TetMarks::kOut;
+    marks_.set(n, mark);
+    if (mark == TetMarks::kIn) cavity_.push_back(n);
+  }
+  return mark == TetMarks::kOut;
+}
+
+// Coning facet i of cavity tet c to the new point makes a positive tet (boundary_facet_ok()).
+bool CavityKernel::facet_sees_new_point(uint32_t c, int i) {
+  boundary_.clear();
+  add_boundary<true>(c, i, store_->adj(c, i));
+  return boundary_facet_ok(boundary_[0], pt(pid_));
+}
+
+bool CavityKernel::is_kept(uint32_t t) const {
+  return std::find(keep_, keep_ + keep_count_, t) != keep_ + keep_count_;
 }
 
 bool CavityKernel::is_boundary_facet(uint32_t c, int i, bool respect_protected) const {
@@ -463,7 +454,6 @@ bool CavityKernel::is_boundary_facet(uint32_t c, int i, bool respect_protected) 
 // facets growth found. False when t0 or a kept tet has to leave (the insertion is then refused:
 // no need to finish).
 bool CavityKernel::shrink_to_star(uint32_t t0, uint32_t pid, bool respect_protected) {
-  const double* p = pt(pid);
   auto take_out = [&](uint32_t c) {
     marks_.set(c, TetMarks::kOut);
     for (int j = 0; j < 4; ++j) {
@@ -478,12 +468,10 @@ bool CavityKernel::shrink_to_star(uint32_t t0, uint32_t pid, bool respect_protec
       const auto [c, i] = shrink_queue_.back();
       shrink_queue_.pop_back();
       if (marks_.get(c) != TetMarks::kIn || !is_boundary_facet(c, i, respect_protected)) continue;
-      boundary_.clear();
-      add_boundary<true>(c, i, store_->adj(c, i));
-      if (boundary_facet_ok(boundary_[0], p)) continue;
+      if (facet_sees_new_point(c, i)) continue;
       take_out(c);
       if (marks_.get(t0) != TetMarks::kIn) return false;
-      if (keep_count_ > 0 && std::find(keep_, keep_ + keep_count_, c) != keep_ + keep_count_) return false;
+      if (keep_count_ > 0 && is_kept(c)) return false;
     }
     cavity_.erase(std::remove_if(cavity_.begin(), cavity_.end(),
                                  [this](uint32_t t) { return marks_.get(t) != TetMarks::kIn; }),
@@ -514,7 +502,6 @@ bool CavityKernel::closure_contains(uint32_t t, const double* p) {
 // A tet whose closure holds the new point must stay (or the point would end on the cavity's
 // boundary), so another tet of the edge's ring is chosen.
 bool CavityKernel::defend_constrained_edges(uint32_t t0, uint32_t pid) {
-  auto is_kept = [this](uint32_t t) { return std::find(keep_, keep_ + keep_count_, t) != keep_ + keep_count_; };
   bool removed = false;
   for (uint32_t c : cavity_) {
     if (marks_.get(c) != TetMarks::kIn) continue;

@@ -185,6 +185,9 @@ class CavityKernel {
   void collect_boundary(bool respect_protected);
   bool defend_constrained_edges(uint32_t t0, uint32_t pid);
   bool kept_can_stay(bool respect_protected);
+  bool bounds_for_sure(uint32_t c, int i, bool respect_protected);
+  bool facet_sees_new_point(uint32_t c, int i);
+  bool is_kept(uint32_t t) const;
   bool shrink_to_star(uint32_t t0, uint32_t pid, bool respect_protected);
   bool is_boundary_facet(uint32_t c, int i, bool respect_protected) const;
   bool closure_contains(uint32_t t, const double* p);
