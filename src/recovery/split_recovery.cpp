@@ -61,6 +61,15 @@ class SplitRecoverer : public DegeneracyOracle {
                                     }),
                      edge_keys_.end());
   }
+  // The constraint edge `key` when a sweep still has to look for it: alive, on an input edge
+  // (on_input_edge) or inside a face (otherwise), neither settled nor defended; else null.
+  CEdge* still_open(uint64_t key, bool on_input_edge) {
+    auto it = edges_.find(key);
+    if (it == edges_.end() || (it->second.input_edge != kNone) != on_input_edge || settled(it->second) ||
+        it->second.defended)
+      return nullptr;
+    return &it->second;
+  }
   bool settled(const CEdge& e) const {
     return (e.tri[0] != kNone && ct_state_[e.tri[0]] == kRecovered) ||
            (e.tri[1] != kNone && ct_state_[e.tri[1]] == kRecovered);
@@ -152,6 +161,13 @@ class SplitRecoverer : public DegeneracyOracle {
   // sweep asks for its end's ball up to a dozen times, and needle fans' ends have thousands.
   uint32_t ball_of_ = kNone;
   void changed() { ball_of_ = kNone; }
+  // After an insertion or a flip made `tets`: the cached ball is stale, and each new real tet
+  // becomes its vertices' entry in vt_.
+  void tets_made(const std::vector<uint32_t>& tets) {
+    changed();
+    for (uint32_t t : tets)
+      if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
+  }
   std::vector<uint32_t> tet_stamp_;
   uint32_t stamp_ = 0;
   std::vector<std::array<uint32_t, 3>> crossings_;  // split_triangle(): (tet, p, r) per crossing edge
@@ -452,9 +468,7 @@ uint32_t SplitRecoverer::insert(const double p[3], SteinerHost host, uint32_t ho
     ++out_.stats.blocked_insertions;
     return kNone;
   }
-  changed();
-  for (uint32_t t : inserter_.new_tets())
-    if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
+  tets_made(inserter_.new_tets());
   vhost_.push_back(pending_);
   vparam_.push_back(param);
   out_.steiner.push_back({r.vertex, host, host_id});
@@ -475,9 +489,7 @@ bool SplitRecoverer::sees_apex(const double* a, const double* b, const double* c
 bool SplitRecoverer::flip_in(uint32_t a, uint32_t b) {
   std::vector<uint32_t> created;
   if (!flip_in_edge(mesh_, a, b, ball(a), created, oracle())) return false;
-  changed();
-  for (uint32_t t : created)
-    if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
+  tets_made(created);
   ++out_.stats.flips;
   return true;
 }
@@ -552,9 +564,7 @@ bool SplitRecoverer::flip_along(uint32_t a, uint32_t b) {
       done = remove_edge(mesh_, ring, nullptr, 0, &created, oracle());
     }
     if (!done) return false;
-    changed();
-    for (uint32_t c : created)
-      if (!mesh_.is_ghost(c)) vt_.note(mesh_, c);
+    tets_made(created);
     ++out_.stats.flips;
   }
   return has_edge(a, b);
@@ -701,9 +711,7 @@ bool SplitRecoverer::flip_in_tri(uint32_t k) {
   if (!sees_apex(mesh_.point(t[0]), mesh_.point(t[1]), mesh_.point(t[2]), ct_face_[k])) return false;
   std::vector<uint32_t> created;
   if (!flip_in_face(mesh_, t[0], t[1], t[2], ball(t[0]), created, oracle())) return false;
-  changed();
-  for (uint32_t c : created)
-    if (!mesh_.is_ghost(c)) vt_.note(mesh_, c);
+  tets_made(created);
   ++out_.stats.flips;
   protect(k);
   return ct_state_[k] == kRecovered;
@@ -987,9 +995,7 @@ size_t SplitRecoverer::flip_face_edges() {
   for (size_t head = 0; head < work.size() && head < limit; ++head) {
     const uint64_t key = work[head];
     queued.erase(key);
-    auto it = edges_.find(key);
-    if (it == edges_.end() || it->second.input_edge != kNone || settled(it->second) || it->second.defended)
-      continue;
+    if (!still_open(key, false)) continue;
     if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) continue;
     if (!flip_edge(key, true) && !flip_edge(key, false)) continue;
     ++flips;
@@ -1007,12 +1013,11 @@ void SplitRecoverer::recover_face_edges(size_t cap) {
   const size_t n_keys = edge_keys_.size();
   for (size_t i = 0; i < n_keys && out_.steiner.size() <= cap; ++i) {
     const uint64_t key = edge_keys_[i];
-    auto it = edges_.find(key);
-    if (it == edges_.end() || it->second.input_edge != kNone || settled(it->second) || it->second.defended)
-      continue;
+    CEdge* e = still_open(key, false);
+    if (!e) continue;
     const auto a = uint32_t(key >> 32), b = uint32_t(key & 0xffffffffu);
     if (has_edge(a, b)) {
-      defend_present(it->second, a, b);
+      defend_present(*e, a, b);
       continue;
     }
     if (flip_along(a, b)) defend(a, b);
@@ -1126,9 +1131,7 @@ bool SplitRecoverer::split_triangle(uint32_t k) {
       if (!edge_ring(mesh_, c[0], c[1], c[2], ring)) continue;
       created.clear();
       if (!remove_edge(mesh_, ring, nullptr, 0, &created, oracle())) continue;
-      changed();
-      for (uint32_t nt : created)
-        if (!mesh_.is_ghost(nt)) vt_.note(mesh_, nt);
+      tets_made(created);
       ++out_.stats.flips;
       any = true;
     }
@@ -1199,11 +1202,10 @@ Status SplitRecoverer::run() {
     const size_t n_keys = edge_keys_.size();
     for (size_t i = 0; i < n_keys; ++i) {
       const uint64_t key = edge_keys_[i];
-      auto it = edges_.find(key);
-      if (it == edges_.end() || it->second.input_edge == kNone || settled(it->second) || it->second.defended)
-        continue;
+      CEdge* e = still_open(key, true);
+      if (!e) continue;
       if (has_edge(uint32_t(key >> 32), uint32_t(key & 0xffffffffu))) {
-        defend_present(it->second, uint32_t(key >> 32), uint32_t(key & 0xffffffffu));
+        defend_present(*e, uint32_t(key >> 32), uint32_t(key & 0xffffffffu));
         continue;
       }
       ++missing_edges;
