@@ -67,7 +67,8 @@ double LayerBuilder::worst_tet_with(uint32_t v, const double* at, const std::vec
     const double vol = e1[0] * (e2[1] * e3[2] - e2[2] * e3[1]) -
                        e1[1] * (e2[0] * e3[2] - e2[2] * e3[0]) +
                        e1[2] * (e2[0] * e3[1] - e2[1] * e3[0]);
-    if (!(vol > 0.0) || (worst = std::min(worst, radius_ratio(p[0], p[1], p[2], p[3]))) <= stop_at) {
+    if (vol > 0.0) worst = std::min(worst, radius_ratio(p[0], p[1], p[2], p[3]));
+    if (!(vol > 0.0) || worst <= stop_at) {
       if (stopped_at) *stopped_at = j;
       return vol > 0.0 ? worst : -1.0;
     }
