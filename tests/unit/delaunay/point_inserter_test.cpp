@@ -29,6 +29,15 @@ void protect(TetMesh& m, uint32_t t, int i) {
   m.set_facet_protected(m.neighbour(t, i), m.neighbour_facet(t, i), true);
 }
 
+// Protects about one in `one_in` facets between two real tets (each real tet's facets in turn).
+void protect_random_facets(TetMesh& m, std::mt19937_64& rng, unsigned one_in) {
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
+    if (m.is_deleted(t) || m.is_ghost(t)) continue;
+    for (int i = 0; i < 4; ++i)
+      if (!m.is_ghost(m.neighbour(t, i)) && rng() % one_in == 0) protect(m, t, i);
+  }
+}
+
 // The protected facets of the mesh, as sorted vertex triples.
 std::set<Triangle> protected_facets(const TetMesh& m) {
   std::set<Triangle> out;
@@ -307,11 +316,7 @@ TEST(PointInserter, EarlyRefusalNeverChangesTheOutcome) {
     const std::vector<double> xyz = test::random_cube(300, 400 + seed);
     TetMesh a;
     ASSERT_TRUE(delaunay_tetrahedralize(a, xyz.data(), 300).ok());
-    for (uint32_t t = 0; t < a.num_tet_slots(); ++t) {
-      if (a.is_deleted(t) || a.is_ghost(t)) continue;
-      for (int i = 0; i < 4; ++i)
-        if (!a.is_ghost(a.neighbour(t, i)) && rng() % 8 == 0) protect(a, t, i);
-    }
+    protect_random_facets(a, rng, 8);
     // Constrained edges: every tet around each chosen edge carries its bit.
     for (int e = 0; e < 40; ++e) {
       const auto t0 = uint32_t(rng() % a.num_tet_slots());
@@ -533,11 +538,7 @@ TEST(PointInserter, ProtectedFacetsSurviveRandomInsertions) {
     for (double& c : shrunk) c = 0.25 + 0.5 * c;  // the hull is well inside the unit cube
     TetMesh mesh;
     ASSERT_TRUE(delaunay_tetrahedralize(mesh, shrunk.data(), 300).ok());
-    for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
-      if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
-      for (int i = 0; i < 4; ++i)
-        if (!mesh.is_ghost(mesh.neighbour(t, i)) && rng() % 10 == 0) protect(mesh, t, i);
-    }
+    protect_random_facets(mesh, rng, 10);
     const std::set<Triangle> wall = protected_facets(mesh);
     ASSERT_GT(wall.size(), 50u);
 
