@@ -19,6 +19,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/bvh.hpp"
 #include "core/status.hpp"
 #include "core/tet_mesh.hpp"
 
@@ -158,7 +159,7 @@ class PointInserter {
   uint32_t last_tet_ = TetMesh::kNone;
   // Bounding box of vertices 0..seen_-1, for the static filters.
   size_t seen_ = 0;
-  double lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
+  Box3 box_ = {};
   void see_new_vertices();
 };
 

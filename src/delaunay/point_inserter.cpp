@@ -99,16 +99,14 @@ void PointInserter::see_new_vertices() {
   const size_t n = mesh_.num_vertices();
   seen_ = std::min(seen_, n);  // vertices removed at the end: the box stays a superset
   if (seen_ == n) return;
-  if (seen_ == 0)
-    for (int k = 0; k < 3; ++k) lo_[k] = hi_[k] = mesh_.xyz[k];
-  for (size_t v = seen_; v < n; ++v)
-    for (int k = 0; k < 3; ++k) {
-      lo_[k] = std::min(lo_[k], mesh_.xyz[3 * v + k]);
-      hi_[k] = std::max(hi_[k], mesh_.xyz[3 * v + k]);
-    }
+  const Box3 fresh = bounding_box(&mesh_.xyz[3 * seen_], n - seen_);
+  for (int k = 0; k < 3; ++k) {
+    box_.lo[k] = seen_ == 0 ? fresh.lo[k] : std::min(box_.lo[k], fresh.lo[k]);
+    box_.hi[k] = seen_ == 0 ? fresh.hi[k] : std::max(box_.hi[k], fresh.hi[k]);
+  }
   seen_ = n;
   // The filters hold for coordinate differences up to the extent (non-finite: disabled).
-  kernel_->set_extent(std::max({hi_[0] - lo_[0], hi_[1] - lo_[1], hi_[2] - lo_[2]}));
+  kernel_->set_extent(std::max({box_.hi[0] - box_.lo[0], box_.hi[1] - box_.lo[1], box_.hi[2] - box_.lo[2]}));
 }
 
 InsertResult insert_point(TetMesh& mesh, const double p[3], uint32_t hint, const InsertOptions& options,
