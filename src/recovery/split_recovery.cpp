@@ -428,7 +428,7 @@ void SplitRecoverer::mark_edge_constrained(uint32_t a, uint32_t b) {
 
 // Marks edge (a b) constrained when it is in the mesh (RecoveryOptions::split_defend_edges).
 void SplitRecoverer::defend(uint32_t a, uint32_t b) {
-  if (has_edge(a, b)) defend_present(edges_.at(edge_key(a, b)), a, b);
+  if (opt_.split_defend_edges && has_edge(a, b)) defend_present(edges_.at(edge_key(a, b)), a, b);
 }
 
 // defend() of the constraint edge e = (a b), known to be in the mesh.
