@@ -8,17 +8,20 @@ Front::Front(const std::vector<double>& xyz, const Box3& bounds) : xyz_(xyz) {
   index_.reset(bounds);
 }
 
-Box3 Front::box(uint32_t f) const {
-  const uint32_t* t = tri(f);
+namespace {
+
+Box3 triangle_box(const std::vector<double>& xyz, const uint32_t* t) {
   Box3 b;
   for (int k = 0; k < 3; ++k) {
-    const double x = xyz_[3 * size_t(t[0]) + k], y = xyz_[3 * size_t(t[1]) + k],
-                 z = xyz_[3 * size_t(t[2]) + k];
+    const double x = xyz[3 * size_t(t[0]) + k], y = xyz[3 * size_t(t[1]) + k],
+                 z = xyz[3 * size_t(t[2]) + k];
     b.lo[k] = std::min(x, std::min(y, z));
     b.hi[k] = std::max(x, std::max(y, z));
   }
   return b;
 }
+
+}  // namespace
 
 void Front::link(uint32_t f) {
   const uint32_t* t = tri(f);
@@ -26,7 +29,8 @@ void Front::link(uint32_t f) {
     if (star_.size() <= t[k]) star_.resize(size_t(t[k]) + 1);
     star_[t[k]].push_back(f);
   }
-  index_.insert(f, box(f));
+  box_[f] = triangle_box(xyz_, t);
+  index_.insert(f, box_[f]);
   alive_[f] = 1;
   ++num_alive_;
 }
@@ -53,6 +57,7 @@ uint32_t Front::add(uint32_t a, uint32_t b, uint32_t c, uint32_t owner_tet) {
     f = static_cast<uint32_t>(alive_.size());
     tri_.resize(tri_.size() + 3);
     owner_.push_back(kNone);
+    box_.emplace_back();
     alive_.push_back(0);
   }
   tri_[3 * size_t(f)] = a;

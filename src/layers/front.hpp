@@ -53,14 +53,16 @@ class Front {
   // The alive triangle with corners {a, b, c} in any order, or kNone.
   uint32_t find(uint32_t a, uint32_t b, uint32_t c) const;
 
-  Box3 box(uint32_t f) const;
+  // The triangle's bounding box, computed when it went on the front (its corners do not move
+  // while it is there).
+  const Box3& box(uint32_t f) const { return box_[f]; }
 
   // Calls visit(f) for every alive triangle whose box overlaps `query` (closed boxes); visit
   // returns false to stop.
   template <class Visit>
   void near(const Box3& query, Visit&& visit) const {
     index_.query(query, [&](uint32_t f) {
-      const Box3 b = box(f);
+      const Box3& b = box_[f];
       const bool overlap = b.lo[0] <= query.hi[0] && query.lo[0] <= b.hi[0] &&
                            b.lo[1] <= query.hi[1] && query.lo[1] <= b.hi[1] &&
                            b.lo[2] <= query.hi[2] && query.lo[2] <= b.hi[2];
@@ -75,6 +77,7 @@ class Front {
   const std::vector<double>& xyz_;
   std::vector<uint32_t> tri_;     // 3 per slot
   std::vector<uint32_t> owner_;   // 1 per slot
+  std::vector<Box3> box_;         // 1 per slot, set by link()
   std::vector<uint8_t> alive_;    // 1 per slot
   std::vector<uint32_t> free_;    // dead slots that may be reused
   std::vector<std::vector<uint32_t>> star_;

@@ -6,9 +6,8 @@
 namespace anitet::layers {
 
 void LooseOctree::reset(const Box3& bounds) {
-  node_of_.clear();
-  nodes_.clear();
-  item_key_.clear();
+  nodes_.assign(1, Node{});
+  item_node_.clear();
   num_items_ = 0;
   double extent = 0.0;
   for (int k = 0; k < 3; ++k) extent = std::max(extent, bounds.hi[k] - bounds.lo[k]);
@@ -21,6 +20,7 @@ void LooseOctree::reset(const Box3& bounds) {
 }
 
 void LooseOctree::insert(uint32_t id, const Box3& box) {
+  if (nodes_.empty()) nodes_.assign(1, Node{});
   double extent = 0.0, centre[3];
   for (int k = 0; k < 3; ++k) {
     extent = std::max(extent, box.hi[k] - box.lo[k]);
@@ -44,45 +44,41 @@ void LooseOctree::insert(uint32_t id, const Box3& box) {
     if (f > double(n - 1)) f = double(n - 1);
     c[k] = static_cast<uint64_t>(f);
   }
-  // Create or update the path from the root, counting the item in every ancestor.
-  for (int l = 0; l <= level; ++l) {
+  // Create or follow the path from the root, counting the item in every node on it.
+  uint32_t node = 0;
+  ++nodes_[0].count;
+  for (int l = 1; l <= level; ++l) {
     const int shift = level - l;
-    const uint64_t x = c[0] >> shift, y = c[1] >> shift, z = c[2] >> shift;
-    Node& node = node_at(make_key(l, x, y, z));
-    ++node.count;
-    if (l < level) {
-      const int ch = int((c[0] >> (shift - 1)) & 1) | (int((c[1] >> (shift - 1)) & 1) << 1) |
-                     (int((c[2] >> (shift - 1)) & 1) << 2);
-      node.children = uint8_t(node.children | (1u << ch));
-    } else {
-      node.items.push_back(id);
+    const int ch = int((c[0] >> shift) & 1) | (int((c[1] >> shift) & 1) << 1) |
+                   (int((c[2] >> shift) & 1) << 2);
+    uint32_t next = nodes_[node].child[ch];
+    if (next == kNoNode) {
+      next = static_cast<uint32_t>(nodes_.size());
+      nodes_.emplace_back();  // (invalidates references into nodes_)
+      nodes_[next].parent = node;
+      nodes_[node].child[ch] = next;
     }
+    node = next;
+    ++nodes_[node].count;
   }
-  if (item_key_.size() <= id) item_key_.resize(size_t(id) + 1, kNoKey);
-  item_key_[id] = make_key(level, c[0], c[1], c[2]);
+  nodes_[node].items.push_back(id);
+  if (item_node_.size() <= id) item_node_.resize(size_t(id) + 1, kNoNode);
+  item_node_[id] = node;
   ++num_items_;
 }
 
 void LooseOctree::erase(uint32_t id) {
-  if (id >= item_key_.size() || item_key_[id] == kNoKey) return;
-  const uint64_t key = item_key_[id];
-  item_key_[id] = kNoKey;
+  if (id >= item_node_.size() || item_node_[id] == kNoNode) return;
+  uint32_t node = item_node_[id];
+  item_node_[id] = kNoNode;
   --num_items_;
-  const int level = int(key >> 57);
-  const uint64_t mask = (uint64_t(1) << 19) - 1;
-  const uint64_t c[3] = {(key >> 38) & mask, (key >> 19) & mask, key & mask};
-  for (int l = 0; l <= level; ++l) {
-    const int shift = level - l;
-    Node& node = node_at(make_key(l, c[0] >> shift, c[1] >> shift, c[2] >> shift));
-    --node.count;
-    if (l == level) {
-      auto it = std::find(node.items.begin(), node.items.end(), id);
-      if (it != node.items.end()) {
-        *it = node.items.back();
-        node.items.pop_back();
-      }
-    }
+  std::vector<uint32_t>& items = nodes_[node].items;
+  auto it = std::find(items.begin(), items.end(), id);
+  if (it != items.end()) {
+    *it = items.back();
+    items.pop_back();
   }
+  for (; node != kNoNode; node = nodes_[node].parent) --nodes_[node].count;
 }
 
 }  // namespace anitet::layers

@@ -1,6 +1,7 @@
 // A dynamic spatial index over boxes (the advancing front's triangles): a loose octree whose
-// nodes live in a hash map (open addressing: FlatKeyMap), so that inserting and erasing are O(depth) and only occupied parts of
-// space cost memory. Handles any mix of large and tiny boxes (CAD surfaces), unlike a uniform grid.
+// nodes hold the indices of their children and parent, so that inserting and erasing are
+// O(depth), a query walks the tree without hashing, and only occupied parts of space cost memory.
+// Handles any mix of large and tiny boxes (CAD surfaces), unlike a uniform grid.
 //
 // An item whose box has extent e and centre c is stored in the deepest cell of size s >= e that
 // contains c; the cell's loose box (the cell grown by s/2 on every side) then contains the item's
@@ -12,13 +13,12 @@
 #include <vector>
 
 #include "core/bvh.hpp"  // Box3
-#include "core/flat_key_map.hpp"
 
 namespace anitet::layers {
 
 class LooseOctree {
  public:
-  static constexpr int kMaxDepth = 19;  // 19 bits per coordinate: key = level | x | y | z
+  static constexpr int kMaxDepth = 19;  // cell coordinates fit in 19 bits per axis
 
   // Empties the index; the root cell is the cube that contains `bounds` (with a margin).
   void reset(const Box3& bounds);
@@ -34,46 +34,39 @@ class LooseOctree {
   void query(const Box3& box, Visit&& visit) const;
 
  private:
+  static constexpr uint32_t kNoNode = 0xffffffffu;
   struct Node {
+    uint32_t child[8] = {kNoNode, kNoNode, kNoNode, kNoNode,
+                         kNoNode, kNoNode, kNoNode, kNoNode};
+    uint32_t parent = kNoNode;
+    uint32_t count = 0;  // items in this node's subtree
     std::vector<uint32_t> items;
-    uint32_t count = 0;     // items in this node's subtree
-    uint8_t children = 0;   // bit c: child c exists in the map
   };
-  static uint64_t make_key(int level, uint64_t x, uint64_t y, uint64_t z) {
-    return (uint64_t(level) << 57) | (x << 38) | (y << 19) | z;
-  }
 
-  // The node of key k is nodes_[node_of_.find(k)]; nodes are never removed before reset().
-  Node& node_at(uint64_t key) {
-    const auto next = static_cast<uint32_t>(nodes_.size());
-    const uint32_t i = node_of_.find_or_insert(key, next);
-    if (i == next) nodes_.emplace_back();
-    return nodes_[i];
-  }
-  FlatKeyMap node_of_;
+  // Nodes are never removed before reset(); nodes_[0] is the root.
   std::vector<Node> nodes_;
-  std::vector<uint64_t> item_key_;  // per item id: its node, or kNoKey
+  std::vector<uint32_t> item_node_;  // per item id: its node, or kNoNode
   double origin_[3] = {0, 0, 0};
   double size_ = 1.0;  // root cell edge
   size_t num_items_ = 0;
-  static constexpr uint64_t kNoKey = ~uint64_t(0);
 };
 
 template <class Visit>
 void LooseOctree::query(const Box3& box, Visit&& visit) const {
   struct Frame {
+    uint32_t node;
     int level;
-    uint64_t x, y, z;
+    uint32_t x, y, z;
   };
   Frame stack[8 * (kMaxDepth + 2)];
   int top = 0;
-  stack[top++] = Frame{0, 0, 0, 0};
+  stack[top++] = Frame{0, 0, 0, 0, 0};
   while (top > 0) {
     const Frame f = stack[--top];
-    const uint32_t index = node_of_.find(make_key(f.level, f.x, f.y, f.z));
-    if (index == FlatKeyMap::kAbsent || nodes_[index].count == 0) continue;
+    const Node& node = nodes_[f.node];
+    if (node.count == 0) continue;
     const double s = size_ / double(uint64_t(1) << f.level);
-    const uint64_t c[3] = {f.x, f.y, f.z};
+    const uint32_t c[3] = {f.x, f.y, f.z};
     bool overlap = true;
     for (int k = 0; k < 3 && overlap; ++k) {
       const double lo = origin_[k] + (double(c[k]) - 0.5) * s;
@@ -81,14 +74,12 @@ void LooseOctree::query(const Box3& box, Visit&& visit) const {
       overlap = box.lo[k] <= hi && lo <= box.hi[k];
     }
     if (!overlap) continue;
-    const Node& node = nodes_[index];
     for (uint32_t id : node.items)
       if (!visit(id)) return;
-    if (f.level == kMaxDepth) continue;
     for (int ch = 0; ch < 8; ++ch) {
-      if (!(node.children & (1u << ch))) continue;
-      stack[top++] = Frame{f.level + 1, 2 * f.x + (ch & 1), 2 * f.y + ((ch >> 1) & 1),
-                           2 * f.z + ((ch >> 2) & 1)};
+      if (node.child[ch] == kNoNode) continue;
+      stack[top++] = Frame{node.child[ch], f.level + 1, 2 * f.x + (ch & 1),
+                           2 * f.y + ((ch >> 1) & 1), 2 * f.z + ((ch >> 2) & 1)};
     }
   }
 }
