@@ -67,6 +67,10 @@ bool tet_fits(const Front& front, const std::vector<double>& xyz, const uint32_t
     for (int k = 0; k < 3; ++k) {
       q[k] = &xyz[3 * size_t(t[k])];
       if (t[k] == v[0] || t[k] == v[1] || t[k] == v[2] || t[k] == v[3]) continue;
+      // Outside the tet's box, outside the closed tet: the exact tests below would say so too.
+      if (q[k][0] < tet_box.lo[0] || q[k][0] > tet_box.hi[0] || q[k][1] < tet_box.lo[1] ||
+          q[k][1] > tet_box.hi[1] || q[k][2] < tet_box.lo[2] || q[k][2] > tet_box.hi[2])
+        continue;
       // A front vertex in the closed tet: the tet would swallow or touch front that it must not.
       bool inside = true;
       for (int i = 0; i < 4 && inside; ++i)
@@ -76,7 +80,7 @@ bool tet_fits(const Front& front, const std::vector<double>& xyz, const uint32_t
         return false;
       }
     }
-    const Box3 tb = front.box(f);
+    const Box3& tb = front.box(f);
     for (int i = 0; i < 4; ++i) {
       if (closing[i] != Front::kNone || !boxes_overlap(facet_box[i], tb)) continue;
       ++counters.tri_tests;
