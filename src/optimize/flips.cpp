@@ -9,7 +9,14 @@
 
 namespace anitet::optimize_detail {
 
-using meshops::shape_quality;
+double Quality::of(const TetMesh& m, const uint32_t v[4]) const {
+  const double* p[4] = {m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3])};
+  if (vertex_metric.empty()) return meshops::shape_quality(p[0], p[1], p[2], p[3]);
+  double mean[6] = {0, 0, 0, 0, 0, 0};
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 6; ++k) mean[k] += 0.25 * vertex_metric[6 * size_t(v[i]) + k];
+  return meshops::metric_shape_quality(meshops::MetricMap::of(mean), p[0], p[1], p[2], p[3]);
+}
 
 bool try_flip23(FlipContext& c, uint32_t t, int i) {
   TetMesh& m = c.mesh;
@@ -21,12 +28,12 @@ bool try_flip23(FlipContext& c, uint32_t t, int i) {
   const uint32_t d = m.vertex(t, i), e = m.vertex(n, j);
   const uint32_t f[3] = {m.vertex(t, kFacetVertex[i][0]), m.vertex(t, kFacetVertex[i][1]),
                          m.vertex(t, kFacetVertex[i][2])};
-  const double before = std::min(meshops::tet_shape_quality(m, t), meshops::tet_shape_quality(m, n));
+  const double before = std::min(c.tet(t), c.tet(n));
   double after = 1.0;
   c.fresh.clear();
   for (int k = 0; k < 3; ++k) {
     const meshops::TetVerts v = {f[k], f[(k + 1) % 3], e, d};
-    after = std::min(after, shape_quality(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3])));
+    after = std::min(after, c.of(v.data()));
     if (after <= before + c.gain) return false;
     c.fresh.push_back(v);
   }
@@ -44,7 +51,7 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
   const int n = static_cast<int>(c.ring.size());
   if (n < 3 || n > 7) return false;
   double before = 1.0;
-  for (uint32_t s : c.ring_tets) before = std::min(before, meshops::tet_shape_quality(m, s));
+  for (uint32_t s : c.ring_tets) before = std::min(before, c.tet(s));
   // Orient the ring so that (r_i r_j r_k a) and (r_j r_i r_k b) are positive for i < j < k.
   if (predicates::orient3d(m.point(a), m.point(b), m.point(c.ring[0]), m.point(c.ring[1])) > 0)
     std::reverse(c.ring.begin(), c.ring.end());
@@ -70,10 +77,10 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
         const double need = std::max(best[i][j], bar);
         const double sub = std::min(best[i][l], best[l][j]);
         if (!(sub > need)) continue;
-        const double qa = shape_quality(m.point(r[i]), m.point(r[l]), m.point(r[j]), m.point(a));
+        const uint32_t ta[4] = {r[i], r[l], r[j], a}, tb[4] = {r[l], r[i], r[j], b};
+        const double qa = c.of(ta);
         if (!(qa > need)) continue;
-        const double q =
-            std::min({sub, qa, shape_quality(m.point(r[l]), m.point(r[i]), m.point(r[j]), m.point(b))});
+        const double q = std::min({sub, qa, c.of(tb)});
         if (q > best[i][j]) {
           best[i][j] = q;
           split[i][j] = l;
@@ -106,12 +113,12 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
   return true;
 }
 
-std::vector<uint32_t> tets_below(const TetMesh& m, double quality) {
+std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality* measure) {
   const uint32_t n = m.num_tet_slots();
   std::vector<uint8_t> below(n, 0);
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1u << 14), [&](const tbb::blocked_range<uint32_t>& r) {
     for (uint32_t t = r.begin(); t < r.end(); ++t)
-      below[t] = !m.is_deleted(t) && meshops::tet_shape_quality(m, t) < quality;
+      below[t] = !m.is_deleted(t) && (measure ? measure->tet(m, t) : meshops::tet_shape_quality(m, t)) < quality;
   });
   std::vector<uint32_t> out;
   for (uint32_t t = 0; t < n; ++t)
@@ -123,17 +130,17 @@ size_t flip_sweep(FlipContext& c, double quality, int rounds) {
   TetMesh& m = c.mesh;
   size_t total = 0;
   // The first round scans the mesh; later ones only revisit the tets the flips created.
-  std::vector<uint32_t> bad = tets_below(m, quality), fresh_bad;
+  std::vector<uint32_t> bad = tets_below(m, quality, c.quality), fresh_bad;
   for (int round = 0; round < rounds && !bad.empty(); ++round) {
     fresh_bad.clear();
     size_t flips = 0;
     auto note_created = [&] {
       for (uint32_t s : c.scratch.created)
-        if (meshops::tet_shape_quality(m, s) < quality) fresh_bad.push_back(s);
+        if (c.tet(s) < quality) fresh_bad.push_back(s);
     };
     for (uint32_t t : bad) {
       // t is measured once: a flip that fails leaves it as it was, one that succeeds ends its turn.
-      if (m.is_deleted(t) || meshops::tet_shape_quality(m, t) >= quality) continue;
+      if (m.is_deleted(t) || c.tet(t) >= quality) continue;
       bool done = false;
       for (int k = 0; k < 6 && !done && !m.is_deleted(t); ++k) done = try_remove_edge(c, t, k);
       for (int i = 0; i < 4 && !done && !m.is_deleted(t); ++i) done = try_flip23(c, t, i);

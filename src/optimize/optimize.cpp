@@ -34,6 +34,15 @@ class Optimizer {
   bool movable(uint32_t v) const {
     return !(mesh_.vflags[v] & (vflag::kOnInputSurface | vflag::kLocked)) && !vt_.removed(v);
   }
+  // After v moved: its size, and its metric when anisotropic, are measured again.
+  void moved(uint32_t v) {
+    if (v < sizes_.size()) sizes_[v] = -1.0;
+    if (quality_.anisotropic()) metric_stale_[v] = 1;
+  }
+  // Anisotropic metric: measures the metric again at the vertices that moved since the last
+  // call. Between calls the tets keep the metrics they had, so that a tet's quality does not
+  // change while a pass compares it.
+  void refresh_metrics();
   double size_at(uint32_t v) {
     if (sizes_.size() < mesh_.num_vertices()) sizes_.resize(mesh_.num_vertices(), -1.0);
     if (sizes_[v] < 0.0) {
@@ -61,7 +70,7 @@ class Optimizer {
   size_t cvt_pass();
   size_t perturb_pass();
   void trial_offset(int trial, int levels, double top, const double* nrm, double d[3]);
-  bool opening_direction(uint32_t t, int i, double nrm[3]) const;
+  bool opening_direction(uint32_t t, int i, const meshops::MetricMap& map, double nrm[3]) const;
   double shortest_edge(uint32_t t) const;
   bool certified(uint32_t t) const;
   bool try_certify(uint32_t v, const double p[3], size_t flat);
@@ -80,6 +89,8 @@ class Optimizer {
   meshops::VertexTets vt_;
   optimize_detail::FlipContext flips_;
   std::vector<double> sizes_;  // lazily computed scalar size per vertex (-1: unknown)
+  optimize_detail::Quality quality_;  // Euclidean, or in the metric when it is anisotropic
+  std::vector<uint8_t> metric_stale_;  // per vertex: moved since its metric was measured
   Work work_;                  // the sequential passes' scratch
   std::vector<uint8_t> side_;  // cvt_pass(): per vertex, its side of the split (2: seam bit)
   std::vector<double> tet_q_;  // per tet slot, during cvt_pass() only (empty otherwise)
@@ -90,11 +101,23 @@ class Optimizer {
   uint64_t rng_;
 };
 
+void Optimizer::refresh_metrics() {
+  if (!quality_.anisotropic()) return;
+  const auto nv = static_cast<uint32_t>(mesh_.num_vertices());
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, nv, 1024), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t v = r.begin(); v < r.end(); ++v)
+      if (metric_stale_[v]) {
+        field_.metric(mesh_.point(v), &quality_.vertex_metric[6 * size_t(v)]);
+        metric_stale_[v] = 0;
+      }
+  });
+}
+
 void Optimizer::measure_ball(Work& w) {
   w.old_q.resize(w.ball.size());
   w.old_min = 1.0;
   for (size_t k = 0; k < w.ball.size(); ++k) {
-    w.old_q[k] = tet_q_.empty() ? meshops::tet_shape_quality(mesh_, w.ball[k]) : tet_q_[w.ball[k]];
+    w.old_q[k] = tet_q_.empty() ? quality_.tet(mesh_, w.ball[k]) : tet_q_[w.ball[k]];
     w.old_min = std::min(w.old_min, w.old_q[k]);
   }
 }
@@ -109,7 +132,7 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
   bool ok = true;
   w.new_q.resize(w.ball.size());
   for (size_t k = 0; k < w.ball.size() && ok; ++k) {
-    const double q = meshops::tet_shape_quality(mesh_, w.ball[k]);
+    const double q = quality_.tet(mesh_, w.ball[k]);
     w.new_q[k] = q;
     q_min = std::min(q_min, q);
     ok = q > 0.0 && q >= std::min(w.old_q[k], floor);
@@ -180,7 +203,7 @@ void Optimizer::cvt_move(Work& w, uint32_t v) {
   }
   if (ok) {
     ++w.moved;
-    sizes_[v] = -1.0;
+    moved(v);
   } else {
     ++w.rejected;
   }
@@ -215,7 +238,7 @@ size_t Optimizer::cvt_pass() {
   }
   auto measure = [&](uint32_t begin, uint32_t end) {
     for (uint32_t t = begin; t < end; ++t)
-      if (!mesh_.is_deleted(t)) tet_q_[t] = meshops::tet_shape_quality(mesh_, t);
+      if (!mesh_.is_deleted(t)) tet_q_[t] = quality_.tet(mesh_, t);
   };
   // The split: side 0 or 1 per vertex, then kSeam for the vertices of tets across it.
   constexpr uint8_t kSeam = 2;
@@ -263,11 +286,11 @@ size_t Optimizer::cvt_pass() {
 }
 
 size_t Optimizer::perturb_pass() {
-  const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, options_.sliver_quality);
+  const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, options_.sliver_quality, flips_.quality);
   size_t moved = 0;
   for (uint32_t t : bad) {
     for (int i = 0; i < 4; ++i) {
-      if (mesh_.is_deleted(t) || meshops::tet_shape_quality(mesh_, t) >= options_.sliver_quality) break;
+      if (mesh_.is_deleted(t) || quality_.tet(mesh_, t) >= options_.sliver_quality) break;
       const uint32_t v = mesh_.vertex(t, i);
       if (!movable(v)) continue;
       meshops::vertex_ball(mesh_, v, t, work_.ball);
@@ -275,19 +298,30 @@ size_t Optimizer::perturb_pass() {
       const double* x = mesh_.point(v);
       const double start[3] = {x[0], x[1], x[2]};
       double best[3] = {x[0], x[1], x[2]};
-      // Away from the opposite facet (the direction that opens the tet), then random ones.
+      // Away from the opposite facet (the direction that opens the tet), then random ones. With
+      // an anisotropic metric, all of it in the metric of v: Euclidean steps of the ball's size
+      // would cross the thin direction many times over.
+      meshops::MetricMap map;
+      if (quality_.anisotropic()) map = meshops::MetricMap::of(&quality_.vertex_metric[6 * size_t(v)]);
       double nrm[3];
-      opening_direction(t, i, nrm);  // zero when the facet is degenerate
+      opening_direction(t, i, map, nrm);  // zero when the facet is degenerate
       double scale = 0.0;
       for (uint32_t s : work_.ball)
         for (int k = 0; k < 4; ++k) {
           const double* y = mesh_.point(mesh_.vertex(s, k));
-          scale = std::max(scale, std::fabs(y[0] - start[0]) + std::fabs(y[1] - start[1]) + std::fabs(y[2] - start[2]));
+          const double step[3] = {y[0] - start[0], y[1] - start[1], y[2] - start[2]};
+          double e[3] = {step[0], step[1], step[2]};
+          if (!map.identity) map.apply(step, e);
+          scale = std::max(scale, std::fabs(e[0]) + std::fabs(e[1]) + std::fabs(e[2]));
         }
       scale *= 0.2;
       for (int trial = 0; trial < options_.perturb_trials; ++trial) {
         double d[3];
         trial_offset(trial, 4, scale, nrm, d);
+        if (!map.identity) {
+          const double dm[3] = {d[0], d[1], d[2]};
+          map.unapply(dm, d);
+        }
         const double q[3] = {best[0] + d[0], best[1] + d[1], best[2] + d[2]};
         double got = 0.0;
         if (try_move(work_, v, q, 0.5 * (work_.old_min + options_.sliver_quality), &got)) {
@@ -296,7 +330,7 @@ size_t Optimizer::perturb_pass() {
       }
       if (best[0] != start[0] || best[1] != start[1] || best[2] != start[2]) {
         ++moved;
-        if (v < sizes_.size()) sizes_[v] = -1.0;
+        this->moved(v);
       }
     }
   }
@@ -316,14 +350,20 @@ void Optimizer::trial_offset(int trial, int levels, double top, const double* nr
 }
 
 // The unit normal of facet i of t pointing into t: the direction that opens t when its vertex i
-// moves along it. False (nrm zero) when the facet is degenerate.
-bool Optimizer::opening_direction(uint32_t t, int i, double nrm[3]) const {
+// moves along it; in the coordinates of `map` (the metric's space) when it is not the identity.
+// False (nrm zero) when the facet is degenerate.
+bool Optimizer::opening_direction(uint32_t t, int i, const meshops::MetricMap& map, double nrm[3]) const {
   const int* f = kFacetVertex[i];
   const double* A = mesh_.point(mesh_.vertex(t, f[0]));
   const double* B = mesh_.point(mesh_.vertex(t, f[1]));
   const double* C = mesh_.point(mesh_.vertex(t, f[2]));
-  const double u[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
-  const double w[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+  double u[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
+  double w[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+  if (!map.identity) {
+    const double u0[3] = {u[0], u[1], u[2]}, w0[3] = {w[0], w[1], w[2]};
+    map.apply(u0, u);
+    map.apply(w0, w);
+  }
   nrm[0] = u[1] * w[2] - u[2] * w[1];
   nrm[1] = u[2] * w[0] - u[0] * w[2];
   nrm[2] = u[0] * w[1] - u[1] * w[0];
@@ -364,7 +404,7 @@ bool Optimizer::try_certify(uint32_t v, const double p[3], size_t flat) {
   double q_min = 1.0;
   size_t still_flat = 0;
   for (size_t k = 0; k < work_.ball.size() && still_flat < flat; ++k) {
-    q_min = std::min(q_min, meshops::tet_shape_quality(mesh_, work_.ball[k]));
+    q_min = std::min(q_min, quality_.tet(mesh_, work_.ball[k]));
     still_flat += !certified(work_.ball[k]);
   }
   if (still_flat < flat && q_min >= work_.old_min && meshops::all_positive(mesh_, work_.ball)) return true;
@@ -424,7 +464,7 @@ void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
       measure_ball(work_);
       const double shortest = shortest_edge(t);
       double nrm[3];
-      const bool has_normal = opening_direction(t, i, nrm);
+      const bool has_normal = opening_direction(t, i, meshops::MetricMap{}, nrm);
       const double start[3] = {mesh_.point(v)[0], mesh_.point(v)[1], mesh_.point(v)[2]};
       auto flat_in_ball = [&] {
         size_t n = 0;
@@ -439,7 +479,7 @@ void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
         if (try_certify(v, q, flat_now)) {
           measure_ball(work_);  // the new position is the next trial's reference
           flat_now = flat_in_ball();
-          if (v < sizes_.size()) sizes_[v] = -1.0;
+          moved(v);
         }
       }
     }
@@ -453,9 +493,29 @@ Result<OptimizeStats> Optimizer::run() {
       return Status(Error::InvalidArgument, "optimize: the mesh has ghost tets");
   stats_.before = summarize_quality(mesh_);
   vt_.build(mesh_);
-  sizes_.assign(mesh_.num_vertices(), -1.0);
+  const auto nv = static_cast<uint32_t>(mesh_.num_vertices());
+  sizes_.assign(nv, -1.0);
+  // An anisotropic metric at some vertex: every measure is taken in the metric (see Quality).
+  {
+    std::vector<double> metrics(6 * size_t(nv));
+    std::vector<uint8_t> aniso(nv, 0);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, nv, 1024), [&](const tbb::blocked_range<uint32_t>& r) {
+      for (uint32_t v = r.begin(); v < r.end(); ++v) {
+        field_.metric(mesh_.point(v), &metrics[6 * size_t(v)]);
+        aniso[v] = !meshops::MetricMap::of(&metrics[6 * size_t(v)]).identity;
+      }
+    });
+    if (std::find(aniso.begin(), aniso.end(), 1) != aniso.end()) {
+      quality_.vertex_metric = std::move(metrics);
+      metric_stale_.assign(nv, 0);
+      flips_.quality = &quality_;
+    }
+  }
+  stats_.anisotropic = quality_.anisotropic();
   for (int it = 0; it < options_.cvt_iterations; ++it) {
+    refresh_metrics();
     stats_.moves += cvt_pass();
+    refresh_metrics();
     optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
   }
   std::vector<uint32_t>().swap(ball_start_);
@@ -463,6 +523,7 @@ Result<OptimizeStats> Optimizer::run() {
   for (int round = 0; round < options_.sliver_rounds; ++round) {
     optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
     const size_t moved = perturb_pass();
+    refresh_metrics();
     stats_.perturbations += moved;
     if (moved == 0) break;
   }

@@ -7,7 +7,10 @@
 //     circumcentres (kOdt). A move is accepted only when every tet of the ball stays positive by
 //     the exact orient3d and no tet of the ball ends below min(its old quality, accept_floor)
 //     (a per-tet test: a max-min test on the ball would let all but its worst tet decay);
-//     otherwise half and quarter steps are tried. Quality here is meshops::shape_quality. Each
+//     otherwise half and quarter steps are tried. Quality here is meshops::shape_quality, or,
+//     when the metric is anisotropic at some vertex, the same measured in the metric (each tet
+//     in the mean of its vertices' metrics, measured again after the vertex moves at the end
+//     of each pass): every test below then uses it, flips included. Each
 //     sweep runs on two cores (TBB): the vertices on either side of the median plane across the
 //     longest extent move in two tasks, those of tets across the plane after them; the result
 //     does not depend on the threads.
@@ -65,7 +68,8 @@ struct OptimizeStats {
   // Tets flat to rounding (predicates::orient3d_certified not positive) found by the last pass,
   // and how many of them no vertex move could open.
   size_t flat_found = 0, flat_left = 0;
-  QualitySummary before, after;
+  QualitySummary before, after;  // Euclidean radius ratios
+  bool anisotropic = false;       // the measures were taken in the metric (see the top)
   double seconds = 0.0;
 };
 

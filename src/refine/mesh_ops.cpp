@@ -135,6 +135,12 @@ void MetricMap::apply(const double* x, double* y) const {
   y[2] = l[5] * x[2];
 }
 
+void MetricMap::unapply(const double* y, double* x) const {
+  x[2] = y[2] / l[5];
+  x[1] = (y[1] - l[4] * x[2]) / l[2];
+  x[0] = (y[0] - l[1] * x[1] - l[3] * x[2]) / l[0];
+}
+
 double metric_shape_quality(const MetricMap& map, const double* a, const double* b, const double* c,
                             const double* d) {
   if (map.identity) return shape_quality(a, b, c, d);

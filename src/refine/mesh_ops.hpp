@@ -37,6 +37,8 @@ struct MetricMap {
   double l[6] = {1.0, 0.0, 1.0, 0.0, 0.0, 1.0};  // l00 l10 l11 l20 l21 l22
   static MetricMap of(const double m[6]);
   void apply(const double* x, double* y) const;
+  // The inverse: x with L^T x = y (a step of y in the metric's space, back in space).
+  void unapply(const double* y, double* x) const;
 };
 
 // shape_quality of (a b c d) measured in the metric of `map`.
