@@ -15,6 +15,7 @@
 #include "refine/coupled_fixture.hpp"
 #include "refine/mesh_ops.hpp"
 #include "refine/refine.hpp"
+#include "refine/stretched_box.hpp"
 
 using namespace anitet;
 
@@ -196,26 +197,7 @@ TEST(MeshOps, ShapeQualityOfRegularAndFlatTets) {
   EXPECT_LT(meshops::shape_quality(f0, f1, f2, e), 0.01);
 }
 
-namespace {
-
-// A constant anisotropic metric: sizes hx, hy, hz along the axes.
-class AxisSizing final : public SizingField {
- public:
-  AxisSizing(double hx, double hy, double hz) : h_{hx, hy, hz} {}
-  void metric(const double[3], double m[6]) const override {
-    m[0] = 1.0 / (h_[0] * h_[0]);
-    m[1] = 0.0;
-    m[2] = 1.0 / (h_[1] * h_[1]);
-    m[3] = 0.0;
-    m[4] = 0.0;
-    m[5] = 1.0 / (h_[2] * h_[2]);
-  }
-
- private:
-  double h_[3];
-};
-
-}  // namespace
+using test::AxisSizing;
 
 TEST(MeshOps, MetricShapeQualityAndMaxSize) {
   // The regular tet stretched by (0.5, 2, 0.01) is regular in the metric of those sizes.
@@ -260,21 +242,7 @@ TEST(MeshOps, MetricShapeQualityAndMaxSize) {
 TEST(Refine, AnisotropicMetricKernelAndFlips) {
   const int n[3] = {4, 4, 25};
   std::vector<double> pts;
-  for (int i = 0; i <= n[0]; ++i)
-    for (int j = 0; j <= n[1]; ++j)
-      for (int k = 0; k <= n[2]; ++k) {
-        if (i != 0 && i != n[0] && j != 0 && j != n[1] && k != 0 && k != n[2]) continue;
-        pts.insert(pts.end(), {double(i) / n[0], double(j) / n[1], double(k) / n[2]});
-      }
-  TetMesh mesh;
-  ASSERT_TRUE(delaunay_tetrahedralize(mesh, pts.data(), pts.size() / 3).ok());
-  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
-    if (!mesh.is_deleted(t) && mesh.is_ghost(t))
-      mesh.set_facet_protected(mesh.neighbour(t, 3), mesh.neighbour_facet(t, 3), true);
-  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
-    if (!mesh.is_deleted(t) && mesh.is_ghost(t)) mesh.delete_tet(t);
-  ASSERT_TRUE(mesh.build_adjacency().ok());
-  for (uint8_t& f : mesh.vflags) f |= vflag::kOnInputSurface;
+  TetMesh mesh = test::stretched_box_mesh(n, pts);
   const size_t protected_before = count_protected_facets(mesh);
 
   const AxisSizing field(0.25, 0.25, 0.04);
@@ -289,16 +257,7 @@ TEST(Refine, AnisotropicMetricKernelAndFlips) {
     for (int k = 0; k < 3; ++k) ASSERT_EQ(mesh.point(uint32_t(v))[k], pts[3 * v + k]);
   EXPECT_TRUE(check_mesh(mesh).ok());
   EXPECT_GT(r->length_in_range, 0.8);  // measured 0.85 (Euclidean kernel: far lower)
-  double m[6];
-  field.metric(mesh.point(0), m);
-  const meshops::MetricMap map = meshops::MetricMap::of(m);
-  size_t tets = 0, bad = 0;
-  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
-    if (mesh.is_deleted(t)) continue;
-    double q[4][3];
-    for (int i = 0; i < 4; ++i) map.apply(mesh.point(mesh.vertex(t, i)), q[i]);
-    ++tets;
-    bad += meshops::radius_ratio(q[0], q[1], q[2], q[3]) < 0.1;
-  }
+  size_t tets = 0;
+  const size_t bad = test::tets_below_in_metric(mesh, field, 0.1, &tets);
   EXPECT_LT(double(bad), 0.02 * double(tets)) << bad << " of " << tets;  // measured 0.9%
 }
