@@ -564,6 +564,8 @@ bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
     floor = std::min(floor, meshops::min_quality(mesh_, old_, in_mq));
     std::copy_n(q, 3, xw);
   }
+  const double max_result =
+      anisotropic_ ? options_.anisotropic_max_collapse_result : options_.max_collapse_result;
   bool ok = true;
   for (const meshops::TetVerts& f : fresh_) {
     if (meshops::metric_shape_quality(in_mq, mesh_.point(f[0]), mesh_.point(f[1]), mesh_.point(f[2]),
@@ -578,7 +580,7 @@ bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
       const double len = std::sqrt(metric_norm(mq, d) * metric_norm(&metrics_[6 * size_t(x)], d));
       bool has_w = false;
       for (uint32_t y : f) has_w |= y == w;
-      if (has_w && len > options_.max_collapse_result) ok = false;
+      if (has_w && len > max_result) ok = false;
     }
     if (!ok) break;
   }

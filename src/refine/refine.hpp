@@ -22,9 +22,13 @@
 //   - 2-3 / 3-2 flips raising the worst shape in the metric run before the first pass and after
 //     every pass (RefineStats::metric_flips);
 //   - the ring-crowding test on splits is off and refused collapses are retried each pass (the
-//     flips change the neighbourhoods).
-// Isotropic fields take exactly the isotropic path. optimize/ is still Euclidean: on an
-// anisotropic field it degrades the metric shapes (see bench/aniso_cube).
+//     flips change the neighbourhoods);
+//   - a collapse may create edges up to anisotropic_max_collapse_result (still in range): with
+//     1.3, the stretched neighbourhoods refused most collapses and a sixth of the edges stayed
+//     short (bench/aniso_cube).
+// Isotropic fields take exactly the isotropic path. optimize/ measures in the metric too, and
+// the pipeline runs refinement and optimization again on an anisotropic field (see
+// pipeline/mesher.hpp).
 // Passes repeat until fewer than stop_fraction of the edges change or max_passes is reached.
 // Edges of S (on a protected facet, both ends on S) are never split: no point is added on S.
 #pragma once
@@ -50,6 +54,7 @@ struct RefineOptions {
   // flat tets.
   double facet_clearance = 0.2;
   double max_collapse_result = 1.3;    // longest edge a collapse may create (normalized)
+  double anisotropic_max_collapse_result = 1.41;  // the same, with an anisotropic metric
   double min_collapse_quality = 0.05;  // lowest meshops::shape_quality a collapse may create
   int max_passes = 30;
   double stop_fraction = 1e-3;  // stop when a pass changes fewer than this share of the edges
