@@ -328,6 +328,17 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
       result.optimize = optimized.value();
       result.stages.push_back({"optimize", since(t), optimized->after.tets});
     }
+    if (options_.run_refine && options_.run_optimize && result.optimize.anisotropic &&
+        options_.anisotropic_cycles > 0) {
+      if (Status st = progress("cycles", kDoneAfterRefine); !st.ok()) return st;
+      t = Clock::now();
+      if (Status st = refine_optimize_cycles(mesh, *field, options_.refine, options_.optimize,
+                                             options_.anisotropic_cycles, result.refine, result.optimize);
+          !st.ok())
+        return st;
+      result.anisotropic_cycles = options_.anisotropic_cycles;
+      result.stages.push_back({"cycles", since(t), result.optimize.after.tets});
+    }
   }
 
   t = Clock::now();
@@ -346,6 +357,40 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   if (Status st = progress("done", 1.0); !st.ok()) return st;
   result.seconds = since(start);
   return result;
+}
+
+Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
+                              const OptimizeOptions& optimize_options, int cycles, RefineStats& refine,
+                              OptimizeStats& optimize) {
+  const ScaledSizing scaled(field, refine_options.size_scale > 0.0 ? refine_options.size_scale : 1.0);
+  for (int c = 0; c < cycles; ++c) {
+    Result<RefineStats> r = refine_mesh(mesh, field, refine_options);
+    if (!r.ok()) return Status(r.status().code(), "stage 3b (refinement, cycle " + std::to_string(c + 2) + "): " + r.status().message());
+    refine.passes += r->passes;
+    refine.splits += r->splits;
+    refine.split_rejected += r->split_rejected;
+    refine.collapses += r->collapses;
+    refine.collapse_rejected += r->collapse_rejected;
+    refine.metric_flips += r->metric_flips;
+    refine.vertices_after = r->vertices_after;
+    refine.tets_after = r->tets_after;
+    refine.length_mean = r->length_mean;
+    refine.length_in_range = r->length_in_range;
+    refine.seconds += r->seconds;
+    Result<OptimizeStats> o = optimize_mesh(mesh, scaled, optimize_options);
+    if (!o.ok()) return Status(o.status().code(), "stage 3c (optimization, cycle " + std::to_string(c + 2) + "): " + o.status().message());
+    optimize.moves += o->moves;
+    optimize.moves_rejected += o->moves_rejected;
+    optimize.flips23 += o->flips23;
+    optimize.edge_removals += o->edge_removals;
+    optimize.perturbations += o->perturbations;
+    optimize.flat_found = o->flat_found;
+    optimize.flat_left = o->flat_left;
+    optimize.after = o->after;
+    optimize.anisotropic = optimize.anisotropic || o->anisotropic;
+    optimize.seconds += o->seconds;
+  }
+  return Status::success();
 }
 
 }  // namespace anitet
