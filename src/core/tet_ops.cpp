@@ -58,7 +58,7 @@ void vertex_ball(TetMesh& mesh, uint32_t v, uint32_t start, std::vector<uint32_t
 }
 
 bool edge_ring(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, std::vector<uint32_t>& tets,
-               std::vector<uint32_t>& ring) {
+               std::vector<uint32_t>& ring, size_t max_tets) {
   tets.clear();
   ring.clear();
   if (!tet_has_vertex(mesh, start, a) || !tet_has_vertex(mesh, start, b)) return false;
@@ -82,6 +82,7 @@ bool edge_ring(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, std:
       ring.pop_back();  // ring[last] == ring[0]
       return ring.size() == tets.size();
     }
+    if (tets.size() >= max_tets) return false;
     uint32_t z = TetMesh::kNone;
     for (int i = 0; i < 4; ++i) {
       const uint32_t w = mesh.vertex(n, i);

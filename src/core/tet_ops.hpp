@@ -41,9 +41,10 @@ void vertex_ball(TetMesh& mesh, uint32_t v, uint32_t start, std::vector<uint32_t
 // The tets around edge ab, in order, and the ring vertices: ring[i] and ring[i+1] are the other
 // two vertices of tets[i]. False when the edge touches a facet without neighbour or a protected
 // facet (an edge of the mesh boundary), or a tet of the ring is not found. Ghost tets are not
-// special here: their ghost vertex shows in `ring`.
+// special here: their ghost vertex shows in `ring`. Also false, as soon as it is known, when the
+// ring has more than max_tets tets (a caller that only wants rings of 3 stops after 3 steps).
 bool edge_ring(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, std::vector<uint32_t>& tets,
-               std::vector<uint32_t>& ring);
+               std::vector<uint32_t>& ring, size_t max_tets = 64);
 
 using TetVerts = std::array<uint32_t, 4>;
 

@@ -177,6 +177,28 @@ class Refiner {
   std::vector<double> size_;     // scalar size per vertex
   std::vector<uint8_t> touched_;
   std::unordered_set<uint64_t> refused_;  // edges (a << 32 | b) whose collapse was refused
+  // Change stamps for the metric flips: epoch_ grows with every change of the tets, a vertex
+  // keeps the epoch of the last change of its tets, and a tet slot the epoch at which no flip
+  // took it (0: none since it was made). A tet none of whose vertices' tets changed since then
+  // has the same neighbours and edge rings, so the same flips would fail again: it is skipped.
+  uint32_t epoch_ = 1;
+  std::vector<uint32_t> vertex_epoch_, flip_failed_at_;
+  void note_changed(const std::vector<uint32_t>& created) {
+    ++epoch_;
+    if (vertex_epoch_.size() < mesh_.num_vertices()) vertex_epoch_.resize(mesh_.num_vertices(), 0);
+    for (uint32_t t : created) {
+      for (int i = 0; i < 4; ++i) vertex_epoch_[mesh_.vertex(t, i)] = epoch_;
+      if (t < flip_failed_at_.size()) flip_failed_at_[t] = 0;
+    }
+  }
+  bool failed_unchanged(uint32_t t) const {
+    if (t >= flip_failed_at_.size() || flip_failed_at_[t] == 0) return false;
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t v = mesh_.vertex(t, i);
+      if (v < vertex_epoch_.size() && vertex_epoch_[v] > flip_failed_at_[t]) return false;
+    }
+    return true;
+  }
   std::vector<uint32_t> ball_v_, ball_w_, old_, ring_tets_, ring_;
   // One split pass's candidate midpoints (one per long edge, in length order) ...
   struct Candidate {
@@ -349,11 +371,37 @@ size_t Refiner::metric_flip_pass() {
   size_t flips = 0;
   std::vector<uint32_t> old(3);
   std::vector<meshops::TetVerts> fresh;
-  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
-    if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
+  auto tet_verts = [&](uint32_t t) {
     meshops::TetVerts tv;
     for (int i = 0; i < 4; ++i) tv[i] = mesh_.vertex(t, i);
-    if (metric_quality(map_at_centroid(tv.data(), 4), tv) >= kFlipQuality) continue;
+    return tv;
+  };
+  auto poor = [&](uint32_t t) {
+    const meshops::TetVerts tv = tet_verts(t);
+    return metric_quality(map_at_centroid(tv.data(), 4), tv) < kFlipQuality;
+  };
+  // The tets as the pass finds them are measured on every core (a field query each: most of the
+  // pass's time); the loop measures again only the slots its own flips filled (refilled) and the
+  // failed ones whose neighbourhood its flips changed, so the flips are the ones of a sequential
+  // loop that tries every poor tet.
+  const uint32_t n_start = mesh_.num_tet_slots();
+  std::vector<uint8_t> poor_at_start(n_start, 0), refilled(n_start, 0);
+  flip_failed_at_.resize(n_start, 0);
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_start, 1024), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t t = r.begin(); t < r.end(); ++t)
+      poor_at_start[t] = mesh_.is_deleted(t) || mesh_.is_ghost(t) ? 0 : failed_unchanged(t) ? 2 : poor(t) ? 1 : 0;
+  });
+  auto note_refilled = [&] {
+    for (uint32_t c : scratch_.created)
+      if (c < n_start) refilled[c] = 1;
+    note_changed(scratch_.created);
+  };
+  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
+    if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
+    // 2: skipped at the start as failed and unchanged, which the flips before t may have changed.
+    const bool measured = t < n_start && !refilled[t] && poor_at_start[t] != 2;
+    if (!(measured ? poor_at_start[t] == 1 : !failed_unchanged(t) && poor(t))) continue;
+    const meshops::TetVerts tv = tet_verts(t);
     bool flipped = false;
     // 2-3 across facet i: the new tets are t with one facet vertex replaced by the apex b of n.
     for (int i = 0; i < 4 && !flipped; ++i) {
@@ -377,12 +425,15 @@ size_t Refiner::metric_flip_pass() {
       }
       if (!(after > before + 1e-3)) continue;
       old.assign({t, n});
-      if (meshops::replace_tets(mesh_, old, fresh, vt_, scratch_)) flipped = true;
+      if (meshops::replace_tets(mesh_, old, fresh, vt_, scratch_)) {
+        flipped = true;
+        note_refilled();
+      }
     }
     // 3-2 removing edge k of t when three tets surround it.
     for (int k = 0; k < 6 && !flipped; ++k) {
       const uint32_t a = tv[kEdgeVertex[k][0]], b = tv[kEdgeVertex[k][1]];
-      if (!meshops::edge_ring(mesh_, a, b, t, ring_tets_, ring_) || ring_tets_.size() != 3) continue;
+      if (!meshops::edge_ring(mesh_, a, b, t, ring_tets_, ring_, 3) || ring_tets_.size() != 3) continue;
       bool same_region = true;
       for (uint32_t r : ring_tets_) same_region &= mesh_.tet_region[r] == mesh_.tet_region[t];
       if (!same_region) continue;
@@ -402,9 +453,16 @@ size_t Refiner::metric_flip_pass() {
       const double after = std::min(metric_quality(map, fa), metric_quality(map, fb));
       if (!(after > before + 1e-3)) continue;
       fresh.assign({fa, fb});
-      if (meshops::replace_tets(mesh_, ring_tets_, fresh, vt_, scratch_)) flipped = true;
+      if (meshops::replace_tets(mesh_, ring_tets_, fresh, vt_, scratch_)) {
+        flipped = true;
+        note_refilled();
+      }
     }
     flips += flipped;
+    if (!flipped) {
+      if (flip_failed_at_.size() <= t) flip_failed_at_.resize(size_t(t) + 1, 0);
+      flip_failed_at_[t] = epoch_;
+    }
   }
   return flips;
 }
@@ -513,6 +571,7 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       vt_.note(mesh_, t);
       for (int i = 0; i < 4; ++i) touched_[mesh_.vertex(t, i)] = 1;
     }
+    note_changed(*created);
     ++done;
   }
   return done;
@@ -593,6 +652,7 @@ bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
   if (moves) update_metric(w);
   for (const meshops::TetVerts& f : fresh_)
     for (uint32_t x : f) touched_[x] = 1;
+  note_changed(scratch_.created);
   touched_[v] = 1;
   return true;
 }
