@@ -145,6 +145,7 @@ int run_mesh_pipeline(MeshArgs& args) {
   options.refine.size_scale = args.size;
   options.run_refine = !args.no_refine;
   options.run_optimize = !args.no_optimize;
+  options.anisotropic_cycles = args.anisotropic_cycles;
 
   // The sizing field: the user's (--metric, bounds, gradation) or, when only its output is asked
   // for, the default grid built here; else the Mesher builds the default grid itself.
@@ -237,7 +238,8 @@ int run_mesh_pipeline(MeshArgs& args) {
                       {"strategy_name", recovery_strategy_name(r.recovery.strategy)}}},
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
         {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
-                    {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range}}},
+                    {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range},
+                    {"anisotropic_cycles", r.anisotropic_cycles}}},
         {"boundary_layer", {{"layers", bl.layers}, {"first_height", args.bl_first_height}, {"yplus", args.bl_yplus}, {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
                             {"vertices", bl.vertices}, {"full_columns", bl.full_columns}, {"columns_reaching", bl.columns_reaching},
                             {"nominal_columns", bl.nominal_columns}, {"reduced_vertices", bl.reduced_vertices},
@@ -281,7 +283,11 @@ int run_mesh_pipeline(MeshArgs& args) {
               << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits, "
               << r.refine.collapses << " collapses (" << r.refine.split_rejected << " splits put off, "
               << r.refine.collapse_rejected << " collapses refused); normalized edge length mean " << r.refine.length_mean
-              << ", " << 100.0 * r.refine.length_in_range << "% in [1/sqrt2, sqrt2]\n"
+              << ", " << 100.0 * r.refine.length_in_range << "% in [1/sqrt2, sqrt2]"
+              << (r.anisotropic_cycles > 0 ? " (anisotropic metric: refinement and optimization ran " +
+                                                  std::to_string(1 + r.anisotropic_cycles) + " times)"
+                                            : std::string())
+              << "\n"
               << "  optimization: " << r.optimize.moves << " CVT moves, " << r.optimize.flips23 << " 2-3 flips, "
               << r.optimize.edge_removals << " edge removals, " << r.optimize.perturbations
               << " sliver perturbations, " << r.optimize.flat_found - r.optimize.flat_left << " of "

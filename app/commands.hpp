@@ -60,6 +60,7 @@ struct MeshArgs {
   double size = 1.0;                    // global scale of the sizing field (2: twice as coarse)
   bool no_refine = false;               // skip refinement/coarsening (stage 3b)
   bool no_optimize = false;             // skip CVT, flips and sliver removal (stage 3c)
+  int anisotropic_cycles = 2;           // MesherOptions::anisotropic_cycles
   MetricCliOptions metric;              // --metric, --hmin/--hmax/--hgrad, --geodetic, ... (mesh)
   std::string recovery = "all";         // stage 2 strategies: all (split, then fuzzy), split, fuzzy
   std::string patch_names_spec;         // --patch-names "1=wall,2=farfield"

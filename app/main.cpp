@@ -192,6 +192,12 @@ int run(int argc, char** argv) {
   add_metric_options(*mesh_cmd, mesh.metric);
   mesh_cmd->add_flag("--no-refine", mesh.no_refine, "Skip refinement/coarsening by metric edge length");
   mesh_cmd->add_flag("--no-optimize", mesh.no_optimize, "Skip CVT smoothing, flips and sliver removal");
+  mesh_cmd
+      ->add_option("--anisotropic-cycles", mesh.anisotropic_cycles,
+                   "With an anisotropic metric (--metric tensors, --bl-sizing): more rounds of refinement then "
+                   "optimization after the first, which even the metric lengths and shapes further")
+      ->check(CLI::Range(0, 10))
+      ->capture_default_str();
   mesh_cmd->add_flag("--json", mesh.json, "Print the report as JSON");
 
   try {

@@ -333,6 +333,12 @@ TEST(Pipeline, BoundaryLayerSizingContinuesTheLayersHeights) {
     ASSERT_TRUE(r.ok()) << r.status().message();
     expect_boundary_constrained(s, r.value(), with ? "with BL sizing" : "without BL sizing");
     median[with] = median_height_on_bl_top(r->mesh, 0);
+    // The BL metric is anisotropic near the walls: the optimizer measures in it, and refinement
+    // and optimization run MesherOptions::anisotropic_cycles more times.
+    EXPECT_EQ(r->optimize.anisotropic, with == 1);
+    EXPECT_EQ(r->anisotropic_cycles, with ? options.anisotropic_cycles : 0);
+    EXPECT_EQ(std::count_if(r->stages.begin(), r->stages.end(), [](const StageReport& st) { return st.name == "cycles"; }),
+              with ? 1 : 0);
     std::printf("[sphere in box, 15 BL layers, BL sizing %s] %zu tets in %.2f s; interior tets on the BL top: "
                 "median height %.4f = %.2f x the last layer's %.4f\n",
                 with ? "on" : "off", r->mesh.num_tets(), r->seconds, median[with], median[with] / last, last);
