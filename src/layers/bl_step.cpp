@@ -63,7 +63,7 @@ double LayerBuilder::bl_height(uint32_t a, const double d[3]) const {
   // margin (a partial push of a star no direction sees gets a tenth).
   std::vector<double> normals, weights;
   star_normals(a, front_.star(a), normals, weights);
-  const double margin = star_margin(normals, d);
+  const double margin = star_margin(normals, into_frame(a, d).data());
   if (margin < bl.grazing_margin) h *= std::clamp(margin / bl.grazing_margin, 0.1, 1.0);
   // Fronts colliding: the rest of the BL (this layer and the ones after it, at full height)
   // may fill only a share of the free distance across, which the front there shares too.
@@ -87,7 +87,7 @@ void LayerBuilder::plan_boundary_layer(const std::vector<uint32_t>& vertices) {
   for (uint32_t v : vertices)
     if (plan_[v].valid) {
       star_normals(v, front_.star(v), normals, weights);
-      start_margin[v] = star_margin(normals, plan_[v].d);
+      start_margin[v] = star_margin(normals, into_frame(v, plan_[v].d).data());
     }
   std::vector<double> sum(3 * plan_.size(), 0.0);
   for (int pass = 0; pass < bl.normal_smoothing; ++pass) {
@@ -105,7 +105,7 @@ void LayerBuilder::plan_boundary_layer(const std::vector<uint32_t>& vertices) {
       if (!(len > 0.0)) continue;
       for (int k = 0; k < 3; ++k) d[k] /= len;
       star_normals(v, front_.star(v), normals, weights);
-      if (star_margin(normals, d) >= 0.5 * start_margin[v]) std::copy_n(d, 3, plan_[v].d);
+      if (star_margin(normals, into_frame(v, d).data()) >= 0.5 * start_margin[v]) std::copy_n(d, 3, plan_[v].d);
     }
   }
   for (uint32_t v : vertices)

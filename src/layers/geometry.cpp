@@ -209,6 +209,18 @@ void apply_factor(const double u[9], const double x[3], double y[3]) {
   for (int r = 0; r < 3; ++r) y[r] = u[3 * r] * x[0] + u[3 * r + 1] * x[1] + u[3 * r + 2] * x[2];
 }
 
+void solve_factor(const double u[9], const double x[3], double y[3]) {
+  y[2] = x[2] / u[8];
+  y[1] = (x[1] - u[5] * y[2]) / u[4];
+  y[0] = (x[0] - u[1] * y[1] - u[2] * y[2]) / u[0];
+}
+
+bool metric_is_isotropic(const double m[6]) {
+  const double tol = 1e-6 * std::fabs(m[0] + m[2] + m[5]);
+  return std::fabs(m[1]) <= tol && std::fabs(m[3]) <= tol && std::fabs(m[4]) <= tol &&
+         std::fabs(m[0] - m[2]) <= tol && std::fabs(m[2] - m[5]) <= tol;
+}
+
 double radius_ratio(const double* a, const double* b, const double* c, const double* d) {
   const double* p[4] = {a, b, c, d};
   double e[3][3];

@@ -157,6 +157,7 @@ void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
       double d[3];
       bool improved = false;
       if (!(visible_direction(normals, weights, d, &improved) > 0.0)) continue;
+      out_of_frame(v, d);
       double edge = 0.0, mean[3] = {0, 0, 0};
       size_t count = 0;
       for (uint32_t f : star) {

@@ -52,9 +52,22 @@ class LayerBuilder {
   // Whether the cone of tets over `part` from a + scale d fits on the front now (all undone).
   bool cone_fits_near(uint32_t a, const std::vector<uint32_t>& part, const double d[3],
                       double scale);
-  // Unit normals (into the region) and corner angles at a of the given star triangles.
+  // Unit normals (into the region) and corner angles at a of the given star triangles, in a's
+  // metric frame (see frame_of).
   void star_normals(uint32_t a, const std::vector<uint32_t>& star, std::vector<double>& normals,
                     std::vector<double>& weights) const;
+  // Stage 1's directions and margins are measured in the metric at the vertex: the star is mapped
+  // by U (M = U^T U) before its normals and angles are taken. A push that makes walls of
+  // stretched neighbours in space (the sides of bench/aniso_cube: triangles 0.1 x 0.001) is a
+  // fair one in the metric, and its margins say so. Visibility (the sign of d . n) does not
+  // depend on the frame. Null when the metric at a is isotropic: then nothing is mapped, the
+  // Euclidean figures bit for bit. Cached per vertex (measured where it first was asked).
+  const double* frame_of(uint32_t a) const;
+  // A direction in space -> the unit direction in a's frame, and back (both unit).
+  std::array<double, 3> into_frame(uint32_t a, const double d[3]) const;
+  void out_of_frame(uint32_t a, double d[3]) const;
+  // The unit normal of the triangle (p0 p1 p2) in a's frame.
+  void frame_normal(uint32_t a, const double* p0, const double* p1, const double* p2, double n[3]) const;
   // The longest run of consecutive star triangles of a that a push along d can take off (see
   // push_step.cpp); scale: the local size. Empty when there is none.
   std::vector<uint32_t> visible_run(uint32_t a, const std::vector<uint32_t>& star, double scale,
@@ -162,6 +175,9 @@ class LayerBuilder {
   std::vector<uint8_t> wall_;    // 1 per vertex: on a wall shell (or pushed from one)
   std::vector<uint8_t> bl_reduced_root_;  // 1 per input vertex: some BL layer was reduced
   std::vector<uint8_t> column_halved_;    // 1 per input triangle, for the current layer
+  // frame_of()'s cache: per vertex 0 unknown, 1 isotropic, 2 anisotropic (U in frame_).
+  mutable std::vector<uint8_t> frame_state_;
+  mutable std::vector<std::array<double, 9>> frame_;
 };
 
 }  // namespace anitet::layers

@@ -35,6 +35,9 @@
 //       planned points are smoothed tangentially so that the next front is even;
 //     - a push must leave each waiting neighbour a direction that sees its new star with a
 //       margin (else it is shortened like a push that does not fit);
+//     - directions, margins and corner angles are measured in the metric at the vertex when it
+//       is anisotropic there (the star mapped by M^(1/2)): a push off stretched triangles that is
+//       fair in the metric is then not shortened for making walls of them in space;
 //     - the start height is chosen among fractions of the planned one by the radius ratio (in
 //       the metric) of the cone's tets and of the tets the neighbours will build on it;
 //     - a vertex whose star no direction sees (saddles on scanned surfaces, < 0.1% of vertices)

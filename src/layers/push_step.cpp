@@ -25,20 +25,74 @@ double signed_volume(const double* a, const double* b, const double* c, const do
 
 }  // namespace
 
+const double* LayerBuilder::frame_of(uint32_t a) const {
+  if (frame_state_.size() <= a) {
+    frame_state_.resize(size_t(a) + 1, 0);
+    frame_.resize(size_t(a) + 1);
+  }
+  if (frame_state_[a] == 0) {
+    double m[6];
+    sizing_.metric(mesh_.point(a), m);
+    frame_state_[a] = metric_is_isotropic(m) ? 1 : 2;
+    if (frame_state_[a] == 2) metric_factor(m, frame_[a].data());
+  }
+  return frame_state_[a] == 2 ? frame_[a].data() : nullptr;
+}
+
+std::array<double, 3> LayerBuilder::into_frame(uint32_t a, const double d[3]) const {
+  std::array<double, 3> out = {d[0], d[1], d[2]};
+  const double* u = frame_of(a);
+  if (!u) return out;
+  apply_factor(u, d, out.data());
+  const double len = std::sqrt(dot3(out.data(), out.data()));
+  if (len > 0.0)
+    for (double& x : out) x /= len;
+  return out;
+}
+
+void LayerBuilder::out_of_frame(uint32_t a, double d[3]) const {
+  const double* u = frame_of(a);
+  if (!u) return;
+  const double dm[3] = {d[0], d[1], d[2]};
+  solve_factor(u, dm, d);
+  const double len = std::sqrt(dot3(d, d));
+  if (len > 0.0)
+    for (int k = 0; k < 3; ++k) d[k] /= len;
+}
+
+void LayerBuilder::frame_normal(uint32_t a, const double* p0, const double* p1, const double* p2,
+                                double n[3]) const {
+  const double* u = frame_of(a);
+  if (!u) {
+    unit_normal(p0, p1, p2, n);
+    return;
+  }
+  double q[3][3];
+  apply_factor(u, p0, q[0]);
+  apply_factor(u, p1, q[1]);
+  apply_factor(u, p2, q[2]);
+  unit_normal(q[0], q[1], q[2], n);
+}
+
 void LayerBuilder::star_normals(uint32_t a, const std::vector<uint32_t>& star,
                                 std::vector<double>& normals, std::vector<double>& weights) const {
   normals.assign(3 * star.size(), 0.0);
   weights.assign(star.size(), 0.0);
-  const double* pa = mesh_.point(a);
+  const double* u = frame_of(a);
+  double q[3][3];
   for (size_t i = 0; i < star.size(); ++i) {
     const uint32_t* t = front_.tri(star[i]);
     int k = 0;
     while (t[k] != a) ++k;
-    const double* p1 = mesh_.point(t[(k + 1) % 3]);
-    const double* p2 = mesh_.point(t[(k + 2) % 3]);
-    unit_normal(pa, p1, p2, &normals[3 * i]);
+    const double* p[3] = {mesh_.point(a), mesh_.point(t[(k + 1) % 3]), mesh_.point(t[(k + 2) % 3])};
+    if (u)
+      for (int j = 0; j < 3; ++j) {
+        apply_factor(u, p[j], q[j]);
+        p[j] = q[j];
+      }
+    unit_normal(p[0], p[1], p[2], &normals[3 * i]);
     for (int j = 0; j < 3; ++j) normals[3 * i + j] = -normals[3 * i + j];
-    weights[i] = corner_angle(pa, p1, p2);
+    weights[i] = corner_angle(p[0], p[1], p[2]);
   }
 }
 
@@ -76,12 +130,13 @@ bool LayerBuilder::keeps_plans_visible(int halvings) {
       const Plan& p = plan_[u];
       const double need = halvings < kStrictHalvings ? p.keep : 0.0;
       star_normals(u, front_.star(u), normals, weights);
-      if (star_margin(normals, p.d) > need) continue;
+      if (star_margin(normals, into_frame(u, p.d).data()) > need) continue;
       // The planned direction no longer sees u's new star well: look for another that does.
       Replan r;
       r.v = u;
       bool improved = false;
       if (!(visible_direction(normals, weights, r.d, &improved) > need)) return false;
+      out_of_frame(u, r.d);
       replans_.push_back(r);
     }
   }
@@ -121,6 +176,7 @@ Status LayerBuilder::push_step(const std::vector<uint32_t>& vertices, int layer)
     Plan& p = plan_[v];
     bool improved = false;
     const double margin = visible_direction(normals, weights, p.d, &improved);
+    out_of_frame(v, p.d);
     p.valid = margin > 0.0;
     p.waiting = true;
     (p.valid ? order : deferred).push_back(v);
@@ -136,7 +192,7 @@ Status LayerBuilder::push_step(const std::vector<uint32_t>& vertices, int layer)
   for (uint32_t v : order) {
     Plan& p = plan_[v];
     star_normals(v, front_.star(v), normals, weights);
-    p.keep = opt_.keep_margin * std::min(star_margin(normals, p.d), 0.5);
+    p.keep = opt_.keep_margin * std::min(star_margin(normals, into_frame(v, p.d).data()), 0.5);
   }
   out_.stats.deferred_pushes += deferred.size();
   order.insert(order.end(), deferred.begin(), deferred.end());
@@ -216,7 +272,8 @@ void LayerBuilder::plan_targets(const std::vector<uint32_t>& vertices) {
       if (!(len > 0.0)) continue;
       const double dir[3] = {disp[0] / len, disp[1] / len, disp[2] / len};
       star_normals(v, front_.star(v), normals, weights);
-      if (star_margin(normals, dir) < 0.5 * star_margin(normals, d)) continue;
+      if (star_margin(normals, into_frame(v, dir).data()) < 0.5 * star_margin(normals, into_frame(v, d).data()))
+        continue;
       std::copy_n(next, 3, &target[3 * v]);
     }
   }
@@ -332,13 +389,14 @@ std::vector<uint32_t> LayerBuilder::visible_run(uint32_t a, const std::vector<ui
         if (predicates::orient3d(mesh_.point(t[0]), mesh_.point(t[1]), mesh_.point(t[2]),
                                  mesh_.point(far)) < 0) {
           double nb[3];
-          unit_normal(mesh_.point(o[0]), mesh_.point(o[1]), mesh_.point(o[2]), nb);
+          frame_normal(a, mesh_.point(o[0]), mesh_.point(o[1]), mesh_.point(o[2]), nb);
           for (int k = 0; k < 3; ++k) normals.push_back(-nb[k]);
           weights.push_back(0.0);
         }
       }
       bool improved = false;
       const double margin = visible_direction(normals, weights, &dirs[3 * s], &improved);
+      out_of_frame(a, &dirs[3 * s]);
       if (margin > 0.0) starts.emplace_back(margin, s);
     }
     std::sort(starts.rbegin(), starts.rend());
@@ -372,7 +430,7 @@ Status LayerBuilder::push_vertex(uint32_t a, int layer) {
     // The planned displacement, while it sees the star (the neighbours' pushes keep it so unless
     // they had to re-plan); else the best direction of the star as it is now.
     if (!whole_failed && round == 0 && a < plan_.size() && plan_[a].valid &&
-        star_margin(normals, plan_[a].d) > 0.0) {
+        star_margin(normals, into_frame(a, plan_[a].d).data()) > 0.0) {
       const Plan& p = plan_[a];
       const double disp[3] = {p.height * p.d[0], p.height * p.d[1], p.height * p.d[2]};
       if (push_part(a, star, disp, layer).ok()) return Status::success();
@@ -383,6 +441,7 @@ Status LayerBuilder::push_vertex(uint32_t a, int layer) {
     double d[3];
     bool improved = false;
     const double margin = visible_direction(normals, weights, d, &improved);
+    out_of_frame(a, d);
     if (improved) ++out_.stats.direction_fixes;
     if (!whole_failed && margin > 0.0) {
       const double h = target_height(a, d);
