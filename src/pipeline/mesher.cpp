@@ -8,11 +8,33 @@
 
 #include "core/bvh.hpp"
 #include "core/sizing.hpp"
+#include "layers/geometry.hpp"
 #include "metric/boundary_layer.hpp"
 
 namespace anitet {
 
 namespace {
+
+// Stage 1's sizing: the surface's own sizes (heights in proportion to the triangles they stand
+// on), except where the user's metric is anisotropic: there the metric, whose stretched
+// directions the layers must follow (stage 1 also measures its directions and margins in it).
+// With the surface's sizes, the layers on bench/aniso_cube's stretched sides (triangles
+// 0.1 x 0.001) were a fortieth of the metric's height, and refinement could not recover.
+class LayerSizing final : public SizingField {
+ public:
+  LayerSizing(const SizingField& surface, const SizingField* user) : surface_(surface), user_(user) {}
+  void metric(const double p[3], double m[6]) const override {
+    if (user_) {
+      user_->metric(p, m);
+      if (!layers::metric_is_isotropic(m)) return;
+    }
+    surface_.metric(p, m);
+  }
+
+ private:
+  const SizingField& surface_;
+  const SizingField* user_;
+};
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -170,7 +192,8 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   // succeed (bimba_low: not with 2 layers, yes with 1). The fast split-constraints recovery is
   // tried with every layer count before the slower fuzzy-face strategies are (femur: 2 layers
   // fail, 1 works in 0.2 s). MesherResult::layers_used says which count worked.
-  const IsotropicSurfaceSizing sizing(surface);
+  const IsotropicSurfaceSizing surface_sizing(surface);
+  const LayerSizing sizing(surface_sizing, options_.sizing);
   std::vector<int> layer_counts = {options_.layers.layers};
   if (options_.retry_layer_counts) {
     for (int n = options_.layers.layers - 1; n >= 1; --n) layer_counts.push_back(n);

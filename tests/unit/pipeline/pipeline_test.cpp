@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "pipeline/mesher.hpp"
 #include "quality/quality_report.hpp"
 #include "recovery/recovery.hpp"
+#include "refine/stretched_box.hpp"
 
 using namespace anitet;
 
@@ -349,4 +351,74 @@ TEST(Pipeline, BoundaryLayerSizingContinuesTheLayersHeights) {
   MesherOptions plain;
   plain.boundary_layer_sizing = true;
   EXPECT_EQ(Mesher(plain).run(test::coarse_cube()).status().code(), Error::InvalidArgument);
+}
+
+namespace {
+
+// The box [0,1]^3 with each face a structured grid, n[k] cells along axis k, two triangles per
+// cell, counter-clockwise seen from outside.
+SurfaceMesh lattice_box(const int n[3]) {
+  SurfaceMesh s;
+  std::map<std::tuple<int, int, int>, uint32_t> id;
+  auto vertex = [&](int x, int y, int z) {
+    const auto key = std::make_tuple(x, y, z);
+    auto it = id.find(key);
+    if (it != id.end()) return it->second;
+    s.add_vertex(double(x) / n[0], double(y) / n[1], double(z) / n[2]);
+    return id[key] = uint32_t(s.num_vertices() - 1);
+  };
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;  // e_i x e_j = e_k
+    for (int side = 0; side < 2; ++side)
+      for (int a = 0; a < n[i]; ++a)
+        for (int b = 0; b < n[j]; ++b) {
+          uint32_t c[2][2];
+          for (int da = 0; da < 2; ++da)
+            for (int db = 0; db < 2; ++db) {
+              int q[3];
+              q[k] = side * n[k];
+              q[i] = a + da;
+              q[j] = b + db;
+              c[da][db] = vertex(q[0], q[1], q[2]);
+            }
+          if (side == 1) {  // outward +e_k
+            s.add_triangle(c[0][0], c[1][0], c[1][1]);
+            s.add_triangle(c[0][0], c[1][1], c[0][1]);
+          } else {
+            s.add_triangle(c[0][0], c[1][1], c[1][0]);
+            s.add_triangle(c[0][0], c[0][1], c[1][1]);
+          }
+        }
+  }
+  return s;
+}
+
+}  // namespace
+
+// A user metric that is anisotropic drives every stage: stage 1 grows the layers to its heights
+// and measures its directions in it (with the surface's own sizes, the layers on stretched
+// triangles came out far too thin for refinement to recover), and refinement, optimization and
+// their extra cycles follow it. The surface's triangles are unit triangles of the metric,
+// stretched 12.5:1 in space.
+TEST(Pipeline, AnisotropicUserMetricDrivesEveryStage) {
+  const int n[3] = {4, 4, 50};
+  const SurfaceMesh s = lattice_box(n);
+  const test::AxisSizing field(0.25, 0.25, 0.02);
+  MesherOptions options;
+  options.sizing = &field;
+  Result<MesherResult> r = Mesher(options).run(s);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  expect_boundary_constrained(s, r.value(), "stretched box");
+  EXPECT_TRUE(r->optimize.anisotropic);
+  EXPECT_EQ(r->anisotropic_cycles, options.anisotropic_cycles);
+  TetMesh tm = TetMesh::from_volume_mesh(r->mesh);
+  size_t tets = 0;
+  const size_t bad = test::tets_below_in_metric(tm, field, 0.1, &tets);
+  const size_t poor = test::tets_below_in_metric(tm, field, 0.4);
+  std::printf("[stretched box] %zu tets in %.2f s (layers used %d); metric radius ratio < 0.1: %zu, < 0.4: %zu; "
+              "edges in range %.4f\n",
+              tets, r->seconds, r->layers_used, bad, poor, r->refine.length_in_range);
+  EXPECT_LT(double(bad), 0.001 * double(tets));
+  EXPECT_LT(double(poor), 0.02 * double(tets));
+  EXPECT_GT(r->refine.length_in_range, 0.9);
 }
