@@ -222,35 +222,27 @@ bool metric_is_isotropic(const double m[6]) {
 }
 
 double radius_ratio(const double* a, const double* b, const double* c, const double* d) {
-  const double* p[4] = {a, b, c, d};
-  double e[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) e[i][k] = p[i + 1][k] - a[k];
-  double x[3];
-  cross(e[0], e[1], x);
-  const double vol = std::fabs(dot(x, e[2])) / 6.0;
-  if (!(vol > 0.0)) return 0.0;
-  static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-  double area = 0.0;
-  for (const auto& f : kFace) {
-    double u[3], v[3], n[3];
-    for (int k = 0; k < 3; ++k) {
-      u[k] = p[f[1]][k] - p[f[0]][k];
-      v[k] = p[f[2]][k] - p[f[0]][k];
-    }
-    cross(u, v, n);
-    area += 0.5 * std::sqrt(dot(n, n));
-  }
-  const double r_in = 3.0 * vol / area;
-  // Circumradius from the products of opposite edge lengths.
-  auto len = [&](int i, int j) {
-    double s = 0.0;
-    for (int k = 0; k < 3; ++k) s += (p[i][k] - p[j][k]) * (p[i][k] - p[j][k]);
-    return std::sqrt(s);
-  };
-  const double p1 = len(0, 1) * len(2, 3), p2 = len(0, 2) * len(1, 3), p3 = len(0, 3) * len(1, 2);
-  const double s = (p1 + p2 + p3) * (p1 + p2 - p3) * (p1 - p2 + p3) * (-p1 + p2 + p3);
-  const double big_r = std::sqrt(std::max(s, 0.0)) / (24.0 * vol);
+  // Five square roots: the four face areas and the circumcentre's offset from a,
+  // a + (|ab|^2 (ac x ad) + |ac|^2 (ad x ab) + |ad|^2 (ab x ac)) / (2 v6).
+  const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double ad[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  const double bc[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+  const double bd[3] = {d[0] - b[0], d[1] - b[1], d[2] - b[2]};
+  double n_cd[3], n_db[3], n_bc[3], n_a[3];
+  cross(ac, ad, n_cd);
+  cross(ad, ab, n_db);
+  cross(ab, ac, n_bc);
+  cross(bc, bd, n_a);
+  const double v6 = std::fabs(dot(ab, n_cd));
+  if (!(v6 > 0.0)) return 0.0;
+  const double area2 = std::sqrt(dot(n_cd, n_cd)) + std::sqrt(dot(n_db, n_db)) + std::sqrt(dot(n_bc, n_bc)) +
+                       std::sqrt(dot(n_a, n_a));  // twice the total area
+  const double r_in = v6 / area2;                     // 3 V / A
+  const double lab = dot(ab, ab), lac = dot(ac, ac), lad = dot(ad, ad);
+  double o[3];
+  for (int k = 0; k < 3; ++k) o[k] = lab * n_cd[k] + lac * n_db[k] + lad * n_bc[k];
+  const double big_r = std::sqrt(dot(o, o)) / (2.0 * v6);
   return big_r > 0.0 ? std::min(1.0, 3.0 * r_in / big_r) : 0.0;
 }
 
