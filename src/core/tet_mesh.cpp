@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <sstream>
-#include <unordered_map>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "core/buckets.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet {
@@ -44,50 +47,64 @@ void TetMesh::delete_tet(uint32_t t) {
   free_tets.push_back(t);
 }
 
-namespace {
-
-// A facet key: its three vertex ids sorted.
-struct FacetKey {
-  uint32_t v[3];
-  bool operator==(const FacetKey& o) const { return v[0] == o.v[0] && v[1] == o.v[1] && v[2] == o.v[2]; }
-};
-struct FacetKeyHash {
-  size_t operator()(const FacetKey& k) const {
-    uint64_t h = k.v[0];
-    h = h * 0x9E3779B97F4A7C15ull ^ k.v[1];
-    h = h * 0x9E3779B97F4A7C15ull ^ k.v[2];
-    return static_cast<size_t>(h ^ (h >> 29));
-  }
-};
-
-FacetKey facet_key(const TetMesh& m, uint32_t t, int i) {
-  FacetKey k{{m.vertex(t, kFacetVertex[i][0]), m.vertex(t, kFacetVertex[i][1]),
-              m.vertex(t, kFacetVertex[i][2])}};
-  std::sort(k.v, k.v + 3);
-  return k;
-}
-
-}  // namespace
-
 Status TetMesh::build_adjacency() {
-  std::unordered_map<FacetKey, uint64_t, FacetKeyHash> open;
-  open.reserve(2 * num_live_tets() + 16);
-  for (uint32_t t = 0; t < num_tet_slots(); ++t) {
+  // Facets grouped by their smallest vertex (a counting sort), then sorted within each group by
+  // the other two and paired with their equal neighbour: linear in the tets, and no allocation
+  // per facet (a hash map of the facets was most of its time). The adjacency is the same
+  // whatever the order of the pairing.
+  const uint32_t slots = num_tet_slots();
+  auto sorted_facet = [&](uint32_t t, int i, uint32_t v[3]) {
+    for (int k = 0; k < 3; ++k) v[k] = vertex(t, kFacetVertex[i][k]);
+    std::sort(v, v + 3);
+  };
+  size_t num_keys = 0;
+  for (uint32_t t = 0; t < slots; ++t) {
     if (is_deleted(t)) continue;
     for (int i = 0; i < 4; ++i) {
       tet_adj[4 * size_t(t) + i] = kNoNeighbour;
-      const FacetKey k = facet_key(*this, t, i);
-      auto [it, inserted] = open.emplace(k, 4 * uint64_t(t) + uint64_t(i));
-      if (inserted) continue;
-      if (it->second == kNoNeighbour) {
+      uint32_t v[3];
+      sorted_facet(t, i, v);
+      if (v[0] >= num_vertices())  // (a ghost facet's smallest vertex is a real one)
+        return Status(Error::InvalidMesh, "tet " + std::to_string(t) + " refers to vertex " +
+                                              std::to_string(v[0]) + ", which does not exist");
+      num_keys = std::max(num_keys, size_t(v[0]) + 1);
+    }
+  }
+  std::vector<uint32_t> start, facets, fill;  // facet id: 4 t + i
+  bucket_by_key(
+      num_keys,
+      [&](auto&& emit) {
+        for (uint32_t t = 0; t < slots; ++t)
+          if (!is_deleted(t))
+            for (int i = 0; i < 4; ++i) {
+              uint32_t v[3];
+              sorted_facet(t, i, v);
+              emit(v[0], 4 * t + uint32_t(i));
+            }
+      },
+      start, facets, fill);
+  std::vector<std::pair<uint64_t, uint32_t>> group;  // (other two vertices, facet id)
+  for (size_t key = 0; key < num_keys; ++key) {
+    group.clear();
+    for (uint32_t k = start[key]; k < start[key + 1]; ++k) {
+      uint32_t v[3];
+      sorted_facet(facets[k] >> 2, int(facets[k] & 3), v);
+      group.emplace_back((uint64_t(v[1]) << 32) | v[2], facets[k]);
+    }
+    std::sort(group.begin(), group.end());
+    for (size_t a = 0; a < group.size();) {
+      size_t b = a + 1;
+      while (b < group.size() && group[b].first == group[a].first) ++b;
+      if (b - a > 2) {
         std::ostringstream msg;
-        msg << "facet (" << k.v[0] << ", " << k.v[1] << ", " << k.v[2]
-            << ") is shared by more than two tets (tet " << t << " among them)";
+        msg << "facet (" << key << ", " << (group[a].first >> 32) << ", " << (group[a].first & 0xffffffffu)
+            << ") is shared by more than two tets (tet " << (group[a + 2].second >> 2) << " among them)";
         return Status(Error::InvalidMesh, msg.str());
       }
-      const uint64_t other = it->second;
-      link(t, i, static_cast<uint32_t>(other >> 2), static_cast<int>(other & 3));
-      it->second = kNoNeighbour;  // matched: a third claimant is an error
+      if (b - a == 2)
+        link(group[a].second >> 2, int(group[a].second & 3), group[a + 1].second >> 2,
+             int(group[a + 1].second & 3));
+      a = b;
     }
   }
   return Status::success();

@@ -92,6 +92,17 @@ TEST(TetMesh, RejectsFacetSharedByThreeTets) {
   EXPECT_EQ(m.build_adjacency().code(), Error::InvalidMesh);
 }
 
+TEST(TetMesh, RejectsAVertexThatDoesNotExist) {
+  TetMesh m;
+  const double p[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (auto& q : p) m.add_vertex(q);
+  m.new_tet(0, 1, 2, 3);
+  m.new_tet(4, 5, 6, 7);
+  const Status s = m.build_adjacency();
+  EXPECT_EQ(s.code(), Error::InvalidMesh);
+  EXPECT_NE(s.message().find("tet 1 refers to vertex"), std::string::npos) << s.message();
+}
+
 TEST(TetMesh, FreeListReusesSlotsAndExportSkipsThem) {
   TetMesh m = cube_mesh();
   m.delete_tet(2);
