@@ -240,6 +240,9 @@ int run_mesh_pipeline(MeshArgs& args) {
         {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range},
                     {"anisotropic_cycles", r.anisotropic_cycles}}},
+        {"metric_quality", {{"tets", r.metric_quality.tets}, {"radius_ratio_mean", r.metric_quality.mean},
+                            {"radius_ratio_min", r.metric_quality.min}, {"below_0.1", r.metric_quality.below_01},
+                            {"below_0.4", r.metric_quality.below_04}}},
         {"boundary_layer", {{"layers", bl.layers}, {"first_height", args.bl_first_height}, {"yplus", args.bl_yplus}, {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
                             {"vertices", bl.vertices}, {"full_columns", bl.full_columns}, {"columns_reaching", bl.columns_reaching},
                             {"nominal_columns", bl.nominal_columns}, {"reduced_vertices", bl.reduced_vertices},
@@ -293,8 +296,15 @@ int run_mesh_pipeline(MeshArgs& args) {
               << " sliver perturbations, " << r.optimize.flat_found - r.optimize.flat_left << " of "
               << r.optimize.flat_found << " tets flat to rounding opened; radius ratio min " << r.optimize.before.min << " -> "
               << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
-              << "\n"
-              << quality_report_text(quality.value());
+              << "\n";
+    if (r.metric_quality.tets > 0) {
+      const QualitySummary& mq = r.metric_quality;
+      std::cout << "  in the metric (anisotropic field; the report below is Euclidean): radius ratio mean "
+                << mq.mean << " min " << mq.min << ", below 0.1: " << mq.below_01 << " ("
+                << 100.0 * double(mq.below_01) / double(mq.tets) << "%), below 0.4: " << mq.below_04 << " ("
+                << 100.0 * double(mq.below_04) / double(mq.tets) << "%)\n";
+    }
+    std::cout << quality_report_text(quality.value());
     if (!args.report_html.empty()) std::cout << "html report: " << args.report_html << "\n";
   }
   return kExitOk;

@@ -556,6 +556,43 @@ QualitySummary summarize_quality(const TetMesh& mesh) {
   return s;
 }
 
+QualitySummary summarize_metric_quality(const TetMesh& mesh, const SizingField& field) {
+  const uint32_t n = mesh.num_tet_slots();
+  std::vector<double> q(n, -2.0);  // -2: not a live tet
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1024), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t t = r.begin(); t < r.end(); ++t) {
+      if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+      const double* p[4];
+      double c[3] = {0.0, 0.0, 0.0};
+      for (int i = 0; i < 4; ++i) {
+        p[i] = mesh.point(mesh.vertex(t, i));
+        for (int k = 0; k < 3; ++k) c[k] += 0.25 * p[i][k];
+      }
+      double m[6];
+      field.metric(c, m);
+      const meshops::MetricMap map = meshops::MetricMap::of(m);
+      double mapped[4][3];
+      for (int i = 0; i < 4; ++i) map.apply(p[i], mapped[i]);
+      q[t] = map.identity ? meshops::radius_ratio(p[0], p[1], p[2], p[3])
+                          : meshops::radius_ratio(mapped[0], mapped[1], mapped[2], mapped[3]);
+    }
+  });
+  QualitySummary s;
+  s.min = 1.0;
+  double sum = 0.0;
+  for (uint32_t t = 0; t < n; ++t) {
+    if (q[t] == -2.0) continue;
+    ++s.tets;
+    sum += q[t];
+    s.min = std::min(s.min, q[t]);
+    s.below_01 += q[t] < 0.1 ? 1 : 0;
+    s.below_04 += q[t] < 0.4 ? 1 : 0;
+  }
+  s.mean = s.tets ? sum / double(s.tets) : 0.0;
+  if (s.tets == 0) s.min = 0.0;
+  return s;
+}
+
 FlatTetFlips flip_flat_tets(TetMesh& mesh) {
   auto certified = [&](uint32_t t) {
     return predicates::orient3d_certified(mesh.point(mesh.vertex(t, 0)), mesh.point(mesh.vertex(t, 1)),

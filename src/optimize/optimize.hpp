@@ -75,6 +75,10 @@ struct OptimizeStats {
 
 // Radius ratio statistics of the live non-ghost tets.
 QualitySummary summarize_quality(const TetMesh& mesh);
+// The same in the metric of `field`: each tet's radius ratio after the map of the metric at its
+// centroid (M = L L^T, x -> L^T x), so a tet stretched as the metric asks counts as regular.
+// Measured on every core; the sums run in tet order (the same figures whatever the threads).
+QualitySummary summarize_metric_quality(const TetMesh& mesh, const SizingField& field);
 
 struct FlatTetFlips {
   size_t found = 0;  // tets flat to rounding (predicates::orient3d_certified not positive) before

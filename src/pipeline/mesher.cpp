@@ -362,6 +362,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
       result.anisotropic_cycles = options_.anisotropic_cycles;
       result.stages.push_back({"cycles", since(t), result.optimize.after.tets});
     }
+    if (result.optimize.anisotropic) result.metric_quality = summarize_metric_quality(mesh, scaled);
   }
 
   t = Clock::now();

@@ -111,6 +111,9 @@ struct MesherResult {
   RefineStats refine;      // zero when the stage did not run
   OptimizeStats optimize;  // zero when the stage did not run
   int anisotropic_cycles = 0;  // extra refine + optimize rounds run (anisotropic field)
+  // With an anisotropic field (optimize.anisotropic): radius ratios measured in the field's
+  // metric (summarize_metric_quality); tets == 0 otherwise.
+  QualitySummary metric_quality;
   double seconds = 0.0;
 };
 

@@ -339,6 +339,7 @@ TEST(Pipeline, BoundaryLayerSizingContinuesTheLayersHeights) {
     // and optimization run MesherOptions::anisotropic_cycles more times.
     EXPECT_EQ(r->optimize.anisotropic, with == 1);
     EXPECT_EQ(r->anisotropic_cycles, with ? options.anisotropic_cycles : 0);
+    EXPECT_EQ(r->metric_quality.tets > 0, with == 1);
     EXPECT_EQ(std::count_if(r->stages.begin(), r->stages.end(), [](const StageReport& st) { return st.name == "cycles"; }),
               with ? 1 : 0);
     std::printf("[sphere in box, 15 BL layers, BL sizing %s] %zu tets in %.2f s; interior tets on the BL top: "
@@ -420,5 +421,9 @@ TEST(Pipeline, AnisotropicUserMetricDrivesEveryStage) {
               tets, r->seconds, r->layers_used, bad, poor, r->refine.length_in_range);
   EXPECT_LT(double(bad), 0.001 * double(tets));
   EXPECT_LT(double(poor), 0.02 * double(tets));
+  // The result's own figures in the metric agree (the metric is constant here).
+  EXPECT_EQ(r->metric_quality.tets, tets);
+  EXPECT_EQ(r->metric_quality.below_01, bad);
+  EXPECT_EQ(r->metric_quality.below_04, poor);
   EXPECT_GT(r->refine.length_in_range, 0.9);
 }
