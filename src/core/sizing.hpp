@@ -45,6 +45,14 @@ inline void isotropic_metric(double h, double m[6]) {
   m[5] = s;
 }
 
+// Whether m is a multiple of I up to a relative 1e-6 (fields interpolated in log space, e.g.
+// metric/'s grids, return isotropic tensors with rounding noise).
+inline bool metric_is_isotropic(const double m[6]) {
+  const double tol = 1e-6 * std::fabs(m[0] + m[2] + m[5]);
+  return std::fabs(m[1]) <= tol && std::fabs(m[3]) <= tol && std::fabs(m[4]) <= tol &&
+         std::fabs(m[0] - m[2]) <= tol && std::fabs(m[2] - m[5]) <= tol;
+}
+
 // sqrt(v^T M v): the length of v in the metric m.
 inline double metric_norm(const double m[6], const double v[3]) {
   const double q = m[0] * v[0] * v[0] + m[2] * v[1] * v[1] + m[5] * v[2] * v[2] +

@@ -215,12 +215,6 @@ void solve_factor(const double u[9], const double x[3], double y[3]) {
   y[0] = (x[0] - u[1] * y[1] - u[2] * y[2]) / u[0];
 }
 
-bool metric_is_isotropic(const double m[6]) {
-  const double tol = 1e-6 * std::fabs(m[0] + m[2] + m[5]);
-  return std::fabs(m[1]) <= tol && std::fabs(m[3]) <= tol && std::fabs(m[4]) <= tol &&
-         std::fabs(m[0] - m[2]) <= tol && std::fabs(m[2] - m[5]) <= tol;
-}
-
 double radius_ratio(const double* a, const double* b, const double* c, const double* d) {
   // Five square roots: the four face areas and the circumcentre's offset from a,
   // a + (|ab|^2 (ac x ad) + |ac|^2 (ad x ab) + |ad|^2 (ab x ac)) / (2 v6).

@@ -39,8 +39,6 @@ void metric_factor(const double m[6], double u[9]);
 void apply_factor(const double u[9], const double x[3], double y[3]);
 // The inverse: y with U y = x (back substitution; U upper triangular with a positive diagonal).
 void solve_factor(const double u[9], const double x[3], double y[3]);
-// Whether m is a multiple of I up to a relative 1e-6 (as refine/'s MetricMap decides).
-bool metric_is_isotropic(const double m[6]);
 
 // Radius ratio 3 r / R of the tet abcd (1 regular, 0 flat), in Euclidean space.
 double radius_ratio(const double* a, const double* b, const double* c, const double* d);

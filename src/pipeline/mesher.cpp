@@ -8,7 +8,6 @@
 
 #include "core/bvh.hpp"
 #include "core/sizing.hpp"
-#include "layers/geometry.hpp"
 #include "metric/boundary_layer.hpp"
 
 namespace anitet {
@@ -26,7 +25,7 @@ class LayerSizing final : public SizingField {
   void metric(const double p[3], double m[6]) const override {
     if (user_) {
       user_->metric(p, m);
-      if (!layers::metric_is_isotropic(m)) return;
+      if (!metric_is_isotropic(m)) return;
     }
     surface_.metric(p, m);
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/sizing.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet::meshops {
@@ -102,12 +103,7 @@ double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets) {
 
 MetricMap MetricMap::of(const double m[6]) {
   MetricMap map;
-  // Isotropic up to a relative 1e-6 (fields interpolated in log space, e.g. metric/'s grids,
-  // return isotropic tensors with rounding noise).
-  const double tol = 1e-6 * std::fabs(m[0] + m[2] + m[5]);
-  if (std::fabs(m[1]) <= tol && std::fabs(m[3]) <= tol && std::fabs(m[4]) <= tol && std::fabs(m[0] - m[2]) <= tol &&
-      std::fabs(m[2] - m[5]) <= tol)
-    return map;
+  if (metric_is_isotropic(m)) return map;
   // M = L L^T with L lower triangular; a non positive pivot (M not SPD) keeps the identity.
   const double l00 = std::sqrt(m[0]);
   if (!(l00 > 0.0)) return map;
