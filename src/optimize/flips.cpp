@@ -9,6 +9,11 @@
 
 namespace anitet::optimize_detail {
 
+const Quality& Quality::euclidean() {
+  static const Quality empty;
+  return empty;
+}
+
 double Quality::of(const TetMesh& m, const uint32_t v[4]) const {
   const double* p[4] = {m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3])};
   if (vertex_metric.empty()) return meshops::shape_quality(p[0], p[1], p[2], p[3]);
@@ -113,12 +118,12 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
   return true;
 }
 
-std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality* measure) {
+std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality& measure) {
   const uint32_t n = m.num_tet_slots();
   std::vector<uint8_t> below(n, 0);
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1u << 14), [&](const tbb::blocked_range<uint32_t>& r) {
     for (uint32_t t = r.begin(); t < r.end(); ++t)
-      below[t] = !m.is_deleted(t) && (measure ? measure->tet(m, t) : meshops::tet_shape_quality(m, t)) < quality;
+      below[t] = !m.is_deleted(t) && measure.tet(m, t) < quality;
   });
   std::vector<uint32_t> out;
   for (uint32_t t = 0; t < n; ++t)
@@ -130,7 +135,7 @@ size_t flip_sweep(FlipContext& c, double quality, int rounds) {
   TetMesh& m = c.mesh;
   size_t total = 0;
   // The first round scans the mesh; later ones only revisit the tets the flips created.
-  std::vector<uint32_t> bad = tets_below(m, quality, c.quality), fresh_bad;
+  std::vector<uint32_t> bad = tets_below(m, quality, *c.quality), fresh_bad;
   for (int round = 0; round < rounds && !bad.empty(); ++round) {
     fresh_bad.clear();
     size_t flips = 0;

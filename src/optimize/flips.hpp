@@ -21,6 +21,7 @@ struct Quality {
   bool anisotropic() const { return !vertex_metric.empty(); }
   double of(const TetMesh& m, const uint32_t v[4]) const;
   double tet(const TetMesh& m, uint32_t t) const { return of(m, &m.tet_v[4 * size_t(t)]); }
+  static const Quality& euclidean();  // the empty one
 };
 
 struct FlipContext {
@@ -35,12 +36,9 @@ struct FlipContext {
   // constrained edges are subsegments of S that no flip here can remove anyway.
   meshops::ConstrainedEdges rule = meshops::ConstrainedEdges::kRefuse;
   size_t flips23 = 0, edge_removals = 0;
-  const Quality* quality = nullptr;  // nullptr: Euclidean
-  double tet(uint32_t t) const { return quality ? quality->tet(mesh, t) : meshops::tet_shape_quality(mesh, t); }
-  double of(const uint32_t v[4]) const {
-    return quality ? quality->of(mesh, v)
-                   : meshops::shape_quality(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3]));
-  }
+  const Quality* quality = &Quality::euclidean();
+  double tet(uint32_t t) const { return quality->tet(mesh, t); }
+  double of(const uint32_t v[4]) const { return quality->of(mesh, v); }
 };
 
 // 2-3 flip of facet i of tet t (not protected, with a neighbour).
@@ -48,7 +46,7 @@ bool try_flip23(FlipContext& c, uint32_t t, int i);
 // Removes edge k (kEdgeVertex order) of tet t.
 bool try_remove_edge(FlipContext& c, uint32_t t, int k);
 // The live tets whose shape quality is below `quality`, in slot order (measured on every core).
-std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality* measure = nullptr);
+std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality& measure = Quality::euclidean());
 // Tries edge removals then 2-3 flips on every live tet below `quality`, then for at most
 // `rounds` - 1 more rounds on the new tets still below it. Returns the number of flips.
 size_t flip_sweep(FlipContext& c, double quality, int rounds);

@@ -27,6 +27,7 @@ class Optimizer {
   Optimizer(TetMesh& mesh, const SizingField& field, const OptimizeOptions& options)
       : mesh_(mesh), field_(field), options_(options), flips_{mesh, vt_, {}, {}, {}, {}, {}} {
     rng_ = options.seed | 1u;
+    flips_.quality = &quality_;
   }
   Result<OptimizeStats> run();
 
@@ -286,7 +287,7 @@ size_t Optimizer::cvt_pass() {
 }
 
 size_t Optimizer::perturb_pass() {
-  const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, options_.sliver_quality, flips_.quality);
+  const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, options_.sliver_quality, quality_);
   size_t moved = 0;
   for (uint32_t t : bad) {
     for (int i = 0; i < 4; ++i) {
@@ -508,7 +509,6 @@ Result<OptimizeStats> Optimizer::run() {
     if (std::find(aniso.begin(), aniso.end(), 1) != aniso.end()) {
       quality_.vertex_metric = std::move(metrics);
       metric_stale_.assign(nv, 0);
-      flips_.quality = &quality_;
     }
   }
   stats_.anisotropic = quality_.anisotropic();
