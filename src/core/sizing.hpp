@@ -30,6 +30,8 @@ class SizingField {
   virtual ~SizingField() = default;
   // The metric tensor at p (xx xy yy xz yz zz). Must be symmetric positive definite.
   virtual void metric(const double p[3], double m[6]) const = 0;
+  // True when every metric() is a multiple of I: callers may then skip per-point tensor work.
+  virtual bool isotropic() const { return false; }
 };
 
 // ---- Metric helpers ----------------------------------------------------------------------------
@@ -114,6 +116,7 @@ class IsotropicSurfaceSizing final : public SizingField {
   }
 
   void metric(const double p[3], double m[6]) const override { isotropic_metric(size(p), m); }
+  bool isotropic() const override { return true; }
 
   // The size at p (1 when the surface has no edge at all).
   double size(const double p[3]) const {

@@ -61,7 +61,8 @@ class LayerBuilder {
   // stretched neighbours in space (the sides of bench/aniso_cube: triangles 0.1 x 0.001) is a
   // fair one in the metric, and its margins say so. Visibility (the sign of d . n) does not
   // depend on the frame. Null when the metric at a is isotropic: then nothing is mapped, the
-  // Euclidean figures bit for bit. Cached per vertex (measured where it first was asked).
+  // Euclidean figures bit for bit. Cached per vertex (measured where it first was asked); never
+  // asked when the sizing says it is isotropic everywhere.
   const double* frame_of(uint32_t a) const;
   // A direction in space -> the unit direction in a's frame, and back (both unit).
   std::array<double, 3> into_frame(uint32_t a, const double d[3]) const;

@@ -26,6 +26,7 @@ double signed_volume(const double* a, const double* b, const double* c, const do
 }  // namespace
 
 const double* LayerBuilder::frame_of(uint32_t a) const {
+  if (sizing_.isotropic()) return nullptr;  // (the pipeline's default: no query per vertex)
   if (frame_state_.size() <= a) {
     frame_state_.resize(size_t(a) + 1, 0);
     frame_.resize(size_t(a) + 1);

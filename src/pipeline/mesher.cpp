@@ -29,6 +29,7 @@ class LayerSizing final : public SizingField {
     }
     surface_.metric(p, m);
   }
+  bool isotropic() const override { return !user_ && surface_.isotropic(); }
 
  private:
   const SizingField& surface_;
