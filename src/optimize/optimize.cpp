@@ -497,13 +497,16 @@ Result<OptimizeStats> Optimizer::run() {
   const auto nv = static_cast<uint32_t>(mesh_.num_vertices());
   sizes_.assign(nv, -1.0);
   // An anisotropic metric at some vertex: every measure is taken in the metric (see Quality).
+  // The same queries fill the size cache, which CVT would otherwise fill with them again.
   {
     std::vector<double> metrics(6 * size_t(nv));
     std::vector<uint8_t> aniso(nv, 0);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, nv, 1024), [&](const tbb::blocked_range<uint32_t>& r) {
       for (uint32_t v = r.begin(); v < r.end(); ++v) {
+        const double* m = &metrics[6 * size_t(v)];
         field_.metric(mesh_.point(v), &metrics[6 * size_t(v)]);
-        aniso[v] = !meshops::MetricMap::of(&metrics[6 * size_t(v)]).identity;
+        aniso[v] = !meshops::MetricMap::of(m).identity;
+        sizes_[v] = metric_size(m);
       }
     });
     if (std::find(aniso.begin(), aniso.end(), 1) != aniso.end()) {
