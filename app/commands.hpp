@@ -46,7 +46,7 @@ struct MeshArgs {
   bool quiet = false;
   bool json = false;
   std::string stop_after;               // "" (the whole pipeline) or "layers"
-  int layers = 2;                       // stage 1 layer count
+  int layers = 1;                       // stage 1 layer count
   double attempts_seconds = 240;        // MesherOptions::attempts_seconds
   std::string layer_scheme = "push";    // "push" (prism layers) or "faces" (the paper's)
   std::vector<int> bl_patches;          // boundary-layer walls (patch labels); empty: none

@@ -132,7 +132,7 @@ typedef struct anitet_options {
   anitet_log_fn log;                 /**< may be NULL */
   void* log_user_data;               /**< passed to log untouched */
   /* Version 2 (read only when version >= 2; a version 1 caller gets the defaults): */
-  int32_t layers;                    /**< boundary layers of stage 1, >= 1 (default 2) */
+  int32_t layers;                    /**< boundary layers of stage 1, >= 1 (default 1) */
   int32_t layer_scheme;              /**< ANITET_LAYERS_PUSH (default) or ANITET_LAYERS_FACE_PUSH */
   double recovery_max_seconds;       /**< time budget of the boundary recovery; 0: default (20) */
   int32_t refine;                    /**< 1: refine to the sizes (default), 0: skip the stage */
@@ -144,7 +144,7 @@ typedef struct anitet_options {
 
 /** Initializer of an anitet_options of version ANITET_OPTIONS_VERSION with the defaults. */
 #define ANITET_OPTIONS_INIT \
-  { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0, 2, ANITET_LAYERS_PUSH, 0.0, 1, 1, 1.0 }
+  { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0, 1, ANITET_LAYERS_PUSH, 0.0, 1, 1, 1.0 }
 
 /** Fills the fields of `version` (1 .. ANITET_OPTIONS_VERSION) of *options with their defaults
  * and sets options->version; a struct of an older version is not written past its end.

@@ -188,7 +188,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
     return Status(Error::InvalidArgument, "boundary-layer sizing needs a boundary layer (wall patches) with growth above 1");
   if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
   // Stages 1 and 2. When stage 2 cannot recover S1, stage 1 is run again with another number of
-  // layers (fewer first, down to 1, then one more): S1 changes shape and its recovery may then
+  // layers (fewer first, down to 1, then more, up to 3): S1 changes shape and its recovery may then
   // succeed (bimba_low: not with 2 layers, yes with 1). The fast split-constraints recovery is
   // tried with every layer count before the slower fuzzy-face strategies are (femur: 2 layers
   // fail, 1 works in 0.2 s). MesherResult::layers_used says which count worked.
@@ -197,7 +197,9 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   std::vector<int> layer_counts = {options_.layers.layers};
   if (options_.retry_layer_counts) {
     for (int n = options_.layers.layers - 1; n >= 1; --n) layer_counts.push_back(n);
-    layer_counts.push_back(options_.layers.layers + 1);
+    // Then more layers, up to 3 at least (the default of 1 gets 2 and 3).
+    for (int n = options_.layers.layers + 1; n <= std::max(options_.layers.layers + 1, 3); ++n)
+      layer_counts.push_back(n);
   }
   std::vector<std::pair<int, RecoveryOptions>> attempts;
   const RecoveryOptions& ro = options_.recovery;

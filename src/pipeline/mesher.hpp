@@ -36,7 +36,8 @@ struct MesherOptions {
   LayersOptions layers;
   RecoveryOptions recovery;
   // When stage 2 cannot recover S1, run stages 1 and 2 again with layers.layers - 1, ..., 1, then
-  // layers.layers + 1 (each run from scratch); MesherResult::layers_used tells which count worked.
+  // layers.layers + 1, ..., max(layers.layers + 1, 3) (each run from scratch);
+  // MesherResult::layers_used tells which count worked.
   bool retry_layer_counts = true;
   // Wall time for those attempts together (stages 1, 2 and the coupling, each run): a recovery
   // is given at most what is left (its own caps still apply), and no attempt starts after it ran

@@ -65,7 +65,7 @@ static void test_options_init(void** state) {
   assert_int_equal(b.check_self_intersections, 1);
   assert_null(b.progress);
   assert_null(b.log);
-  assert_int_equal(b.layers, 2);
+  assert_int_equal(b.layers, 1);
   assert_int_equal(b.layer_scheme, ANITET_LAYERS_PUSH);
   assert_int_equal(anitet_options_init(&b, 0), ANITET_ERR_INVALID_ARGUMENT);
   assert_true(contains(anitet_last_error_message(), "version 0"));

@@ -280,7 +280,7 @@ static void test_options_versions(void** state) {
   memset(&o, 0x5a, sizeof o);
   assert_int_equal(anitet_options_init(&o, ANITET_OPTIONS_VERSION), ANITET_OK);
   assert_int_equal(o.version, 2);
-  assert_int_equal(o.layers, 2);
+  assert_int_equal(o.layers, 1);
   assert_int_equal(o.layer_scheme, ANITET_LAYERS_PUSH);
   assert_true(o.recovery_max_seconds == 0.0);
   assert_int_equal(o.refine, 1);
@@ -302,9 +302,9 @@ static void test_options_versions(void** state) {
   assert_int_equal(anitet_mesh_get_counts(b, NULL, &tb, NULL), ANITET_OK);
   assert_int_equal(ta, tb);
   anitet_mesh_destroy(a);
-  /* Version 2 fields are used: one layer gives another mesh. */
+  /* Version 2 fields are used: two layers give another mesh. */
   anitet_options_init(&o, ANITET_OPTIONS_VERSION);
-  o.layers = 1;
+  o.layers = 2;
   a = run_ok(s, &o);
   assert_int_equal(anitet_mesh_get_counts(a, NULL, &ta, NULL), ANITET_OK);
   assert_true(ta != tb);

@@ -215,7 +215,7 @@ contains
     call anitet_mesh_destroy(mesh)
     ! Version 2 options: a bad layer count is refused.
     call check(anitet_options_init(options) == ANITET_OK, "options v2")
-    call check(options%layers == 2 .and. options%layer_scheme == ANITET_LAYERS_PUSH, &
+    call check(options%layers == 1 .and. options%layer_scheme == ANITET_LAYERS_PUSH, &
                "options v2 defaults")
     ! The struct's layout is the C one: version 1 ends after four pointers, version 2 adds
     ! 2 * (4 + 4 + 8) bytes.
@@ -225,8 +225,8 @@ contains
     options%layers = 0
     call check(anitet_mesher_run(surface, mesh, options=options) == ANITET_ERR_INVALID_ARGUMENT, &
                "zero layers refused")
-    options%layers = 1
-    call check(anitet_mesher_run(surface, mesh, options=options) == ANITET_OK, "one layer")
+    options%layers = 2
+    call check(anitet_mesher_run(surface, mesh, options=options) == ANITET_OK, "two layers")
     call anitet_mesh_destroy(mesh)
     call check(anitet_metric_read("no_such_size.vdb", other) == ANITET_ERR_FILE_NOT_FOUND, &
                "metric read: missing file")

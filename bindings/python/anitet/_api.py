@@ -187,7 +187,7 @@ class Options:
     """
 
     def __init__(self, num_threads=0, merge_duplicate_vertices=True, orient_shells=True,
-                 check_self_intersections=True, layers=2, layer_scheme=_capi.LAYERS_PUSH,
+                 check_self_intersections=True, layers=1, layer_scheme=_capi.LAYERS_PUSH,
                  recovery_max_seconds=0.0, refine=True, optimize=True, size_scale=1.0,
                  progress=None, log=None):
         self.num_threads = num_threads

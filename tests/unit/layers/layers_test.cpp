@@ -528,7 +528,7 @@ TEST(Layers, IsotropicQualityOnGoodSurfaces) {
   }
 }
 
-TEST(Layers, IsotropicQualityWithTheDefaultTwoLayers) {
+TEST(Layers, IsotropicQualityWithTwoLayers) {
   // Issue 5's figures (mean >= 0.5, none below 0.05): with two layers the first layer's
   // vertices are inside T1, and the interior smoothing lifts the worst tets around them.
   const struct {
@@ -539,7 +539,8 @@ TEST(Layers, IsotropicQualityWithTheDefaultTwoLayers) {
     SCOPED_TRACE(c.name);
     const SurfaceMesh s = shared_surface(c.name);
     IsotropicSurfaceSizing sizing(s);
-    LayersOptions options;  // 2 layers
+    LayersOptions options;
+    options.layers = 2;
     Result<LayersOutput> out = build_layers(s, sizing, options);
     ASSERT_TRUE(out.ok()) << out.status().message();
     expect_valid_layers(s, out.value(), 2);

@@ -154,6 +154,7 @@ struct Front {
   SurfaceMesh s1;
   RecoveryOptions options;
 };
+// S1 after stage 1 with 2 layers: the fronts the tests below describe (stage 1's default is 1).
 Front front_of(const char* name) {
   Front f;
   Result<SurfaceMesh> r = read_surface(std::string(ANITET_SURFACES_DIR) + "/" + name);
@@ -161,7 +162,9 @@ Front front_of(const char* name) {
   if (!r.ok()) return f;
   const SurfaceMesh surface = std::move(r).value();
   const IsotropicSurfaceSizing sizing(surface);
-  Result<LayersOutput> layers = build_layers(surface, sizing);
+  LayersOptions two;
+  two.layers = 2;
+  Result<LayersOutput> layers = build_layers(surface, sizing, two);
   EXPECT_TRUE(layers.ok()) << layers.status().message();
   if (!layers.ok()) return f;
   f.s1 = front_surface(layers.value());
