@@ -78,6 +78,7 @@ std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r)
   rows.emplace_back("optimization", std::to_string(r.optimize.moves) + " CVT moves, " +
                                         std::to_string(r.optimize.edge_removals) + " edge removals, " +
                                         std::to_string(r.optimize.perturbations) + " sliver perturbations, " +
+                                        std::to_string(r.optimize.collapses) + " sliver collapses, " +
                                         std::to_string(r.optimize.flat_found - r.optimize.flat_left) + " of " +
                                         std::to_string(r.optimize.flat_found) + " tets flat to rounding opened");
   return rows;
@@ -253,6 +254,7 @@ int run_mesh_pipeline(MeshArgs& args) {
                             {"stage1_seconds", r.layers.bl_seconds}}},
         {"optimize", {{"moves", r.optimize.moves}, {"flips23", r.optimize.flips23},
                       {"edge_removals", r.optimize.edge_removals}, {"perturbations", r.optimize.perturbations},
+                      {"collapses", r.optimize.collapses},
                       {"flat_found", r.optimize.flat_found}, {"flat_left", r.optimize.flat_left}}},
         {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
     std::cout << out.dump(1) << "\n";
@@ -293,7 +295,7 @@ int run_mesh_pipeline(MeshArgs& args) {
               << "\n"
               << "  optimization: " << r.optimize.moves << " CVT moves, " << r.optimize.flips23 << " 2-3 flips, "
               << r.optimize.edge_removals << " edge removals, " << r.optimize.perturbations
-              << " sliver perturbations, " << r.optimize.flat_found - r.optimize.flat_left << " of "
+              << " sliver perturbations, " << r.optimize.collapses << " sliver collapses, " << r.optimize.flat_found - r.optimize.flat_left << " of "
               << r.optimize.flat_found << " tets flat to rounding opened; radius ratio min " << r.optimize.before.min << " -> "
               << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
               << "\n";

@@ -1,6 +1,7 @@
 #include "optimize/optimize.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -70,6 +71,9 @@ class Optimizer {
   void cvt_move(Work& w, uint32_t v);
   size_t cvt_pass();
   size_t perturb_pass();
+  // Collapses an edge of each tet below options_.collapse_quality (see OptimizeOptions).
+  size_t collapse_pass();
+  bool try_collapse(uint32_t v, uint32_t w, bool to_midpoint);
   void trial_offset(int trial, int levels, double top, const double* nrm, double d[3]);
   bool opening_direction(uint32_t t, int i, const meshops::MetricMap& map, double nrm[3]) const;
   double shortest_edge(uint32_t t) const;
@@ -93,6 +97,8 @@ class Optimizer {
   optimize_detail::Quality quality_;  // Euclidean, or in the metric when it is anisotropic
   std::vector<uint8_t> metric_stale_;  // per vertex: moved since its metric was measured
   Work work_;                  // the sequential passes' scratch
+  std::vector<meshops::TetVerts> collapse_fresh_;  // try_collapse()'s new tets
+  static constexpr double kCollapseMaxLength = 1.5;  // longest new edge of a collapse, in sizes
   std::vector<uint8_t> side_;  // cvt_pass(): per vertex, its side of the split (2: seam bit)
   std::vector<double> tet_q_;  // per tet slot, during cvt_pass() only (empty otherwise)
   // The tets of vertex v's ball are ball_tets_[ball_start_[v] .. ball_start_[v + 1]), during
@@ -152,6 +158,13 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
 }
 
 void Optimizer::cvt_target(const Work& w, uint32_t v, double target[3]) {
+  // With an anisotropic metric the ball is measured in v's metric (points mapped by L^T about v)
+  // and the target mapped back: Euclidean circumcentres of tets stretched as the metric asks lie
+  // far outside them (bench/aniso_cube: 16% of interior edges out of range).
+  meshops::MetricMap map;
+  if (quality_.anisotropic()) map = meshops::MetricMap::of(&quality_.vertex_metric[6 * size_t(v)]);
+  const double* pv = mesh_.point(v);
+  double mapped[4][3];
   double sum_w = 0.0, acc[3] = {0.0, 0.0, 0.0};
   for (uint32_t t : w.ball) {
     const double* P[4];
@@ -159,6 +172,11 @@ void Optimizer::cvt_target(const Work& w, uint32_t v, double target[3]) {
     for (int i = 0; i < 4; ++i) {
       P[i] = mesh_.point(mesh_.vertex(t, i));
       h += 0.25 * size_at(mesh_.vertex(t, i));
+      if (!map.identity) {
+        const double rel[3] = {P[i][0] - pv[0], P[i][1] - pv[1], P[i][2] - pv[2]};
+        map.apply(rel, mapped[i]);
+        P[i] = mapped[i];
+      }
     }
     const double ab[3] = {P[1][0] - P[0][0], P[1][1] - P[0][1], P[1][2] - P[0][2]};
     const double ac[3] = {P[2][0] - P[0][0], P[2][1] - P[0][1], P[2][2] - P[0][2]};
@@ -185,8 +203,15 @@ void Optimizer::cvt_target(const Work& w, uint32_t v, double target[3]) {
     for (int k = 0; k < 3; ++k) acc[k] += weight * c[k];
     sum_w += weight;
   }
-  const double* p = mesh_.point(v);
-  for (int k = 0; k < 3; ++k) target[k] = sum_w > 0.0 ? acc[k] / sum_w : p[k];
+  if (!(sum_w > 0.0)) {
+    std::copy_n(pv, 3, target);
+  } else if (map.identity) {
+    for (int k = 0; k < 3; ++k) target[k] = acc[k] / sum_w;
+  } else {
+    const double mean[3] = {acc[0] / sum_w, acc[1] / sum_w, acc[2] / sum_w};
+    map.unapply(mean, target);
+    for (int k = 0; k < 3; ++k) target[k] += pv[k];
+  }
 }
 
 void Optimizer::cvt_move(Work& w, uint32_t v) {
@@ -284,6 +309,103 @@ size_t Optimizer::cvt_pass() {
   tet_q_.clear();
   stats_.moves_rejected += halves[0].rejected + halves[1].rejected + seam.rejected;
   return halves[0].moved + halves[1].moved + seam.moved;
+}
+
+size_t Optimizer::collapse_pass() {
+  const double cq = options_.collapse_quality;
+  const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, cq, quality_);
+  size_t done = 0;
+  for (uint32_t t : bad) {
+    if (mesh_.is_deleted(t) || quality_.tet(mesh_, t) >= cq) continue;
+    // Its edges, shortest first; the removed end must be free (a vertex of S never moves).
+    std::array<std::pair<double, int>, 6> edges;
+    for (int k = 0; k < 6; ++k) {
+      const double* a = mesh_.point(mesh_.vertex(t, kEdgeVertex[k][0]));
+      const double* b = mesh_.point(mesh_.vertex(t, kEdgeVertex[k][1]));
+      edges[k] = {(a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]), k};
+    }
+    std::sort(edges.begin(), edges.end());
+    for (const auto& e : edges) {
+      const uint32_t a = mesh_.vertex(t, kEdgeVertex[e.second][0]);
+      const uint32_t b = mesh_.vertex(t, kEdgeVertex[e.second][1]);
+      const bool ok = (movable(a) && movable(b) && try_collapse(a, b, true)) ||
+                      (movable(a) && try_collapse(a, b, false)) || (movable(b) && try_collapse(b, a, false));
+      if (ok) {
+        ++done;
+        break;
+      }
+    }
+  }
+  return done;
+}
+
+bool Optimizer::try_collapse(uint32_t v, uint32_t w, bool to_midpoint) {
+  // v goes, w stays (at the edge's midpoint when both are free). The tets of v's ball (and, when w
+  // moves, those of w's) are replaced by the same without the edge's tets and with v renamed w.
+  const uint32_t tv = vt_.tet_of(mesh_, v);
+  if (tv == TetMesh::kNone) return false;
+  std::vector<uint32_t>& old = work_.ball;
+  meshops::vertex_ball(mesh_, v, tv, old);
+  bool adjacent = false;
+  for (uint32_t t : old) adjacent |= meshops::tet_has_vertex(mesh_, t, w);
+  if (!adjacent) return false;
+  if (to_midpoint) {
+    std::vector<uint32_t> ball_w;
+    meshops::vertex_ball(mesh_, w, vt_.tet_of(mesh_, w), ball_w);
+    for (uint32_t t : ball_w)
+      if (!meshops::tet_has_vertex(mesh_, t, v)) old.push_back(t);
+  }
+  double old_min = 1.0;
+  for (uint32_t t : old) old_min = std::min(old_min, quality_.tet(mesh_, t));
+  collapse_fresh_.clear();
+  for (uint32_t t : old) {
+    if (meshops::tet_has_vertex(mesh_, t, v) && meshops::tet_has_vertex(mesh_, t, w)) continue;
+    meshops::TetVerts f;
+    for (int i = 0; i < 4; ++i) f[i] = mesh_.vertex(t, i) == v ? w : mesh_.vertex(t, i);
+    collapse_fresh_.push_back(f);
+  }
+  double* xw = &mesh_.xyz[3 * size_t(w)];
+  const double saved[3] = {xw[0], xw[1], xw[2]};
+  if (to_midpoint)
+    for (int k = 0; k < 3; ++k) xw[k] = 0.5 * (xw[k] + mesh_.point(v)[k]);
+  // The worst tet must rise, and no new edge from w may be longer than 1.5 sizes and than the
+  // edges of v and w before (the collapse is a local repair, not a coarsening).
+  double longest2 = 0.0;
+  for (uint32_t t : old)
+    for (const auto& e : kEdgeVertex) {
+      const uint32_t a = mesh_.vertex(t, e[0]), b = mesh_.vertex(t, e[1]);
+      if (a != v && a != w && b != v && b != w) continue;
+      const double* pa = a == w ? saved : mesh_.point(a);  // (w may be at the midpoint now)
+      const double* pb = b == w ? saved : mesh_.point(b);
+      longest2 = std::max(longest2, (pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                                        (pa[2] - pb[2]) * (pa[2] - pb[2]));
+    }
+  bool ok = true;
+  double new_min = 1.0;
+  const double hw = size_at(w);
+  for (const meshops::TetVerts& f : collapse_fresh_) {
+    new_min = std::min(new_min, quality_.of(mesh_, f.data()));
+    if (!(new_min > old_min + 1e-9)) {
+      ok = false;
+      break;
+    }
+    for (uint32_t x : f) {
+      if (x == w) continue;
+      const double* px = mesh_.point(x);
+      const double d2 = (px[0] - xw[0]) * (px[0] - xw[0]) + (px[1] - xw[1]) * (px[1] - xw[1]) +
+                        (px[2] - xw[2]) * (px[2] - xw[2]);
+      if (d2 > longest2 && d2 > kCollapseMaxLength * kCollapseMaxLength * hw * size_at(x)) ok = false;
+    }
+    if (!ok) break;
+  }
+  if (ok) ok = meshops::replace_tets(mesh_, old, collapse_fresh_, vt_, flips_.scratch);
+  if (!ok) {
+    std::copy_n(saved, 3, xw);
+    return false;
+  }
+  vt_.forget(v);
+  if (to_midpoint) moved(w);
+  return true;
 }
 
 size_t Optimizer::perturb_pass() {
@@ -530,6 +652,16 @@ Result<OptimizeStats> Optimizer::run() {
     stats_.perturbations += moved;
     if (moved == 0) break;
   }
+  // Tets that no move lifted, such as four nearly collinear points whose every vertex is held by
+  // its other tets, get an edge collapse, then the flips and one more perturbation round.
+  for (int round = 0; round < options_.collapse_rounds && options_.collapse_quality > 0.0; ++round) {
+    const size_t collapsed = collapse_pass();
+    stats_.collapses += collapsed;
+    if (collapsed == 0) break;
+    optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
+    stats_.perturbations += perturb_pass();
+    refresh_metrics();
+  }
   optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
   stats_.flat_left = certify_pass();
   stats_.flips23 = flips_.flips23;
@@ -632,7 +764,8 @@ FlatTetFlips flip_flat_tets(TetMesh& mesh) {
 }
 
 Result<OptimizeStats> optimize_mesh(TetMesh& mesh, const SizingField& field, const OptimizeOptions& options) {
-  if (options.cvt_iterations < 0 || options.sliver_rounds < 0 || options.perturb_trials < 0)
+  if (options.cvt_iterations < 0 || options.sliver_rounds < 0 || options.perturb_trials < 0 ||
+      options.collapse_rounds < 0)
     return Status(Error::InvalidArgument, "optimize: iteration counts must be >= 0");
   if (options.num_threads < 0) return Status(Error::InvalidArgument, "optimize: num_threads must be >= 0");
   Optimizer optimizer(mesh, field, options);

@@ -376,7 +376,8 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   }
   // Vertices removed by coarsening are dropped; the input's stay first, in input order (they
   // bound S's facets, so they are all used).
-  result.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/options_.run_refine);
+  // Refinement and the optimizer's collapses remove vertices.
+  result.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/options_.run_refine || options_.run_optimize);
   result.mesh.bnd_tri = surface.tri;
   result.mesh.bnd_patch = surface.patch;
   result.stages.push_back({"output", since(t), result.mesh.num_tets()});
@@ -410,6 +411,7 @@ Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const Ref
     optimize.flips23 += o->flips23;
     optimize.edge_removals += o->edge_removals;
     optimize.perturbations += o->perturbations;
+    optimize.collapses += o->collapses;
     optimize.flat_found = o->flat_found;
     optimize.flat_left = o->flat_left;
     optimize.after = o->after;
