@@ -70,10 +70,12 @@ class Optimizer {
   void cvt_target(const Work& w, uint32_t v, double target[3]);
   void cvt_move(Work& w, uint32_t v);
   size_t cvt_pass();
-  size_t perturb_pass();
+  // With `near` (1 per vertex): only the tets with a marked vertex.
+  size_t perturb_pass(const std::vector<uint8_t>* near = nullptr);
   // Collapses an edge of each tet below options_.collapse_quality (see OptimizeOptions).
   size_t collapse_pass();
   bool try_collapse(uint32_t v, uint32_t w, bool to_midpoint);
+  std::vector<uint8_t> collapsed_near_;  // per vertex: in a tet a collapse made (this round)
   void trial_offset(int trial, int levels, double top, const double* nrm, double d[3]);
   bool opening_direction(uint32_t t, int i, const meshops::MetricMap& map, double nrm[3]) const;
   double shortest_edge(uint32_t t) const;
@@ -405,13 +407,20 @@ bool Optimizer::try_collapse(uint32_t v, uint32_t w, bool to_midpoint) {
   }
   vt_.forget(v);
   if (to_midpoint) moved(w);
+  for (const meshops::TetVerts& f : collapse_fresh_)
+    for (uint32_t x : f) collapsed_near_[x] = 1;
   return true;
 }
 
-size_t Optimizer::perturb_pass() {
+size_t Optimizer::perturb_pass(const std::vector<uint8_t>* near) {
   const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, options_.sliver_quality, quality_);
   size_t moved = 0;
   for (uint32_t t : bad) {
+    if (near && !mesh_.is_deleted(t)) {
+      bool close = false;
+      for (int i = 0; i < 4; ++i) close |= (*near)[mesh_.vertex(t, i)] != 0;
+      if (!close) continue;
+    }
     for (int i = 0; i < 4; ++i) {
       if (mesh_.is_deleted(t) || quality_.tet(mesh_, t) >= options_.sliver_quality) break;
       const uint32_t v = mesh_.vertex(t, i);
@@ -654,12 +663,15 @@ Result<OptimizeStats> Optimizer::run() {
   }
   // Tets that no move lifted, such as four nearly collinear points whose every vertex is held by
   // its other tets, get an edge collapse, then the flips and one more perturbation round.
+  // The perturbation round after collapses looks only at the tets near them: the others were
+  // tried by every round before.
   for (int round = 0; round < options_.collapse_rounds && options_.collapse_quality > 0.0; ++round) {
+    collapsed_near_.assign(mesh_.num_vertices(), 0);
     const size_t collapsed = collapse_pass();
     stats_.collapses += collapsed;
     if (collapsed == 0) break;
     optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
-    stats_.perturbations += perturb_pass();
+    stats_.perturbations += perturb_pass(&collapsed_near_);
     refresh_metrics();
   }
   optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);

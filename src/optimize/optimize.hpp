@@ -53,7 +53,9 @@ namespace anitet {
 enum class CentroidKind { kBall, kOdt };
 
 struct OptimizeOptions {
-  int cvt_iterations = 6;         // Lloyd iterations, each followed by a flip sweep
+  // Lloyd iterations, each followed by a flip sweep. 4: the quality of 6 (femur, fandisk,
+  // armadillo: radius ratio means within 0.001) in two thirds of the time.
+  int cvt_iterations = 4;
   // kOdt: femur's interior tets radius ratio mean 0.750 -> 0.786 against kBall, the others
   // within 0.005 (with an anisotropic metric both are taken in the metric, see the top).
   CentroidKind centroid = CentroidKind::kOdt;
