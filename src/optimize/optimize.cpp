@@ -100,6 +100,7 @@ class Optimizer {
   std::vector<uint8_t> metric_stale_;  // per vertex: moved since its metric was measured
   Work work_;                  // the sequential passes' scratch
   std::vector<meshops::TetVerts> collapse_fresh_;  // try_collapse()'s new tets
+  std::vector<uint32_t> collapse_ball_w_;          // and its scratch
   static constexpr double kCollapseMaxLength = 1.5;  // longest new edge of a collapse, in sizes
   std::vector<uint8_t> side_;  // cvt_pass(): per vertex, its side of the split (2: seam bit)
   std::vector<double> tet_q_;  // per tet slot, during cvt_pass() only (empty otherwise)
@@ -347,25 +348,10 @@ bool Optimizer::try_collapse(uint32_t v, uint32_t w, bool to_midpoint) {
   const uint32_t tv = vt_.tet_of(mesh_, v);
   if (tv == TetMesh::kNone) return false;
   std::vector<uint32_t>& old = work_.ball;
-  meshops::vertex_ball(mesh_, v, tv, old);
-  bool adjacent = false;
-  for (uint32_t t : old) adjacent |= meshops::tet_has_vertex(mesh_, t, w);
-  if (!adjacent) return false;
-  if (to_midpoint) {
-    std::vector<uint32_t> ball_w;
-    meshops::vertex_ball(mesh_, w, vt_.tet_of(mesh_, w), ball_w);
-    for (uint32_t t : ball_w)
-      if (!meshops::tet_has_vertex(mesh_, t, v)) old.push_back(t);
-  }
+  if (!meshops::collapse_tets(mesh_, vt_, v, tv, w, to_midpoint, old, collapse_fresh_, collapse_ball_w_))
+    return false;
   double old_min = 1.0;
   for (uint32_t t : old) old_min = std::min(old_min, quality_.tet(mesh_, t));
-  collapse_fresh_.clear();
-  for (uint32_t t : old) {
-    if (meshops::tet_has_vertex(mesh_, t, v) && meshops::tet_has_vertex(mesh_, t, w)) continue;
-    meshops::TetVerts f;
-    for (int i = 0; i < 4; ++i) f[i] = mesh_.vertex(t, i) == v ? w : mesh_.vertex(t, i);
-    collapse_fresh_.push_back(f);
-  }
   double* xw = &mesh_.xyz[3 * size_t(w)];
   const double saved[3] = {xw[0], xw[1], xw[2]};
   if (to_midpoint)

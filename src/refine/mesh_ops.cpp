@@ -156,6 +156,33 @@ double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets, const
   return q;
 }
 
+bool collapse_tets(TetMesh& mesh, VertexTets& vt, uint32_t v, uint32_t tv, uint32_t w, bool w_moves,
+                   std::vector<uint32_t>& old, std::vector<TetVerts>& fresh, std::vector<uint32_t>& ball_w) {
+  vertex_ball(mesh, v, tv, old);
+  bool adjacent = false;
+  for (uint32_t t : old) adjacent |= tet_has_vertex(mesh, t, w);
+  if (!adjacent) return false;
+  if (w_moves) {
+    vertex_ball(mesh, w, vt.tet_of(mesh, w), ball_w);
+    for (uint32_t t : ball_w)
+      if (!tet_has_vertex(mesh, t, v)) old.push_back(t);
+  }
+  fresh.clear();
+  for (uint32_t t : old) {
+    TetVerts f;
+    bool dies = false;
+    for (int i = 0; i < 4; ++i) {
+      f[i] = mesh.vertex(t, i);
+      if (f[i] == w && tet_has_vertex(mesh, t, v)) dies = true;
+    }
+    if (dies) continue;
+    for (uint32_t& x : f)
+      if (x == v) x = w;
+    fresh.push_back(f);
+  }
+  return true;
+}
+
 double metric_max_size(const double m[6]) {
   // Smallest eigenvalue of the symmetric 3x3 matrix in closed form (trigonometric).
   const double q = (m[0] + m[2] + m[5]) / 3.0;

@@ -47,6 +47,16 @@ double metric_shape_quality(const MetricMap& map, const double* a, const double*
 // Lowest metric_shape_quality over the tets, all measured in the metric of `map`.
 double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets, const MetricMap& map);
 
+// ---- Edge collapse ----------------------------------------------------------------------------
+
+// The tets a collapse of v onto w replaces, and their replacements: `old` is v's ball (from its
+// tet tv) followed, when w moves, by w's other tets; `fresh` is `old` without the tets of edge vw,
+// v renamed w, in the same order. False (no change to the mesh) when v and w share no tet.
+// Refinement's coarsening and the optimizer's sliver collapses test `fresh` their own ways, then
+// hand both to replace_tets.
+bool collapse_tets(TetMesh& mesh, VertexTets& vt, uint32_t v, uint32_t tv, uint32_t w, bool w_moves,
+                   std::vector<uint32_t>& old, std::vector<TetVerts>& fresh, std::vector<uint32_t>& ball_w);
+
 // The largest size of the metric M, 1 / sqrt(smallest eigenvalue): the Euclidean radius of the
 // unit ball of M (h for I / h^2).
 double metric_max_size(const double m[6]);

@@ -199,7 +199,7 @@ class Refiner {
     }
     return true;
   }
-  std::vector<uint32_t> ball_v_, ball_w_, old_, ring_tets_, ring_;
+  std::vector<uint32_t> ball_w_, old_, ring_tets_, ring_;
   // One split pass's candidate midpoints (one per long edge, in length order) ...
   struct Candidate {
     double m[3];   // the metric midpoint
@@ -580,32 +580,9 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
 bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
   const uint32_t tv = vt_.tet_of(mesh_, v);
   if (tv == TetMesh::kNone) return false;
-  meshops::vertex_ball(mesh_, v, tv, ball_v_);
-  bool adjacent = false;
-  for (uint32_t t : ball_v_)
-    if (meshops::tet_has_vertex(mesh_, t, w)) adjacent = true;
-  if (!adjacent) return false;
   const double* pw = mesh_.point(w);
   const bool moves = q[0] != pw[0] || q[1] != pw[1] || q[2] != pw[2];
-  old_ = ball_v_;
-  if (moves) {
-    meshops::vertex_ball(mesh_, w, vt_.tet_of(mesh_, w), ball_w_);
-    for (uint32_t t : ball_w_)
-      if (!meshops::tet_has_vertex(mesh_, t, v)) old_.push_back(t);
-  }
-  fresh_.clear();
-  for (uint32_t t : old_) {
-    meshops::TetVerts tv4;
-    bool dies = false;
-    for (int i = 0; i < 4; ++i) {
-      tv4[i] = mesh_.vertex(t, i);
-      if (tv4[i] == w && meshops::tet_has_vertex(mesh_, t, v)) dies = true;
-    }
-    if (dies) continue;
-    for (uint32_t& x : tv4)
-      if (x == v) x = w;
-    fresh_.push_back(tv4);
-  }
+  if (!meshops::collapse_tets(mesh_, vt_, v, tv, w, moves, old_, fresh_, ball_w_)) return false;
   // Try w at q; put it back on failure.
   const double saved[3] = {pw[0], pw[1], pw[2]};
   double* xw = &mesh_.xyz[3 * size_t(w)];
