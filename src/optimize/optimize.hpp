@@ -5,8 +5,9 @@
 //     approximated by the vertex's ball: the target is the rho-weighted centroid of the ball's
 //     tets (CentroidKind::kBall), or the ODT variant (the default), the rho- and volume-weighted
 //     mean of their circumcentres (kOdt). With an anisotropic metric the ball is mapped by the
-//     vertex's metric first, so circumcentres are taken in the metric. A move is accepted only when every tet of the ball stays positive by
-//     the exact orient3d and no tet of the ball ends below min(its old quality, accept_floor)
+//     vertex's metric first, so circumcentres are taken in the metric. A move is accepted only
+//     when every tet of the ball stays positive by the exact orient3d and no tet of the ball ends
+//     below min(its old quality, accept_floor)
 //     (a per-tet test: a max-min test on the ball would let all but its worst tet decay);
 //     otherwise half and quarter steps are tried. Quality here is meshops::shape_quality, or,
 //     when the metric is anisotropic at some vertex, the same measured in the metric (each tet
