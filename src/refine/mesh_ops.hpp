@@ -51,7 +51,8 @@ double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets, const
 
 // The tets a collapse of v onto w replaces, and their replacements: `old` is v's ball (from its
 // tet tv) followed, when w moves, by w's other tets; `fresh` is `old` without the tets of edge vw,
-// v renamed w, in the same order. False (no change to the mesh) when v and w share no tet.
+// v renamed w, in the same order (so every fresh tet has w). False (no change to the mesh) when v
+// and w share no tet.
 // Refinement's coarsening and the optimizer's sliver collapses test `fresh` their own ways, then
 // hand both to replace_tets.
 bool collapse_tets(TetMesh& mesh, VertexTets& vt, uint32_t v, uint32_t tv, uint32_t w, bool w_moves,

@@ -614,9 +614,7 @@ bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
       const double* px = mesh_.point(x);
       const double d[3] = {px[0] - q[0], px[1] - q[1], px[2] - q[2]};
       const double len = std::sqrt(metric_norm(mq, d) * metric_norm(&metrics_[6 * size_t(x)], d));
-      bool has_w = false;
-      for (uint32_t y : f) has_w |= y == w;
-      if (has_w && len > max_result) ok = false;
+      if (len > max_result) ok = false;
     }
     if (!ok) break;
   }
