@@ -23,6 +23,13 @@ double Quality::of(const TetMesh& m, const uint32_t v[4]) const {
   return meshops::metric_shape_quality(meshops::MetricMap::of(mean), p[0], p[1], p[2], p[3]);
 }
 
+bool FlipMemo::still_fails(uint32_t t, const uint32_t v[4]) const {
+  if (t >= failed.size() || failed[t] == 0 || failed[t] <= everything) return false;
+  for (int i = 0; i < 4; ++i)
+    if (v[i] < changed.size() && failed[t] <= changed[v[i]]) return false;  // (beyond: never changed)
+  return true;
+}
+
 bool try_flip23(FlipContext& c, uint32_t t, int i) {
   TetMesh& m = c.mesh;
   if (m.is_deleted(t) || m.facet_protected(t, i) || m.tet_adj[4 * size_t(t) + i] == TetMesh::kNoNeighbour)
@@ -44,6 +51,7 @@ bool try_flip23(FlipContext& c, uint32_t t, int i) {
   }
   c.old = {t, n};
   if (!meshops::replace_tets(m, c.old, c.fresh, c.vt, c.scratch, c.rule)) return false;
+  c.touch_tets(c.fresh);
   ++c.flips23;
   return true;
 }
@@ -114,6 +122,7 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
   }
   c.old = c.ring_tets;
   if (!meshops::replace_tets(m, c.old, c.fresh, c.vt, c.scratch, c.rule)) return false;
+  c.touch_tets(c.fresh);
   ++c.edge_removals;
   return true;
 }
@@ -134,6 +143,12 @@ std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality
 size_t flip_sweep(FlipContext& c, double quality, int rounds) {
   TetMesh& m = c.mesh;
   size_t total = 0;
+  FlipMemo& memo = c.memo;
+  if (memo.quality != quality || memo.gain != c.gain) {
+    memo.touch_all();  // failures under other parameters say nothing
+    memo.quality = quality;
+    memo.gain = c.gain;
+  }
   // The first round scans the mesh; later ones only revisit the tets the flips created.
   std::vector<uint32_t> bad = tets_below(m, quality, *c.quality), fresh_bad;
   for (int round = 0; round < rounds && !bad.empty(); ++round) {
@@ -145,13 +160,15 @@ size_t flip_sweep(FlipContext& c, double quality, int rounds) {
     };
     for (uint32_t t : bad) {
       // t is measured once: a flip that fails leaves it as it was, one that succeeds ends its turn.
-      if (m.is_deleted(t) || c.tet(t) >= quality) continue;
+      if (m.is_deleted(t) || memo.still_fails(t, &m.tet_v[4 * size_t(t)]) || c.tet(t) >= quality) continue;
       bool done = false;
       for (int k = 0; k < 6 && !done && !m.is_deleted(t); ++k) done = try_remove_edge(c, t, k);
       for (int i = 0; i < 4 && !done && !m.is_deleted(t); ++i) done = try_flip23(c, t, i);
       if (done) {
         ++flips;
         note_created();
+      } else {
+        memo.fail(t);
       }
     }
     total += flips;

@@ -4,6 +4,7 @@
 // the worst radius ratio of the tets it replaces by more than `gain`.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -24,6 +25,43 @@ struct Quality {
   static const Quality& euclidean();  // the empty one
 };
 
+// Which tets flip_sweep() need not try again: a tet for which it found no flip fails again as long
+// as nothing within reach changed, and everything its attempts look at (the rings of its edges,
+// the tets across its facets, their qualities) lies in the balls of its four vertices. So events
+// are numbered in order: each vertex keeps the number of the last change in its ball (a tet made
+// or removed there, a vertex of it moved, its metric measured again), each tet the number of the
+// last failure on it, and a tet is skipped while its failure is newer than the changes of all
+// four. The skips change no result, only the time: the sweeps after the CVT iterations met the
+// same ~37k tets below the flip threshold each time (armadillo), nearly all failing again.
+struct FlipMemo {
+  uint32_t clock = 0;                  // the last event's number
+  uint32_t everything = 0;             // the last change anywhere (touch_all)
+  std::vector<uint32_t> changed;       // per vertex: its ball's last change (0: none)
+  std::vector<uint32_t> failed;        // per tet slot: its last failure (0: none)
+  double quality = -1.0, gain = -1.0;  // the sweep parameters the failures hold for
+  void touch(uint32_t v) {
+    if (v >= changed.size()) changed.resize(size_t(v) + 1, 0);
+    changed[v] = tick();
+  }
+  void touch_all() { everything = tick(); }
+  void fail(uint32_t t) {
+    if (t >= failed.size()) failed.resize(size_t(t) + 1, 0);
+    failed[t] = tick();
+  }
+  // t's vertices v[4]: its last failure is newer than any change in reach.
+  bool still_fails(uint32_t t, const uint32_t v[4]) const;
+
+ private:
+  uint32_t tick() {
+    if (clock == 0xffffffffu) {  // numbers run out: forget everything and start again
+      std::fill(changed.begin(), changed.end(), 0);
+      std::fill(failed.begin(), failed.end(), 0);
+      clock = everything = 0;
+    }
+    return ++clock;
+  }
+};
+
 struct FlipContext {
   TetMesh& mesh;
   meshops::VertexTets& vt;
@@ -37,6 +75,11 @@ struct FlipContext {
   meshops::ConstrainedEdges rule = meshops::ConstrainedEdges::kRefuse;
   size_t flips23 = 0, edge_removals = 0;
   const Quality* quality = &Quality::euclidean();
+  FlipMemo memo{};
+  void touch_tets(const std::vector<meshops::TetVerts>& tets) {
+    for (const meshops::TetVerts& f : tets)
+      for (uint32_t x : f) memo.touch(x);
+  }
   double tet(uint32_t t) const { return quality->tet(mesh, t); }
   double of(const uint32_t v[4]) const { return quality->of(mesh, v); }
 };
@@ -48,7 +91,9 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k);
 // The live tets whose shape quality is below `quality`, in slot order (measured on every core).
 std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality& measure = Quality::euclidean());
 // Tries edge removals then 2-3 flips on every live tet below `quality`, then for at most
-// `rounds` - 1 more rounds on the new tets still below it. Returns the number of flips.
+// `rounds` - 1 more rounds on the new tets still below it. Returns the number of flips. Skips the
+// tets c.memo knows to fail: whoever moves a vertex or changes a metric between sweeps must
+// touch the vertices of its ball (or touch_all); the flips touch their own.
 size_t flip_sweep(FlipContext& c, double quality, int rounds);
 
 }  // namespace anitet::optimize_detail

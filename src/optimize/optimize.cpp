@@ -46,6 +46,14 @@ class Optimizer {
   // call. Between calls the tets keep the metrics they had, so that a tet's quality does not
   // change while a pass compares it.
   void refresh_metrics();
+  // Tells the flip memo of a change in v's ball (v moved, or its metric changed).
+  void touch_ball(uint32_t v) {
+    const uint32_t t = vt_.tet_of(mesh_, v);
+    if (t == TetMesh::kNone) return flips_.memo.touch_all();
+    meshops::vertex_ball(mesh_, v, t, touch_scratch_);
+    for (uint32_t s : touch_scratch_)
+      for (int i = 0; i < 4; ++i) flips_.memo.touch(mesh_.vertex(s, i));
+  }
   double size_at(uint32_t v) {
     if (sizes_.size() < mesh_.num_vertices()) sizes_.resize(mesh_.num_vertices(), -1.0);
     if (sizes_[v] < 0.0) {
@@ -97,6 +105,7 @@ class Optimizer {
   meshops::VertexTets vt_;
   optimize_detail::FlipContext flips_;
   std::vector<double> sizes_;  // lazily computed scalar size per vertex (-1: unknown)
+  std::vector<uint32_t> touch_scratch_;  // touch_ball()'s ball
   optimize_detail::Quality quality_;  // Euclidean, or in the metric when it is anisotropic
   std::vector<uint8_t> metric_stale_;  // per vertex: moved since its metric was measured
   Work work_;                  // the sequential passes' scratch
@@ -115,6 +124,15 @@ class Optimizer {
 void Optimizer::refresh_metrics() {
   if (!quality_.anisotropic()) return;
   const auto nv = static_cast<uint32_t>(mesh_.num_vertices());
+  // The tets of a vertex whose metric changes change quality: the flip memo must know.
+  std::vector<uint32_t> stale;
+  for (uint32_t v = 0; v < nv; ++v)
+    if (metric_stale_[v]) stale.push_back(v);
+  if (stale.size() > nv / 16) {
+    flips_.memo.touch_all();
+  } else {
+    for (uint32_t v : stale) touch_ball(v);
+  }
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, nv, 1024), [&](const tbb::blocked_range<uint32_t>& r) {
     for (uint32_t v = r.begin(); v < r.end(); ++v)
       if (metric_stale_[v]) {
@@ -311,6 +329,7 @@ size_t Optimizer::cvt_pass() {
   for (uint32_t v = 0; v < nv; ++v)
     if ((side_[v] & kSeam) && movable(v)) cvt_move(seam, v);
   tet_q_.clear();
+  flips_.memo.touch_all();  // nearly every vertex moved
   stats_.moves_rejected += halves[0].rejected + halves[1].rejected + seam.rejected;
   return halves[0].moved + halves[1].moved + seam.moved;
 }
@@ -394,6 +413,7 @@ bool Optimizer::try_collapse(uint32_t v, uint32_t w, bool to_midpoint) {
   }
   vt_.forget(v);
   if (to_midpoint) moved(w);
+  flips_.touch_tets(collapse_fresh_);  // w's whole new ball, v's neighbours among them
   for (const meshops::TetVerts& f : collapse_fresh_)
     for (uint32_t x : f) collapsed_near_[x] = 1;
   return true;
@@ -450,6 +470,7 @@ size_t Optimizer::perturb_pass(const std::vector<uint8_t>* near) {
       if (best[0] != start[0] || best[1] != start[1] || best[2] != start[2]) {
         ++moved;
         this->moved(v);
+        touch_ball(v);
       }
     }
   }
@@ -599,6 +620,7 @@ void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
           measure_ball(work_);  // the new position is the next trial's reference
           flat_now = flat_in_ball();
           moved(v);
+          touch_ball(v);
         }
       }
     }

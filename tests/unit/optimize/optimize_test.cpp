@@ -15,6 +15,7 @@
 #include "layers/shapes.hpp"
 #include "metric/surface_sizing.hpp"
 #include "core/tet_ops.hpp"
+#include "optimize/flips.hpp"
 #include "optimize/optimize.hpp"
 #include "predicates/predicates.hpp"
 #include "refine/coupled_fixture.hpp"
@@ -133,6 +134,68 @@ TEST(Optimize, Deterministic) {
   }
   EXPECT_EQ(m[0].xyz, m[1].xyz);
   EXPECT_EQ(m[0].tet_v, m[1].tet_v);
+}
+
+// The flip memo skips only tets whose attempts would fail again: after a sweep, free vertices of
+// tets it could not flip move (their balls touched, as the optimizer does), and a second sweep
+// with the memo makes exactly the mesh a sweep without it makes.
+TEST(FlipMemo, SkipsOnlyWhatWouldFailAgain) {
+  Refined k = refined_knight();
+  ASSERT_TRUE(k.field);
+  TetMesh& m = k.mesh;
+  meshops::VertexTets vt;
+  vt.build(m);
+  optimize_detail::FlipContext with_memo{m, vt, {}, {}, {}, {}, {}};
+  constexpr double kBar = 0.5;
+  optimize_detail::flip_sweep(with_memo, kBar, 3);
+  const std::vector<uint32_t> failed = optimize_detail::tets_below(m, kBar);
+  ASSERT_GT(failed.size(), 10u);
+  size_t skippable = 0;
+  for (uint32_t t : failed) skippable += with_memo.memo.still_fails(t, &m.tet_v[4 * size_t(t)]);
+  EXPECT_GT(skippable, failed.size() / 5);  // (the others were touched after their failure, or never tried)
+  // Every 4th failed tet: its free vertices go to their ball's vertex centroid when that keeps
+  // the ball positive.
+  std::vector<uint32_t> ball;
+  size_t moves = 0;
+  for (size_t i = 0; i < failed.size(); i += 4) {
+    const uint32_t t = failed[i];
+    for (int j = 0; j < 4 && !m.is_deleted(t); ++j) {
+      const uint32_t v = m.vertex(t, j);
+      if (m.vflags[v] & (vflag::kOnInputSurface | vflag::kLocked)) continue;
+      meshops::vertex_ball(m, v, t, ball);
+      double c[3] = {0, 0, 0};
+      for (uint32_t b : ball)
+        for (int q = 0; q < 4; ++q)
+          for (int d = 0; d < 3; ++d) c[d] += m.point(m.vertex(b, q))[d] / double(4 * ball.size());
+      double* x = &m.xyz[3 * size_t(v)];
+      const double saved[3] = {x[0], x[1], x[2]};
+      std::copy_n(c, 3, x);
+      if (!meshops::all_positive(m, ball)) {
+        std::copy_n(saved, 3, x);
+        continue;
+      }
+      ++moves;
+      for (uint32_t b : ball)
+        for (int q = 0; q < 4; ++q) with_memo.memo.touch(m.vertex(b, q));
+    }
+  }
+  ASSERT_GT(moves, 0u);
+  TetMesh copy = m;
+  meshops::VertexTets vt_copy;
+  vt_copy.build(copy);
+  optimize_detail::FlipContext without_memo{copy, vt_copy, {}, {}, {}, {}, {}};
+  const size_t flips_without = optimize_detail::flip_sweep(without_memo, kBar, 3);
+  const size_t flips_with = optimize_detail::flip_sweep(with_memo, kBar, 3);
+  EXPECT_GT(flips_without, 0u);  // the moves made flips possible, so a wrong skip would show
+  EXPECT_EQ(flips_with, flips_without);
+  EXPECT_EQ(m.tet_v, copy.tet_v);
+  // A change of the sweep's threshold forgets every failure.
+  size_t still = 0;
+  for (uint32_t t : optimize_detail::tets_below(m, kBar)) still += with_memo.memo.still_fails(t, &m.tet_v[4 * size_t(t)]);
+  EXPECT_GT(still, 0u);
+  with_memo.memo.quality = -1.0;  // as a sweep with another threshold would find it
+  optimize_detail::flip_sweep(with_memo, 0.3, 0);
+  for (uint32_t t : optimize_detail::tets_below(m, kBar)) EXPECT_FALSE(with_memo.memo.still_fails(t, &m.tet_v[4 * size_t(t)]));
 }
 
 // A tet flat to rounding (a free vertex moved onto its opposite facet: positive for the exact
