@@ -559,10 +559,15 @@ bool Optimizer::try_certify(uint32_t v, const double p[3], size_t flat) {
 // tet is certified; rounds repeat while they open some (a neighbour's move can free a stuck
 // one). Then flips on the ones left, and the moves again. Returns how many such tets are left.
 size_t Optimizer::certify_pass() {
-  auto uncertified = [&] {
+  auto uncertified = [&] {  // measured on every core, listed in slot order
+    const uint32_t n = mesh_.num_tet_slots();
+    std::vector<uint8_t> is_flat(n, 0);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
+      for (uint32_t t = r.begin(); t < r.end(); ++t) is_flat[t] = !mesh_.is_deleted(t) && !certified(t);
+    });
     std::vector<uint32_t> flat;
-    for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
-      if (!mesh_.is_deleted(t) && !certified(t)) flat.push_back(t);
+    for (uint32_t t = 0; t < n; ++t)
+      if (is_flat[t]) flat.push_back(t);
     return flat;
   };
   auto move_rounds = [&](std::vector<uint32_t>& flat) {
@@ -694,22 +699,36 @@ Result<OptimizeStats> Optimizer::run() {
 
 }  // namespace
 
-QualitySummary summarize_quality(const TetMesh& mesh) {
+namespace {
+
+// The summary of per-slot qualities q (-2: not a live tet), summed in slot order.
+QualitySummary summarize(const std::vector<double>& q) {
   QualitySummary s;
   s.min = 1.0;
   double sum = 0.0;
-  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
-    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
-    const double q = meshops::tet_radius_ratio(mesh, t);
+  for (double x : q) {
+    if (x == -2.0) continue;
     ++s.tets;
-    sum += q;
-    s.min = std::min(s.min, q);
-    s.below_01 += q < 0.1 ? 1 : 0;
-    s.below_04 += q < 0.4 ? 1 : 0;
+    sum += x;
+    s.min = std::min(s.min, x);
+    s.below_01 += x < 0.1 ? 1 : 0;
+    s.below_04 += x < 0.4 ? 1 : 0;
   }
   s.mean = s.tets ? sum / double(s.tets) : 0.0;
   if (s.tets == 0) s.min = 0.0;
   return s;
+}
+
+}  // namespace
+
+QualitySummary summarize_quality(const TetMesh& mesh) {
+  const uint32_t n = mesh.num_tet_slots();
+  std::vector<double> q(n, -2.0);  // -2: not a live tet
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t t = r.begin(); t < r.end(); ++t)
+      if (!mesh.is_deleted(t) && !mesh.is_ghost(t)) q[t] = meshops::tet_radius_ratio(mesh, t);
+  });
+  return summarize(q);
 }
 
 QualitySummary summarize_metric_quality(const TetMesh& mesh, const SizingField& field) {
@@ -733,20 +752,7 @@ QualitySummary summarize_metric_quality(const TetMesh& mesh, const SizingField& 
                           : meshops::radius_ratio(mapped[0], mapped[1], mapped[2], mapped[3]);
     }
   });
-  QualitySummary s;
-  s.min = 1.0;
-  double sum = 0.0;
-  for (uint32_t t = 0; t < n; ++t) {
-    if (q[t] == -2.0) continue;
-    ++s.tets;
-    sum += q[t];
-    s.min = std::min(s.min, q[t]);
-    s.below_01 += q[t] < 0.1 ? 1 : 0;
-    s.below_04 += q[t] < 0.4 ? 1 : 0;
-  }
-  s.mean = s.tets ? sum / double(s.tets) : 0.0;
-  if (s.tets == 0) s.min = 0.0;
-  return s;
+  return summarize(q);
 }
 
 FlatTetFlips flip_flat_tets(TetMesh& mesh) {
