@@ -181,11 +181,33 @@ bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const st
     if (k + 2 < facets.size() && facets[k + 2].key == facets[k].key) return false;
   }
 
-  for (uint32_t t : old_tets) mesh.delete_tet(t);
+  ReplaceScratch::SlotPool& pool = scratch.pool;
+  if (scratch.use_pool && pool.free.size() + old_tets.size() + (pool.end - pool.next) < fresh.size()) return false;
+  for (uint32_t t : old_tets) {
+    if (!scratch.use_pool) {
+      mesh.delete_tet(t);
+      continue;
+    }
+    mesh.tet_flags[t] = tflag::kDeleted;
+    pool.free.push_back(t);
+  }
   std::vector<uint32_t>& created = scratch.created;
   created.clear();
   for (const TetVerts& v : fresh) {
-    const uint32_t t = mesh.new_tet(v[0], v[1], v[2], v[3], region);
+    uint32_t t;
+    if (!scratch.use_pool) {
+      t = mesh.new_tet(v[0], v[1], v[2], v[3], region);
+    } else {
+      if (!pool.free.empty()) {
+        t = pool.free.back();
+        pool.free.pop_back();
+      } else {
+        t = pool.next++;
+      }
+      std::copy(v.begin(), v.end(), &mesh.tet_v[4 * size_t(t)]);
+      std::fill_n(&mesh.tet_adj[4 * size_t(t)], 4, TetMesh::kNoNeighbour);
+      mesh.tet_region[t] = region;
+    }
     mesh.tet_flags[t] = 0;
     for (int k = 0; k < 6 && !constrained.empty(); ++k)
       if (std::binary_search(constrained.begin(), constrained.end(),
@@ -207,6 +229,22 @@ bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const st
     }
   }
   return true;
+}
+
+uint32_t append_pool_slots(TetMesh& mesh, size_t n) {
+  const auto first = static_cast<uint32_t>(mesh.num_tet_slots());
+  mesh.tet_v.resize(mesh.tet_v.size() + 4 * n, 0);
+  mesh.tet_adj.resize(mesh.tet_adj.size() + 4 * n, TetMesh::kNoNeighbour);
+  mesh.tet_flags.resize(mesh.tet_flags.size() + n, tflag::kDeleted);
+  mesh.tet_region.resize(mesh.tet_region.size() + n, 0);
+  return first;
+}
+
+void return_pool_slots(TetMesh& mesh, ReplaceScratch::SlotPool& pool) {
+  mesh.free_tets.insert(mesh.free_tets.end(), pool.free.begin(), pool.free.end());
+  for (uint32_t t = pool.end; t > pool.next; --t) mesh.free_tets.push_back(t - 1);
+  pool.free.clear();
+  pool.next = pool.end = 0;
 }
 
 bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,

@@ -24,6 +24,10 @@ bool tet_has_vertex(const TetMesh& mesh, uint32_t t, uint32_t v);
 class VertexTets {
  public:
   void build(const TetMesh& mesh);
+  // Sized for every vertex of the mesh, so that note() on disjoint vertices may run concurrently.
+  void reserve(const TetMesh& mesh) {
+    if (map_.size() < mesh.num_vertices()) map_.resize(mesh.num_vertices(), TetMesh::kNone);
+  }
   // A live tet holding v; repairs a stale entry by a scan of the mesh (rare).
   uint32_t tet_of(const TetMesh& mesh, uint32_t v);
   void note(const TetMesh& mesh, uint32_t t);  // t's vertices now point at t
@@ -59,7 +63,24 @@ struct ReplaceScratch {
   std::vector<Facet> facets;
   std::vector<uint64_t> constrained;  // constrained edges of the old tets (vertex pair keys)
   std::vector<uint32_t> created;
+  // Slots of one task among several replacing tets at once (the mesh's own free list and arrays
+  // are not touched while they run): the old tets' slots go to `free`, new tets come from `free`,
+  // then from [next, end). A replacement that needs more fails (mesh unchanged). Unused when
+  // `use_pool` is false.
+  struct SlotPool {
+    std::vector<uint32_t> free;
+    uint32_t next = 0, end = 0;
+  };
+  bool use_pool = false;
+  SlotPool pool;
 };
+
+// Appends n slots to the mesh's arrays, deleted but not on its free list (for SlotPools); returns
+// the first.
+uint32_t append_pool_slots(TetMesh& mesh, size_t n);
+// Gives a pool's unused slots back to the mesh's free list (its free slots in order, then its
+// unused range from the top down) and empties it.
+void return_pool_slots(TetMesh& mesh, ReplaceScratch::SlotPool& pool);
 
 // What replace_tets does with the constrained-edge bits of the old tets.
 enum class ConstrainedEdges : uint8_t {

@@ -1,9 +1,11 @@
 #include "optimize/flips.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "predicates/predicates.hpp"
 
@@ -37,6 +39,10 @@ bool try_flip23(FlipContext& c, uint32_t t, int i) {
   const uint32_t n = m.neighbour(t, i);
   const int j = m.neighbour_facet(t, i);
   if (m.facet_protected(n, j)) return false;
+  if (!c.owns(t) || !c.owns(n)) {
+    c.foreign = true;
+    return false;
+  }
   const uint32_t d = m.vertex(t, i), e = m.vertex(n, j);
   const uint32_t f[3] = {m.vertex(t, kFacetVertex[i][0]), m.vertex(t, kFacetVertex[i][1]),
                          m.vertex(t, kFacetVertex[i][2])};
@@ -50,6 +56,10 @@ bool try_flip23(FlipContext& c, uint32_t t, int i) {
     c.fresh.push_back(v);
   }
   c.old = {t, n};
+  if (!c.has_room(c.old.size(), c.fresh.size())) {
+    c.foreign = true;
+    return false;
+  }
   if (!meshops::replace_tets(m, c.old, c.fresh, c.vt, c.scratch, c.rule)) return false;
   c.touch_tets(c.fresh);
   ++c.flips23;
@@ -63,6 +73,11 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
   if (!meshops::edge_ring(m, a, b, t, c.ring_tets, c.ring)) return false;
   const int n = static_cast<int>(c.ring.size());
   if (n < 3 || n > 7) return false;
+  for (uint32_t s : c.ring_tets)
+    if (!c.owns(s)) {
+      c.foreign = true;
+      return false;
+    }
   double before = 1.0;
   for (uint32_t s : c.ring_tets) before = std::min(before, c.tet(s));
   // Orient the ring so that (r_i r_j r_k a) and (r_j r_i r_k b) are positive for i < j < k.
@@ -121,6 +136,10 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
     ++top;
   }
   c.old = c.ring_tets;
+  if (!c.has_room(c.old.size(), c.fresh.size())) {
+    c.foreign = true;
+    return false;
+  }
   if (!meshops::replace_tets(m, c.old, c.fresh, c.vt, c.scratch, c.rule)) return false;
   c.touch_tets(c.fresh);
   ++c.edge_removals;
@@ -140,6 +159,142 @@ std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality
   return out;
 }
 
+namespace {
+
+// One round over `bad` (slot order): each live tet still below `quality` and not known to fail
+// gets the first edge removal or 2-3 flip that raises its worst tet. The new tets still below
+// go to fresh_bad; with c.log (a task of the parallel round), a tet whose attempts needed what
+// the task may not touch goes to `deferred`. Returns the number of flips.
+size_t flip_round(FlipContext& c, double quality, const std::vector<uint32_t>& bad, std::vector<uint32_t>& fresh_bad,
+                  std::vector<uint32_t>* deferred) {
+  TetMesh& m = c.mesh;
+  const FlipMemo& memo = c.memo_source ? *c.memo_source : c.memo;
+  auto touched_now = [&](const uint32_t* v) {
+    return c.phase_touched && (c.phase_touched[v[0]] | c.phase_touched[v[1]] | c.phase_touched[v[2]] | c.phase_touched[v[3]]);
+  };
+  size_t flips = 0;
+  for (uint32_t t : bad) {
+    // t is measured once: a flip that fails leaves it as it was, one that succeeds ends its turn.
+    if (m.is_deleted(t)) continue;
+    const uint32_t* v = &m.tet_v[4 * size_t(t)];
+    if ((memo.still_fails(t, v) && !touched_now(v)) || c.tet(t) >= quality) continue;
+    c.foreign = false;
+    bool done = false;
+    for (int k = 0; k < 6 && !done && !m.is_deleted(t); ++k) done = try_remove_edge(c, t, k);
+    for (int i = 0; i < 4 && !done && !m.is_deleted(t); ++i) done = try_flip23(c, t, i);
+    if (done) {
+      ++flips;
+      for (uint32_t s : c.scratch.created)
+        if (c.tet(s) < quality) fresh_bad.push_back(s);
+    } else if (c.foreign && deferred) {
+      deferred->push_back(t);
+    } else if (c.log) {
+      c.log->push_back(2 * uint64_t(t) + 1);
+    } else {
+      c.memo.fail(t);
+    }
+  }
+  return flips;
+}
+
+// The parallel first round (see flip_sweep): returns its flips; fresh_bad gets the new tets
+// still below `quality`, `rest` the tets left to the sequential round, in slot order.
+size_t parallel_round(FlipContext& c, double quality, const std::vector<uint32_t>& bad, std::vector<uint32_t>& fresh_bad,
+                      std::vector<uint32_t>& rest) {
+  TetMesh& m = c.mesh;
+  const auto nv = static_cast<uint32_t>(m.num_vertices());
+  // The sides: below or above the median of the coordinate along the longest extent.
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (uint32_t v = 0; v < nv; ++v)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], m.point(v)[k]);
+      hi[k] = std::max(hi[k], m.point(v)[k]);
+    }
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+  std::vector<double> coords(nv);
+  for (uint32_t v = 0; v < nv; ++v) coords[v] = m.point(v)[axis];
+  std::nth_element(coords.begin(), coords.begin() + nv / 2, coords.end());
+  const double cut = coords[nv / 2];
+  std::vector<uint8_t> side(nv), touched(nv, 0);
+  for (uint32_t v = 0; v < nv; ++v) side[v] = m.point(v)[axis] < cut ? 0 : 1;
+
+  struct Task {
+    std::vector<uint32_t> mine, fresh, deferred;
+    std::vector<uint64_t> log;
+    size_t flips = 0, flips23 = 0, edge_removals = 0;
+    meshops::ReplaceScratch scratch;
+  };
+  Task tasks[2];
+  for (uint32_t t : bad) {
+    const uint32_t* v = &m.tet_v[4 * size_t(t)];
+    const uint8_t s = side[v[0]];
+    if (side[v[1]] == s && side[v[2]] == s && side[v[3]] == s) tasks[s].mine.push_back(t);
+    else rest.push_back(t);
+  }
+  // Pools of an eighth of the task's tets (flips mostly keep the count; a task that runs out
+  // leaves the rest to the sequential round): the mesh's free slots dealt out in turn, then
+  // fresh ones.
+  size_t want[2];
+  for (int k = 0; k < 2; ++k) {
+    want[k] = tasks[k].mine.size() / 8 + 1024;
+    tasks[k].scratch.use_pool = true;
+  }
+  size_t kept = 0;
+  for (size_t i = 0; i < m.free_tets.size(); ++i) {
+    std::vector<uint32_t>& free = tasks[i % 2].scratch.pool.free;
+    if (free.size() < want[i % 2]) free.push_back(m.free_tets[i]);
+    else m.free_tets[kept++] = m.free_tets[i];
+  }
+  m.free_tets.resize(kept);
+  size_t total = 0;
+  for (int k = 0; k < 2; ++k) total += want[k] - tasks[k].scratch.pool.free.size();
+  uint32_t next = meshops::append_pool_slots(m, total);
+  for (int k = 0; k < 2; ++k) {
+    meshops::ReplaceScratch::SlotPool& pool = tasks[k].scratch.pool;
+    pool.next = next;
+    pool.end = next + static_cast<uint32_t>(want[k] - pool.free.size());
+    next = pool.end;
+  }
+  c.vt.reserve(m);
+  // Each task reads the memo (through memo_source) and logs its own events.
+  auto task_body = [&](int k) {
+    Task& task = tasks[k];
+    FlipContext sub{m, c.vt, std::move(task.scratch), {}, {}, {}, {}};
+    sub.gain = c.gain;
+    sub.rule = c.rule;
+    sub.quality = c.quality;
+    sub.side = side.data();
+    sub.me = static_cast<uint8_t>(k);
+    sub.log = &task.log;
+    sub.phase_touched = touched.data();
+    sub.memo_source = &c.memo;
+    task.flips = flip_round(sub, quality, task.mine, task.fresh, &task.deferred);
+    task.flips23 = sub.flips23;
+    task.edge_removals = sub.edge_removals;
+    task.scratch = std::move(sub.scratch);
+  };
+  tbb::parallel_invoke([&] { task_body(0); }, [&] { task_body(1); });
+  size_t flips = 0;
+  for (Task& task : tasks) {
+    meshops::return_pool_slots(m, task.scratch.pool);
+    for (uint64_t e : task.log) {
+      if (e & 1u) c.memo.fail(static_cast<uint32_t>(e >> 1));
+      else c.memo.touch(static_cast<uint32_t>(e >> 1));
+    }
+    fresh_bad.insert(fresh_bad.end(), task.fresh.begin(), task.fresh.end());
+    rest.insert(rest.end(), task.deferred.begin(), task.deferred.end());
+    flips += task.flips;
+    c.flips23 += task.flips23;
+    c.edge_removals += task.edge_removals;
+  }
+  std::sort(rest.begin(), rest.end());
+  return flips;
+}
+
+}  // namespace
+
 size_t flip_sweep(FlipContext& c, double quality, int rounds) {
   TetMesh& m = c.mesh;
   size_t total = 0;
@@ -150,26 +305,16 @@ size_t flip_sweep(FlipContext& c, double quality, int rounds) {
     memo.gain = c.gain;
   }
   // The first round scans the mesh; later ones only revisit the tets the flips created.
-  std::vector<uint32_t> bad = tets_below(m, quality, *c.quality), fresh_bad;
+  std::vector<uint32_t> bad = tets_below(m, quality, *c.quality), fresh_bad, rest;
   for (int round = 0; round < rounds && !bad.empty(); ++round) {
     fresh_bad.clear();
     size_t flips = 0;
-    auto note_created = [&] {
-      for (uint32_t s : c.scratch.created)
-        if (c.tet(s) < quality) fresh_bad.push_back(s);
-    };
-    for (uint32_t t : bad) {
-      // t is measured once: a flip that fails leaves it as it was, one that succeeds ends its turn.
-      if (m.is_deleted(t) || memo.still_fails(t, &m.tet_v[4 * size_t(t)]) || c.tet(t) >= quality) continue;
-      bool done = false;
-      for (int k = 0; k < 6 && !done && !m.is_deleted(t); ++k) done = try_remove_edge(c, t, k);
-      for (int i = 0; i < 4 && !done && !m.is_deleted(t); ++i) done = try_flip23(c, t, i);
-      if (done) {
-        ++flips;
-        note_created();
-      } else {
-        memo.fail(t);
-      }
+    if (round == 0 && bad.size() >= c.parallel_min) {
+      rest.clear();
+      flips += parallel_round(c, quality, bad, fresh_bad, rest);
+      flips += flip_round(c, quality, rest, fresh_bad, nullptr);
+    } else {
+      flips += flip_round(c, quality, bad, fresh_bad, nullptr);
     }
     total += flips;
     if (flips == 0) break;

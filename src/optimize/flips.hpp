@@ -76,9 +76,38 @@ struct FlipContext {
   size_t flips23 = 0, edge_removals = 0;
   const Quality* quality = &Quality::euclidean();
   FlipMemo memo{};
+  // flip_sweep() runs its first round on two tasks when it has at least this many tets to try.
+  size_t parallel_min = 4096;
+  // Inside one of those tasks (set by flip_sweep): the task may read and change only the tets
+  // whose four vertices have side[v] == me; an attempt that needs another tet (or more slots
+  // than the task's pool has) sets `foreign` and fails, for the sequential round after. The
+  // memo's events go to `log` (replayed after the tasks) and mark `phase_touched`.
+  const uint8_t* side = nullptr;
+  uint8_t me = 0;
+  bool foreign = false;
+  std::vector<uint64_t>* log = nullptr;  // 2 v: touch(v); 2 t + 1: fail(t)
+  uint8_t* phase_touched = nullptr;
+  const FlipMemo* memo_source = nullptr;  // the memo a task reads (its own `memo` unused)
+  bool owns(uint32_t t) const {
+    if (!side) return true;
+    const uint32_t* v = &mesh.tet_v[4 * size_t(t)];
+    return side[v[0]] == me && side[v[1]] == me && side[v[2]] == me && side[v[3]] == me;
+  }
+  // Room in the task's pool for replacing `old_count` tets by `new_count`.
+  bool has_room(size_t old_count, size_t new_count) const {
+    const meshops::ReplaceScratch::SlotPool& p = scratch.pool;
+    return !scratch.use_pool || p.free.size() + old_count + (p.end - p.next) >= new_count;
+  }
   void touch_tets(const std::vector<meshops::TetVerts>& tets) {
     for (const meshops::TetVerts& f : tets)
-      for (uint32_t x : f) memo.touch(x);
+      for (uint32_t x : f) {
+        if (!log) {
+          memo.touch(x);
+          continue;
+        }
+        log->push_back(2 * uint64_t(x));
+        phase_touched[x] = 1;
+      }
   }
   double tet(uint32_t t) const { return quality->tet(mesh, t); }
   double of(const uint32_t v[4]) const { return quality->of(mesh, v); }
@@ -91,7 +120,12 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k);
 // The live tets whose shape quality is below `quality`, in slot order (measured on every core).
 std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality& measure = Quality::euclidean());
 // Tries edge removals then 2-3 flips on every live tet below `quality`, then for at most
-// `rounds` - 1 more rounds on the new tets still below it. Returns the number of flips. Skips the
+// `rounds` - 1 more rounds on the new tets still below it. Returns the number of flips. With at
+// least c.parallel_min tets to try, the first round runs on two tasks, one per side of the median
+// plane across the vertices' longest extent, each on the tets all of whose vertices lie on its
+// side (they read and change disjoint tets; slots from pools of their own), then the tets left
+// (across the plane, or whose flip needed a tet across it) in slot order. The result depends on
+// parallel_min, never on the thread count. Skips the
 // tets c.memo knows to fail: whoever moves a vertex or changes a metric between sweeps must
 // touch the vertices of its ball (or touch_all); the flips touch their own.
 size_t flip_sweep(FlipContext& c, double quality, int rounds);

@@ -11,6 +11,8 @@
 #include <vector>
 #include <string>
 
+#include <tbb/task_arena.h>
+
 #include "io/surface_io.hpp"
 #include "layers/shapes.hpp"
 #include "metric/surface_sizing.hpp"
@@ -139,13 +141,17 @@ TEST(Optimize, Deterministic) {
 // The flip memo skips only tets whose attempts would fail again: after a sweep, free vertices of
 // tets it could not flip move (their balls touched, as the optimizer does), and a second sweep
 // with the memo makes exactly the mesh a sweep without it makes.
-TEST(FlipMemo, SkipsOnlyWhatWouldFailAgain) {
+// (Both ways: the first round sequential, and on two tasks.)
+class FlipMemoTest : public ::testing::TestWithParam<size_t> {};
+
+TEST_P(FlipMemoTest, SkipsOnlyWhatWouldFailAgain) {
   Refined k = refined_knight();
   ASSERT_TRUE(k.field);
   TetMesh& m = k.mesh;
   meshops::VertexTets vt;
   vt.build(m);
   optimize_detail::FlipContext with_memo{m, vt, {}, {}, {}, {}, {}};
+  with_memo.parallel_min = GetParam();
   constexpr double kBar = 0.5;
   optimize_detail::flip_sweep(with_memo, kBar, 3);
   const std::vector<uint32_t> failed = optimize_detail::tets_below(m, kBar);
@@ -153,6 +159,23 @@ TEST(FlipMemo, SkipsOnlyWhatWouldFailAgain) {
   size_t skippable = 0;
   for (uint32_t t : failed) skippable += with_memo.memo.still_fails(t, &m.tet_v[4 * size_t(t)]);
   EXPECT_GT(skippable, failed.size() / 5);  // (the others were touched after their failure, or never tried)
+  // Every tet the memo would skip finds no flip indeed (tried on a copy, without memo).
+  auto wrongly_skipped = [&] {
+    TetMesh copy = m;
+    meshops::VertexTets vt_copy;
+    vt_copy.build(copy);
+    optimize_detail::FlipContext plain{copy, vt_copy, {}, {}, {}, {}, {}};
+    size_t wrong = 0;
+    for (uint32_t t : optimize_detail::tets_below(m, kBar)) {
+      if (!with_memo.memo.still_fails(t, &m.tet_v[4 * size_t(t)]) || copy.is_deleted(t)) continue;
+      bool done = false;
+      for (int e = 0; e < 6 && !done && !copy.is_deleted(t); ++e) done = optimize_detail::try_remove_edge(plain, t, e);
+      for (int f = 0; f < 4 && !done && !copy.is_deleted(t); ++f) done = optimize_detail::try_flip23(plain, t, f);
+      wrong += done;
+    }
+    return wrong;
+  };
+  EXPECT_EQ(wrongly_skipped(), 0u);
   // Every 4th failed tet: its free vertices go to their ball's vertex centroid when that keeps
   // the ball positive.
   std::vector<uint32_t> ball;
@@ -184,11 +207,13 @@ TEST(FlipMemo, SkipsOnlyWhatWouldFailAgain) {
   meshops::VertexTets vt_copy;
   vt_copy.build(copy);
   optimize_detail::FlipContext without_memo{copy, vt_copy, {}, {}, {}, {}, {}};
+  without_memo.parallel_min = GetParam();
   const size_t flips_without = optimize_detail::flip_sweep(without_memo, kBar, 3);
   const size_t flips_with = optimize_detail::flip_sweep(with_memo, kBar, 3);
   EXPECT_GT(flips_without, 0u);  // the moves made flips possible, so a wrong skip would show
   EXPECT_EQ(flips_with, flips_without);
   EXPECT_EQ(m.tet_v, copy.tet_v);
+  EXPECT_EQ(wrongly_skipped(), 0u);
   // A change of the sweep's threshold forgets every failure.
   size_t still = 0;
   for (uint32_t t : optimize_detail::tets_below(m, kBar)) still += with_memo.memo.still_fails(t, &m.tet_v[4 * size_t(t)]);
@@ -196,6 +221,34 @@ TEST(FlipMemo, SkipsOnlyWhatWouldFailAgain) {
   with_memo.memo.quality = -1.0;  // as a sweep with another threshold would find it
   optimize_detail::flip_sweep(with_memo, 0.3, 0);
   for (uint32_t t : optimize_detail::tets_below(m, kBar)) EXPECT_FALSE(with_memo.memo.still_fails(t, &m.tet_v[4 * size_t(t)]));
+}
+
+INSTANTIATE_TEST_SUITE_P(SequentialAndParallel, FlipMemoTest, ::testing::Values(size_t(1) << 30, size_t(0)));
+
+// The flip sweep's parallel first round (forced on the knight): valid, S kept, flips made by the
+// tasks, and the same mesh on one thread as on two.
+TEST(FlipSweep, ParallelRoundIsValidAndIndependentOfThreads) {
+  Refined k = refined_knight();
+  ASSERT_TRUE(k.field);
+  TetMesh meshes[2] = {k.mesh, k.mesh};
+  size_t flips[2] = {0, 0};
+  for (int threads = 1; threads <= 2; ++threads) {
+    TetMesh& m = meshes[threads - 1];
+    meshops::VertexTets vt;
+    vt.build(m);
+    optimize_detail::FlipContext c{m, vt, {}, {}, {}, {}, {}};
+    c.parallel_min = 0;
+    tbb::task_arena arena(threads);
+    arena.execute([&] { flips[threads - 1] = optimize_detail::flip_sweep(c, 0.5, 3); });
+    Status st = check_mesh(m);
+    EXPECT_TRUE(st.ok()) << st.message();
+    test::expect_surface_kept(k.surface, m, "knight, parallel flips");
+  }
+  EXPECT_GT(flips[0], 100u);
+  EXPECT_EQ(flips[0], flips[1]);
+  EXPECT_EQ(meshes[0].tet_v, meshes[1].tet_v);
+  EXPECT_EQ(meshes[0].tet_adj, meshes[1].tet_adj);
+  EXPECT_EQ(meshes[0].free_tets, meshes[1].free_tets);
 }
 
 // A tet flat to rounding (a free vertex moved onto its opposite facet: positive for the exact
