@@ -159,6 +159,29 @@ std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality
   return out;
 }
 
+std::vector<uint8_t> median_sides(const TetMesh& m) {
+  const auto nv = static_cast<uint32_t>(m.num_vertices());
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (uint32_t v = 0; v < nv; ++v)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], m.point(v)[k]);
+      hi[k] = std::max(hi[k], m.point(v)[k]);
+    }
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+  std::vector<double> coords(nv);
+  for (uint32_t v = 0; v < nv; ++v) coords[v] = m.point(v)[axis];
+  double cut = 0.0;
+  if (nv > 0) {
+    std::nth_element(coords.begin(), coords.begin() + nv / 2, coords.end());
+    cut = coords[nv / 2];
+  }
+  std::vector<uint8_t> side(nv);
+  for (uint32_t v = 0; v < nv; ++v) side[v] = m.point(v)[axis] < cut ? 0 : 1;
+  return side;
+}
+
 namespace {
 
 // One round over `bad` (slot order): each live tet still below `quality` and not known to fail
@@ -203,22 +226,8 @@ size_t parallel_round(FlipContext& c, double quality, const std::vector<uint32_t
                       std::vector<uint32_t>& rest) {
   TetMesh& m = c.mesh;
   const auto nv = static_cast<uint32_t>(m.num_vertices());
-  // The sides: below or above the median of the coordinate along the longest extent.
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (uint32_t v = 0; v < nv; ++v)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], m.point(v)[k]);
-      hi[k] = std::max(hi[k], m.point(v)[k]);
-    }
-  int axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
-  std::vector<double> coords(nv);
-  for (uint32_t v = 0; v < nv; ++v) coords[v] = m.point(v)[axis];
-  std::nth_element(coords.begin(), coords.begin() + nv / 2, coords.end());
-  const double cut = coords[nv / 2];
-  std::vector<uint8_t> side(nv), touched(nv, 0);
-  for (uint32_t v = 0; v < nv; ++v) side[v] = m.point(v)[axis] < cut ? 0 : 1;
+  const std::vector<uint8_t> side = median_sides(m);
+  std::vector<uint8_t> touched(nv, 0);
 
   struct Task {
     std::vector<uint32_t> mine, fresh, deferred;

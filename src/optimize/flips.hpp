@@ -113,6 +113,10 @@ struct FlipContext {
   double of(const uint32_t v[4]) const { return quality->of(mesh, v); }
 };
 
+// Per vertex, 0 or 1: below or above the median of the coordinates along the vertices' longest
+// extent (the split of the optimizer's two-task passes).
+std::vector<uint8_t> median_sides(const TetMesh& m);
+
 // 2-3 flip of facet i of tet t (not protected, with a neighbour).
 bool try_flip23(FlipContext& c, uint32_t t, int i);
 // Removes edge k (kEdgeVertex order) of tet t.

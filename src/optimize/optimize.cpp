@@ -290,24 +290,7 @@ size_t Optimizer::cvt_pass() {
   };
   // The split: side 0 or 1 per vertex, then kSeam for the vertices of tets across it.
   constexpr uint8_t kSeam = 2;
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (uint32_t v = 0; v < nv; ++v)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], mesh_.point(v)[k]);
-      hi[k] = std::max(hi[k], mesh_.point(v)[k]);
-    }
-  int axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
-  std::vector<double> coords(nv);
-  for (uint32_t v = 0; v < nv; ++v) coords[v] = mesh_.point(v)[axis];
-  double cut = 0.0;
-  if (nv > 0) {
-    std::nth_element(coords.begin(), coords.begin() + nv / 2, coords.end());
-    cut = coords[nv / 2];
-  }
-  side_.resize(nv);
-  for (uint32_t v = 0; v < nv; ++v) side_[v] = mesh_.point(v)[axis] < cut ? 0 : 1;
+  side_ = optimize_detail::median_sides(mesh_);
   for (uint32_t t = 0; t < n_slots; ++t) {
     if (mesh_.is_deleted(t)) continue;
     const uint32_t* tv = &mesh_.tet_v[4 * size_t(t)];
