@@ -147,16 +147,7 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
 }
 
 std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality& measure) {
-  const uint32_t n = m.num_tet_slots();
-  std::vector<uint8_t> below(n, 0);
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1u << 14), [&](const tbb::blocked_range<uint32_t>& r) {
-    for (uint32_t t = r.begin(); t < r.end(); ++t)
-      below[t] = !m.is_deleted(t) && measure.tet(m, t) < quality;
-  });
-  std::vector<uint32_t> out;
-  for (uint32_t t = 0; t < n; ++t)
-    if (below[t]) out.push_back(t);
-  return out;
+  return live_tets_where(m, [&](uint32_t t) { return measure.tet(m, t) < quality; });
 }
 
 std::vector<uint8_t> median_sides(const TetMesh& m) {

@@ -8,6 +8,9 @@
 #include <cstdint>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/tet_mesh.hpp"
 #include "refine/mesh_ops.hpp"
 
@@ -121,6 +124,20 @@ std::vector<uint8_t> median_sides(const TetMesh& m);
 bool try_flip23(FlipContext& c, uint32_t t, int i);
 // Removes edge k (kEdgeVertex order) of tet t.
 bool try_remove_edge(FlipContext& c, uint32_t t, int k);
+// The live tets t with pred(t), in slot order; pred is evaluated on every core (it must only
+// read the mesh).
+template <class Pred>
+std::vector<uint32_t> live_tets_where(const TetMesh& m, Pred&& pred) {
+  const uint32_t n = m.num_tet_slots();
+  std::vector<uint8_t> hit(n, 0);
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1u << 14), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t t = r.begin(); t < r.end(); ++t) hit[t] = !m.is_deleted(t) && pred(t);
+  });
+  std::vector<uint32_t> out;
+  for (uint32_t t = 0; t < n; ++t)
+    if (hit[t]) out.push_back(t);
+  return out;
+}
 // The live tets whose shape quality is below `quality`, in slot order (measured on every core).
 std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality& measure = Quality::euclidean());
 // Tries edge removals then 2-3 flips on every live tet below `quality`, then for at most
@@ -129,9 +146,9 @@ std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality
 // plane across the vertices' longest extent, each on the tets all of whose vertices lie on its
 // side (they read and change disjoint tets; slots from pools of their own), then the tets left
 // (across the plane, or whose flip needed a tet across it) in slot order. The result depends on
-// parallel_min, never on the thread count. Skips the
-// tets c.memo knows to fail: whoever moves a vertex or changes a metric between sweeps must
-// touch the vertices of its ball (or touch_all); the flips touch their own.
+// parallel_min, never on the thread count. Skips the tets c.memo knows to fail: whoever moves a
+// vertex or changes a metric between sweeps must touch the vertices of its ball (or touch_all);
+// the flips touch their own.
 size_t flip_sweep(FlipContext& c, double quality, int rounds);
 
 }  // namespace anitet::optimize_detail

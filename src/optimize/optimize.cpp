@@ -46,13 +46,18 @@ class Optimizer {
   // call. Between calls the tets keep the metrics they had, so that a tet's quality does not
   // change while a pass compares it.
   void refresh_metrics();
-  // Tells the flip memo of a change in v's ball (v moved, or its metric changed).
+  // Tells the flip memo of a change in the ball `ball` (the tets of a vertex that moved, or whose
+  // metric changed).
+  void touch_tets(const std::vector<uint32_t>& ball) {
+    for (uint32_t s : ball)
+      for (int i = 0; i < 4; ++i) flips_.memo.touch(mesh_.vertex(s, i));
+  }
+  // The same for v's ball, found from v.
   void touch_ball(uint32_t v) {
     const uint32_t t = vt_.tet_of(mesh_, v);
     if (t == TetMesh::kNone) return flips_.memo.touch_all();
     meshops::vertex_ball(mesh_, v, t, touch_scratch_);
-    for (uint32_t s : touch_scratch_)
-      for (int i = 0; i < 4; ++i) flips_.memo.touch(mesh_.vertex(s, i));
+    touch_tets(touch_scratch_);
   }
   double size_at(uint32_t v) {
     if (sizes_.size() < mesh_.num_vertices()) sizes_.resize(mesh_.num_vertices(), -1.0);
@@ -453,7 +458,7 @@ size_t Optimizer::perturb_pass(const std::vector<uint8_t>* near) {
       if (best[0] != start[0] || best[1] != start[1] || best[2] != start[2]) {
         ++moved;
         this->moved(v);
-        touch_ball(v);
+        touch_tets(work_.ball);  // v's ball (moves keep the tets)
       }
     }
   }
@@ -542,17 +547,7 @@ bool Optimizer::try_certify(uint32_t v, const double p[3], size_t flat) {
 // tet is certified; rounds repeat while they open some (a neighbour's move can free a stuck
 // one). Then flips on the ones left, and the moves again. Returns how many such tets are left.
 size_t Optimizer::certify_pass() {
-  auto uncertified = [&] {  // measured on every core, listed in slot order
-    const uint32_t n = mesh_.num_tet_slots();
-    std::vector<uint8_t> is_flat(n, 0);
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
-      for (uint32_t t = r.begin(); t < r.end(); ++t) is_flat[t] = !mesh_.is_deleted(t) && !certified(t);
-    });
-    std::vector<uint32_t> flat;
-    for (uint32_t t = 0; t < n; ++t)
-      if (is_flat[t]) flat.push_back(t);
-    return flat;
-  };
+  auto uncertified = [&] { return optimize_detail::live_tets_where(mesh_, [&](uint32_t t) { return !certified(t); }); };
   auto move_rounds = [&](std::vector<uint32_t>& flat) {
     constexpr int kRounds = 4;
     for (int round = 0; round < kRounds && !flat.empty(); ++round) {
@@ -608,7 +603,7 @@ void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
           measure_ball(work_);  // the new position is the next trial's reference
           flat_now = flat_in_ball();
           moved(v);
-          touch_ball(v);
+          touch_tets(work_.ball);  // v's ball (moves keep the tets)
         }
       }
     }
@@ -744,10 +739,7 @@ FlatTetFlips flip_flat_tets(TetMesh& mesh) {
                                           mesh.point(mesh.vertex(t, 2)), mesh.point(mesh.vertex(t, 3))) > 0;
   };
   auto flat_tets = [&] {
-    std::vector<uint32_t> flat;
-    for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
-      if (!mesh.is_deleted(t) && !mesh.is_ghost(t) && !certified(t)) flat.push_back(t);
-    return flat;
+    return optimize_detail::live_tets_where(mesh, [&](uint32_t t) { return !mesh.is_ghost(t) && !certified(t); });
   };
   FlatTetFlips out;
   std::vector<uint32_t> flat = flat_tets();
