@@ -26,10 +26,7 @@ double Quality::of(const TetMesh& m, const uint32_t v[4]) const {
 }
 
 bool FlipMemo::still_fails(uint32_t t, const uint32_t v[4]) const {
-  if (t >= failed.size() || failed[t] == 0 || failed[t] <= everything) return false;
-  for (int i = 0; i < 4; ++i)
-    if (v[i] < changed.size() && failed[t] <= changed[v[i]]) return false;  // (beyond: never changed)
-  return true;
+  return t < failed.size() && newer_than_changes(failed[t], v);
 }
 
 bool try_flip23(FlipContext& c, uint32_t t, int i) {
@@ -146,8 +143,16 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
   return true;
 }
 
-std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality& measure) {
-  return live_tets_where(m, [&](uint32_t t) { return measure.tet(m, t) < quality; });
+std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality& measure, FlipMemo* memo) {
+  if (!memo) return live_tets_where(m, [&](uint32_t t) { return measure.tet(m, t) < quality; });
+  const uint32_t now = memo->start_measures(m.num_tet_slots());
+  return live_tets_where(m, [&](uint32_t t) {
+    if (!memo->knows_quality(t, &m.tet_v[4 * size_t(t)])) {  // (each task writes its own slots)
+      memo->quality_of[t] = measure.tet(m, t);
+      memo->measured[t] = now;
+    }
+    return memo->quality_of[t] < quality;
+  });
 }
 
 std::vector<uint8_t> median_sides(const TetMesh& m) {
@@ -305,7 +310,7 @@ size_t flip_sweep(FlipContext& c, double quality, int rounds) {
     memo.gain = c.gain;
   }
   // The first round scans the mesh; later ones only revisit the tets the flips created.
-  std::vector<uint32_t> bad = tets_below(m, quality, *c.quality), fresh_bad, rest;
+  std::vector<uint32_t> bad = tets_below(m, quality, *c.quality, &memo), fresh_bad, rest;
   for (int round = 0; round < rounds && !bad.empty(); ++round) {
     fresh_bad.clear();
     size_t flips = 0;

@@ -289,9 +289,11 @@ size_t Optimizer::cvt_pass() {
         },
         ball_start_, ball_tets_, fill);
   }
+  optimize_detail::FlipMemo& memo = flips_.memo;
   auto measure = [&](uint32_t begin, uint32_t end) {
     for (uint32_t t = begin; t < end; ++t)
-      if (!mesh_.is_deleted(t)) tet_q_[t] = quality_.tet(mesh_, t);
+      if (!mesh_.is_deleted(t))
+        tet_q_[t] = memo.knows_quality(t, &mesh_.tet_v[4 * size_t(t)]) ? memo.quality_of[t] : quality_.tet(mesh_, t);
   };
   // The split: side 0 or 1 per vertex, then kSeam for the vertices of tets across it.
   constexpr uint8_t kSeam = 2;
@@ -316,15 +318,21 @@ size_t Optimizer::cvt_pass() {
   seam.moved = seam.rejected = 0;
   for (uint32_t v = 0; v < nv; ++v)
     if ((side_[v] & kSeam) && movable(v)) cvt_move(seam, v);
+  // Nearly every vertex moved; tet_q_ holds every tet's quality now (the moves kept it).
+  memo.touch_all();
+  const uint32_t now = memo.start_measures(n_slots);
+  for (uint32_t t = 0; t < n_slots; ++t) {
+    memo.quality_of[t] = tet_q_[t];
+    memo.measured[t] = mesh_.is_deleted(t) ? 0 : now;
+  }
   tet_q_.clear();
-  flips_.memo.touch_all();  // nearly every vertex moved
   stats_.moves_rejected += halves[0].rejected + halves[1].rejected + seam.rejected;
   return halves[0].moved + halves[1].moved + seam.moved;
 }
 
 size_t Optimizer::collapse_pass() {
   const double cq = options_.collapse_quality;
-  const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, cq, quality_);
+  const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, cq, quality_, &flips_.memo);
   size_t done = 0;
   for (uint32_t t : bad) {
     if (mesh_.is_deleted(t) || quality_.tet(mesh_, t) >= cq) continue;
@@ -408,7 +416,7 @@ bool Optimizer::try_collapse(uint32_t v, uint32_t w, bool to_midpoint) {
 }
 
 size_t Optimizer::perturb_pass(const std::vector<uint8_t>* near) {
-  const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, options_.sliver_quality, quality_);
+  const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, options_.sliver_quality, quality_, &flips_.memo);
   size_t moved = 0;
   for (uint32_t t : bad) {
     if (near && !mesh_.is_deleted(t)) {

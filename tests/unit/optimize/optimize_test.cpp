@@ -176,6 +176,19 @@ TEST_P(FlipMemoTest, SkipsOnlyWhatWouldFailAgain) {
     return wrong;
   };
   EXPECT_EQ(wrongly_skipped(), 0u);
+  // Every quality the memo says it knows is the tet's quality now.
+  auto known_qualities = [&] {
+    size_t known = 0;
+    for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
+      if (m.is_deleted(t) || !with_memo.memo.knows_quality(t, &m.tet_v[4 * size_t(t)])) continue;
+      ++known;
+      EXPECT_EQ(with_memo.memo.quality_of[t], optimize_detail::Quality::euclidean().tet(m, t)) << "tet " << t;
+    }
+    return known;
+  };
+  EXPECT_GT(known_qualities(), 0u);  // (the flips touched most balls of this small mesh)
+  optimize_detail::tets_below(m, kBar, optimize_detail::Quality::euclidean(), &with_memo.memo);
+  EXPECT_EQ(known_qualities(), m.num_live_tets());
   // Every 4th failed tet: its free vertices go to their ball's vertex centroid when that keeps
   // the ball positive.
   std::vector<uint32_t> ball;
@@ -203,6 +216,7 @@ TEST_P(FlipMemoTest, SkipsOnlyWhatWouldFailAgain) {
     }
   }
   ASSERT_GT(moves, 0u);
+  EXPECT_LT(known_qualities(), m.num_live_tets());  // not the moved vertices' tets
   TetMesh copy = m;
   meshops::VertexTets vt_copy;
   vt_copy.build(copy);
@@ -214,6 +228,7 @@ TEST_P(FlipMemoTest, SkipsOnlyWhatWouldFailAgain) {
   EXPECT_EQ(flips_with, flips_without);
   EXPECT_EQ(m.tet_v, copy.tet_v);
   EXPECT_EQ(wrongly_skipped(), 0u);
+  EXPECT_GT(known_qualities(), 0u);
   // A change of the sweep's threshold forgets every failure.
   size_t still = 0;
   for (uint32_t t : optimize_detail::tets_below(m, kBar)) still += with_memo.memo.still_fails(t, &m.tet_v[4 * size_t(t)]);
