@@ -23,8 +23,10 @@
 //   - Slivers: each free vertex of a tet below sliver_quality is perturbed (a hill climb over
 //     trial positions: away from the opposite facet, then pseudo-random directions) to raise the
 //     worst quality of its ball (no tet ending below min(its old quality, the midpoint of the
-//     ball's old worst quality and sliver_quality)), interleaved with flips, for sliver_rounds
-//     rounds.
+//     ball's old worst quality and sliver_quality)), or that tet's alone (no other tet ending
+//     below min(its old quality, sliver_quality): the ball of a vertex of S1 holds tets on S's
+//     sliver triangles, which no move lifts and which would block the rule above), interleaved
+//     with flips, for sliver_rounds rounds.
 //   - Collapses: a tet that no vertex move lifts (four nearly collinear points, each held by its
 //     other tets: femur's creases) gets an edge collapse, its edges shortest first: the removed
 //     end is free, the other stays (or, when free too, first tries the midpoint). Applied when
@@ -33,6 +35,9 @@
 //     not a coarsening). Vertices of S, locked vertices and protected facets are never touched.
 //     Removed vertices stay in the arrays, in no tet. Then flips and a perturbation round, again
 //     while collapses happen (collapse_rounds).
+//   - Polish: the free vertices of the tets left below 0.1 get a longer hill climb (8 times
+//     perturb_trials, finer steps, half of them along the gradient of the tet's quality), then
+//     the tets it lowered a perturbation round; three times at most (with sliver_rounds > 0).
 //   - Flat tets: a tet positive for the exact orient3d but flat to rounding (a double evaluation
 //     could find it zero or inverted: predicates::orient3d_certified) has its free vertices moved
 //     (steps from twice its shortest edge down) until it is certified: a move is accepted when
@@ -73,7 +78,8 @@ struct OptimizeOptions {
   // at most collapse_rounds rounds (see the top); 0: off.
   double collapse_quality = 0.3;
   int collapse_rounds = 4;
-  int perturb_trials = 24;        // trial positions per vertex and round
+  int perturb_trials = 24;        // trial positions per vertex and round (8x in the polish of
+                                  // the tets below 0.1 after the collapses, see the top)
   int num_threads = 0;            // 0: TBB's default; n: an arena of n threads (same result)
   uint64_t seed = 0x5eed;
 };
