@@ -107,6 +107,14 @@ double metric_size(const double m[6]);
 // by collapses stay in mesh.xyz but belong to no tet (TetMesh::to_volume_mesh(true) drops them).
 Result<RefineStats> refine_mesh(TetMesh& mesh, const SizingField& field, const RefineOptions& options = {});
 
+// Renumbers the mesh for memory locality: the used vertices from first_vertex on in the order of a
+// Hilbert curve through the mesh (those before first_vertex keep their ids; the unused ones go
+// last), and the live tets grouped by the curve's rank of their first vertex, deleted slots
+// dropped. The mesh is the same; only ids change. Neighbouring tets and vertices then sit close in
+// memory, which the passes that walk balls and rings over a large mesh need (refinement appends
+// each pass's points along its own curve and reuses freed slots anywhere).
+void order_for_locality(TetMesh& mesh, uint32_t first_vertex);
+
 // Counts the protected facets of live tets (each S triangle once: it has no neighbour).
 size_t count_protected_facets(const TetMesh& mesh);
 

@@ -3,6 +3,8 @@
 // normalized edge lengths converge to [1/sqrt2, sqrt2].
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -260,4 +262,62 @@ TEST(Refine, AnisotropicMetricKernelAndFlips) {
   size_t tets = 0;
   const size_t bad = test::tets_below_in_metric(mesh, field, 0.1, &tets);
   EXPECT_LT(double(bad), 0.02 * double(tets)) << bad << " of " << tets;  // measured 0.9%
+}
+
+// order_for_locality: the same mesh (the same tets by their points, the same flags, protected
+// facets and regions), valid, the vertices before first_vertex unmoved, no deleted slots left,
+// and the vertices of each tet closer in id than refinement left them.
+TEST(OrderForLocality, SameMeshCloserIds) {
+  const SurfaceMesh s = test::icosphere(2);
+  TetMesh mesh = coupled_sphere();
+  const auto first = static_cast<uint32_t>(mesh.num_vertices());
+  ASSERT_TRUE(refine_mesh(mesh, test::ConstantSizing(0.08)).ok());
+  ASSERT_GT(mesh.num_vertices(), size_t(first) + 1000);
+  // Each live tet as the sorted rows (point, vertex flags, protected facet opposite), then its
+  // region and whether it has constrained edges; all tets sorted.
+  auto tets_by_points = [](const TetMesh& m) {
+    std::vector<std::vector<double>> out;
+    for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
+      if (m.is_deleted(t)) continue;
+      std::vector<std::array<double, 4>> rows;
+      for (int i = 0; i < 4; ++i) {
+        const double* p = m.point(m.vertex(t, i));
+        rows.push_back({p[0], p[1], p[2], double(m.vflags[m.vertex(t, i)]) + 256.0 * double((m.tet_flags[t] >> i) & 1u)});
+      }
+      std::sort(rows.begin(), rows.end());
+      std::vector<double> flat;
+      for (const auto& r : rows) flat.insert(flat.end(), r.begin(), r.end());
+      flat.push_back(double(m.tet_region[t]));
+      flat.push_back((m.tet_flags[t] & tflag::kEdgeConstrainedMask) ? 1.0 : 0.0);
+      out.push_back(flat);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  auto mean_id_spread = [](const TetMesh& m) {
+    double sum = 0.0;
+    size_t n = 0;
+    for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
+      if (m.is_deleted(t)) continue;
+      const uint32_t* v = &m.tet_v[4 * size_t(t)];
+      sum += double(*std::max_element(v, v + 4)) - double(*std::min_element(v, v + 4));
+      ++n;
+    }
+    return sum / double(n);
+  };
+  for (size_t v = first; v < mesh.num_vertices(); v += 3) mesh.vflags[v] |= vflag::kLocked;  // flags to carry
+  TetMesh before = mesh;
+  order_for_locality(mesh, first);
+  ASSERT_TRUE(check_mesh(mesh).ok()) << check_mesh(mesh).message();
+  EXPECT_TRUE(mesh.free_tets.empty());
+  EXPECT_EQ(mesh.num_tet_slots(), before.num_live_tets());
+  EXPECT_EQ(mesh.num_vertices(), before.num_vertices());
+  for (uint32_t v = 0; v < first; ++v) {
+    EXPECT_EQ(mesh.vflags[v], before.vflags[v]);
+    EXPECT_TRUE(std::equal(mesh.point(v), mesh.point(v) + 3, before.point(v))) << "vertex " << v;
+  }
+  EXPECT_EQ(count_protected_facets(mesh), count_protected_facets(before));
+  EXPECT_TRUE(tets_by_points(mesh) == tets_by_points(before));
+  test::expect_surface_kept(s, mesh, "sphere reordered");
+  EXPECT_LT(mean_id_spread(mesh), 0.5 * mean_id_spread(before));
 }

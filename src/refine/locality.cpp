@@ -1,0 +1,89 @@
+#include <algorithm>
+#include <cmath>
+
+#include "core/buckets.hpp"
+#include "delaunay/spatial_sort.hpp"
+#include "refine/refine.hpp"
+
+namespace anitet {
+
+void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
+  const size_t nv = mesh.num_vertices();
+  const auto slots = static_cast<uint32_t>(mesh.num_tet_slots());
+  first_vertex = static_cast<uint32_t>(std::min<size_t>(first_vertex, nv));
+  // Every used vertex's rank along a Hilbert curve through the mesh's box.
+  std::vector<uint8_t> used(nv, 0);
+  for (uint32_t t = 0; t < slots; ++t)
+    if (!mesh.is_deleted(t))
+      for (int i = 0; i < 4; ++i)
+        if (mesh.vertex(t, i) != TetMesh::kGhost) used[mesh.vertex(t, i)] = 1;
+  std::vector<uint32_t> curve;
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (uint32_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    curve.push_back(v);
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], mesh.point(v)[k]);
+      hi[k] = std::max(hi[k], mesh.point(v)[k]);
+    }
+  }
+  if (curve.empty()) return;
+  delaunay_detail::hilbert_sort(mesh.xyz.data(), curve.data(), curve.size(), lo, hi);
+  std::vector<uint32_t> rank(nv, TetMesh::kNone);
+  for (size_t k = 0; k < curve.size(); ++k) rank[curve[k]] = static_cast<uint32_t>(k);
+  // New ids: the first ones kept, the used others in curve order, then the unused in id order.
+  std::vector<uint32_t> new_id(nv);
+  for (uint32_t v = 0; v < first_vertex; ++v) new_id[v] = v;
+  uint32_t next = first_vertex;
+  for (uint32_t v : curve)
+    if (v >= first_vertex) new_id[v] = next++;
+  for (uint32_t v = first_vertex; v < nv; ++v)
+    if (!used[v]) new_id[v] = next++;
+  std::vector<double> xyz(mesh.xyz.size());
+  std::vector<uint8_t> vflags(nv);
+  for (uint32_t v = 0; v < nv; ++v) {
+    std::copy_n(mesh.point(v), 3, &xyz[3 * size_t(new_id[v])]);
+    vflags[new_id[v]] = mesh.vflags[v];
+  }
+  mesh.xyz.swap(xyz);
+  mesh.vflags.swap(vflags);
+  // Tets grouped by the rank of their first vertex along the curve (slot order within a group).
+  std::vector<uint32_t> start, order, fill;
+  bucket_by_key(
+      curve.size(),
+      [&](auto&& emit) {
+        for (uint32_t t = 0; t < slots; ++t) {
+          if (mesh.is_deleted(t)) continue;
+          uint32_t r = TetMesh::kNone;
+          for (int i = 0; i < 4; ++i)
+            if (mesh.vertex(t, i) != TetMesh::kGhost) r = std::min(r, rank[mesh.vertex(t, i)]);
+          emit(r, t);
+        }
+      },
+      start, order, fill);
+  std::vector<uint32_t> new_tet(slots, TetMesh::kNone);
+  for (size_t k = 0; k < order.size(); ++k) new_tet[order[k]] = static_cast<uint32_t>(k);
+  const size_t nt = order.size();
+  std::vector<uint32_t> tet_v(4 * nt);
+  std::vector<uint64_t> tet_adj(4 * nt);
+  std::vector<uint16_t> tet_flags(nt);
+  std::vector<int32_t> tet_region(nt);
+  for (size_t k = 0; k < nt; ++k) {
+    const uint32_t t = order[k];
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t v = mesh.vertex(t, i);
+      tet_v[4 * k + i] = v == TetMesh::kGhost ? v : new_id[v];
+      const uint64_t a = mesh.tet_adj[4 * size_t(t) + i];
+      tet_adj[4 * k + i] = a == TetMesh::kNoNeighbour ? a : 4 * uint64_t(new_tet[a >> 2]) + (a & 3);
+    }
+    tet_flags[k] = mesh.tet_flags[t];
+    tet_region[k] = mesh.tet_region[t];
+  }
+  mesh.tet_v.swap(tet_v);
+  mesh.tet_adj.swap(tet_adj);
+  mesh.tet_flags.swap(tet_flags);
+  mesh.tet_region.swap(tet_region);
+  mesh.free_tets.clear();
+}
+
+}  // namespace anitet
