@@ -496,10 +496,11 @@ bool Optimizer::perturb_vertex(uint32_t t, int i, int trials, int levels, bool g
       scale = std::max(scale, std::fabs(e[0]) + std::fabs(e[1]) + std::fabs(e[2]));
     }
   scale *= 0.2;
+  bool along_gradient = false;
   for (int trial = 0; trial < trials; ++trial) {
     double d[3];
-    const bool along_gradient = gradient && (trial / levels) % 2 == 1;
-    if (along_gradient && trial % levels == 0 && !target_gradient(v, t, scale, grad)) break;
+    // Each odd run starts from the gradient where the climb stands (a flat one: a random run).
+    if (trial % levels == 0) along_gradient = gradient && (trial / levels) % 2 == 1 && target_gradient(v, t, scale, grad);
     if (along_gradient) {
       const double r = scale * std::ldexp(1.0, -(trial % levels));
       for (int k = 0; k < 3; ++k) d[k] = r * grad[k];
