@@ -207,10 +207,8 @@ size_t flip_round(FlipContext& c, double quality, const std::vector<uint32_t>& b
         if (c.tet(s) < quality) fresh_bad.push_back(s);
     } else if (c.foreign && deferred) {
       deferred->push_back(t);
-    } else if (c.log) {
-      c.log->push_back(2 * uint64_t(t) + 1);
     } else {
-      c.memo.fail(t);
+      c.record(2 * uint64_t(t) + 1);
     }
   }
   return flips;
@@ -284,10 +282,7 @@ size_t parallel_round(FlipContext& c, double quality, const std::vector<uint32_t
   size_t flips = 0;
   for (Task& task : tasks) {
     meshops::return_pool_slots(m, task.scratch.pool);
-    for (uint64_t e : task.log) {
-      if (e & 1u) c.memo.fail(static_cast<uint32_t>(e >> 1));
-      else c.memo.touch(static_cast<uint32_t>(e >> 1));
-    }
+    for (uint64_t e : task.log) c.record(e);  // (c has no log: into the memo)
     fresh_bad.insert(fresh_bad.end(), task.fresh.begin(), task.fresh.end());
     rest.insert(rest.end(), task.deferred.begin(), task.deferred.end());
     flips += task.flips;

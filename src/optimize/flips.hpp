@@ -128,16 +128,22 @@ struct FlipContext {
     const meshops::ReplaceScratch::SlotPool& p = scratch.pool;
     return !scratch.use_pool || p.free.size() + old_count + (p.end - p.next) >= new_count;
   }
+  // A memo event, 2 v (a change in v's ball) or 2 t + 1 (a failure on t): to the memo, or, in a
+  // task of the parallel round, to its log (replayed into the memo after the tasks).
+  void record(uint64_t event) {
+    const auto id = static_cast<uint32_t>(event >> 1);
+    if (log) {
+      log->push_back(event);
+      if ((event & 1u) == 0) phase_touched[id] = 1;
+    } else if (event & 1u) {
+      memo.fail(id);
+    } else {
+      memo.touch(id);
+    }
+  }
   void touch_tets(const std::vector<meshops::TetVerts>& tets) {
     for (const meshops::TetVerts& f : tets)
-      for (uint32_t x : f) {
-        if (!log) {
-          memo.touch(x);
-          continue;
-        }
-        log->push_back(2 * uint64_t(x));
-        phase_touched[x] = 1;
-      }
+      for (uint32_t x : f) record(2 * uint64_t(x));
   }
   double tet(uint32_t t) const { return quality->tet(mesh, t); }
   double of(const uint32_t v[4]) const { return quality->of(mesh, v); }
