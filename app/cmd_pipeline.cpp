@@ -48,6 +48,15 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
+// The optimizer's counts, as both the text summary and the HTML report give them.
+std::string optimization_counts(const OptimizeStats& o) {
+  return std::to_string(o.moves) + " CVT moves, " + std::to_string(o.flips23) + " 2-3 flips, " +
+         std::to_string(o.edge_removals) + " edge removals, " + std::to_string(o.perturbations) +
+         " sliver perturbations, " + std::to_string(o.collapses) + " sliver collapses, " +
+         std::to_string(o.flat_found - o.flat_left) + " of " + std::to_string(o.flat_found) +
+         " tets flat to rounding opened";
+}
+
 // The run's figures for the HTML report's "Meshing run" table.
 std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r) {
   auto fixed = [](double x, const char* format) {
@@ -75,12 +84,7 @@ std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r)
   rows.emplace_back("refinement", std::to_string(r.refine.splits) + " splits, " + std::to_string(r.refine.collapses) +
                                       " collapses; " + fixed(100.0 * r.refine.length_in_range, "%.1f") +
                                       "% of edges in [1/sqrt2, sqrt2]");
-  rows.emplace_back("optimization", std::to_string(r.optimize.moves) + " CVT moves, " +
-                                        std::to_string(r.optimize.edge_removals) + " edge removals, " +
-                                        std::to_string(r.optimize.perturbations) + " sliver perturbations, " +
-                                        std::to_string(r.optimize.collapses) + " sliver collapses, " +
-                                        std::to_string(r.optimize.flat_found - r.optimize.flat_left) + " of " +
-                                        std::to_string(r.optimize.flat_found) + " tets flat to rounding opened");
+  rows.emplace_back("optimization", optimization_counts(r.optimize));
   return rows;
 }
 
@@ -293,10 +297,7 @@ int run_mesh_pipeline(MeshArgs& args) {
                                                   std::to_string(1 + r.anisotropic_cycles) + " times)"
                                             : std::string())
               << "\n"
-              << "  optimization: " << r.optimize.moves << " CVT moves, " << r.optimize.flips23 << " 2-3 flips, "
-              << r.optimize.edge_removals << " edge removals, " << r.optimize.perturbations
-              << " sliver perturbations, " << r.optimize.collapses << " sliver collapses, " << r.optimize.flat_found - r.optimize.flat_left << " of "
-              << r.optimize.flat_found << " tets flat to rounding opened; radius ratio min " << r.optimize.before.min << " -> "
+              << "  optimization: " << optimization_counts(r.optimize) << "; radius ratio min " << r.optimize.before.min << " -> "
               << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
               << "\n";
     if (r.metric_quality.tets > 0) {
