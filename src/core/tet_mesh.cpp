@@ -31,6 +31,11 @@ uint32_t TetMesh::new_tet(uint32_t a, uint32_t b, uint32_t c, uint32_t d, int32_
     tet_flags.push_back(0);
     tet_region.push_back(0);
   }
+  fill_tet(t, a, b, c, d, region);
+  return t;
+}
+
+void TetMesh::fill_tet(uint32_t t, uint32_t a, uint32_t b, uint32_t c, uint32_t d, int32_t region) {
   uint32_t* v = &tet_v[4 * size_t(t)];
   v[0] = a;
   v[1] = b;
@@ -39,7 +44,6 @@ uint32_t TetMesh::new_tet(uint32_t a, uint32_t b, uint32_t c, uint32_t d, int32_
   std::fill_n(&tet_adj[4 * size_t(t)], 4, kNoNeighbour);
   tet_flags[t] = 0;
   tet_region[t] = region;
-  return t;
 }
 
 void TetMesh::delete_tet(uint32_t t) {

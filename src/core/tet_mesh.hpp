@@ -74,6 +74,9 @@ class TetMesh {
 
   // A new tet slot (reused from the free list when possible), adjacency unset.
   uint32_t new_tet(uint32_t a, uint32_t b, uint32_t c, uint32_t d, int32_t region = 0);
+  // Fills existing slot t with the tet a b c d: no neighbours, no flags, `region` (new_tet() and
+  // the callers that take slots from pools of their own).
+  void fill_tet(uint32_t t, uint32_t a, uint32_t b, uint32_t c, uint32_t d, int32_t region = 0);
   void delete_tet(uint32_t t);
 
   bool is_deleted(uint32_t t) const { return (tet_flags[t] & tflag::kDeleted) != 0; }

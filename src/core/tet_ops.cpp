@@ -204,11 +204,8 @@ bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const st
       } else {
         t = pool.next++;
       }
-      std::copy(v.begin(), v.end(), &mesh.tet_v[4 * size_t(t)]);
-      std::fill_n(&mesh.tet_adj[4 * size_t(t)], 4, TetMesh::kNoNeighbour);
-      mesh.tet_region[t] = region;
+      mesh.fill_tet(t, v[0], v[1], v[2], v[3], region);
     }
-    mesh.tet_flags[t] = 0;
     for (int k = 0; k < 6 && !constrained.empty(); ++k)
       if (std::binary_search(constrained.begin(), constrained.end(),
                              pair_key(v[kEdgeVertex[k][0]], v[kEdgeVertex[k][1]])))
