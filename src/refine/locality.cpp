@@ -1,7 +1,7 @@
 #include <algorithm>
-#include <cmath>
 
 #include "core/buckets.hpp"
+#include "core/bvh.hpp"
 #include "delaunay/spatial_sort.hpp"
 #include "refine/refine.hpp"
 
@@ -18,17 +18,12 @@ void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
       for (int i = 0; i < 4; ++i)
         if (mesh.vertex(t, i) != TetMesh::kGhost) used[mesh.vertex(t, i)] = 1;
   std::vector<uint32_t> curve;
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (uint32_t v = 0; v < nv; ++v) {
-    if (!used[v]) continue;
-    curve.push_back(v);
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], mesh.point(v)[k]);
-      hi[k] = std::max(hi[k], mesh.point(v)[k]);
-    }
-  }
+  for (uint32_t v = 0; v < nv; ++v)
+    if (used[v]) curve.push_back(v);
   if (curve.empty()) return;
-  delaunay_detail::hilbert_sort(mesh.xyz.data(), curve.data(), curve.size(), lo, hi);
+  // (The unused vertices, removed by collapses, lie inside: the box is the used ones'.)
+  const Box3 box = bounding_box(mesh.xyz.data(), nv);
+  delaunay_detail::hilbert_sort(mesh.xyz.data(), curve.data(), curve.size(), box.lo, box.hi);
   std::vector<uint32_t> rank(nv, TetMesh::kNone);
   for (size_t k = 0; k < curve.size(); ++k) rank[curve[k]] = static_cast<uint32_t>(k);
   // New ids: the first ones kept, the used others in curve order, then the unused in id order.
