@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include "core/bvh.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet::optimize_detail {
@@ -157,22 +158,15 @@ std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality
 
 std::vector<uint8_t> median_sides(const TetMesh& m) {
   const auto nv = static_cast<uint32_t>(m.num_vertices());
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (uint32_t v = 0; v < nv; ++v)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], m.point(v)[k]);
-      hi[k] = std::max(hi[k], m.point(v)[k]);
-    }
+  if (nv == 0) return {};
+  const Box3 box = bounding_box(m.xyz.data(), nv);
   int axis = 0;
   for (int k = 1; k < 3; ++k)
-    if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+    if (box.hi[k] - box.lo[k] > box.hi[axis] - box.lo[axis]) axis = k;
   std::vector<double> coords(nv);
   for (uint32_t v = 0; v < nv; ++v) coords[v] = m.point(v)[axis];
-  double cut = 0.0;
-  if (nv > 0) {
-    std::nth_element(coords.begin(), coords.begin() + nv / 2, coords.end());
-    cut = coords[nv / 2];
-  }
+  std::nth_element(coords.begin(), coords.begin() + nv / 2, coords.end());
+  const double cut = coords[nv / 2];
   std::vector<uint8_t> side(nv);
   for (uint32_t v = 0; v < nv; ++v) side[v] = m.point(v)[axis] < cut ? 0 : 1;
   return side;
