@@ -346,6 +346,9 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
   keep_count_ = keep_count;
   degeneracy_ = degeneracy;
   pid_ = pid;
+  // A point in a frozen tet belongs to another part.
+  frozen_hit_ = refuse_frozen_ && store_->region(t0) < 0;
+  if (frozen_hit_) return false;
   cavity_.clear();
   marks_.clear();
   marks_.set(t0, TetMarks::kIn);
@@ -376,6 +379,7 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
     for (int i = 0; i < 4; ++i)
       if (bounds_for_sure(c, i, respect_protected)) shrink_queue_.push_back({c, i});
   }
+  if (frozen_hit_) return false;
   if (keep_left() || !shrink_to_star(t0, pid, respect_protected) || keep_left()) return false;
   collect_boundary(respect_protected);
   fill_cavity(pid, true);
@@ -417,7 +421,14 @@ bool CavityKernel::kept_can_stay(bool respect_protected) {
 // yet (joining the cavity when in conflict), as growth does; the marks it sets are final.
 bool CavityKernel::bounds_for_sure(uint32_t c, int i, bool respect_protected) {
   const uint64_t adj = store_->adj(c, i);
-  if (adj == kNoNeighbour || (respect_protected && ((store_->flags(c) >> i) & 1u))) return true;
+  if (adj == kNoNeighbour) return true;
+  if (respect_protected && ((store_->flags(c) >> i) & 1u)) {
+    if (refuse_frozen_ && !frozen_hit_) {
+      const auto n = static_cast<uint32_t>(adj >> 2);
+      frozen_hit_ = store_->region(n) < 0 && in_conflict<false>(n, pt(pid_), pid_);
+    }
+    return true;
+  }
   const auto n = static_cast<uint32_t>(adj >> 2);
   uint32_t mark = marks_.get(n);
   if (mark == TetMarks::kNone) {

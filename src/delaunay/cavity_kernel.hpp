@@ -106,6 +106,10 @@ class CavityKernel {
                           size_t keep_count = 0, bool force_keep = false,
                           const DegeneracyOracle* degeneracy = nullptr, bool early_refusal = true);
 
+  // insert_constrained() refuses the point when a protected facet of the cavity has a frozen
+  // tet (negative region) in conflict behind it (InsertOptions::refuse_frozen_conflict).
+  void set_refuse_frozen(bool on) { refuse_frozen_ = on; }
+
   // Parallel bulk build (delaunay.cpp): tet t belongs to part tet_part[t] (kNoPart: none), the
   // part of all its real vertices; the tets a task creates are its part's. While tasks run, each
   // on its own part with its own kernel and slot pool, a task writes only tets of its part and
@@ -213,6 +217,8 @@ class CavityKernel {
   const uint32_t* keep_ = nullptr;
   size_t keep_count_ = 0;
   const DegeneracyOracle* degeneracy_ = nullptr;  // insert_constrained()'s, else null
+  bool refuse_frozen_ = false;  // set_refuse_frozen()
+  bool frozen_hit_ = false;     // this insertion met a frozen tet in conflict
   uint32_t pid_ = TetMesh::kNone;                // the point being inserted (for degeneracy_)
   std::vector<uint32_t> ejected_;                      // tets defend_constrained_edges() took out
   std::vector<BoundaryFacet> boundary_;

@@ -117,6 +117,12 @@ struct InsertOptions {
   // With force_keep: refuse the point before growing the cavity when a quick local test shows
   // the shrinking would eject a kept tet (same outcome, same mesh; off only to compare).
   bool early_refusal = true;
+  // A point in a frozen tet (a negative region: the halo of a part in distributed/), or whose
+  // cavity has a protected facet with a frozen tet in conflict behind it, is refused (kBlocked):
+  // its Delaunay cavity would take a tet of another part, so the point waits for the round
+  // where that part is its own.
+  // Cutting the cavity short there instead left tets that no later insertion removes.
+  bool refuse_frozen_conflict = false;
 };
 
 struct InsertResult {

@@ -83,6 +83,7 @@ InsertResult PointInserter::insert(const double p[3], uint32_t hint, const Inser
     case delaunay_detail::Located::kInGhost:
       break;
   }
+  kernel_->set_refuse_frozen(options.refuse_frozen_conflict);
   if (!kernel_->insert_constrained(loc.tet, pid, options.respect_protected, options.keep_tets, options.keep_count,
                                    options.force_keep, options.degeneracy, options.early_refusal)) {
     undo_vertex();

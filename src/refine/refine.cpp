@@ -288,23 +288,35 @@ uint32_t Refiner::insert_in_metric(const double p[3], const double mp[6], int32_
   in_cavity_.resize(mesh_.num_tet_slots(), 0);
   cavity_ = ring_tets_;
   for (uint32_t t : cavity_) in_cavity_[t] = 2;
-  for (size_t k = 0; k < cavity_.size() && cavity_.size() < kMaxCavity; ++k) {
+  bool frozen_hit = false;
+  if (options_.defer_at_frozen)
+    for (uint32_t t : ring_tets_) frozen_hit |= mesh_.tet_region[t] < 0;
+  auto in_metric_sphere = [&](uint32_t n) {
+    double q[4][3];
+    for (int j = 0; j < 4; ++j) map.apply(mesh_.point(mesh_.vertex(n, j)), q[j]);
+    return !(predicates::orient3d(q[0], q[1], q[2], q[3]) > 0 && predicates::insphere(q[0], q[1], q[2], q[3], pm) <= 0);
+  };
+  for (size_t k = 0; k < cavity_.size() && cavity_.size() < kMaxCavity && !frozen_hit; ++k) {
     const uint32_t t = cavity_[k];
     for (int i = 0; i < 4; ++i) {
-      if (mesh_.facet_protected(t, i)) continue;
+      if (mesh_.facet_protected(t, i)) {
+        // (defer_at_frozen: a frozen tet in conflict behind it puts the point off.)
+        const uint32_t n = mesh_.neighbour(t, i);
+        if (options_.defer_at_frozen && mesh_.tet_adj[4 * size_t(t) + i] != TetMesh::kNoNeighbour &&
+            mesh_.tet_region[n] < 0 && in_metric_sphere(n))
+          frozen_hit = true;
+        continue;
+      }
       const uint32_t n = mesh_.neighbour(t, i);
       if (n == TetMesh::kNone || in_cavity_[n] || mesh_.is_deleted(n) || mesh_.is_ghost(n)) continue;
       if (mesh_.tet_region[n] != region || (mesh_.tet_flags[n] & tflag::kEdgeConstrainedMask)) continue;
-      double q[4][3];
-      for (int j = 0; j < 4; ++j) map.apply(mesh_.point(mesh_.vertex(n, j)), q[j]);
-      if (predicates::orient3d(q[0], q[1], q[2], q[3]) > 0 && predicates::insphere(q[0], q[1], q[2], q[3], pm) <= 0)
-        continue;
+      if (!in_metric_sphere(n)) continue;
       in_cavity_[n] = 1;
       cavity_.push_back(n);
     }
   }
   // Star-shapedness: facet i of t sees p when t with vertex i replaced by p is positive.
-  bool ok = true;
+  bool ok = !frozen_hit;
   for (bool changed = true; changed && ok;) {
     changed = false;
     for (uint32_t t : cavity_) {
@@ -559,7 +571,9 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       }
     }
     if (!created) {
-      const InsertResult res = inserter_.insert(m, hint);
+      InsertOptions insert_options;
+      insert_options.refuse_frozen_conflict = options_.defer_at_frozen;
+      const InsertResult res = inserter_.insert(m, hint, insert_options);
       if (res.ok()) nv = res.vertex;
       created = &inserter_.new_tets();
     }

@@ -59,6 +59,11 @@ struct RefineOptions {
   int max_passes = 30;
   double stop_fraction = 1e-3;  // stop when a pass changes fewer than this share of the edges
   bool collapse = true;
+  // A split point whose Delaunay cavity (Euclidean or metric) would take a frozen tet (negative
+  // region: the halo of a part in distributed/) behind a protected facet is put off
+  // (InsertOptions::refuse_frozen_conflict), so that each part stays Delaunay up to its frozen
+  // interface and the next round, with the interface moved, inserts it as the whole mesh would.
+  bool defer_at_frozen = false;
   // Threads for the split points' measures (midpoint, metric, vetoes): 0 TBB's default, n an
   // arena of n threads. The mesh does not depend on it.
   int num_threads = 0;

@@ -564,6 +564,63 @@ TEST(PointInserter, ProtectedFacetsSurviveRandomInsertions) {
   }
 }
 
+// refuse_frozen_conflict (the parts of distributed/): the tets with x > 0.5 are frozen (region
+// -1, every facet protected, as a part's halo). A point whose cavity would take one of them is
+// refused; one that goes in leaves no frozen neighbour of its tets holding it in its sphere, and
+// the frozen tets stay as they were. Without the option the same points go in.
+TEST(PointInserter, FrozenConflictRefusesThePoint) {
+  const std::vector<double> xyz = test::random_cube(400, 21);
+  TetMesh base;
+  ASSERT_TRUE(delaunay_tetrahedralize(base, xyz.data(), 400).ok());
+  std::set<std::array<uint32_t, 4>> frozen;
+  for (uint32_t t = 0; t < base.num_tet_slots(); ++t) {
+    if (base.is_deleted(t) || base.is_ghost(t)) continue;
+    double cx = 0.0;
+    for (int i = 0; i < 4; ++i) cx += 0.25 * base.point(base.vertex(t, i))[0];
+    if (cx <= 0.5) continue;
+    base.tet_region[t] = -1;
+    for (int i = 0; i < 4; ++i) protect(base, t, i);
+    frozen.insert({base.vertex(t, 0), base.vertex(t, 1), base.vertex(t, 2), base.vertex(t, 3)});
+  }
+  ASSERT_GT(frozen.size(), 100u);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.1, 0.9), ux(0.1, 0.5);
+  size_t refused = 0, inserted = 0;
+  for (int i = 0; i < 300; ++i) {
+    const double p[3] = {ux(rng), u(rng), u(rng)};
+    TetMesh with = base, without = base;
+    PointInserter a(with), b(without);
+    InsertOptions defer;
+    defer.refuse_frozen_conflict = true;
+    const InsertResult ra = a.insert(p, TetMesh::kNone, defer);
+    const InsertResult rb = b.insert(p);
+    if (rb.status != InsertStatus::kInserted) continue;
+    if (ra.status == InsertStatus::kBlocked) {
+      ++refused;
+      ASSERT_EQ(with.tet_v, base.tet_v) << "a refused point changed the mesh";
+      continue;
+    }
+    ASSERT_EQ(ra.status, InsertStatus::kInserted) << insert_status_name(ra.status);
+    ++inserted;
+    expect_new_tets_valid(with, a.new_tets(), ra.vertex);
+    for (uint32_t t : a.new_tets())
+      for (int k = 0; k < 4; ++k) {
+        const uint32_t n = with.neighbour(t, k);
+        if (with.is_ghost(t) || with.is_ghost(n) || with.tet_region[n] >= 0) continue;
+        const double* q[4];
+        for (int j = 0; j < 4; ++j) q[j] = with.point(with.vertex(n, j));
+        EXPECT_LE(predicates::insphere(q[0], q[1], q[2], q[3], p), 0) << "a frozen neighbour holds the point";
+      }
+    std::set<std::array<uint32_t, 4>> still;
+    for (uint32_t t = 0; t < with.num_tet_slots(); ++t)
+      if (!with.is_deleted(t) && with.tet_region[t] < 0)
+        still.insert({with.vertex(t, 0), with.vertex(t, 1), with.vertex(t, 2), with.vertex(t, 3)});
+    ASSERT_EQ(still, frozen);
+  }
+  EXPECT_GT(refused, 10u);
+  EXPECT_GT(inserted, 10u);
+}
+
 // Meshes without ghost tets (read from a file, or cut to a domain): facets without neighbour
 // bound the cavity, and points beyond them are reported.
 TEST(PointInserter, MeshWithoutGhosts) {
