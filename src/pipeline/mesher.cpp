@@ -336,7 +336,16 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
     }
     result.stages.push_back({"sizing", since(t), 0});
     const ScaledSizing scaled(*field, options_.refine.size_scale > 0.0 ? options_.refine.size_scale : 1.0);
-    if (options_.run_refine) {
+    if (options_.stage3) {
+      if (!options_.run_refine || !options_.run_optimize)
+        return Status(Error::NotImplemented, "stages 3b/3c in parts need both refinement and optimization");
+      if (Status st = progress("refine", kDoneAfterSizing); !st.ok()) return st;
+      t = Clock::now();
+      if (Status st = options_.stage3(mesh, *field, result.refine, result.optimize); !st.ok())
+        return Status(st.code(), "stages 3b/3c in parts: " + st.message());
+      result.stages.push_back({"refine+optimize in parts", since(t), result.optimize.after.tets});
+    }
+    if (options_.run_refine && !options_.stage3) {
       if (Status st = progress("refine", kDoneAfterSizing); !st.ok()) return st;
       t = Clock::now();
       const auto coupled_vertices = static_cast<uint32_t>(mesh.num_vertices());
@@ -349,7 +358,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
       result.refine = refined.value();
       result.stages.push_back({"refine", since(t), refined->tets_after});
     }
-    if (options_.run_optimize) {
+    if (options_.run_optimize && !options_.stage3) {
       if (Status st = progress("optimize", kDoneAfterRefine); !st.ok()) return st;
       t = Clock::now();
       Result<OptimizeStats> optimized = optimize_mesh(mesh, scaled, options_.optimize);
@@ -358,7 +367,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
       result.optimize = optimized.value();
       result.stages.push_back({"optimize", since(t), optimized->after.tets});
     }
-    if (options_.run_refine && options_.run_optimize && result.optimize.anisotropic &&
+    if (options_.run_refine && options_.run_optimize && !options_.stage3 && result.optimize.anisotropic &&
         options_.anisotropic_cycles > 0) {
       if (Status st = progress("cycles", kDoneAfterRefine); !st.ok()) return st;
       t = Clock::now();

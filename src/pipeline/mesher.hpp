@@ -64,6 +64,12 @@ struct MesherOptions {
   // in all). Off by default.
   bool boundary_layer_sizing = false;
   const SizingField* sizing = nullptr;
+  // When set, runs stages 3b and 3c (and the anisotropic cycles) in place of refine_mesh and
+  // optimize_mesh: given the coupled mesh and the sizing field (unscaled: refine.size_scale
+  // applies), it leaves the final mesh in `mesh` and its figures in `refine` and `optimize`.
+  // The MPI driver (mpi/) runs them in parts, one per rank (distributed::run_in_parts). Needs
+  // run_refine and run_optimize.
+  std::function<Status(TetMesh& mesh, const SizingField& field, RefineStats& refine, OptimizeStats& optimize)> stage3;
   metric::SurfaceSizingOptions surface_sizing = default_surface_sizing();
 
   static metric::SurfaceSizingOptions default_surface_sizing() {
