@@ -85,6 +85,10 @@ nlohmann::json worst_json(const WorstTets& w) {
 
 int run_mesh_layers(MeshArgs& args) {
   const std::string cmd = "anitet mesh";
+  if (distributed_run()) {
+    std::cerr << cmd << ": --stop-after layers is serial: run `anitet mesh`\n";
+    return kExitNotImplemented;
+  }
   if (const int code = check_output_path(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;

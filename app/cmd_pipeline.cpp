@@ -170,7 +170,23 @@ int run_mesh_pipeline(MeshArgs& args) {
     field_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
-  ProgressBar bar(!args.quiet && !args.json && isatty(STDERR_FILENO));
+  const DistributedRun* distributed = distributed_run();
+  if (distributed) {
+    if (!args.bl_patches.empty()) {
+      std::cerr << cmd << ": boundary layers are not implemented with MPI yet: run `anitet mesh`\n";
+      return kExitNotImplemented;
+    }
+    if (args.no_refine || args.no_optimize) {
+      std::cerr << cmd << ": with MPI, refinement and optimization both run (they are what the ranks share)\n";
+      return kExitUsage;
+    }
+    options.stage3 = [distributed, &options](TetMesh& mesh, const SizingField& f, RefineStats& refine,
+                                             OptimizeStats& optimize) {
+      return distributed->stage3(mesh, f, options.refine, options.optimize, options.anisotropic_cycles, refine,
+                                 optimize);
+    };
+  }
+  ProgressBar bar(!args.quiet && !args.json && isatty(STDERR_FILENO) && (!distributed || distributed->rank == 0));
   options.progress = [&bar](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
   Result<MesherResult> run = Mesher(options).run_validated(checked.surface);
   if (!run.ok()) {
@@ -180,6 +196,7 @@ int run_mesh_pipeline(MeshArgs& args) {
     return e == Error::NotImplemented ? kExitNotImplemented : e == Error::InvalidArgument ? kExitUsage : kExitInternal;
   }
   MesherResult& r = run.value();
+  if (distributed && distributed->rank != 0) return kExitOk;  // rank 0 writes and reports
   // The field built above is the pipeline's sizing stage, given to it ready: its time counts.
   if (field_seconds > 0.0) {
     for (StageReport& st : r.stages)
@@ -312,5 +329,16 @@ int run_mesh_pipeline(MeshArgs& args) {
   }
   return kExitOk;
 }
+
+}  // namespace anitet::cli
+
+namespace anitet::cli {
+
+namespace {
+const DistributedRun* g_distributed = nullptr;
+}  // namespace
+
+void set_distributed_run(const DistributedRun* run) { g_distributed = run; }
+const DistributedRun* distributed_run() { return g_distributed; }
 
 }  // namespace anitet::cli

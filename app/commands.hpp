@@ -2,17 +2,37 @@
 // prints results on stdout and errors (naming the file) on stderr, and never throws.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "core/sizing.hpp"
 #include "core/surface_mesh.hpp"
+#include "core/tet_mesh.hpp"
 #include "core/volume_mesh.hpp"
 #include "io/patch_names.hpp"
+#include "optimize/optimize.hpp"
+#include "refine/refine.hpp"
 #include "recovery/recovery.hpp"
 #include "metric_options.hpp"
 #include "surface_check.hpp"
 
 namespace anitet::cli {
+
+// The whole tool: parses the arguments, runs a subcommand, returns the exit code; never throws.
+int cli_main(int argc, char** argv);
+
+// Set by the MPI driver (mpi/main_mpi.cpp) before cli_main: `anitet mesh` then runs stages 3b/3c
+// through `stage3` (one part per rank), and only rank 0 writes the mesh and prints the report.
+struct DistributedRun {
+  int rank = 0, ranks = 1;
+  std::function<Status(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
+                       const OptimizeOptions& optimize_options, int anisotropic_cycles, RefineStats& refine,
+                       OptimizeStats& optimize)>
+      stage3;
+};
+void set_distributed_run(const DistributedRun* run);
+const DistributedRun* distributed_run();  // null in the serial tool
 
 struct CheckSurfaceArgs {
   std::string input;

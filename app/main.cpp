@@ -1,4 +1,6 @@
 // anitet: the command-line tool. Subcommands: check-surface, quality, report, mesh, recover.
+// cli_main is the whole tool; main_serial.cpp (`anitet`) and mpi/main_mpi.cpp (`anitet-mpi`)
+// call it.
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -254,7 +256,7 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int anitet::cli::cli_main(int argc, char** argv) {
   try {
     return run(argc, argv);
   } catch (const std::bad_alloc&) {

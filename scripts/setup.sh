@@ -13,6 +13,7 @@ packages=(
   cgns-convert openfoam python3-h5py python3-netcdf4  # their consumers in the `solver` tests
   doxygen  # renders the C API reference; its test fails on an undocumented declaration
   clang  # libFuzzer, for the fuzz targets of fuzz/ (scripts/fuzz.sh)
+  libopenmpi-dev openmpi-bin  # anitet-mpi (mpi/) and its test under mpirun
 )
 packages+=("$@")  # extra packages a caller wants (bench/ adds gmsh, tetgen, libcgal-dev)
 
