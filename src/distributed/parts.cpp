@@ -115,34 +115,37 @@ TetMesh compact(const TetMesh& m) {
   return c;
 }
 
+// The counts a part's message carries (passes and the anisotropic flag besides).
+constexpr size_t RefineStats::*kRefineCounts[] = {&RefineStats::splits, &RefineStats::split_rejected,
+                                                  &RefineStats::collapses, &RefineStats::collapse_rejected,
+                                                  &RefineStats::metric_flips};
+constexpr size_t OptimizeStats::*kOptimizeCounts[] = {
+    &OptimizeStats::moves,        &OptimizeStats::moves_rejected, &OptimizeStats::flips23,
+    &OptimizeStats::edge_removals, &OptimizeStats::perturbations, &OptimizeStats::collapses,
+    &OptimizeStats::flat_found,   &OptimizeStats::flat_left};
+
 void write_stats(Writer& w, const RefineStats& r, const OptimizeStats& o) {
-  for (size_t v : {size_t(r.passes), r.splits, r.split_rejected, r.collapses, r.collapse_rejected, r.metric_flips,
-                   o.moves, o.moves_rejected, o.flips23, o.edge_removals, o.perturbations, o.collapses, o.flat_found,
-                   o.flat_left, size_t(o.anisotropic)})
-    w.value<uint64_t>(v);
+  for (auto count : kRefineCounts) w.value<uint64_t>(r.*count);
+  for (auto count : kOptimizeCounts) w.value<uint64_t>(o.*count);
+  w.value<int32_t>(r.passes);
+  w.value<uint8_t>(o.anisotropic ? 1 : 0);
   w.value(r.seconds);
   w.value(o.seconds);
 }
 
 bool read_stats(Reader& rd, RefineStats& r, OptimizeStats& o) {
-  uint64_t v[15];
-  for (uint64_t& x : v)
-    if (!rd.value(x)) return false;
-  r.passes = int(v[0]);
-  r.splits = v[1];
-  r.split_rejected = v[2];
-  r.collapses = v[3];
-  r.collapse_rejected = v[4];
-  r.metric_flips = v[5];
-  o.moves = v[6];
-  o.moves_rejected = v[7];
-  o.flips23 = v[8];
-  o.edge_removals = v[9];
-  o.perturbations = v[10];
-  o.collapses = v[11];
-  o.flat_found = v[12];
-  o.flat_left = v[13];
-  o.anisotropic = v[14] != 0;
+  uint64_t v = 0;
+  for (auto count : kRefineCounts) {
+    if (!rd.value(v)) return false;
+    r.*count = v;
+  }
+  for (auto count : kOptimizeCounts) {
+    if (!rd.value(v)) return false;
+    o.*count = v;
+  }
+  uint8_t anisotropic = 0;
+  if (!rd.value(r.passes) || !rd.value(anisotropic)) return false;
+  o.anisotropic = anisotropic != 0;
   return rd.value(r.seconds) && rd.value(o.seconds);
 }
 
@@ -386,21 +389,10 @@ Result<TetMesh> deserialize_mesh(const std::vector<uint8_t>& bytes, std::vector<
 }
 
 void add_counts(const MeshPart& part, RefineStats& refine, OptimizeStats& optimize) {
+  for (auto count : kRefineCounts) refine.*count += part.refine.*count;
+  for (auto count : kOptimizeCounts) optimize.*count += part.optimize.*count;
   refine.passes = std::max(refine.passes, part.refine.passes);
-  refine.splits += part.refine.splits;
-  refine.split_rejected += part.refine.split_rejected;
-  refine.collapses += part.refine.collapses;
-  refine.collapse_rejected += part.refine.collapse_rejected;
-  refine.metric_flips += part.refine.metric_flips;
   refine.seconds = std::max(refine.seconds, part.refine.seconds);
-  optimize.moves += part.optimize.moves;
-  optimize.moves_rejected += part.optimize.moves_rejected;
-  optimize.flips23 += part.optimize.flips23;
-  optimize.edge_removals += part.optimize.edge_removals;
-  optimize.perturbations += part.optimize.perturbations;
-  optimize.collapses += part.optimize.collapses;
-  optimize.flat_found += part.optimize.flat_found;
-  optimize.flat_left += part.optimize.flat_left;
   optimize.anisotropic |= part.optimize.anisotropic;
   optimize.seconds = std::max(optimize.seconds, part.optimize.seconds);
 }

@@ -81,16 +81,8 @@ void measure_lengths(const TetMesh& mesh, const SizingField& field, const Refine
   std::vector<refine_detail::Edge> edges;
   refine_detail::EdgeScratch scratch;
   refine_detail::collect_edges(mesh, metrics, edges, scratch);
-  size_t counted = 0, in_range = 0;
-  double sum = 0.0;
-  for (const refine_detail::Edge& e : edges) {
-    if (e.on_surface) continue;
-    ++counted;
-    sum += e.length;
-    in_range += e.length >= options.collapse_length && e.length <= options.split_length ? 1 : 0;
-  }
-  stats.length_mean = counted ? sum / double(counted) : 0.0;
-  stats.length_in_range = counted ? double(in_range) / double(counted) : 1.0;
+  refine_detail::length_summary(edges, options.collapse_length, options.split_length, stats.length_mean,
+                                stats.length_in_range);
   stats.vertices_after = refine_detail::live_vertex_count(mesh);
   stats.tets_after = mesh.num_live_tets();
 }

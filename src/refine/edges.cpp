@@ -80,4 +80,18 @@ size_t live_vertex_count(const TetMesh& mesh) {
   return n;
 }
 
+void length_summary(const std::vector<Edge>& edges, double collapse_length, double split_length, double& mean,
+                    double& in_range) {
+  size_t counted = 0, inside = 0;
+  double sum = 0.0;
+  for (const Edge& e : edges) {
+    if (e.on_surface) continue;
+    ++counted;
+    sum += e.length;
+    if (e.length >= collapse_length && e.length <= split_length) ++inside;
+  }
+  mean = counted ? sum / double(counted) : 0.0;
+  in_range = counted ? double(inside) / double(counted) : 1.0;
+}
+
 }  // namespace anitet::refine_detail

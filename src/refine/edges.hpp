@@ -36,4 +36,9 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
 // Vertices used by a live tet.
 size_t live_vertex_count(const TetMesh& mesh);
 
+// Mean normalized length of the edges not on a protected facet, and the share of them in
+// [collapse_length, split_length] (1 when there are none).
+void length_summary(const std::vector<Edge>& edges, double collapse_length, double split_length, double& mean,
+                    double& in_range);
+
 }  // namespace anitet::refine_detail

@@ -739,16 +739,8 @@ Result<RefineStats> Refiner::run() {
     if (double(splits + collapses) < options_.stop_fraction * double(edges.size())) break;
   }
   refine_detail::collect_edges(mesh_, metrics_, edges, edge_scratch_);
-  size_t counted = 0, in_range = 0;
-  double sum = 0.0;
-  for (const refine_detail::Edge& e : edges) {
-    if (e.on_surface) continue;
-    ++counted;
-    sum += e.length;
-    if (e.length >= options_.collapse_length && e.length <= options_.split_length) ++in_range;
-  }
-  stats_.length_mean = counted ? sum / double(counted) : 0.0;
-  stats_.length_in_range = counted ? double(in_range) / double(counted) : 1.0;
+  refine_detail::length_summary(edges, options_.collapse_length, options_.split_length, stats_.length_mean,
+                                stats_.length_in_range);
   stats_.vertices_after = refine_detail::live_vertex_count(mesh_);
   stats_.tets_after = mesh_.num_live_tets();
   stats_.seconds = std::chrono::duration<double>(Clock::now() - start).count();
