@@ -182,8 +182,7 @@ int run_mesh_pipeline(MeshArgs& args) {
     }
     options.stage3 = [distributed, &options](TetMesh& mesh, const SizingField& f, RefineStats& refine,
                                              OptimizeStats& optimize) {
-      return distributed->stage3(mesh, f, options.refine, options.optimize, options.anisotropic_cycles, refine,
-                                 optimize);
+      return distributed->stage3(mesh, f, options.refine, options.optimize, refine, optimize);
     };
   }
   ProgressBar bar(!args.quiet && !args.json && isatty(STDERR_FILENO) && (!distributed || distributed->rank == 0));

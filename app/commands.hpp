@@ -27,8 +27,7 @@ int cli_main(int argc, char** argv);
 struct DistributedRun {
   int rank = 0, ranks = 1;
   std::function<Status(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
-                       const OptimizeOptions& optimize_options, int anisotropic_cycles, RefineStats& refine,
-                       OptimizeStats& optimize)>
+                       const OptimizeOptions& optimize_options, RefineStats& refine, OptimizeStats& optimize)>
       stage3;
 };
 void set_distributed_run(const DistributedRun* run);

@@ -143,13 +143,12 @@ int main(int argc, char** argv) {
     run.ranks = ranks;
     run.stage3 = [&exchange, &entered](anitet::TetMesh& mesh, const anitet::SizingField& field,
                                        const anitet::RefineOptions& refine_options,
-                                       const anitet::OptimizeOptions& optimize_options, int cycles,
+                                       const anitet::OptimizeOptions& optimize_options,
                                        anitet::RefineStats& refine, anitet::OptimizeStats& optimize) {
       entered = true;
       if (!all_ranks_ready(true))
         return Status(Error::Internal, "another rank failed before stages 3b/3c (see its message)");
-      anitet::distributed::PartsOptions options;
-      options.anisotropic_cycles = cycles;
+      const anitet::distributed::PartsOptions options;
       return anitet::distributed::run_in_parts(mesh, field, refine_options, optimize_options, options, exchange,
                                                refine, optimize);
     };

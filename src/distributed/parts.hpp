@@ -107,7 +107,6 @@ class Exchange {
 struct PartsOptions {
   int rings = 4;   // move_interfaces' rings
   int zone = 6;    // and its zone (<= 0: every tet in a part in the second round too)
-  int anisotropic_cycles = 2;  // MesherOptions::anisotropic_cycles
 };
 
 // Stages 3b/3c of `mesh` (the coupled mesh; rank 0's is sent to all) in ranks() parts, rank r
@@ -116,8 +115,8 @@ struct PartsOptions {
 // (what the first round could not touch). Each round ends with the merged mesh on every rank.
 // Refining and optimizing in separate rounds keeps the optimizer away from the coarse coupled
 // tets that freeze the first refinement's interfaces: with both in one round it spent 20 times
-// the serial perturbations on tets there that no move could lift. With an anisotropic field,
-// both run anisotropic_cycles more times. `refine` and `optimize` get the parts' counts summed
+// the serial perturbations on tets there that no move could lift. Anisotropic fields are
+// refused (Error::NotImplemented). `refine` and `optimize` get the parts' counts summed
 // (rank 0: all parts; elsewhere its own), the lengths and qualities of the final mesh. A failure
 // on any rank fails every rank, with its message. The result depends on ranks() (the parts), not
 // on the threads of each rank.

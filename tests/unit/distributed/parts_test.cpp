@@ -297,3 +297,22 @@ TEST(Parts, PipelineInPartsIsValidConstrainedAndAsGoodAsSerial) {
     EXPECT_EQ(again->mesh.xyz, r->mesh.xyz) << what;
   }
 }
+
+// Anisotropic fields are refused in parts (not tried there yet), before any round.
+TEST(Parts, AnisotropicFieldIsRefused) {
+  struct Stretched final : SizingField {
+    void metric(const double*, double m[6]) const override {
+      const double v[6] = {1.0, 0.0, 100.0, 0.0, 0.0, 1.0};
+      std::copy(v, v + 6, m);
+    }
+  } field;
+  TetMesh m = coupled_knight();
+  const std::vector<uint32_t> before = m.tet_v;
+  Mailbox box(1);
+  ThreadExchange ex(box, 0, 1);
+  RefineStats rs;
+  OptimizeStats os;
+  const Status st = run_in_parts(m, field, RefineOptions(), OptimizeOptions(), PartsOptions(), ex, rs, os);
+  EXPECT_EQ(st.code(), Error::NotImplemented) << st.message();
+  EXPECT_EQ(m.tet_v, before);
+}
