@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
+#include <new>
 #include <optional>
 
 #include <tbb/task_group.h>
@@ -198,7 +200,16 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
     ~WaitForGrid() { group.wait(); }
   } wait_for_grid{grid_task};
   if ((options_.run_refine || options_.run_optimize) && !options_.sizing)
-    grid_task.run([&] { default_grid.emplace(metric::surface_sizing_field(surface, options_.surface_sizing)); });
+    grid_task.run([&] {
+      // An exception must not leave the task: the guard above waits in a destructor.
+      try {
+        default_grid.emplace(metric::surface_sizing_field(surface, options_.surface_sizing));
+      } catch (const std::bad_alloc&) {
+        default_grid.emplace(Status(Error::OutOfMemory, "out of memory"));
+      } catch (const std::exception& e) {
+        default_grid.emplace(Status(Error::Internal, std::string("building it threw: ") + e.what()));
+      }
+    });
   // Stages 1 and 2. When stage 2 cannot recover S1, stage 1 is run again with another number of
   // layers (fewer first, down to 1, then more, up to 3): S1 changes shape and its recovery may then
   // succeed (bimba_low: not with 2 layers, yes with 1). The fast split-constraints recovery is
