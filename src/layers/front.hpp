@@ -61,13 +61,7 @@ class Front {
   // returns false to stop.
   template <class Visit>
   void near(const Box3& query, Visit&& visit) const {
-    index_.query(query, [&](uint32_t f) {
-      const Box3& b = box_[f];
-      const bool overlap = b.lo[0] <= query.hi[0] && query.lo[0] <= b.hi[0] &&
-                           b.lo[1] <= query.hi[1] && query.lo[1] <= b.hi[1] &&
-                           b.lo[2] <= query.hi[2] && query.lo[2] <= b.hi[2];
-      return !overlap || visit(f);
-    });
+    index_.query(query, visit);
   }
 
  private:

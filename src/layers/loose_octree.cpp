@@ -62,6 +62,7 @@ void LooseOctree::insert(uint32_t id, const Box3& box) {
     ++nodes_[node].count;
   }
   nodes_[node].items.push_back(id);
+  nodes_[node].boxes.push_back(box);
   if (item_node_.size() <= id) item_node_.resize(size_t(id) + 1, kNoNode);
   item_node_[id] = node;
   ++num_items_;
@@ -73,10 +74,14 @@ void LooseOctree::erase(uint32_t id) {
   item_node_[id] = kNoNode;
   --num_items_;
   std::vector<uint32_t>& items = nodes_[node].items;
+  std::vector<Box3>& boxes = nodes_[node].boxes;
   auto it = std::find(items.begin(), items.end(), id);
   if (it != items.end()) {
+    const size_t k = size_t(it - items.begin());
     *it = items.back();
     items.pop_back();
+    boxes[k] = boxes.back();
+    boxes.pop_back();
   }
   for (; node != kNoNode; node = nodes_[node].parent) --nodes_[node].count;
 }
