@@ -26,6 +26,13 @@ inline Box3 bounding_box(const double* xyz, size_t n) {
   return b;
 }
 
+// Whether two closed boxes overlap (touching counts).
+inline bool boxes_overlap(const Box3& a, const Box3& b) {
+  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] &&  //
+         a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&  //
+         a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
+}
+
 // The cube of half-side r around p.
 inline Box3 box_around(const double* p, double r) {
   return {{p[0] - r, p[1] - r, p[2] - r}, {p[0] + r, p[1] + r, p[2] + r}};

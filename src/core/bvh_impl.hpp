@@ -7,12 +7,6 @@ namespace anitet {
 
 namespace bvh_detail {
 
-inline bool boxes_overlap(const Box3& a, const Box3& b) {
-  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] &&  //
-         a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&  //
-         a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
-}
-
 inline double half_perimeter(const Box3& b) {
   return (b.hi[0] - b.lo[0]) + (b.hi[1] - b.lo[1]) + (b.hi[2] - b.lo[2]);
 }
@@ -28,11 +22,11 @@ void TriangleBVH::query(const Box3& box, Visit&& visit) const {
   stack[top++] = 0;
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
-    if (!bvh_detail::boxes_overlap(node.box, box)) continue;
+    if (!boxes_overlap(node.box, box)) continue;
     if (node.count > 0) {
       for (uint32_t k = node.first; k < node.first + node.count; ++k) {
         const uint32_t t = order_[k];
-        if (bvh_detail::boxes_overlap(tri_box_[t], box) && !visit(t)) return;
+        if (boxes_overlap(tri_box_[t], box) && !visit(t)) return;
       }
     } else {
       stack[top++] = node.first + 1;
@@ -54,7 +48,7 @@ bool TriangleBVH::pairs_within(uint32_t n, Visit& visit) const {
     for (uint32_t a = node.first; a < node.first + node.count; ++a) {
       for (uint32_t b = a + 1; b < node.first + node.count; ++b) {
         const uint32_t i = order_[a], j = order_[b];
-        if (!bvh_detail::boxes_overlap(tri_box_[i], tri_box_[j])) continue;
+        if (!boxes_overlap(tri_box_[i], tri_box_[j])) continue;
         if (!(i < j ? visit(i, j) : visit(j, i))) return false;
       }
     }
@@ -68,15 +62,15 @@ template <class Visit>
 bool TriangleBVH::pairs_between(uint32_t a, uint32_t b, Visit& visit) const {
   const Node& na = nodes_[a];
   const Node& nb = nodes_[b];
-  if (!bvh_detail::boxes_overlap(na.box, nb.box)) return true;
+  if (!boxes_overlap(na.box, nb.box)) return true;
   if (na.count > 0 && nb.count > 0) {
     for (uint32_t x = na.first; x < na.first + na.count; ++x) {
       const uint32_t i = order_[x];
       const Box3& bi = tri_box_[i];
-      if (!bvh_detail::boxes_overlap(bi, nb.box)) continue;
+      if (!boxes_overlap(bi, nb.box)) continue;
       for (uint32_t y = nb.first; y < nb.first + nb.count; ++y) {
         const uint32_t j = order_[y];
-        if (!bvh_detail::boxes_overlap(bi, tri_box_[j])) continue;
+        if (!boxes_overlap(bi, tri_box_[j])) continue;
         if (!(i < j ? visit(i, j) : visit(j, i))) return false;
       }
     }

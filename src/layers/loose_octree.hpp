@@ -79,12 +79,8 @@ void LooseOctree::query(const Box3& box, Visit&& visit) const {
     const Frame f = stack[--top];
     const Node& node = nodes_[f.node];
     if (node.count == 0) continue;
-    for (size_t k = 0; k < node.items.size(); ++k) {
-      const Box3& b = node.boxes[k];
-      if (b.lo[0] <= box.hi[0] && box.lo[0] <= b.hi[0] && b.lo[1] <= box.hi[1] && box.lo[1] <= b.hi[1] &&
-          b.lo[2] <= box.hi[2] && box.lo[2] <= b.hi[2] && !visit(node.items[k]))
-        return;
-    }
+    for (size_t k = 0; k < node.items.size(); ++k)
+      if (boxes_overlap(node.boxes[k], box) && !visit(node.items[k])) return;
     // A child is tested before it is stacked: the test needs only its cell, and most children
     // of a small query miss it, so their nodes (cache misses) are never read. The same items
     // in the same order as testing each node when popped.

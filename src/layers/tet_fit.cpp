@@ -10,11 +10,6 @@ namespace anitet::layers {
 
 namespace {
 
-bool boxes_overlap(const Box3& a, const Box3& b) {
-  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
-         a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
-}
-
 Box3 box_of(const double* const* p, int n) {
   Box3 b;
   for (int k = 0; k < 3; ++k) {
