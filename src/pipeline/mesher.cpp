@@ -368,39 +368,40 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
       if (Status st = options_.stage3(mesh, *field, result.refine, result.optimize); !st.ok())
         return Status(st.code(), "stages 3b/3c in parts: " + st.message());
       result.stages.push_back({"refine+optimize in parts", since(t), result.optimize.after.tets});
-    }
-    if (options_.run_refine && !options_.stage3) {
-      if (Status st = progress("refine", kDoneAfterSizing); !st.ok()) return st;
-      t = Clock::now();
-      const auto coupled_vertices = static_cast<uint32_t>(mesh.num_vertices());
-      Result<RefineStats> refined = refine_mesh(mesh, *field, options_.refine);
-      if (!refined.ok()) return Status(refined.status().code(), "stage 3b (refinement): " + refined.status().message());
-      // The optimizer walks balls and rings all over the mesh: 1.2 s of its 5.2 s on armadillo went
-      // to memory scattered by refinement's passes. The coupled mesh's vertices keep their ids
-      // (stage 1's boundary-layer figures are measured by them).
-      order_for_locality(mesh, coupled_vertices);
-      result.refine = refined.value();
-      result.stages.push_back({"refine", since(t), refined->tets_after});
-    }
-    if (options_.run_optimize && !options_.stage3) {
-      if (Status st = progress("optimize", kDoneAfterRefine); !st.ok()) return st;
-      t = Clock::now();
-      Result<OptimizeStats> optimized = optimize_mesh(mesh, scaled, options_.optimize);
-      if (!optimized.ok())
-        return Status(optimized.status().code(), "stage 3c (optimization): " + optimized.status().message());
-      result.optimize = optimized.value();
-      result.stages.push_back({"optimize", since(t), optimized->after.tets});
-    }
-    if (options_.run_refine && options_.run_optimize && !options_.stage3 && result.optimize.anisotropic &&
-        options_.anisotropic_cycles > 0) {
-      if (Status st = progress("cycles", kDoneAfterRefine); !st.ok()) return st;
-      t = Clock::now();
-      if (Status st = refine_optimize_cycles(mesh, *field, options_.refine, options_.optimize,
-                                             options_.anisotropic_cycles, result.refine, result.optimize);
-          !st.ok())
-        return st;
-      result.anisotropic_cycles = options_.anisotropic_cycles;
-      result.stages.push_back({"cycles", since(t), result.optimize.after.tets});
+    } else {
+      if (options_.run_refine) {
+        if (Status st = progress("refine", kDoneAfterSizing); !st.ok()) return st;
+        t = Clock::now();
+        const auto coupled_vertices = static_cast<uint32_t>(mesh.num_vertices());
+        Result<RefineStats> refined = refine_mesh(mesh, *field, options_.refine);
+        if (!refined.ok()) return Status(refined.status().code(), "stage 3b (refinement): " + refined.status().message());
+        // The optimizer walks balls and rings all over the mesh: 1.2 s of its 5.2 s on armadillo went
+        // to memory scattered by refinement's passes. The coupled mesh's vertices keep their ids
+        // (stage 1's boundary-layer figures are measured by them).
+        order_for_locality(mesh, coupled_vertices);
+        result.refine = refined.value();
+        result.stages.push_back({"refine", since(t), refined->tets_after});
+      }
+      if (options_.run_optimize) {
+        if (Status st = progress("optimize", kDoneAfterRefine); !st.ok()) return st;
+        t = Clock::now();
+        Result<OptimizeStats> optimized = optimize_mesh(mesh, scaled, options_.optimize);
+        if (!optimized.ok())
+          return Status(optimized.status().code(), "stage 3c (optimization): " + optimized.status().message());
+        result.optimize = optimized.value();
+        result.stages.push_back({"optimize", since(t), optimized->after.tets});
+      }
+      if (options_.run_refine && options_.run_optimize && result.optimize.anisotropic &&
+          options_.anisotropic_cycles > 0) {
+        if (Status st = progress("cycles", kDoneAfterRefine); !st.ok()) return st;
+        t = Clock::now();
+        if (Status st = refine_optimize_cycles(mesh, *field, options_.refine, options_.optimize,
+                                               options_.anisotropic_cycles, result.refine, result.optimize);
+            !st.ok())
+          return st;
+        result.anisotropic_cycles = options_.anisotropic_cycles;
+        result.stages.push_back({"cycles", since(t), result.optimize.after.tets});
+      }
     }
     if (result.optimize.anisotropic) result.metric_quality = summarize_metric_quality(mesh, scaled);
   }
