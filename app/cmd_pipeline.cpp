@@ -329,10 +329,6 @@ int run_mesh_pipeline(MeshArgs& args) {
   return kExitOk;
 }
 
-}  // namespace anitet::cli
-
-namespace anitet::cli {
-
 namespace {
 const DistributedRun* g_distributed = nullptr;
 }  // namespace

@@ -261,8 +261,6 @@ Result<MeshPart> extract_part(const TetMesh& whole, const std::vector<int32_t>& 
   };
   for (uint32_t t : own) add(t, false);
   for (uint32_t t : halo) add(t, true);
-  for (uint32_t t = 0; t < m.num_tet_slots(); ++t)
-    for (int i = 0; i < 4; ++i) m.tet_adj[4 * size_t(t) + i] = TetMesh::kNoNeighbour;
   if (Status st = m.build_adjacency(); !st.ok())
     return Status(Error::Internal, "distributed: part " + std::to_string(p) + ": " + st.message());
   // Own facets against the halo: protected on the own side too (the flags agree on both sides).
@@ -332,7 +330,6 @@ Result<TetMesh> merge_parts(const TetMesh& whole, const std::vector<int32_t>& pa
     }
     interface.insert(interface.end(), part.interface_facets.begin(), part.interface_facets.end());
   }
-  std::fill(merged.tet_adj.begin(), merged.tet_adj.end(), TetMesh::kNoNeighbour);
   if (Status st = merged.build_adjacency(); !st.ok())
     return Status(Error::Internal, "distributed: the parts overlap: " + st.message());
   // A gap or an overlap between parts leaves facets without a partner that the whole had not.
