@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/closest_point.hpp"
+
 namespace anitet {
 namespace metric {
 namespace {
@@ -131,6 +133,7 @@ Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOp
   lat.values.assign(nn, inf);
   std::vector<uint8_t> pinned(nn, 0);
   const double half = 0.5 * h;
+  const double band = half * (1.0 + 1e-9);  // touching counts, as for the cube test
   for (size_t t = 0; t < nt; ++t) {
     const double* p[3] = {surface.point(surface.tri[3 * t]), surface.point(surface.tri[3 * t + 1]),
                           surface.point(surface.tri[3 * t + 2])};
@@ -146,7 +149,10 @@ Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOp
         for (int i = b0[0]; i <= b1[0]; ++i) {
           double c[3];
           lat.position(i, j, k, c);
-          if (!triangle_cuts_box(p[0], p[1], p[2], c, half)) continue;
+          const bool pin = options.pinning == Pinning::HalfVoxelBand
+                               ? point_triangle_distance(c, p[0], p[1], p[2]) <= band
+                               : triangle_cuts_box(p[0], p[1], p[2], c, half);
+          if (!pin) continue;
           const size_t n = lat.node(i, j, k);
           pinned[n] = 1;
           lat.values[n] = std::min(lat.values[n], tri_size[t]);
@@ -162,7 +168,7 @@ Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOp
       ++stats.pinned;
       sum += lat.values[n];
     }
-  if (stats.pinned == 0) return Status(Error::Internal, "no voxel is cut by the surface");
+  if (stats.pinned == 0) return Status(Error::Internal, "no voxel is pinned by the surface");
   const double mean = sum / double(stats.pinned);
   stats.mean_size = mean;
   for (size_t n = 0; n < nn; ++n)
@@ -196,7 +202,7 @@ Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOp
       if (k > 0) visit(n - sz);
       if (k + 1 < nz) visit(n + sz);
     }
-    // Keep the shell: outside voxels among the 26 neighbours of a cut one.
+    // Keep the shell: outside voxels among the 26 neighbours of a pinned one.
     for (int k = 0; k < nz; ++k)
       for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) {

@@ -3,19 +3,24 @@
 # surface rotated by a random rotation, scaled by 1e-4 and by 1e4, and translated by 1e6 (one
 # variant at a time), meshed with `anitet mesh` and checked with meshcheck.py against the moved
 # surface (the translated ones after an exact shift back): valid, boundary constrained, volume
-# kept to 1e-9. One line per run, then a summary.
+# kept to 1e-9. With the variant `given` first (the default), every other run's tet count is
+# compared with the surface's as given: beyond COUNT_TOL percent (default 5) the run fails. One
+# line per run, then a summary and the largest count deviation.
 # Needs python3-numpy and python3-meshio. Not run by CI (about half an hour on 2 cores).
 set -u
-anitet=$(realpath "${1:?usage: run.sh ANITET [rotate scale1e-4 scale1e4 translate1e6 (default), also scale1e-6 scale1e6]}"); shift
-variants=${*:-rotate scale1e-4 scale1e4 translate1e6}
+anitet=$(realpath "${1:?usage: run.sh ANITET [given rotate scale1e-4 scale1e4 translate1e6 (default), also scale1e-6 scale1e6]}"); shift
+variants=${*:-given rotate scale1e-4 scale1e4 translate1e6}
+count_tol=${COUNT_TOL:-5}
+declare -A given_tets
 here=$(cd "$(dirname "$0")" && pwd)
 shared=$here/../../../shared
 surf=$shared/data/surfaces
 py=python3; $py -c 'import numpy, meshio' 2>/dev/null || py=/usr/bin/python3
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-clean="decimated-knight.off tray_bottom.stl bimba_low.off kitten.off adis16480.stl femur.off casting.off elephant.obj fandisk.off airplane.obj turbine.off rocker-arm.obj hammer.obj armadillo.obj skull.obj"
+clean=${SURFACES:-"decimated-knight.off tray_bottom.stl bimba_low.off kitten.off adis16480.stl femur.off casting.off elephant.obj fandisk.off airplane.obj turbine.off rocker-arm.obj hammer.obj armadillo.obj skull.obj"}
 fail=0 runs=0
-printf '%-20s %-13s %8s %9s %s\n' surface variant seconds tets verdict
+worst=0
+printf '%-20s %-13s %8s %9s %8s %s\n' surface variant seconds tets vs_given verdict
 for v in $variants; do
   for f in $clean; do
     in=$tmp/${f%.*}-$v.mesh out=$tmp/${f%.*}-$v-out.mesh
@@ -41,9 +46,17 @@ print(d["tets"], "ok" if ok else "FAIL", "nonpositive=%d missing=%d steiner_on_S
   d.get("nonpositive_tets", -1), d.get("input_triangles_missing", -1), d.get("steiner_points_on_boundary", -1),
   d.get("volume_rel_error", -1), q["radius_ratio"]["mean"], q["radius_ratio"]["min"]))')
     runs=$((runs + 1))
+    tets=${verdict%% *} dev=-
+    [[ $v == given ]] && given_tets[$f]=$tets
+    if [[ $v != given && -n ${given_tets[$f]:-} && ${given_tets[$f]} != 0 ]]; then
+      dev=$(awk "BEGIN{printf \"%+.1f%%\", 100 * ($tets / ${given_tets[$f]} - 1)}")
+      worst=$(awk "BEGIN{d = 100 * ($tets / ${given_tets[$f]} - 1); d = d < 0 ? -d : d; printf \"%.1f\", (d > $worst ? d : $worst)}")
+      awk "BEGIN{d = 100 * ($tets / ${given_tets[$f]} - 1); exit !(d > $count_tol || d < -$count_tol)}" &&
+        verdict="${verdict/ ok / COUNT }"
+    fi
     [[ $rc == 0 && $verdict == *" ok "* ]] || { fail=$((fail + 1)); verdict="$verdict rc=$rc $(head -c 200 "$tmp/log" | tr '\n' ' ')"; }
-    printf '%-20s %-13s %8.2f %9s %s\n' "$f" "$v" "$(awk "BEGIN{print $e - $s}")" "${verdict%% *}" "${verdict#* }"
+    printf '%-20s %-13s %8.2f %9s %8s %s\n' "$f" "$v" "$(awk "BEGIN{print $e - $s}")" "$tets" "$dev" "${verdict#* }"
   done
 done
-echo "transformed: $((runs - fail)) of $runs runs pass"
+echo "transformed: $((runs - fail)) of $runs runs pass; largest tet count deviation from the surface as given: $worst% (tolerance $count_tol%)"
 [[ $fail == 0 ]]

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """transform.py IN OUT.mesh VARIANT: the surface IN moved by VARIANT and written as a Medit .mesh
-with every coordinate in full double precision. VARIANT is rotate (a random rotation, seeded by the
-file name so reruns match), scale1e-4, scale1e4, scale1e-6, scale1e6 or translate1e6. Exactly equal
+with every coordinate in full double precision. VARIANT is given (unmoved), rotate (a random rotation,
+seeded by the file name so reruns match), scale1e-4, scale1e4, scale1e-6, scale1e6 or translate1e6. Exactly equal
 input points are merged first (STL repeats them per triangle). back1e6 moves a Medit mesh by -1e6 exactly (to
 check a translated result where digits are not lost to cancellation)."""
 import hashlib
@@ -45,7 +45,9 @@ def main():
     if variant == "back1e6":
         return shift_back(src, dst)
     points, tris = read(src)
-    if variant == "rotate":
+    if variant == "given":
+        pass
+    elif variant == "rotate":
         seed = int(hashlib.sha256(os.path.basename(src).encode()).hexdigest()[:8], 16)
         points = points @ random_rotation(seed).T
     elif variant == "scale1e-4":

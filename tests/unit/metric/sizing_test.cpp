@@ -33,9 +33,44 @@ TEST(TriangleBox, CutsAndMisses) {
   EXPECT_FALSE(triangle_cuts_box(A, B, C, o, 0.005));
 }
 
-// The pinned values an independent pass computes: min triangle size over the triangles cutting
-// each voxel (infinity where none does).
-std::vector<double> expected_pinned(const SurfaceMesh& s, const Lattice& lat, TriangleSize kind) {
+// The distance from p to the closed triangle abc, computed another way than closest_point.hpp's
+// region test: the foot on the plane when it lies inside (barycentric signs), else the nearest of
+// the three edges.
+double segment_distance(const double* p, const double* a, const double* b) {
+  double ab[3], ap[3], l2 = 0, t = 0;
+  for (int k = 0; k < 3; ++k) ab[k] = b[k] - a[k], ap[k] = p[k] - a[k], l2 += ab[k] * ab[k], t += ab[k] * ap[k];
+  t = l2 > 0 ? std::min(std::max(t / l2, 0.0), 1.0) : 0.0;
+  double d = 0;
+  for (int k = 0; k < 3; ++k) d += (ap[k] - t * ab[k]) * (ap[k] - t * ab[k]);
+  return std::sqrt(d);
+}
+double triangle_distance(const double* p, const double* a, const double* b, const double* c) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  if (nn > 0) {
+    const double h = ((p[0] - a[0]) * n[0] + (p[1] - a[1]) * n[1] + (p[2] - a[2]) * n[2]) / nn;
+    const double f[3] = {p[0] - h * n[0], p[1] - h * n[1], p[2] - h * n[2]};
+    const double* t[3] = {a, b, c};
+    bool inside = true;
+    for (int e = 0; e < 3 && inside; ++e) {  // f on the inner side of every edge
+      const double* x = t[e];
+      const double* y = t[(e + 1) % 3];
+      const double xy[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]}, xf[3] = {f[0] - x[0], f[1] - x[1], f[2] - x[2]};
+      const double cr[3] = {xy[1] * xf[2] - xy[2] * xf[1], xy[2] * xf[0] - xy[0] * xf[2], xy[0] * xf[1] - xy[1] * xf[0]};
+      inside = cr[0] * n[0] + cr[1] * n[1] + cr[2] * n[2] >= 0;
+    }
+    if (inside) return std::fabs(h) * std::sqrt(nn);
+  }
+  return std::min({segment_distance(p, a, b), segment_distance(p, b, c), segment_distance(p, c, a)});
+}
+
+// The pinned values an independent pass computes: min triangle size over the triangles pinning
+// each voxel (cutting its cube, or within half a voxel of its centre; infinity where none does).
+// Band voxels whose distance lies within 1e-6 h of the band's edge are marked NaN: two roundings
+// of the distance may decide them differently.
+std::vector<double> expected_pinned(const SurfaceMesh& s, const Lattice& lat, TriangleSize kind,
+                                    Pinning pinning) {
   std::vector<double> v(lat.num_nodes(), std::numeric_limits<double>::infinity());
   for (size_t t = 0; t < s.num_triangles(); ++t) {
     const double* p[3] = {s.point(s.tri[3 * t]), s.point(s.tri[3 * t + 1]), s.point(s.tri[3 * t + 2])};
@@ -57,8 +92,14 @@ std::vector<double> expected_pinned(const SurfaceMesh& s, const Lattice& lat, Tr
         for (int i = lo[0]; i <= hi[0]; ++i) {
           double c[3];
           lat.position(i, j, k, c);
-          if (triangle_cuts_box(p[0], p[1], p[2], c, 0.5 * lat.spacing))
-            v[lat.node(i, j, k)] = std::min(v[lat.node(i, j, k)], size);
+          double& value = v[lat.node(i, j, k)];
+          if (pinning == Pinning::CutCube) {
+            if (triangle_cuts_box(p[0], p[1], p[2], c, 0.5 * lat.spacing)) value = std::min(value, size);
+            continue;
+          }
+          const double d = triangle_distance(c, p[0], p[1], p[2]);
+          if (std::fabs(d - 0.5 * lat.spacing) < 1e-6 * lat.spacing) value = NAN;
+          else if (d < 0.5 * lat.spacing && !std::isnan(value)) value = std::min(value, size);
         }
   }
   return v;
@@ -77,19 +118,25 @@ void check_surface(const std::string& file, const SurfaceSizingOptions& opt) {
   EXPECT_GT(st.pinned, 0u);
   // Pinned voxels hold exactly their triangle size; the others lie between the pinned extremes
   // (the smoothing is an averaging: maximum principle).
-  const std::vector<double> want = expected_pinned(s.value(), lat.value(), opt.triangle_size);
+  const std::vector<double> want =
+      expected_pinned(s.value(), lat.value(), opt.triangle_size, opt.pinning);
   double pmin = HUGE_VAL, pmax = 0.0;
-  size_t pinned = 0;
+  size_t pinned = 0, undecided = 0;
   for (size_t n = 0; n < want.size(); ++n)
-    if (std::isfinite(want[n])) {
+    if (std::isnan(want[n])) {
+      ++undecided;
+    } else if (std::isfinite(want[n])) {
       // Equal up to the rounding of the edge lengths (computed here in another order).
       ASSERT_NEAR(lat->values[n], want[n], 1e-14 * want[n]) << "pinned voxel " << n;
       pmin = std::min(pmin, want[n]);
       pmax = std::max(pmax, want[n]);
       ++pinned;
     }
-  EXPECT_EQ(pinned, st.pinned);
+  EXPECT_GE(st.pinned, pinned);
+  EXPECT_LE(st.pinned, pinned + undecided);
+  EXPECT_LE(undecided, pinned / 1000);
   for (size_t n = 0; n < want.size(); ++n) {
+    if (std::isnan(want[n])) continue;
     ASSERT_GE(lat->values[n], pmin * (1 - 1e-12));
     ASSERT_LE(lat->values[n], pmax * (1 + 1e-12));
   }
@@ -146,6 +193,55 @@ TEST(SurfaceSizing, FandiskGaussianMeanEdgeConverges) {
   opt.smoothing = Smoothing::Gaussian;
   opt.triangle_size = TriangleSize::Mean;
   check_surface("fandisk.off", opt);
+}
+
+TEST(SurfaceSizing, FandiskCutCubeConverges) {
+  SurfaceSizingOptions opt;
+  opt.pinning = Pinning::CutCube;
+  check_surface("fandisk.off", opt);
+}
+
+// The unit cube's 12 triangles, turned by the rotation R (rows) about its centre.
+SurfaceMesh turned_cube(const double R[3][3]) {
+  SurfaceMesh cube;
+  for (int v = 0; v < 8; ++v) {
+    const double p[3] = {(v & 1) - 0.5, ((v >> 1) & 1) - 0.5, ((v >> 2) & 1) - 0.5};
+    cube.add_vertex(R[0][0] * p[0] + R[0][1] * p[1] + R[0][2] * p[2],
+                    R[1][0] * p[0] + R[1][1] * p[1] + R[1][2] * p[2],
+                    R[2][0] * p[0] + R[2][1] * p[1] + R[2][2] * p[2]);
+  }
+  const uint32_t f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                             {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  for (const auto& t : f) cube.add_triangle(t[0], t[1], t[2]);
+  return cube;
+}
+
+TEST(SurfaceSizing, HalfVoxelBandPinsAsManyVoxelsTurned) {
+  // A band of constant width pins about area / h^2 voxels however the faces lie; the cube test
+  // pins up to sqrt(3) times more on oblique faces. Voxel 0.02, so ~6 * 2500 per orientation.
+  const double I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  // Rotation by 1 rad about (1, 2, 3)/|.| (Rodrigues), far from any axis.
+  const double k[3] = {1 / std::sqrt(14.0), 2 / std::sqrt(14.0), 3 / std::sqrt(14.0)};
+  const double c = std::cos(1.0), s = std::sin(1.0);
+  double R[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[i][j] = (i == j ? c : 0.0) + (1 - c) * k[i] * k[j];
+  R[0][1] -= s * k[2], R[0][2] += s * k[1], R[1][0] += s * k[2];
+  R[1][2] -= s * k[0], R[2][0] -= s * k[1], R[2][1] += s * k[0];
+  size_t pinned[2][2];
+  for (int pin = 0; pin < 2; ++pin)
+    for (int turned = 0; turned < 2; ++turned) {
+      SurfaceSizingOptions opt;
+      opt.voxel_size = 0.02;
+      opt.pinning = pin == 0 ? Pinning::HalfVoxelBand : Pinning::CutCube;
+      SurfaceSizingStats st;
+      ASSERT_TRUE(surface_sizing(turned_cube(turned ? R : I), opt, &st).ok());
+      pinned[pin][turned] = st.pinned;
+    }
+  std::printf("[sizing] unit cube, voxel 0.02: band pins %zu as given, %zu turned; cut cube %zu, %zu\n",
+              pinned[0][0], pinned[0][1], pinned[1][0], pinned[1][1]);
+  EXPECT_NEAR(double(pinned[0][1]) / double(pinned[0][0]), 1.0, 0.03);
+  EXPECT_GT(double(pinned[1][1]) / double(pinned[1][0]), 1.2);  // what the band avoids
 }
 
 TEST(SurfaceSizing, ArmadilloConverges) {

@@ -79,7 +79,7 @@ TEST(Optimize, CvtAloneImprovesKnight) {
   Result<OptimizeStats> r = optimize_mesh(k.mesh, *k.field, o);
   ASSERT_TRUE(r.ok()) << r.status().message();
   const test::InteriorQuality after = test::interior_quality(k.mesh, meshops::tet_radius_ratio);
-  EXPECT_GT(r->moves, 500u);
+  EXPECT_GT(r->moves, 400u);  // 492 with the half-voxel band sizing grid
   EXPECT_EQ(r->flips23 + r->edge_removals, 0u);
   EXPECT_GT(r->after.mean, r->before.mean + 0.01) << r->before.mean << " -> " << r->after.mean;
   EXPECT_GT(after.mean, before.mean + 0.015) << before.mean << " -> " << after.mean;
