@@ -134,31 +134,43 @@ Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOp
   std::vector<uint8_t> pinned(nn, 0);
   const double half = 0.5 * h;
   const double band = half * (1.0 + 1e-9);  // touching counts, as for the cube test
-  for (size_t t = 0; t < nt; ++t) {
-    const double* p[3] = {surface.point(surface.tri[3 * t]), surface.point(surface.tri[3 * t + 1]),
-                          surface.point(surface.tri[3 * t + 2])};
-    int b0[3], b1[3];
-    for (int k = 0; k < 3; ++k) {
-      const double mn = std::min({p[0][k], p[1][k], p[2][k]}) - lat.origin[k];
-      const double mx = std::max({p[0][k], p[1][k], p[2][k]}) - lat.origin[k];
-      b0[k] = std::max(0, int(std::floor(mn / h - 0.5)));
-      b1[k] = std::min(lat.dims[k] - 1, int(std::ceil(mx / h + 0.5)));
+  // Returns whether any voxel was pinned.
+  auto pin_voxels = [&](Pinning pinning) {
+    bool any = false;
+    for (size_t t = 0; t < nt; ++t) {
+      const double* p[3] = {surface.point(surface.tri[3 * t]), surface.point(surface.tri[3 * t + 1]),
+                            surface.point(surface.tri[3 * t + 2])};
+      int b0[3], b1[3];
+      for (int k = 0; k < 3; ++k) {
+        const double mn = std::min({p[0][k], p[1][k], p[2][k]}) - lat.origin[k];
+        const double mx = std::max({p[0][k], p[1][k], p[2][k]}) - lat.origin[k];
+        b0[k] = std::max(0, int(std::floor(mn / h - 0.5)));
+        b1[k] = std::min(lat.dims[k] - 1, int(std::ceil(mx / h + 0.5)));
+      }
+      for (int k = b0[2]; k <= b1[2]; ++k)
+        for (int j = b0[1]; j <= b1[1]; ++j)
+          for (int i = b0[0]; i <= b1[0]; ++i) {
+            double c[3];
+            lat.position(i, j, k, c);
+            const bool pin = pinning == Pinning::HalfVoxelBand
+                                 ? point_triangle_distance(c, p[0], p[1], p[2]) <= band
+                                 : triangle_cuts_box(p[0], p[1], p[2], c, half);
+            if (!pin) continue;
+            const size_t n = lat.node(i, j, k);
+            pinned[n] = 1;
+            any = true;
+            lat.values[n] = std::min(lat.values[n], tri_size[t]);
+          }
     }
-    for (int k = b0[2]; k <= b1[2]; ++k)
-      for (int j = b0[1]; j <= b1[1]; ++j)
-        for (int i = b0[0]; i <= b1[0]; ++i) {
-          double c[3];
-          lat.position(i, j, k, c);
-          const bool pin = options.pinning == Pinning::HalfVoxelBand
-                               ? point_triangle_distance(c, p[0], p[1], p[2]) <= band
-                               : triangle_cuts_box(p[0], p[1], p[2], c, half);
-          if (!pin) continue;
-          const size_t n = lat.node(i, j, k);
-          pinned[n] = 1;
-          lat.values[n] = std::min(lat.values[n], tri_size[t]);
-        }
-  }
+    return any;
+  };
+  // A surface whose band holds no node at all (small, lying between the nodes of a voxel grown
+  // by max_voxels far beyond its triangles) is pinned by the cube test, which always pins.
+  bool cube_fallback = false;
+  if (!pin_voxels(options.pinning) && options.pinning == Pinning::HalfVoxelBand)
+    cube_fallback = pin_voxels(Pinning::CutCube);
   SurfaceSizingStats stats;
+  stats.cube_fallback = cube_fallback;
   stats.voxels = nn;
   stats.voxel_size = h;
   stats.working_bytes = nn * (sizeof(double) + 1);

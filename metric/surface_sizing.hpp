@@ -9,7 +9,9 @@
 // cuts the voxel's cube) pins up to sqrt(3) times more where faces lie oblique to the lattice's
 // axes, and a rotated CAD part then got up to 20% fewer tets (hammer.obj). The band still stops
 // the outside flood fill: a lattice step of length h that crosses the surface has an end within
-// h/2 of it.
+// h/2 of it. A surface whose band holds no node at all (tiny against a voxel that max_voxels
+// grew) is pinned by the cube test instead; a small separate shell whose band holds no node
+// while others' do is not pinned (the grid around it takes its neighbours' sizes).
 //
 // The smoothing runs on a dense lattice whose node count is bounded by max_voxels (the voxel size
 // grows until it fits). Voxels outside the surface are dropped (drop_outside), and
@@ -61,6 +63,7 @@ struct SurfaceSizingStats {
   size_t voxels = 0;
   size_t pinned = 0;
   size_t dropped = 0;  // outside voxels left out (drop_outside)
+  bool cube_fallback = false;  // the half-voxel band held no node: pinned by the cube test
   double voxel_size = 0.0;
   double mean_size = 0.0;
   size_t working_bytes = 0;  // dense working memory (values + pinned flags)

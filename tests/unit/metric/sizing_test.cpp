@@ -244,6 +244,41 @@ TEST(SurfaceSizing, HalfVoxelBandPinsAsManyVoxelsTurned) {
   EXPECT_GT(double(pinned[1][1]) / double(pinned[1][0]), 1.2);  // what the band avoids
 }
 
+TEST(SurfaceSizing, SurfaceBetweenTheNodesFallsBackToTheCubeTest) {
+  // Two tets of edge 0.05 at opposite corners of a 3.9 box, voxel 1, no padding: the nodes sit at
+  // 0.45 + i, 0.69 from either tet, so no half-voxel band holds a node; the cube test pins one
+  // node for each.
+  SurfaceMesh two;
+  for (double o : {0.0, 3.85}) {
+    const uint32_t b = uint32_t(two.num_vertices());
+    two.add_vertex(o, o, o);
+    two.add_vertex(o + 0.05, o, o);
+    two.add_vertex(o, o + 0.05, o);
+    two.add_vertex(o, o, o + 0.05);
+    two.add_triangle(b, b + 2, b + 1);
+    two.add_triangle(b, b + 1, b + 3);
+    two.add_triangle(b, b + 3, b + 2);
+    two.add_triangle(b + 1, b + 2, b + 3);
+  }
+  SurfaceSizingOptions opt;
+  opt.voxel_size = 1.0;
+  opt.padding = 0;
+  SurfaceSizingStats st;
+  Result<Lattice> lat = surface_sizing(two, opt, &st);
+  ASSERT_TRUE(lat.ok()) << lat.status().message();
+  EXPECT_EQ(lat->dims[0], 4);
+  EXPECT_TRUE(st.cube_fallback);
+  EXPECT_EQ(st.pinned, 2u);
+  EXPECT_NEAR(lat->values[lat->node(0, 0, 0)], 0.05, 1e-12);
+  EXPECT_NEAR(lat->values[lat->node(3, 3, 3)], 0.05, 1e-12);
+  // The surfaces of the other tests hold nodes in their bands.
+  opt.voxel_size = 0.0;
+  Result<SurfaceMesh> fandisk = read_surface(std::string(ANITET_SURFACES_DIR) + "/fandisk.off");
+  ASSERT_TRUE(fandisk.ok());
+  ASSERT_TRUE(surface_sizing(fandisk.value(), opt, &st).ok());
+  EXPECT_FALSE(st.cube_fallback);
+}
+
 TEST(SurfaceSizing, ArmadilloConverges) {
   SurfaceSizingOptions opt;
   check_surface("armadillo.obj", opt);
