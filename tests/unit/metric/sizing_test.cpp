@@ -315,7 +315,7 @@ TEST(SurfaceSizing, DefaultFieldOnFandisk) {
 }
 
 TEST(SurfaceSizing, DropsOnlyTheOutsideOfACube) {
-  // The unit cube, 12 triangles of shortest edge 1, voxel 0.1: the flood fill stops at the cut
+  // The unit cube, 12 triangles of shortest edge 1, voxel 0.1: the flood fill stops at the pinned
   // voxels, so the inside is kept and smoothed, and exactly the far outside is dropped.
   SurfaceMesh cube;
   for (int v = 0; v < 8; ++v) cube.add_vertex(v & 1, (v >> 1) & 1, (v >> 2) & 1);
@@ -329,7 +329,7 @@ TEST(SurfaceSizing, DropsOnlyTheOutsideOfACube) {
   Result<Lattice> lat = surface_sizing(cube, opt, &st);
   ASSERT_TRUE(lat.ok()) << lat.status().message();
   ASSERT_EQ(lat->dims[0], 17);  // 11 nodes across the cube + 2 * 3 padding
-  // Cut: the nodes within half a voxel of a face (x = 0 or 1 exactly at nodes 3 and 13).
+  // Pinned: the nodes within half a voxel of a face (x = 0 or 1 exactly at nodes 3 and 13).
   size_t inside = 0, kept = 0;
   for (int k = 0; k < 17; ++k)
     for (int j = 0; j < 17; ++j)
