@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/buckets.hpp"
 #include "core/sizing.hpp"
 
@@ -41,32 +44,48 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
       scratch.start, scratch.all, scratch.fill);
   const std::vector<uint32_t>& start = scratch.start;
   const std::vector<EdgeScratch::Entry>& all = scratch.all;
-  // Duplicates within a bucket found with a per-vertex mark (no sort): seen[b] holds 1 + the
-  // index in `edges` of the copy kept for (a, b) while bucket a is scanned.
-  edges.clear();
-  std::vector<uint32_t>& seen = scratch.seen;
-  std::vector<uint32_t>& owner = scratch.owner;
-  seen.assign(nv, 0);
-  owner.assign(nv, TetMesh::kNone);
-  for (size_t v = 0; v < nv; ++v) {
-    for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
-      const EdgeScratch::Entry& e = all[k];
-      const bool on_surface = (e.tet & EdgeScratch::Entry::kSurface) != 0;
-      if (owner[e.b] == v) {
-        edges[seen[e.b] - 1].on_surface |= on_surface;
-        continue;
+  // Duplicates are found within each bucket by scanning the bucket's edges kept so far (a few:
+  // a vertex's higher neighbours), in chunks of vertices on every core, each into its own list;
+  // the lists are then joined in vertex order. Same edges in the same order as one loop.
+  constexpr size_t kChunk = 8192;
+  const size_t chunks = (nv + kChunk - 1) / kChunk;
+  std::vector<std::vector<Edge>>& parts = scratch.parts;
+  if (parts.size() < chunks) parts.resize(chunks);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t c = r.begin(); c != r.end(); ++c) {
+      std::vector<Edge>& out = parts[c];
+      out.clear();
+      for (size_t v = c * kChunk; v < std::min(nv, (c + 1) * kChunk); ++v) {
+        const size_t first = out.size();
+        for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
+          const EdgeScratch::Entry& e = all[k];
+          const bool on_surface = (e.tet & EdgeScratch::Entry::kSurface) != 0;
+          size_t j = first;
+          while (j < out.size() && out[j].b != e.b) ++j;
+          if (j < out.size()) {
+            out[j].on_surface |= on_surface;
+            continue;
+          }
+          out.push_back({static_cast<uint32_t>(v), e.b, e.tet & ~EdgeScratch::Entry::kSurface, on_surface, 0.0});
+        }
       }
-      owner[e.b] = static_cast<uint32_t>(v);
-      edges.push_back({static_cast<uint32_t>(v), e.b, e.tet & ~EdgeScratch::Entry::kSurface, on_surface, 0.0});
-      seen[e.b] = static_cast<uint32_t>(edges.size());
     }
-  }
-  for (Edge& e : edges) {
-    const double* pa = mesh.point(e.a);
-    const double* pb = mesh.point(e.b);
-    const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
-    e.length = std::sqrt(metric_norm(&metrics[6 * size_t(e.a)], d) * metric_norm(&metrics[6 * size_t(e.b)], d));
-  }
+  });
+  std::vector<size_t> offset(chunks + 1, 0);
+  for (size_t c = 0; c < chunks; ++c) offset[c + 1] = offset[c] + parts[c].size();
+  edges.resize(offset[chunks]);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t c = r.begin(); c != r.end(); ++c) {
+      Edge* out = edges.data() + offset[c];
+      for (Edge e : parts[c]) {
+        const double* pa = mesh.point(e.a);
+        const double* pb = mesh.point(e.b);
+        const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+        e.length = std::sqrt(metric_norm(&metrics[6 * size_t(e.a)], d) * metric_norm(&metrics[6 * size_t(e.b)], d));
+        *out++ = e;
+      }
+    }
+  });
 }
 
 size_t live_vertex_count(const TetMesh& mesh) {

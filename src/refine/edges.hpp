@@ -23,8 +23,9 @@ struct EdgeScratch {
     uint32_t b;
     uint32_t tet;
   };
-  std::vector<uint32_t> start, fill, seen, owner;
+  std::vector<uint32_t> start, fill;
   std::vector<Entry> all;
+  std::vector<std::vector<Edge>> parts;  // the edges of each chunk of vertices
 };
 
 // Every edge of the live tets once, a < b, grouped by a (ascending); within a group the order

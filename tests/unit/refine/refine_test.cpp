@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "layers/shapes.hpp"
 #include "metric/surface_sizing.hpp"
 #include "refine/coupled_fixture.hpp"
+#include "refine/edges.hpp"
 #include "refine/mesh_ops.hpp"
 #include "refine/refine.hpp"
 #include "refine/stretched_box.hpp"
@@ -58,6 +60,57 @@ TEST(Refine, LengthsConverge) {
   EXPECT_GT(r->length_in_range, 0.85);
   EXPECT_NEAR(r->length_mean, 1.0, 0.15);
   EXPECT_GT(r->tets_after, 5 * r->tets_before);
+}
+
+// collect_edges (chunks of vertices on every core) against a plain scan of the tets: every edge
+// once, a < b, grouped by a in ascending order, in the order the tets first list it, flagged
+// when a protected facet holds it, with the length in the ends' metrics.
+TEST(Refine, CollectEdgesMatchesAPlainScan) {
+  TetMesh mesh = coupled_sphere();
+  ASSERT_TRUE(refine_mesh(mesh, test::ConstantSizing(0.05), RefineOptions{}).ok());
+  ASSERT_GT(mesh.num_vertices(), 3 * 8192u);  // several chunks
+  std::vector<double> metrics(6 * mesh.num_vertices());
+  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
+    const double h = 0.05 + 0.01 * (v % 7);  // a different size per vertex
+    const double m[6] = {1 / (h * h), 0, 1 / (h * h), 0, 0, 1 / (h * h)};
+    std::copy_n(m, 6, &metrics[6 * size_t(v)]);
+  }
+  std::vector<refine_detail::Edge> edges;
+  refine_detail::EdgeScratch scratch;
+  refine_detail::collect_edges(mesh, metrics, edges, scratch);
+
+  // The plain scan: first occurrence order per lower end, surface flags OR-ed.
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> by_a(mesh.num_vertices());  // (b, tet)
+  std::map<std::pair<uint32_t, uint32_t>, bool> on_surface;
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+    for (int k = 0; k < 6; ++k) {
+      const int i = kEdgeVertex[k][0], j = kEdgeVertex[k][1];
+      uint32_t a = mesh.vertex(t, i), b = mesh.vertex(t, j);
+      if (a > b) std::swap(a, b);
+      bool surface = false;
+      for (int f = 0; f < 4; ++f) surface |= f != i && f != j && mesh.facet_protected(t, f);
+      auto [it, fresh] = on_surface.emplace(std::make_pair(a, b), surface);
+      if (fresh) by_a[a].push_back({b, t});
+      it->second = it->second || surface;
+    }
+  }
+  size_t n = 0;
+  for (uint32_t a = 0; a < mesh.num_vertices(); ++a)
+    for (const auto& [b, t] : by_a[a]) {
+      ASSERT_LT(n, edges.size());
+      const refine_detail::Edge& e = edges[n++];
+      ASSERT_EQ(e.a, a);
+      ASSERT_EQ(e.b, b);
+      EXPECT_EQ(e.tet, t);
+      EXPECT_EQ(e.on_surface, on_surface.at({a, b}));
+      const double *pa = mesh.point(a), *pb = mesh.point(b);
+      const double len = std::sqrt((pb[0] - pa[0]) * (pb[0] - pa[0]) + (pb[1] - pa[1]) * (pb[1] - pa[1]) +
+                                   (pb[2] - pa[2]) * (pb[2] - pa[2]));
+      const double ha = 0.05 + 0.01 * (a % 7), hb = 0.05 + 0.01 * (b % 7);
+      EXPECT_NEAR(e.length, len / std::sqrt(ha * hb), 1e-12 * e.length);
+    }
+  EXPECT_EQ(n, edges.size());
 }
 
 // The split points are measured in parallel, chosen and inserted in one order: the same mesh
