@@ -11,6 +11,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 
 #include "core/bvh.hpp"
@@ -207,10 +208,16 @@ class Refiner {
     double r;      // its radius in the spacing grid
     bool iso;      // mm is isotropic
   };
+  std::vector<refine_detail::Edge> sorted_edges_;  // a pass's long or short edges, in order
   std::vector<Candidate> candidates_;
-  // ... and the chosen ones: their indices in candidates_, their points packed for the Hilbert
-  // sort (3 each), and the order they are inserted in (indices in chosen_).
-  std::vector<uint32_t> chosen_;
+  std::vector<uint8_t> verdict_;  // per candidate: refused by the grid, vetoed, or free (see split_pass)
+  // ... and the chosen ones (copied with their edges), their points packed for the Hilbert sort
+  // (3 each), and the order they are inserted in (indices in chosen_).
+  struct Chosen {  // a chosen candidate with its edge: one record to read per insertion
+    refine_detail::Edge e;
+    Candidate c;
+  };
+  std::vector<Chosen> chosen_;
   std::vector<double> chosen_xyz_;
   std::vector<uint32_t> split_order_;
   std::vector<uint32_t> facet_tri_;  // protected facets, 3 vertex ids each
@@ -483,16 +490,19 @@ size_t Refiner::metric_flip_pass() {
 // inserted in the order of a Hilbert curve through them. Inserting in length order jumped across
 // the mesh at every point (cold caches, long walks): most of refinement's time.
 size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
-  std::vector<const refine_detail::Edge*> longs;
+  // The long edges by value, sorted on every core: sorting pointers read the edges at random
+  // (armadillo: 1.5M of them in its first pass). The order is total (a, b name one edge).
+  std::vector<refine_detail::Edge>& longs = sorted_edges_;
+  longs.clear();
   for (const refine_detail::Edge& e : edges)
-    if (!e.on_surface && e.length > options_.split_length) longs.push_back(&e);
-  std::sort(longs.begin(), longs.end(), [](const refine_detail::Edge* x, const refine_detail::Edge* y) {
-    return x->length != y->length ? x->length > y->length : (x->a != y->a ? x->a < y->a : x->b < y->b);
+    if (!e.on_surface && e.length > options_.split_length) longs.push_back(e);
+  tbb::parallel_sort(longs.begin(), longs.end(), [](const refine_detail::Edge& x, const refine_detail::Edge& y) {
+    return x.length != y.length ? x.length > y.length : (x.a != y.a ? x.a < y.a : x.b < y.b);
   });
   if (longs.empty()) return 0;
   double lo[3] = {mesh_.xyz[0], mesh_.xyz[1], mesh_.xyz[2]};
   double hi[3] = {lo[0], lo[1], lo[2]};
-  double hmin = size_[longs.front()->a];
+  double hmin = size_[longs.front().a];
   for (size_t v = 0; v < mesh_.num_vertices(); ++v) {
     for (int k = 0; k < 3; ++k) {
       lo[k] = std::min(lo[k], mesh_.xyz[3 * v + k]);
@@ -509,7 +519,7 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
   candidates_.resize(longs.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, longs.size(), 512), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
-      const refine_detail::Edge* e = longs[i];
+      const refine_detail::Edge* e = &longs[i];
       Candidate& c = candidates_[i];
       metric_midpoint(e->a, e->b, c.m);
       field_.metric(c.m, c.mm);
@@ -521,10 +531,11 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
   // only be collapsed again (split/collapse ping-pong): such an edge is left to the flips. Not
   // with an anisotropic metric: optimize/'s flips are Euclidean, and the metric kernel
   // re-triangulates the cavity (the long edges there are mostly flat tets' diagonals).
-  // (e->tet holds the edge: the edges were collected on this mesh.)
-  auto vetoed = [&](const refine_detail::Edge* e, const Candidate& c) {
-    if (!anisotropic_ && holds_edge(*e) && meshops::edge_ring(mesh_, e->a, e->b, e->tet, ring_tets_, ring_))
-      for (uint32_t v : ring_) {
+  // (e->tet holds the edge: the edges were collected on this mesh, which the choice only reads.)
+  auto vetoed = [&](const refine_detail::Edge* e, const Candidate& c, std::vector<uint32_t>& ring_tets,
+                    std::vector<uint32_t>& ring) {
+    if (!anisotropic_ && holds_edge(*e) && meshops::edge_ring(mesh_, e->a, e->b, e->tet, ring_tets, ring))
+      for (uint32_t v : ring) {
         const double* pv = mesh_.point(v);
         const double d[3] = {pv[0] - c.m[0], pv[1] - c.m[1], pv[2] - c.m[2]};
         if (std::sqrt(metric_norm(c.mm, d) * metric_norm(&metrics_[6 * size_t(v)], d)) < options_.collapse_length)
@@ -532,17 +543,39 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       }
     return too_close_to_protected_facet(c.m, c.mm);
   };
+  // The choice, block by block in length order. A block's candidates are first checked on every
+  // core against the grid as it stands at the block's start, and the vetoes measured for those it
+  // lets through; then, in order, the grid is asked again only for those (it only grows, so the
+  // others would be refused anyway) and only when the block has added a point. The same points
+  // as a sequential loop, the vetoes (edge rings: random reads) off the sequential path.
+  constexpr size_t kBlock = 4096;
+  enum : uint8_t { kRefused = 0, kVetoed = 1, kFree = 2 };
+  verdict_.resize(longs.size());
   chosen_.clear();
   chosen_xyz_.clear();
-  for (size_t i = 0; i < longs.size(); ++i) {
-    const Candidate& c = candidates_[i];
-    if (grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing) || vetoed(longs[i], c)) {
-      ++stats_.split_rejected;
-      continue;
+  for (size_t b0 = 0; b0 < longs.size(); b0 += kBlock) {
+    const size_t b1 = std::min(longs.size(), b0 + kBlock);
+    tbb::parallel_for(tbb::blocked_range<size_t>(b0, b1, 256), [&](const tbb::blocked_range<size_t>& range) {
+      std::vector<uint32_t> ring_tets, ring;
+      for (size_t i = range.begin(); i != range.end(); ++i) {
+        const Candidate& c = candidates_[i];
+        verdict_[i] = grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing) ? kRefused
+                      : vetoed(&longs[i], c, ring_tets, ring)                             ? kVetoed
+                                                                                           : kFree;
+      }
+    });
+    bool added = false;
+    for (size_t i = b0; i < b1; ++i) {
+      const Candidate& c = candidates_[i];
+      if (verdict_[i] != kFree || (added && grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing))) {
+        ++stats_.split_rejected;
+        continue;
+      }
+      grid.add(c.m, c.r, c.iso ? nullptr : c.mm);
+      added = true;
+      chosen_.push_back({longs[i], c});
+      chosen_xyz_.insert(chosen_xyz_.end(), c.m, c.m + 3);
     }
-    grid.add(c.m, c.r, c.iso ? nullptr : c.mm);
-    chosen_.push_back(static_cast<uint32_t>(i));
-    chosen_xyz_.insert(chosen_xyz_.end(), c.m, c.m + 3);
   }
   split_order_.resize(chosen_.size());
   for (size_t k = 0; k < split_order_.size(); ++k) split_order_[k] = uint32_t(k);
@@ -551,8 +584,9 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
   if (!anisotropic_) delaunay_detail::hilbert_sort(chosen_xyz_.data(), split_order_.data(), split_order_.size(), lo, hi);
   size_t done = 0;
   for (uint32_t k : split_order_) {
-    const refine_detail::Edge* e = longs[chosen_[k]];
-    const Candidate& c = candidates_[chosen_[k]];
+    // (In curve order: one record per point, not the edge and the candidate far apart.)
+    const refine_detail::Edge* e = &chosen_[k].e;
+    const Candidate& c = chosen_[k].c;
     const double* m = c.m;
     const double* mm = c.mm;
     const bool iso = c.iso;
@@ -649,15 +683,17 @@ bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
 }
 
 size_t Refiner::collapse_pass(const std::vector<refine_detail::Edge>& edges) {
-  std::vector<const refine_detail::Edge*> shorts;
+  std::vector<refine_detail::Edge>& shorts = sorted_edges_;  // by value, as in split_pass
+  shorts.clear();
   for (const refine_detail::Edge& e : edges)
-    if (e.length < options_.collapse_length && !(fixed(e.a) && fixed(e.b))) shorts.push_back(&e);
-  std::sort(shorts.begin(), shorts.end(), [](const refine_detail::Edge* x, const refine_detail::Edge* y) {
-    return x->length != y->length ? x->length < y->length : (x->a != y->a ? x->a < y->a : x->b < y->b);
+    if (e.length < options_.collapse_length && !(fixed(e.a) && fixed(e.b))) shorts.push_back(e);
+  tbb::parallel_sort(shorts.begin(), shorts.end(), [](const refine_detail::Edge& x, const refine_detail::Edge& y) {
+    return x.length != y.length ? x.length < y.length : (x.a != y.a ? x.a < y.a : x.b < y.b);
   });
   touched_.resize(mesh_.num_vertices(), 0);
   size_t done = 0;
-  for (const refine_detail::Edge* e : shorts) {
+  for (const refine_detail::Edge& edge : shorts) {
+    const refine_detail::Edge* e = &edge;
     const uint32_t a = e->a, b = e->b;
     if (touched_[a] || touched_[b] || vt_.removed(a) || vt_.removed(b)) continue;
     const uint64_t key = (uint64_t(a) << 32) | b;
