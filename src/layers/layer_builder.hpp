@@ -169,6 +169,7 @@ class LayerBuilder {
   };
   std::vector<Replan> replans_;  // new plans the push being tried needs (applied on success)
   std::vector<uint32_t> added_;  // front triangles added by the push being tried
+  std::vector<uint32_t> near_;   // join_to_front: the front triangles near the cone being joined
   int remaining_layers_ = 1;     // layers still to build, the current one included
   int layer_ = 0;                // the layer being built (1-based)
   int bl_index_ = -1;            // the BL layer being built (0-based), -1: an ordinary layer

@@ -313,12 +313,33 @@ void LayerBuilder::limit_gradation(const std::vector<std::pair<uint32_t, uint32_
 bool LayerBuilder::join_to_front(const std::vector<uint32_t>& part, uint32_t apex) {
   front_.begin();
   added_.clear();
+  // One octree query for the whole cone: its tets lie in the box of the part's corners and the
+  // apex. Each tet then scans that list and the triangles the cone's earlier tets added (a query
+  // per tet walked the octree's nodes again, cache misses mostly).
+  Box3 cone;
+  const double* pa = mesh_.point(apex);
+  for (int k = 0; k < 3; ++k) cone.lo[k] = cone.hi[k] = pa[k];
+  for (uint32_t f : part)
+    for (int j = 0; j < 3; ++j) {
+      const double* q = mesh_.point(front_.tri(f)[j]);
+      for (int k = 0; k < 3; ++k) {
+        cone.lo[k] = std::min(cone.lo[k], q[k]);
+        cone.hi[k] = std::max(cone.hi[k], q[k]);
+      }
+    }
+  near_.clear();
+  front_.near(cone, [&](uint32_t f) {
+    near_.push_back(f);
+    return true;
+  });
   for (uint32_t f : part) {
     const uint32_t* t = front_.tri(f);
     const uint32_t v[4] = {t[0], t[2], t[1], apex};
     uint32_t closing[4];
-    if (!tet_fits(front_, mesh_.xyz, v, closing, fit_)) return false;
+    if (!tet_fits(front_, mesh_.xyz, v, closing, fit_, near_)) return false;
+    const size_t added_before = added_.size();
     commit_tet(v, closing);
+    near_.insert(near_.end(), added_.begin() + std::ptrdiff_t(added_before), added_.end());
   }
   return true;
 }

@@ -31,8 +31,13 @@ bool reversed(const uint32_t* t, const uint32_t f[3]) {
 
 }  // namespace
 
-bool tet_fits(const Front& front, const std::vector<double>& xyz, const uint32_t v[4],
-              uint32_t closing[4], FitCounters& counters) {
+namespace {
+
+// The test, with for_near(box, visit) calling visit(f) for (at least) every alive front triangle
+// whose box overlaps `box`, until visit returns false.
+template <class ForNear>
+bool fits(const Front& front, const std::vector<double>& xyz, const uint32_t v[4], uint32_t closing[4],
+          FitCounters& counters, ForNear&& for_near) {
   ++counters.tests;
   const double* p[4];
   for (int i = 0; i < 4; ++i) p[i] = &xyz[3 * size_t(v[i])];
@@ -54,7 +59,7 @@ bool tet_fits(const Front& front, const std::vector<double>& xyz, const uint32_t
 
   const Box3 tet_box = box_of(p, 4);
   bool fits = true;
-  front.near(tet_box, [&](uint32_t f) {
+  for_near(tet_box, [&](uint32_t f) {
     if (f == closing[0] || f == closing[1] || f == closing[2] || f == closing[3]) return true;
     ++counters.candidates;
     const uint32_t* t = front.tri(f);
@@ -87,6 +92,22 @@ bool tet_fits(const Front& front, const std::vector<double>& xyz, const uint32_t
     return true;
   });
   return fits;
+}
+
+}  // namespace
+
+bool tet_fits(const Front& front, const std::vector<double>& xyz, const uint32_t v[4], uint32_t closing[4],
+              FitCounters& counters) {
+  return fits(front, xyz, v, closing, counters,
+              [&](const Box3& box, auto&& visit) { front.near(box, visit); });
+}
+
+bool tet_fits(const Front& front, const std::vector<double>& xyz, const uint32_t v[4], uint32_t closing[4],
+              FitCounters& counters, const std::vector<uint32_t>& near) {
+  return fits(front, xyz, v, closing, counters, [&](const Box3& box, auto&& visit) {
+    for (uint32_t f : near)
+      if (front.alive(f) && boxes_overlap(front.box(f), box) && !visit(f)) return;
+  });
 }
 
 }  // namespace anitet::layers

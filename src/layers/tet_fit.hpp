@@ -35,4 +35,11 @@ struct FitCounters {
 bool tet_fits(const Front& front, const std::vector<double>& xyz, const uint32_t v[4],
               uint32_t closing[4], FitCounters& counters);
 
+// The same test with the front triangles to look at given: `near` holds every alive front
+// triangle whose box overlaps the tet's (it may hold others, and dead slots, which are skipped;
+// a triangle listed twice is tested twice). A cone of tets over one apex asks the octree once for
+// all of them (LayerBuilder::join_to_front).
+bool tet_fits(const Front& front, const std::vector<double>& xyz, const uint32_t v[4],
+              uint32_t closing[4], FitCounters& counters, const std::vector<uint32_t>& near);
+
 }  // namespace anitet::layers
