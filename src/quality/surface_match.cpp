@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
+#include <utility>
 
 #include "core/bvh.hpp"
+#include "core/flat_key_map.hpp"
 #include "predicates/predicates.hpp"
 #include "quality/parallel_for.hpp"
 #include "quality/report_detail.hpp"
@@ -111,9 +113,17 @@ void match_vertices(const VolumeMesh& mesh, const SurfaceMesh& s, const std::vec
   out.tolerance_abs = q;
   if (q > 0.0 && std::isfinite(q)) {
     // Cells of size 2q; each input vertex is filed in every cell its q-box touches (<= 8), so a
-    // query looks in one cell only.
+    // query looks in one cell only. The cells are found by a hash of their coordinates in a flat
+    // map heading a list per cell (a map of vectors cost one allocation per cell): two cells with
+    // one hash share a list, which only adds candidates farther than q.
     const double h = 2.0 * q;
-    std::unordered_map<CellKey, std::vector<uint32_t>, Hash3> grid;
+    auto cell_key = [](int64_t x, int64_t y, int64_t z) {
+      const uint64_t k = Hash3{}(CellKey{{x, y, z}});
+      return k == FlatKeyMap::kEmptyKey ? 0 : k;
+    };
+    constexpr uint32_t kEnd = FlatKeyMap::kAbsent;
+    FlatKeyMap heads;
+    std::vector<uint32_t> filed, next;  // per filing: the input vertex, the next filing of its cell
     for (size_t i = 0; i < canon.size(); ++i) {
       if (canon[i] != i || !referenced[i]) continue;
       const double* p = s.point(i);
@@ -125,22 +135,25 @@ void match_vertices(const VolumeMesh& mesh, const SurfaceMesh& s, const std::vec
       }
       for (int64_t x = lo[0]; x <= hi[0]; ++x)
         for (int64_t y = lo[1]; y <= hi[1]; ++y)
-          for (int64_t z = lo[2]; z <= hi[2]; ++z) grid[CellKey{{x, y, z}}].push_back(uint32_t(i));
+          for (int64_t z = lo[2]; z <= hi[2]; ++z) {
+            next.push_back(std::exchange(heads.find_or_insert(cell_key(x, y, z), kEnd), uint32_t(filed.size())));
+            filed.push_back(uint32_t(i));
+          }
     }
     for_chunks(nv, options.parallel, [&](size_t begin, size_t end) {
       for (size_t v = begin; v < end; ++v) {
         if (!used[v] || omap[v] != kNone) continue;
         const double* p = mesh.point(v);
-        const CellKey key{{static_cast<int64_t>(std::floor(p[0] / h)),
-                           static_cast<int64_t>(std::floor(p[1] / h)),
-                           static_cast<int64_t>(std::floor(p[2] / h))}};
-        auto it = grid.find(key);
-        if (it == grid.end()) continue;
+        // The nearest within q, and of equals the highest input id.
         double best = q;
-        for (uint32_t i : it->second) {
+        for (uint32_t f = heads.find(cell_key(static_cast<int64_t>(std::floor(p[0] / h)),
+                                              static_cast<int64_t>(std::floor(p[1] / h)),
+                                              static_cast<int64_t>(std::floor(p[2] / h))));
+             f != kEnd; f = next[f]) {
+          const uint32_t i = filed[f];
           const double* c = s.point(i);
           const double dist = std::max({std::fabs(p[0] - c[0]), std::fabs(p[1] - c[1]), std::fabs(p[2] - c[2])});
-          if (dist <= best) {
+          if (dist < best || (dist == best && (omap[v] == kNone || i > omap[v]))) {
             best = dist;
             omap[v] = i;
             how[v] = 2;
