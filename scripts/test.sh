@@ -24,7 +24,7 @@ if [[ ${ANITET_SKIP_SANITIZERS:-0} != 1 ]]; then
   asan_skip='_[23]_layers$|^e2e\.layers[23]\.|^e2e\.mesh-quality\.|^e2e\.mesh-interior\.|tray_bottom|^e2e\.layers-bl\.fandisk'
   asan_skip+='|^BoundaryLayer\.AirplaneInAFarfieldBox$|^e2e\.recover\.casting|^e2e\.mesh-retry\.|^e2e\.mesh-default\.'
   asan_skip+='|^Layers\.(WorstTetsStandOnPoorInputTriangles|IsotropicQualityOnGoodSurfaces|IsotropicQualityWithTwoLayers|PaperSchemeIsValidToo|ReportsHalvingsAndProvenance)$'
-  asan_skip+='|^e2e\.invariance\.|^RecoverySplit\.(Hammer|Skull)$|^Stage2\.|^Pipeline\.AirplaneInAFarfieldBoxWith15BoundaryLayers$'
+  asan_skip+='|^e2e\.invariance\.|^e2e\.recover-translated\.|^RecoverySplit\.(Hammer|Skull)$|^Stage2\.|^Pipeline\.AirplaneInAFarfieldBoxWith15BoundaryLayers$'
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$root/build-asan" -j "$jobs" --output-on-failure --no-tests=error -LE slow -E "$asan_skip"
 fi

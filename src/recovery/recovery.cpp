@@ -811,6 +811,7 @@ const char* recovery_strategy_name(size_t strategy) {
     case 2: return "fuzzy faces with defended edges";
     case 3: return "split constraints";
     case 4: return "split constraints, crossing edges removed 3 times, edge-crossing splits switched";
+    case 5: return "split constraints, tets flat in exact geometry allowed";
     default: return "unknown";
   }
 }
@@ -854,6 +855,18 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
       RecoveryOutput again = fresh_output(S, 4);
       const Status s2 = recovery_detail::recover_by_splitting(S, more, again);
       if (s2.ok()) return finished(again);
+    }
+    if (s.code() == Error::RecoveryFailed && options.retry_strategies && options.split_exact_degeneracies) {
+      // Once more without the degeneracy oracle: refusing every tet flat in exact geometry can
+      // leave a segment no point recovers (adis16480 translated by 1e6: its S1, rounded there,
+      // failed 400 passes; without the oracle it is recovered at once). The tets flat to double
+      // rounding this may make are opened later (the optimizer's last pass; flip_flat_tets in
+      // `anitet recover`).
+      RecoveryOptions plain = options;
+      plain.split_exact_degeneracies = false;
+      RecoveryOutput again = fresh_output(S, 5);
+      const Status s3 = recovery_detail::recover_by_splitting(S, plain, again);
+      if (s3.ok()) return finished(again);
     }
     if (s.code() != Error::RecoveryFailed || !options.fuzzy_faces) return s;
     first = s;

@@ -41,7 +41,7 @@ struct RecoveryOptions {
   bool use_flips = false;
   // When the recovery fails with the options above, start again with use_flips, then again with
   // defend_edges (each from scratch); the split strategy, again with split_crossing_flips = 3 and
-  // split_edge_crossings switched.
+  // split_edge_crossings switched, then again as asked without split_exact_degeneracies.
   // RecoveryStats::strategy tells which one succeeded.
   bool retry_strategies = true;
   // First recover by splitting the constraint triangles themselves (split_recovery.hpp): every
@@ -112,7 +112,8 @@ struct RecoveryStats {
   size_t steiner_on_edges = 0, steiner_on_faces = 0;
   size_t passes = 0;
   // 3: split constraints (the first try by default), 4: split constraints retried with more
-  // crossing-edge removals and split_edge_crossings switched; 0: fuzzy faces with the options as given, 1: retried with flips, 2:
+  // crossing-edge removals and split_edge_crossings switched, 5: split constraints retried without
+  // split_exact_degeneracies; 0: fuzzy faces with the options as given, 1: retried with flips, 2:
   // with defended edges
   size_t strategy = 0;
   size_t caps_split = 0;          // split constraints: caps split at their apex's projection
