@@ -23,7 +23,8 @@ struct EdgeScratch {
     uint32_t b;
     uint32_t tet;
   };
-  std::vector<uint32_t> start, fill;
+  std::vector<uint32_t> start;  // per vertex: its bucket's first entry in `all`
+  std::vector<uint32_t> fill;   // per chunk of tets and vertex: counts, then fill positions
   std::vector<Entry> all;
   std::vector<std::vector<Edge>> parts;  // the edges of each chunk of vertices
 };
