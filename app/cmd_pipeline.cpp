@@ -260,7 +260,10 @@ int run_mesh_pipeline(MeshArgs& args) {
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
         {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range},
-                    {"anisotropic_cycles", r.anisotropic_cycles}}},
+                    {"anisotropic_cycles", r.anisotropic_cycles},
+                    {"seconds", {{"edge_lists", r.refine.seconds_edges}, {"split_choice", r.refine.seconds_choice},
+                                 {"insertion", r.refine.seconds_insertion}, {"collapses", r.refine.seconds_collapses},
+                                 {"metric_flips", r.refine.seconds_flips}}}}},
         {"metric_quality", {{"tets", r.metric_quality.tets}, {"radius_ratio_mean", r.metric_quality.mean},
                             {"radius_ratio_min", r.metric_quality.min}, {"below_0.1", r.metric_quality.below_01},
                             {"below_0.4", r.metric_quality.below_04}}},
@@ -312,6 +315,12 @@ int run_mesh_pipeline(MeshArgs& args) {
               << (r.anisotropic_cycles > 0 ? " (anisotropic metric: refinement and optimization ran " +
                                                   std::to_string(1 + r.anisotropic_cycles) + " times)"
                                             : std::string())
+              << "\n"
+              << "  refinement time: edge lists " << r.refine.seconds_edges << " s, split choice "
+              << r.refine.seconds_choice << " s, insertion " << r.refine.seconds_insertion << " s, collapses "
+              << r.refine.seconds_collapses << " s"
+              << (r.refine.seconds_flips > 0.0 ? ", metric flips " + std::to_string(r.refine.seconds_flips) + " s"
+                                               : std::string())
               << "\n"
               << "  optimization: " << optimization_counts(r.optimize) << "; radius ratio min " << r.optimize.before.min << " -> "
               << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean

@@ -445,6 +445,11 @@ Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const Ref
     refine.length_mean = r->length_mean;
     refine.length_in_range = r->length_in_range;
     refine.seconds += r->seconds;
+    refine.seconds_edges += r->seconds_edges;
+    refine.seconds_choice += r->seconds_choice;
+    refine.seconds_insertion += r->seconds_insertion;
+    refine.seconds_collapses += r->seconds_collapses;
+    refine.seconds_flips += r->seconds_flips;
     Result<OptimizeStats> o = optimize_mesh(mesh, scaled, optimize_options);
     if (!o.ok()) return Status(o.status().code(), "stage 3c (optimization, cycle " + std::to_string(c + 2) + "): " + o.status().message());
     optimize.moves += o->moves;

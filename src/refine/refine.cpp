@@ -28,6 +28,7 @@ namespace anitet {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Points inserted in the current batch, in a hash grid per size level so that a query only
 // looks at 8 cells per level: a point q of radius r_q = spacing * (the largest size of M_q, see
@@ -142,11 +143,13 @@ class Refiner {
   size_t metric_flip_pass();
   // Up to max_sweeps metric flip passes, until one flips nothing; then the debug check.
   Status metric_flip_sweeps(int max_sweeps) {
+    const auto t = Clock::now();
     for (int sweep = 0; sweep < max_sweeps; ++sweep) {
       const size_t f = metric_flip_pass();
       stats_.metric_flips += f;
       if (f == 0) break;
     }
+    stats_.seconds_flips += seconds_since(t);
     return check("after metric flips");
   }
   meshops::MetricMap map_at_centroid(const uint32_t* v, size_t n) const;
@@ -490,6 +493,7 @@ size_t Refiner::metric_flip_pass() {
 // inserted in the order of a Hilbert curve through them. Inserting in length order jumped across
 // the mesh at every point (cold caches, long walks): most of refinement's time.
 size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
+  const auto choice_start = Clock::now();
   // The long edges by value, sorted on every core: sorting pointers read the edges at random
   // (armadillo: 1.5M of them in its first pass). The order is total (a, b name one edge).
   std::vector<refine_detail::Edge>& longs = sorted_edges_;
@@ -577,6 +581,8 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       chosen_xyz_.insert(chosen_xyz_.end(), c.m, c.m + 3);
     }
   }
+  stats_.seconds_choice += seconds_since(choice_start);
+  const auto insertion_start = Clock::now();
   split_order_.resize(chosen_.size());
   for (size_t k = 0; k < split_order_.size(); ++k) split_order_[k] = uint32_t(k);
   // Anisotropic metrics keep the length order: the metric kernel needs the edge's ring, which
@@ -624,6 +630,7 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
     note_changed(*created);
     ++done;
   }
+  stats_.seconds_insertion += seconds_since(insertion_start);
   return done;
 }
 
@@ -756,7 +763,9 @@ Result<RefineStats> Refiner::run() {
   for (int pass = 0; pass < options_.max_passes; ++pass) {
     // One edge list serves both halves of the pass: the splits mark the vertices whose edges
     // they changed, and the collapses skip those edges (they are measured again next pass).
+    auto t = Clock::now();
     refine_detail::collect_edges(mesh_, metrics_, edges, edge_scratch_);
+    stats_.seconds_edges += seconds_since(t);
     touched_.assign(mesh_.num_vertices(), 0);
     const size_t splits = split_pass(edges);
     if (Status st = check("after a split pass"); !st.ok()) return st;
@@ -764,7 +773,9 @@ Result<RefineStats> Refiner::run() {
     if (options_.collapse) {
       // Anisotropic: the metric flips change the neighbourhoods, so refused collapses are retried.
       if (anisotropic_) refused_.clear();
+      t = Clock::now();
       collapses = collapse_pass(edges);
+      stats_.seconds_collapses += seconds_since(t);
       if (Status st = check("after a collapse pass"); !st.ok()) return st;
     }
     if (anisotropic_)
@@ -774,7 +785,9 @@ Result<RefineStats> Refiner::run() {
     stats_.passes = pass + 1;
     if (double(splits + collapses) < options_.stop_fraction * double(edges.size())) break;
   }
+  const auto t = Clock::now();
   refine_detail::collect_edges(mesh_, metrics_, edges, edge_scratch_);
+  stats_.seconds_edges += seconds_since(t);
   refine_detail::length_summary(edges, options_.collapse_length, options_.split_length, stats_.length_mean,
                                 stats_.length_in_range);
   stats_.vertices_after = refine_detail::live_vertex_count(mesh_);

@@ -88,6 +88,10 @@ struct RefineStats {
   double length_mean = 0.0;
   double length_in_range = 0.0;  // share of edges (not on S) in [collapse_length, split_length]
   double seconds = 0.0;
+  // Where the time went: edge lists (collect_edges), the split points' choice (midpoints, metric,
+  // spacing grid, vetoes), their insertion, the collapses, the metric flips (anisotropic only).
+  double seconds_edges = 0.0, seconds_choice = 0.0, seconds_insertion = 0.0, seconds_collapses = 0.0,
+         seconds_flips = 0.0;
 };
 
 // Scales a field's lengths: metric(p) = base.metric(p) / scale^2.
