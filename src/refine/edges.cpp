@@ -73,28 +73,31 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
   });
   const std::vector<uint32_t>& start = scratch.start;
   const std::vector<EdgeScratch::Entry>& all = scratch.all;
-  // Duplicates are found within each bucket by scanning the bucket's edges kept so far (a few:
-  // a vertex's higher neighbours), in chunks of vertices on every core, each into its own list;
-  // the lists are then joined in vertex order. Same edges in the same order as one loop.
+  // Duplicates are found within each bucket through a per-thread array holding, per upper end b,
+  // where (a, b) was last put in a list: a position is trusted only when the list holds (a, b)
+  // there, so the array needs no clearing and keeps its memory between calls. In chunks of
+  // vertices on every core, each into its own list; the lists are then joined in vertex order.
+  // Same edges in the same order as one loop.
   constexpr size_t kChunk = 8192;
   const size_t chunks = (nv + kChunk - 1) / kChunk;
   std::vector<std::vector<Edge>>& parts = scratch.parts;
   if (parts.size() < chunks) parts.resize(chunks);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+    thread_local std::vector<uint32_t> where;
+    if (where.size() < nv) where.resize(nv);
     for (size_t c = r.begin(); c != r.end(); ++c) {
       std::vector<Edge>& out = parts[c];
       out.clear();
       for (size_t v = c * kChunk; v < std::min(nv, (c + 1) * kChunk); ++v) {
-        const size_t first = out.size();
         for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
           const EdgeScratch::Entry& e = all[k];
           const bool on_surface = (e.tet & EdgeScratch::Entry::kSurface) != 0;
-          size_t j = first;
-          while (j < out.size() && out[j].b != e.b) ++j;
-          if (j < out.size()) {
+          const uint32_t j = where[e.b];
+          if (j < out.size() && out[j].a == v && out[j].b == e.b) {
             out[j].on_surface |= on_surface;
             continue;
           }
+          where[e.b] = static_cast<uint32_t>(out.size());
           out.push_back({static_cast<uint32_t>(v), e.b, e.tet & ~EdgeScratch::Entry::kSurface, on_surface, 0.0});
         }
       }
