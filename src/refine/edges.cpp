@@ -75,7 +75,7 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
   const std::vector<EdgeScratch::Entry>& all = scratch.all;
   // Duplicates are found within each bucket through a per-thread array holding, per upper end b,
   // where (a, b) was last put in a list: a position is trusted only when the list holds (a, b)
-  // there, so the array needs no clearing and keeps its memory between calls. In chunks of
+  // there, so the array needs no clearing between calls (EdgeScratch::where). In chunks of
   // vertices on every core, each into its own list; the lists are then joined in vertex order.
   // Same edges in the same order as one loop.
   constexpr size_t kChunk = 8192;
@@ -83,7 +83,7 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
   std::vector<std::vector<Edge>>& parts = scratch.parts;
   if (parts.size() < chunks) parts.resize(chunks);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
-    thread_local std::vector<uint32_t> where;
+    std::vector<uint32_t>& where = scratch.where.local();
     if (where.size() < nv) where.resize(nv);
     for (size_t c = r.begin(); c != r.end(); ++c) {
       std::vector<Edge>& out = parts[c];

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include "core/tet_mesh.hpp"
 
 namespace anitet::refine_detail {
@@ -27,6 +29,9 @@ struct EdgeScratch {
   std::vector<uint32_t> fill;   // per chunk of tets and vertex: counts, then fill positions
   std::vector<Entry> all;
   std::vector<std::vector<Edge>> parts;  // the edges of each chunk of vertices
+  // Per thread: where each upper end's edge was last put in a list (collect_edges). Kept here, not
+  // thread_local, so that the memory goes with the scratch.
+  tbb::enumerable_thread_specific<std::vector<uint32_t>> where;
 };
 
 // Every edge of the live tets once, a < b, grouped by a (ascending); within a group the order
