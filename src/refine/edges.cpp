@@ -74,48 +74,54 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
   const std::vector<uint32_t>& start = scratch.start;
   const std::vector<EdgeScratch::Entry>& all = scratch.all;
   // Duplicates are found within each bucket through a per-thread array holding, per upper end b,
-  // where (a, b) was last put in a list: a position is trusted only when the list holds (a, b)
-  // there, so the array needs no clearing between calls (EdgeScratch::where). In chunks of
-  // vertices on every core, each into its own list; the lists are then joined in vertex order.
-  // Same edges in the same order as one loop.
+  // the position of (a, b) while bucket a is scanned (kNone otherwise: each bucket clears what it
+  // set). In chunks of vertices on every core: a first pass counts each chunk's edges, a second
+  // writes them at the chunk's offset in `edges` (one copy of the edges at any time: refinement's
+  // peak memory). Same edges in the same order as one loop.
   constexpr size_t kChunk = 8192;
   const size_t chunks = (nv + kChunk - 1) / kChunk;
-  std::vector<std::vector<Edge>>& parts = scratch.parts;
-  if (parts.size() < chunks) parts.resize(chunks);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+  auto dedup_chunk = [&](size_t c, auto&& keep, auto&& again) {
     std::vector<uint32_t>& where = scratch.where.local();
-    if (where.size() < nv) where.resize(nv);
-    for (size_t c = r.begin(); c != r.end(); ++c) {
-      std::vector<Edge>& out = parts[c];
-      out.clear();
-      for (size_t v = c * kChunk; v < std::min(nv, (c + 1) * kChunk); ++v) {
-        for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
-          const EdgeScratch::Entry& e = all[k];
-          const bool on_surface = (e.tet & EdgeScratch::Entry::kSurface) != 0;
-          const uint32_t j = where[e.b];
-          if (j < out.size() && out[j].a == v && out[j].b == e.b) {
-            out[j].on_surface |= on_surface;
-            continue;
-          }
-          where[e.b] = static_cast<uint32_t>(out.size());
-          out.push_back({static_cast<uint32_t>(v), e.b, e.tet & ~EdgeScratch::Entry::kSurface, on_surface, 0.0});
+    if (where.size() < nv) where.resize(nv, TetMesh::kNone);
+    uint32_t kept = 0;
+    for (size_t v = c * kChunk; v < std::min(nv, (c + 1) * kChunk); ++v) {
+      for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
+        const EdgeScratch::Entry& e = all[k];
+        if (where[e.b] != TetMesh::kNone) {
+          again(where[e.b], e);
+          continue;
         }
+        where[e.b] = kept++;
+        keep(static_cast<uint32_t>(v), e);
       }
+      for (uint32_t k = start[v]; k < start[v + 1]; ++k) where[all[k].b] = TetMesh::kNone;
     }
-  });
+    return kept;
+  };
   std::vector<size_t> offset(chunks + 1, 0);
-  for (size_t c = 0; c < chunks; ++c) offset[c + 1] = offset[c] + parts[c].size();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t c = r.begin(); c != r.end(); ++c)
+      offset[c + 1] = dedup_chunk(c, [](uint32_t, const EdgeScratch::Entry&) {},
+                                  [](uint32_t, const EdgeScratch::Entry&) {});
+  });
+  for (size_t c = 0; c < chunks; ++c) offset[c + 1] += offset[c];
   edges.resize(offset[chunks]);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t c = r.begin(); c != r.end(); ++c) {
       Edge* out = edges.data() + offset[c];
-      for (Edge e : parts[c]) {
-        const double* pa = mesh.point(e.a);
-        const double* pb = mesh.point(e.b);
-        const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
-        e.length = std::sqrt(metric_norm(&metrics[6 * size_t(e.a)], d) * metric_norm(&metrics[6 * size_t(e.b)], d));
-        *out++ = e;
-      }
+      dedup_chunk(
+          c,
+          [&](uint32_t a, const EdgeScratch::Entry& e) {
+            const uint32_t b = e.b;
+            const double* pa = mesh.point(a);
+            const double* pb = mesh.point(b);
+            const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+            *out++ = {a, b, e.tet & ~EdgeScratch::Entry::kSurface, (e.tet & EdgeScratch::Entry::kSurface) != 0,
+                      std::sqrt(metric_norm(&metrics[6 * size_t(a)], d) * metric_norm(&metrics[6 * size_t(b)], d))};
+          },
+          [&](uint32_t j, const EdgeScratch::Entry& e) {
+            edges[offset[c] + j].on_surface |= (e.tet & EdgeScratch::Entry::kSurface) != 0;
+          });
     }
   });
 }

@@ -28,9 +28,8 @@ struct EdgeScratch {
   std::vector<uint32_t> start;  // per vertex: its bucket's first entry in `all`
   std::vector<uint32_t> fill;   // per chunk of tets and vertex: counts, then fill positions
   std::vector<Entry> all;
-  std::vector<std::vector<Edge>> parts;  // the edges of each chunk of vertices
-  // Per thread: where each upper end's edge was last put in a list (collect_edges). Kept here, not
-  // thread_local, so that the memory goes with the scratch.
+  // Per thread: the position of each upper end's edge in the bucket being scanned, else kNone
+  // (collect_edges). Kept here, not thread_local, so that the memory goes with the scratch.
   tbb::enumerable_thread_specific<std::vector<uint32_t>> where;
 };
 

@@ -204,25 +204,19 @@ class Refiner {
     return true;
   }
   std::vector<uint32_t> ball_w_, old_, ring_tets_, ring_;
-  // One split pass's candidate midpoints (one per long edge, in length order) ...
+  // One split pass's candidate midpoints (one per long edge, in length order), and the chosen
+  // ones with their edges (one record to read per insertion). split_pass keeps them in locals,
+  // so that the first pass's long lists do not stay allocated to the end.
   struct Candidate {
     double m[3];   // the metric midpoint
     double mm[6];  // the metric there
     double r;      // its radius in the spacing grid
     bool iso;      // mm is isotropic
   };
-  std::vector<refine_detail::Edge> sorted_edges_;  // a pass's long or short edges, in order
-  std::vector<Candidate> candidates_;
-  std::vector<uint8_t> verdict_;  // per candidate: refused by the grid, vetoed, or free (see split_pass)
-  // ... and the chosen ones (copied with their edges), their points packed for the Hilbert sort
-  // (3 each), and the order they are inserted in (indices in chosen_).
-  struct Chosen {  // a chosen candidate with its edge: one record to read per insertion
+  struct Chosen {
     refine_detail::Edge e;
     Candidate c;
   };
-  std::vector<Chosen> chosen_;
-  std::vector<double> chosen_xyz_;
-  std::vector<uint32_t> split_order_;
   std::vector<uint32_t> facet_tri_;  // protected facets, 3 vertex ids each
   TriangleBVH facet_bvh_;
   std::vector<meshops::TetVerts> fresh_;
@@ -496,8 +490,7 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
   const auto choice_start = Clock::now();
   // The long edges by value, sorted on every core: sorting pointers read the edges at random
   // (armadillo: 1.5M of them in its first pass). The order is total (a, b name one edge).
-  std::vector<refine_detail::Edge>& longs = sorted_edges_;
-  longs.clear();
+  std::vector<refine_detail::Edge> longs;
   for (const refine_detail::Edge& e : edges)
     if (!e.on_surface && e.length > options_.split_length) longs.push_back(e);
   tbb::parallel_sort(longs.begin(), longs.end(), [](const refine_detail::Edge& x, const refine_detail::Edge& y) {
@@ -520,11 +513,11 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
   // it), the local vetoes measured only for the points the grid lets through (most long edges
   // are put off by the grid: armadillo 1.1M of 1.5M). The same points are chosen as in one
   // sequential loop.
-  candidates_.resize(longs.size());
+  std::vector<Candidate> candidates(longs.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, longs.size(), 512), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const refine_detail::Edge* e = &longs[i];
-      Candidate& c = candidates_[i];
+      Candidate& c = candidates[i];
       metric_midpoint(e->a, e->b, c.m);
       field_.metric(c.m, c.mm);
       c.iso = meshops::MetricMap::of(c.mm).identity;
@@ -554,45 +547,45 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
   // as a sequential loop, the vetoes (edge rings: random reads) off the sequential path.
   constexpr size_t kBlock = 4096;
   enum : uint8_t { kRefused = 0, kVetoed = 1, kFree = 2 };
-  verdict_.resize(longs.size());
-  chosen_.clear();
-  chosen_xyz_.clear();
+  std::vector<uint8_t> verdict(longs.size());  // per candidate: refused by the grid, vetoed, or free
+  std::vector<Chosen> chosen;
+  std::vector<double> chosen_xyz;  // their points, 3 each, for the Hilbert sort
   for (size_t b0 = 0; b0 < longs.size(); b0 += kBlock) {
     const size_t b1 = std::min(longs.size(), b0 + kBlock);
     tbb::parallel_for(tbb::blocked_range<size_t>(b0, b1, 256), [&](const tbb::blocked_range<size_t>& range) {
       std::vector<uint32_t> ring_tets, ring;
       for (size_t i = range.begin(); i != range.end(); ++i) {
-        const Candidate& c = candidates_[i];
-        verdict_[i] = grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing) ? kRefused
+        const Candidate& c = candidates[i];
+        verdict[i] = grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing) ? kRefused
                       : vetoed(&longs[i], c, ring_tets, ring)                             ? kVetoed
                                                                                            : kFree;
       }
     });
     bool added = false;
     for (size_t i = b0; i < b1; ++i) {
-      const Candidate& c = candidates_[i];
-      if (verdict_[i] != kFree || (added && grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing))) {
+      const Candidate& c = candidates[i];
+      if (verdict[i] != kFree || (added && grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing))) {
         ++stats_.split_rejected;
         continue;
       }
       grid.add(c.m, c.r, c.iso ? nullptr : c.mm);
       added = true;
-      chosen_.push_back({longs[i], c});
-      chosen_xyz_.insert(chosen_xyz_.end(), c.m, c.m + 3);
+      chosen.push_back({longs[i], c});
+      chosen_xyz.insert(chosen_xyz.end(), c.m, c.m + 3);
     }
   }
   stats_.seconds_choice += seconds_since(choice_start);
   const auto insertion_start = Clock::now();
-  split_order_.resize(chosen_.size());
-  for (size_t k = 0; k < split_order_.size(); ++k) split_order_[k] = uint32_t(k);
+  std::vector<uint32_t> split_order(chosen.size());  // the insertion order (indices in chosen)
+  for (size_t k = 0; k < split_order.size(); ++k) split_order[k] = uint32_t(k);
   // Anisotropic metrics keep the length order: the metric kernel needs the edge's ring, which
   // earlier insertions of the batch destroy less often when the longest edges go first.
-  if (!anisotropic_) delaunay_detail::hilbert_sort(chosen_xyz_.data(), split_order_.data(), split_order_.size(), lo, hi);
+  if (!anisotropic_) delaunay_detail::hilbert_sort(chosen_xyz.data(), split_order.data(), split_order.size(), lo, hi);
   size_t done = 0;
-  for (uint32_t k : split_order_) {
+  for (uint32_t k : split_order) {
     // (In curve order: one record per point, not the edge and the candidate far apart.)
-    const refine_detail::Edge* e = &chosen_[k].e;
-    const Candidate& c = chosen_[k].c;
+    const refine_detail::Edge* e = &chosen[k].e;
+    const Candidate& c = chosen[k].c;
     const double* m = c.m;
     const double* mm = c.mm;
     const bool iso = c.iso;
@@ -690,8 +683,7 @@ bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
 }
 
 size_t Refiner::collapse_pass(const std::vector<refine_detail::Edge>& edges) {
-  std::vector<refine_detail::Edge>& shorts = sorted_edges_;  // by value, as in split_pass
-  shorts.clear();
+  std::vector<refine_detail::Edge> shorts;  // by value, as in split_pass
   for (const refine_detail::Edge& e : edges)
     if (e.length < options_.collapse_length && !(fixed(e.a) && fixed(e.b))) shorts.push_back(e);
   tbb::parallel_sort(shorts.begin(), shorts.end(), [](const refine_detail::Edge& x, const refine_detail::Edge& y) {
