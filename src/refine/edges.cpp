@@ -46,7 +46,7 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
   std::vector<uint32_t>& counts = scratch.fill;  // tet_chunks x nv, then the tet_chunks' fill positions
   counts.assign(tet_chunks * nv, 0);
   tbb::parallel_for(size_t(0), tet_chunks, [&](size_t c) {
-    uint32_t* count = &counts[c * nv];
+    uint32_t* count = counts.data() + c * nv;  // (no reference: nv may be 0)
     const auto [first, last] = tets_of(c);
     for_each_edge(first, last, [&](uint32_t a, uint32_t, uint32_t, bool) { ++count[a]; });
   });
@@ -65,7 +65,7 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
   });
   scratch.all.resize(start_w[nv]);
   tbb::parallel_for(size_t(0), tet_chunks, [&](size_t c) {
-    uint32_t* fill = &counts[c * nv];
+    uint32_t* fill = counts.data() + c * nv;
     const auto [first, last] = tets_of(c);
     for_each_edge(first, last, [&](uint32_t a, uint32_t b, uint32_t t, bool s) {
       scratch.all[fill[a]++] = EdgeScratch::Entry{b, t | (s ? EdgeScratch::Entry::kSurface : 0u)};
