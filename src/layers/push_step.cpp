@@ -313,19 +313,15 @@ void LayerBuilder::limit_gradation(const std::vector<std::pair<uint32_t, uint32_
 bool LayerBuilder::join_to_front(const std::vector<uint32_t>& part, uint32_t apex) {
   front_.begin();
   added_.clear();
-  // One octree query for the whole cone: its tets lie in the box of the part's corners and the
-  // apex. Each tet then scans that list and the triangles the cone's earlier tets added (a query
-  // per tet walked the octree's nodes again, cache misses mostly).
-  Box3 cone;
-  const double* pa = mesh_.point(apex);
-  for (int k = 0; k < 3; ++k) cone.lo[k] = cone.hi[k] = pa[k];
+  // One octree query for the whole cone: its tets lie in the box of the part's triangles (the
+  // front keeps each one's box) and the apex. Each tet then scans that list and the triangles the
+  // cone's earlier tets added (a query per tet walked the octree's nodes again, cache misses
+  // mostly).
+  Box3 cone = box_around(mesh_.point(apex), 0.0);
   for (uint32_t f : part)
-    for (int j = 0; j < 3; ++j) {
-      const double* q = mesh_.point(front_.tri(f)[j]);
-      for (int k = 0; k < 3; ++k) {
-        cone.lo[k] = std::min(cone.lo[k], q[k]);
-        cone.hi[k] = std::max(cone.hi[k], q[k]);
-      }
+    for (int k = 0; k < 3; ++k) {
+      cone.lo[k] = std::min(cone.lo[k], front_.box(f).lo[k]);
+      cone.hi[k] = std::max(cone.hi[k], front_.box(f).hi[k]);
     }
   near_.clear();
   front_.near(cone, [&](uint32_t f) {
