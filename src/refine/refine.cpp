@@ -509,10 +509,9 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
   }
   SpacingGrid grid(lo, std::max(options_.spacing * hmin, 1e-300));
   // Each edge's midpoint and metric, on every core (the mesh is only read), then the spacing
-  // filter in length order (sequential: each point is checked against the ones chosen before
-  // it), the local vetoes measured only for the points the grid lets through (most long edges
-  // are put off by the grid: armadillo 1.1M of 1.5M). The same points are chosen as in one
-  // sequential loop.
+  // filter in length order (each point is checked against the ones chosen before it; most long
+  // edges are put off by the grid: armadillo 1.1M of 1.5M) with the local vetoes, block by block
+  // below. The same points are chosen as in one sequential loop.
   std::vector<Candidate> candidates(longs.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, longs.size(), 512), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
@@ -691,9 +690,8 @@ size_t Refiner::collapse_pass(const std::vector<refine_detail::Edge>& edges) {
   });
   touched_.resize(mesh_.num_vertices(), 0);
   size_t done = 0;
-  for (const refine_detail::Edge& edge : shorts) {
-    const refine_detail::Edge* e = &edge;
-    const uint32_t a = e->a, b = e->b;
+  for (const refine_detail::Edge& e : shorts) {
+    const uint32_t a = e.a, b = e.b;
     if (touched_[a] || touched_[b] || vt_.removed(a) || vt_.removed(b)) continue;
     const uint64_t key = (uint64_t(a) << 32) | b;
     if (refused_.count(key)) continue;  // refused in an earlier pass: not retried
