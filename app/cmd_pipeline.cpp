@@ -278,7 +278,10 @@ int run_mesh_pipeline(MeshArgs& args) {
         {"optimize", {{"moves", r.optimize.moves}, {"flips23", r.optimize.flips23},
                       {"edge_removals", r.optimize.edge_removals}, {"perturbations", r.optimize.perturbations},
                       {"collapses", r.optimize.collapses},
-                      {"flat_found", r.optimize.flat_found}, {"flat_left", r.optimize.flat_left}}},
+                      {"flat_found", r.optimize.flat_found}, {"flat_left", r.optimize.flat_left},
+                      {"seconds", {{"setup", r.optimize.seconds_setup}, {"cvt", r.optimize.seconds_cvt},
+                                   {"flips", r.optimize.seconds_flips}, {"slivers", r.optimize.seconds_slivers},
+                                   {"certify", r.optimize.seconds_certify}}}}},
         {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
     std::cout << out.dump(1) << "\n";
   } else if (!args.quiet) {
@@ -324,7 +327,10 @@ int run_mesh_pipeline(MeshArgs& args) {
               << "\n"
               << "  optimization: " << optimization_counts(r.optimize) << "; radius ratio min " << r.optimize.before.min << " -> "
               << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
-              << "\n";
+              << "\n"
+              << "  optimization time: summaries and metrics " << r.optimize.seconds_setup << " s, CVT "
+              << r.optimize.seconds_cvt << " s, flips " << r.optimize.seconds_flips << " s, slivers "
+              << r.optimize.seconds_slivers << " s, certification " << r.optimize.seconds_certify << " s\n";
     if (r.metric_quality.tets > 0) {
       const QualitySummary& mq = r.metric_quality;
       std::cout << "  in the metric (anisotropic field; the report below is Euclidean): radius ratio mean "

@@ -691,6 +691,13 @@ void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
 
 Result<OptimizeStats> Optimizer::run() {
   const auto start = Clock::now();
+  auto lap = Clock::now();
+  // Adds the time since the last call to `into`.
+  auto take_lap = [&lap](double& into) {
+    const auto now = Clock::now();
+    into += std::chrono::duration<double>(now - lap).count();
+    lap = now;
+  };
   for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t)
     if (!mesh_.is_deleted(t) && mesh_.is_ghost(t))
       return Status(Error::InvalidArgument, "optimize: the mesh has ghost tets");
@@ -717,19 +724,24 @@ Result<OptimizeStats> Optimizer::run() {
     }
   }
   stats_.anisotropic = quality_.anisotropic();
+  take_lap(stats_.seconds_setup);
   for (int it = 0; it < options_.cvt_iterations; ++it) {
     refresh_metrics();
     stats_.moves += cvt_pass();
     refresh_metrics();
+    take_lap(stats_.seconds_cvt);
     optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
+    take_lap(stats_.seconds_flips);
   }
   std::vector<uint32_t>().swap(ball_start_);
   std::vector<uint32_t>().swap(ball_tets_);
   for (int round = 0; round < options_.sliver_rounds; ++round) {
     optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
+    take_lap(stats_.seconds_flips);
     const size_t moved = perturb_pass();
     refresh_metrics();
     stats_.perturbations += moved;
+    take_lap(stats_.seconds_slivers);
     if (moved == 0) break;
   }
   // Tets that no move lifted, such as four nearly collinear points whose every vertex is held by
@@ -740,10 +752,13 @@ Result<OptimizeStats> Optimizer::run() {
     collapsed_near_.assign(mesh_.num_vertices(), 0);
     const size_t collapsed = collapse_pass();
     stats_.collapses += collapsed;
+    take_lap(stats_.seconds_slivers);
     if (collapsed == 0) break;
     optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
+    take_lap(stats_.seconds_flips);
     stats_.perturbations += perturb_pass(&collapsed_near_);
     refresh_metrics();
+    take_lap(stats_.seconds_slivers);
   }
   // The polish, then the perturbation of the tets it lowered (the worst one's neighbours bound
   // it), twice more; part of sliver removal (none with sliver_rounds 0).
@@ -756,11 +771,15 @@ Result<OptimizeStats> Optimizer::run() {
     stats_.perturbations += perturb_pass(&collapsed_near_);
     refresh_metrics();
   }
+  take_lap(stats_.seconds_slivers);
   optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
+  take_lap(stats_.seconds_flips);
   stats_.flat_left = certify_pass();
+  take_lap(stats_.seconds_certify);
   stats_.flips23 = flips_.flips23;
   stats_.edge_removals = flips_.edge_removals;
   stats_.after = summarize_quality(mesh_);
+  take_lap(stats_.seconds_setup);
   stats_.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return stats_;
 }

@@ -463,6 +463,11 @@ Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const Ref
     optimize.after = o->after;
     optimize.anisotropic = optimize.anisotropic || o->anisotropic;
     optimize.seconds += o->seconds;
+    optimize.seconds_setup += o->seconds_setup;
+    optimize.seconds_cvt += o->seconds_cvt;
+    optimize.seconds_flips += o->seconds_flips;
+    optimize.seconds_slivers += o->seconds_slivers;
+    optimize.seconds_certify += o->seconds_certify;
   }
   return Status::success();
 }
