@@ -258,7 +258,7 @@ int run_mesh_pipeline(MeshArgs& args) {
                       {"strategy", r.recovery.strategy},
                       {"strategy_name", recovery_strategy_name(r.recovery.strategy)}}},
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
-        {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"collapses", r.refine.collapses},
+        {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"parallel_splits", r.refine.parallel_splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range},
                     {"anisotropic_cycles", r.anisotropic_cycles},
                     {"seconds", {{"edge_lists", r.refine.seconds_edges}, {"split_choice", r.refine.seconds_choice},
@@ -311,7 +311,7 @@ int run_mesh_pipeline(MeshArgs& args) {
               << r.recovery.steiner_on_faces << " in faces (" << recovery_strategy_name(r.recovery.strategy)
               << "); coupling split " << r.couple.edge_split_tets
               << " T1 tets and re-coned " << r.couple.faces_reconed << " S1 faces\n"
-              << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits, "
+              << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits (" << r.refine.parallel_splits << " by the slab tasks), "
               << r.refine.collapses << " collapses (" << r.refine.split_rejected << " splits put off, "
               << r.refine.collapse_rejected << " collapses refused); normalized edge length mean " << r.refine.length_mean
               << ", " << 100.0 * r.refine.length_in_range << "% in [1/sqrt2, sqrt2]"

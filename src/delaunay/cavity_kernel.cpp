@@ -346,6 +346,7 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
   keep_count_ = keep_count;
   degeneracy_ = degeneracy;
   pid_ = pid;
+  foreign_hit_ = false;
   // A point in a frozen tet belongs to another part.
   frozen_hit_ = refuse_frozen_ && store_->region(t0) < 0;
   if (frozen_hit_) return false;
@@ -374,16 +375,40 @@ bool CavityKernel::insert_constrained(uint32_t t0, uint32_t pid, bool respect_pr
   // Growth visits every facet of every cavity tet once, and the marks it sets are final: the
   // facets it finds bounding the cavity are the star-shape shrinking's first work list.
   shrink_queue_.clear();
-  for (size_t k = 0; k < cavity_.size(); ++k) {
+  for (size_t k = 0; k < cavity_.size() && !foreign_hit_; ++k) {
     const uint32_t c = cavity_[k];
     for (int i = 0; i < 4; ++i)
       if (bounds_for_sure(c, i, respect_protected)) shrink_queue_.push_back({c, i});
   }
-  if (frozen_hit_) return false;
+  if (frozen_hit_ || foreign_hit_) return false;
   if (keep_left() || !shrink_to_star(t0, pid, respect_protected) || keep_left()) return false;
   collect_boundary(respect_protected);
+  if (owned_) {
+    const size_t nb = boundary_.size(), nc = cavity_.size();
+    if (!store_->can_take(nb > nc ? nb - nc : 0)) {
+      foreign_hit_ = true;
+      return false;
+    }
+  }
   fill_cavity(pid, true);
+  // (A reused slot keeps its part: only the pool's fresh slots are written, which no other task
+  // reads.)
+  if (owned_)
+    for (uint32_t t : new_tets_)
+      if (tet_part_[t] != me_) tet_part_[t] = me_;
   return true;
+}
+
+bool CavityKernel::insert_constrained_owned(uint32_t t0, uint32_t pid, bool respect_protected) {
+  foreign_hit_ = false;
+  if (owner(t0) != me_) {
+    foreign_hit_ = true;
+    return false;
+  }
+  owned_ = true;
+  const bool ok = insert_constrained(t0, pid, respect_protected);
+  owned_ = false;
+  return ok;
 }
 
 // A cheap necessary condition for the forced kept tets (already in the cavity), tested before
@@ -422,6 +447,11 @@ bool CavityKernel::kept_can_stay(bool respect_protected) {
 bool CavityKernel::bounds_for_sure(uint32_t c, int i, bool respect_protected) {
   const uint64_t adj = store_->adj(c, i);
   if (adj == kNoNeighbour) return true;
+  // Owned: the tet across is read and linked whatever it is, so it must be this part's.
+  if (owned_ && owner(static_cast<uint32_t>(adj >> 2)) != me_) {
+    foreign_hit_ = true;
+    return true;
+  }
   if (respect_protected && ((store_->flags(c) >> i) & 1u)) {
     if (refuse_frozen_ && !frozen_hit_) {
       const auto n = static_cast<uint32_t>(adj >> 2);

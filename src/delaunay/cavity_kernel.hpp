@@ -129,6 +129,15 @@ class CavityKernel {
   // pool has room; else false, the mesh unchanged (the caller inserts the point later).
   bool insert_delaunay_owned(uint32_t t0, uint32_t pid);
 
+  // insert_constrained() (no kept tets, no degeneracy oracle) under the same rule, for the
+  // parallel batches of BatchInserter: t0, every cavity tet and every tet across a facet of one
+  // (protected or not: fill_cavity() links them to the new tets) must be of this part, and the
+  // slot pool must have room; else false, the mesh unchanged, and foreign_refusal() says so
+  // (the caller inserts the point later, in order). A false with foreign_refusal() unset is the
+  // plain kernel's own refusal.
+  bool insert_constrained_owned(uint32_t t0, uint32_t pid, bool respect_protected);
+  bool foreign_refusal() const { return foreign_hit_; }
+
   // The tets created by the last insertion.
   const std::vector<uint32_t>& new_tets() const { return new_tets_; }
   // A non-ghost tet among them when there is one.
@@ -218,6 +227,8 @@ class CavityKernel {
   size_t keep_count_ = 0;
   const DegeneracyOracle* degeneracy_ = nullptr;  // insert_constrained()'s, else null
   bool refuse_frozen_ = false;  // set_refuse_frozen()
+  bool owned_ = false;          // insert_constrained_owned() is running
+  bool foreign_hit_ = false;    // it met a tet of another part (or the pool was short)
   bool frozen_hit_ = false;     // this insertion met a frozen tet in conflict
   uint32_t pid_ = TetMesh::kNone;                // the point being inserted (for degeneracy_)
   std::vector<uint32_t> ejected_;                      // tets defend_constrained_edges() took out

@@ -169,6 +169,46 @@ class PointInserter {
   void see_new_vertices();
 };
 
+// What BatchInserter::insert() did with point i of its batch: status[i], and vertex[i] the new
+// vertex (kNone unless inserted). Its insertion created tets[begin[i] .. begin[i+1]); later
+// points of the batch may have replaced some of them since (a slot may hold another tet, or be
+// free): read them as live slots near the point, not as the point's star.
+struct BatchInsertion {
+  std::vector<InsertStatus> status;
+  std::vector<uint32_t> vertex;
+  std::vector<size_t> begin;  // n + 1 entries
+  std::vector<uint32_t> tets;
+  size_t parallel = 0;  // points inserted by the parallel tasks
+  size_t deferred = 0;  // points a task left to the one-by-one inserts (their cavity left its slab)
+};
+
+// Inserts a batch of points with PointInserter's kernel (InsertOptions: respect_protected,
+// vertex_flags and refuse_frozen_conflict; no kept tets, no degeneracy oracle).
+// A batch of at least parallel_min points is cut into `partitions` slabs at quantiles along the
+// longest axis of the points' box; one task per slab inserts its points, in batch order, into
+// the tets all of whose vertices lie in its slab (CavityKernel::insert_constrained_owned), so the
+// tasks share nothing. The points whose cavity reaches past the slab are inserted after them,
+// one at a time in batch order. The mesh depends on `partitions`, never on the thread count.
+// The walk for point i starts at hints[i] when that is a live tet (null: none).
+// The new vertices are numbered in batch order after the mesh's vertices; a refused point leaves
+// no vertex.
+class BatchInserter {
+ public:
+  explicit BatchInserter(TetMesh& mesh, int partitions = 2, size_t parallel_min = 2048, uint64_t seed = 0x5eed);
+  ~BatchInserter();
+  BatchInserter(const BatchInserter&) = delete;
+  BatchInserter& operator=(const BatchInserter&) = delete;
+
+  // points: 3 per point, finite (checked: a non-finite point is kInvalidPoint).
+  void insert(const double* points, const uint32_t* hints, size_t n, const InsertOptions& options,
+              BatchInsertion& out);
+
+ private:
+  struct Part;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // One-shot insertion (allocates scratch memory on each call; prefer PointInserter in loops).
 // new_tets, when given, receives the created tets.
 InsertResult insert_point(TetMesh& mesh, const double p[3], uint32_t hint = TetMesh::kNone,

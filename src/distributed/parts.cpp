@@ -116,9 +116,9 @@ TetMesh compact(const TetMesh& m) {
 }
 
 // The counts a part's message carries (passes and the anisotropic flag besides).
-constexpr size_t RefineStats::*kRefineCounts[] = {&RefineStats::splits, &RefineStats::split_rejected,
-                                                  &RefineStats::collapses, &RefineStats::collapse_rejected,
-                                                  &RefineStats::metric_flips};
+constexpr size_t RefineStats::*kRefineCounts[] = {&RefineStats::splits,           &RefineStats::split_rejected,
+                                                  &RefineStats::parallel_splits, &RefineStats::collapses,
+                                                  &RefineStats::collapse_rejected, &RefineStats::metric_flips};
 constexpr size_t OptimizeStats::*kOptimizeCounts[] = {
     &OptimizeStats::moves,        &OptimizeStats::moves_rejected, &OptimizeStats::flips23,
     &OptimizeStats::edge_removals, &OptimizeStats::perturbations, &OptimizeStats::collapses,

@@ -437,6 +437,7 @@ Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const Ref
     refine.passes += r->passes;
     refine.splits += r->splits;
     refine.split_rejected += r->split_rejected;
+    refine.parallel_splits += r->parallel_splits;
     refine.collapses += r->collapses;
     refine.collapse_rejected += r->collapse_rejected;
     refine.metric_flips += r->metric_flips;

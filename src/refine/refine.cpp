@@ -113,7 +113,7 @@ class SpacingGrid {
 class Refiner {
  public:
   Refiner(TetMesh& mesh, const SizingField& field, const RefineOptions& options)
-      : mesh_(mesh), field_(field), options_(options), inserter_(mesh) {}
+      : mesh_(mesh), field_(field), options_(options), inserter_(mesh), batch_(mesh, options.insert_partitions) {}
 
   Result<RefineStats> run();
 
@@ -174,6 +174,10 @@ class Refiner {
   const SizingField& field_;
   const RefineOptions& options_;
   PointInserter inserter_;
+  BatchInserter batch_;
+  BatchInsertion batch_out_;
+  std::vector<double> batch_points_;
+  std::vector<uint32_t> batch_hints_, live_created_;
   meshops::VertexTets vt_;
   meshops::ReplaceScratch scratch_;
   refine_detail::EdgeScratch edge_scratch_;
@@ -187,6 +191,16 @@ class Refiner {
   // has the same neighbours and edge rings, so the same flips would fail again: it is skipped.
   uint32_t epoch_ = 1;
   std::vector<uint32_t> vertex_epoch_, flip_failed_at_;
+  // After a point's insertion: its tets become its vertices' (vt_), their vertices are touched
+  // (no collapse this pass) and changed (the metric flips' memo).
+  void note_created(const std::vector<uint32_t>& created) {
+    touched_.resize(mesh_.num_vertices(), 0);
+    for (uint32_t t : created) {
+      vt_.note(mesh_, t);
+      for (int i = 0; i < 4; ++i) touched_[mesh_.vertex(t, i)] = 1;
+    }
+    note_changed(created);
+  }
   void note_changed(const std::vector<uint32_t>& created) {
     ++epoch_;
     if (vertex_epoch_.size() < mesh_.num_vertices()) vertex_epoch_.resize(mesh_.num_vertices(), 0);
@@ -581,6 +595,37 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
   // earlier insertions of the batch destroy less often when the longest edges go first.
   if (!anisotropic_) delaunay_detail::hilbert_sort(chosen_xyz.data(), split_order.data(), split_order.size(), lo, hi);
   size_t done = 0;
+  // Isotropic points: a batch, on every core (BatchInserter).
+  const bool all_iso = std::all_of(chosen.begin(), chosen.end(), [](const Chosen& c) { return c.c.iso; });
+  if (all_iso && options_.insert_partitions > 1) {
+    batch_points_.resize(3 * chosen.size());
+    batch_hints_.resize(chosen.size());
+    for (size_t j = 0; j < split_order.size(); ++j) {
+      const Chosen& c = chosen[split_order[j]];
+      std::copy_n(c.c.m, 3, &batch_points_[3 * j]);
+      batch_hints_[j] = c.e.tet;  // live: nothing changed the mesh since the edges were collected
+    }
+    InsertOptions insert_options;
+    insert_options.refuse_frozen_conflict = options_.defer_at_frozen;
+    batch_.insert(batch_points_.data(), batch_hints_.data(), chosen.size(), insert_options, batch_out_);
+    stats_.parallel_splits += batch_out_.parallel;
+    for (size_t j = 0; j < split_order.size(); ++j) {
+      const uint32_t nv = batch_out_.vertex[j];
+      if (nv == TetMesh::kNone) {
+        ++stats_.split_rejected;
+        continue;
+      }
+      set_metric(nv, chosen[split_order[j]].c.mm);
+      // (Later points of the batch may have replaced some of these tets: only the live ones.)
+      live_created_.clear();
+      for (size_t q = batch_out_.begin[j]; q < batch_out_.begin[j + 1]; ++q)
+        if (!mesh_.is_deleted(batch_out_.tets[q])) live_created_.push_back(batch_out_.tets[q]);
+      note_created(live_created_);
+      ++done;
+    }
+    stats_.seconds_insertion += seconds_since(insertion_start);
+    return done;
+  }
   for (uint32_t k : split_order) {
     // (In curve order: one record per point, not the edge and the candidate far apart.)
     const refine_detail::Edge* e = &chosen[k].e;
@@ -614,12 +659,7 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       continue;
     }
     set_metric(nv, mm);  // measured at m above, the new vertex's point
-    touched_.resize(mesh_.num_vertices(), 0);
-    for (uint32_t t : *created) {
-      vt_.note(mesh_, t);
-      for (int i = 0; i < 4; ++i) touched_[mesh_.vertex(t, i)] = 1;
-    }
-    note_changed(*created);
+    note_created(*created);
     ++done;
   }
   stats_.seconds_insertion += seconds_since(insertion_start);

@@ -67,6 +67,10 @@ struct RefineOptions {
   // Threads for the split points' measures (midpoint, metric, vetoes): 0 TBB's default, n an
   // arena of n threads. The mesh does not depend on it.
   int num_threads = 0;
+  // The split points of a pass (isotropic metric) are inserted by BatchInserter: this many slabs,
+  // one task each, then the points whose cavity crossed a slab one by one. The mesh depends on
+  // it, never on the thread count; 1: one by one throughout.
+  int insert_partitions = 2;
   // check_mesh() and the protected-facet count after every pass (on by default in debug builds).
 #ifdef NDEBUG
   bool check_each_pass = false;
@@ -79,6 +83,7 @@ struct RefineStats {
   int passes = 0;
   size_t splits = 0;
   size_t split_rejected = 0;  // midpoints the kernel refused (blocked, outside) or spacing put off
+  size_t parallel_splits = 0;  // split points inserted by the slab tasks (insert_partitions)
   size_t collapses = 0;
   size_t collapse_rejected = 0;
   size_t metric_flips = 0;  // anisotropic metrics only: 2-3 / 3-2 flips raising the metric shape
