@@ -48,10 +48,7 @@ struct BatchInserter::Impl {
   uint32_t n0 = 0;  // the vertex of point i is n0 + i until compact()
   InsertOptions options;
   BatchInsertion* out = nullptr;
-  static constexpr uint8_t kOneByOne = 0xfe;
-  std::vector<uint8_t> list;        // per point: the part whose list holds its tets, or kOneByOne
-  std::vector<uint32_t> first, count;  // per point: where in that list
-  std::vector<uint32_t> tets;       // the one-by-one inserts' tets
+  std::vector<uint32_t> tets;  // the one-by-one inserts' tets
   std::vector<uint8_t> vertex_part, tet_part;
   std::vector<uint8_t> hint_usable;  // per point: its hint was live at the start, in its part or none
 
@@ -71,9 +68,9 @@ struct BatchInserter::Impl {
   void record(uint32_t i, uint8_t in_list, std::vector<uint32_t>& into, const CavityKernel& k) {
     out->status[i] = InsertStatus::kInserted;
     out->vertex[i] = n0 + i;
-    list[i] = in_list;
-    first[i] = static_cast<uint32_t>(into.size());
-    count[i] = static_cast<uint32_t>(k.new_tets().size());
+    out->list[i] = in_list;
+    out->first[i] = static_cast<uint32_t>(into.size());
+    out->count[i] = static_cast<uint32_t>(k.new_tets().size());
     into.insert(into.end(), k.new_tets().begin(), k.new_tets().end());
   }
 
@@ -101,29 +98,30 @@ struct BatchInserter::Impl {
       out->status[i] = InsertStatus::kBlocked;
       return;
     }
-    record(i, kOneByOne, tets, kernel);
+    record(i, static_cast<uint8_t>(parts.size()), tets, kernel);
     last = kernel.last_real_tet();
   }
 
-  // The tasks; returns the points they left, in batch order.
-  std::vector<uint32_t> run_parts(const std::vector<uint32_t>& todo);
+  // The tasks on slabs along the box's longest axis (phase 0) or the next longest (phase 1);
+  // returns the points they left, in batch order.
+  std::vector<uint32_t> run_parts(const std::vector<uint32_t>& todo, int phase);
   void fill_part(size_t k);
   // Removes the vertices of the points not inserted, renumbering the later ones.
   void compact();
 };
 
-std::vector<uint32_t> BatchInserter::Impl::run_parts(const std::vector<uint32_t>& todo) {
+std::vector<uint32_t> BatchInserter::Impl::run_parts(const std::vector<uint32_t>& todo, int phase) {
   const size_t np = parts.size();
-  // Slabs at quantiles of the points along the longest axis of their box.
+  // Slabs at quantiles of the points along an axis of their box.
   Box3 b = bounding_box(mesh.point(n0 + todo[0]), 1);
   for (uint32_t i : todo)
     for (int k = 0; k < 3; ++k) {
       b.lo[k] = std::min(b.lo[k], mesh.point(n0 + i)[k]);
       b.hi[k] = std::max(b.hi[k], mesh.point(n0 + i)[k]);
     }
-  int axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (b.hi[k] - b.lo[k] > b.hi[axis] - b.lo[axis]) axis = k;
+  int axes[3] = {0, 1, 2};
+  std::stable_sort(axes, axes + 3, [&b](int x, int y) { return b.hi[x] - b.lo[x] > b.hi[y] - b.lo[y]; });
+  const int axis = axes[phase];
   std::vector<double> values(todo.size());
   for (size_t j = 0; j < todo.size(); ++j) values[j] = mesh.point(n0 + todo[j])[axis];
   std::vector<double> cuts;
@@ -292,9 +290,10 @@ void BatchInserter::insert(const double* points, const uint32_t* hints, size_t n
   out.status.assign(n, InsertStatus::kBlocked);
   out.vertex.assign(n, TetMesh::kNone);
   out.parallel = out.deferred = 0;
-  m.list.assign(n, Impl::kOneByOne);
-  m.first.assign(n, 0);
-  m.count.assign(n, 0);
+  // (Point i's tets: list parts.size() is the one-by-one inserts'.)
+  out.list.assign(n, static_cast<uint8_t>(m.parts.size()));
+  out.first.assign(n, 0);
+  out.count.assign(n, 0);
   m.tets.clear();
   // Every point is a vertex first, so that the tasks never resize the arrays; compact() takes
   // the refused ones out again.
@@ -311,8 +310,11 @@ void BatchInserter::insert(const double* points, const uint32_t* hints, size_t n
     else out.status[i] = InsertStatus::kInvalidPoint;
   }
   m.see_new_vertices();
+  // The points left by slabs along the longest axis mostly lie near the cuts: slabs along the
+  // next axis take most of them.
   if (m.parts.size() >= 2 && todo.size() >= m.parallel_min) {
-    todo = m.run_parts(todo);
+    todo = m.run_parts(todo, 0);
+    if (todo.size() >= m.parallel_min / 4) todo = m.run_parts(todo, 1);
     out.deferred = todo.size();
   }
 
@@ -322,15 +324,9 @@ void BatchInserter::insert(const double* points, const uint32_t* hints, size_t n
   m.kernel.set_refuse_frozen(options.refuse_frozen_conflict);
   for (uint32_t i : todo) m.insert_one(i);
   m.compact();
-  out.begin.assign(n + 1, 0);
-  out.tets.clear();
-  for (size_t i = 0; i < n; ++i) {
-    if (out.status[i] == InsertStatus::kInserted) {
-      const std::vector<uint32_t>& from = m.list[i] == Impl::kOneByOne ? m.tets : m.parts[m.list[i]].tets;
-      out.tets.insert(out.tets.end(), from.begin() + m.first[i], from.begin() + m.first[i] + m.count[i]);
-    }
-    out.begin[i + 1] = out.tets.size();
-  }
+  out.lists.resize(m.parts.size() + 1);
+  for (size_t k = 0; k < m.parts.size(); ++k) out.lists[k].swap(m.parts[k].tets);
+  out.lists.back().swap(m.tets);
 }
 
 }  // namespace anitet

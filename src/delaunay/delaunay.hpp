@@ -170,16 +170,23 @@ class PointInserter {
 };
 
 // What BatchInserter::insert() did with point i of its batch: status[i], and vertex[i] the new
-// vertex (kNone unless inserted). Its insertion created tets[begin[i] .. begin[i+1]); later
-// points of the batch may have replaced some of them since (a slot may hold another tet, or be
-// free): read them as live slots near the point, not as the point's star.
+// vertex (kNone unless inserted). created_begin(i) .. created_end(i): the tets its insertion
+// created; later points of the batch may have replaced some of them since (a slot may hold
+// another tet, or be free): read them as live slots near the point, not as the point's star.
 struct BatchInsertion {
   std::vector<InsertStatus> status;
   std::vector<uint32_t> vertex;
-  std::vector<size_t> begin;  // n + 1 entries
-  std::vector<uint32_t> tets;
   size_t parallel = 0;  // points inserted by the parallel tasks
-  size_t deferred = 0;  // points a task left to the one-by-one inserts (their cavity left its slab)
+  size_t deferred = 0;  // points the tasks left to the one-by-one inserts (their cavity left its slab)
+
+  const uint32_t* created_begin(size_t i) const { return lists[list[i]].data() + first[i]; }
+  const uint32_t* created_end(size_t i) const { return created_begin(i) + count[i]; }
+
+  // Where the tets are: the lists of the tasks and of the one-by-one inserts as they made them
+  // (not copied into one), and per point its list, first tet and count.
+  std::vector<std::vector<uint32_t>> lists;
+  std::vector<uint8_t> list;
+  std::vector<uint32_t> first, count;
 };
 
 // Inserts a batch of points with PointInserter's kernel (InsertOptions: respect_protected,
@@ -187,8 +194,8 @@ struct BatchInsertion {
 // A batch of at least parallel_min points is cut into `partitions` slabs at quantiles along the
 // longest axis of the points' box; one task per slab inserts its points, in batch order, into
 // the tets all of whose vertices lie in its slab (CavityKernel::insert_constrained_owned), so the
-// tasks share nothing. The points whose cavity reaches past the slab are inserted after them,
-// one at a time in batch order. The mesh depends on `partitions`, never on the thread count.
+// tasks share nothing. The points whose cavity reaches past the slab go through slabs along the
+// next longest axis, and those left then one at a time, in batch order. The mesh depends on `partitions`, never on the thread count.
 // The walk for point i starts at hints[i] when that is a live tet (null: none).
 // The new vertices are numbered in batch order after the mesh's vertices; a refused point leaves
 // no vertex.

@@ -618,8 +618,8 @@ size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
       set_metric(nv, chosen[split_order[j]].c.mm);
       // (Later points of the batch may have replaced some of these tets: only the live ones.)
       live_created_.clear();
-      for (size_t q = batch_out_.begin[j]; q < batch_out_.begin[j + 1]; ++q)
-        if (!mesh_.is_deleted(batch_out_.tets[q])) live_created_.push_back(batch_out_.tets[q]);
+      for (const uint32_t* t = batch_out_.created_begin(j); t != batch_out_.created_end(j); ++t)
+        if (!mesh_.is_deleted(*t)) live_created_.push_back(*t);
       note_created(live_created_);
       ++done;
     }
