@@ -63,6 +63,9 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
       for (size_t c = 0; c < tet_chunks; ++c) at += std::exchange(counts[c * nv + v], at);
     }
   });
+  // (The lists are rebuilt: freed before they grow, they are never held twice. Their last
+  // copies were the peak of the 1e7-tet run.)
+  if (start_w[nv] > scratch.all.capacity()) std::vector<EdgeScratch::Entry>().swap(scratch.all);
   scratch.all.resize(start_w[nv]);
   tbb::parallel_for(size_t(0), tet_chunks, [&](size_t c) {
     uint32_t* fill = counts.data() + c * nv;
@@ -105,6 +108,7 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
                                   [](uint32_t, const EdgeScratch::Entry&) {});
   });
   for (size_t c = 0; c < chunks; ++c) offset[c + 1] += offset[c];
+  if (offset[chunks] > edges.capacity()) std::vector<Edge>().swap(edges);
   edges.resize(offset[chunks]);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t c = r.begin(); c != r.end(); ++c) {
