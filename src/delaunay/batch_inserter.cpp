@@ -136,10 +136,10 @@ std::vector<uint32_t> BatchInserter::Impl::run_parts(const std::vector<uint32_t>
     for (size_t v = range.begin(); v < range.end(); ++v)
       vertex_part[v] = static_cast<uint8_t>(std::upper_bound(cuts.begin(), cuts.end(), mesh.xyz[3 * v + size_t(axis)]) - cuts.begin());
   });
+  // (p.tets keeps the first phase's lists: its points' first/count index them.)
   for (Part& p : parts) {
     p.points.clear();
     p.left.clear();
-    p.tets.clear();
     p.pool.free.clear();
     p.inserted = 0;
   }
@@ -295,6 +295,7 @@ void BatchInserter::insert(const double* points, const uint32_t* hints, size_t n
   out.first.assign(n, 0);
   out.count.assign(n, 0);
   m.tets.clear();
+  for (Part& p : m.parts) p.tets.clear();
   // Every point is a vertex first, so that the tasks never resize the arrays; compact() takes
   // the refused ones out again.
   std::vector<uint32_t> todo;

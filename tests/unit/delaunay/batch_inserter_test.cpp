@@ -131,6 +131,23 @@ TEST(BatchInserter, SlabsKeepProtectedFacetsAndDoNotDependOnTheThreads) {
     for (int k = 0; k < 3; ++k) ASSERT_EQ(two.point(out.vertex[i])[k], b.points[3 * i + size_t(k)]);
     EXPECT_GT(out.created_end(i) - out.created_begin(i), 0);
   }
+  // Every live tet holding a new vertex was made by the batch: it is in some point's created
+  // list (the lists of both slab phases and of the one-by-one inserts).
+  std::set<uint32_t> listed;
+  for (size_t i = 0; i < out.vertex.size(); ++i)
+    if (out.status[i] == InsertStatus::kInserted)
+      for (const uint32_t* t = out.created_begin(i); t != out.created_end(i); ++t) {
+        ASSERT_LT(*t, two.num_tet_slots());
+        listed.insert(*t);
+      }
+  for (uint32_t t = 0; t < two.num_tet_slots(); ++t) {
+    if (two.is_deleted(t)) continue;
+    bool holds_new = false;
+    for (int k = 0; k < 4; ++k) holds_new |= two.vertex(t, k) >= n0;
+    if (holds_new) {
+      ASSERT_TRUE(listed.count(t)) << "tet " << t << " holds a new vertex and is in no created list";
+    }
+  }
   std::vector<uint8_t> used(two.num_vertices(), 0);
   for (uint32_t t = 0; t < two.num_tet_slots(); ++t)
     if (!two.is_deleted(t))
