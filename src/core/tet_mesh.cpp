@@ -75,10 +75,10 @@ Status TetMesh::build_adjacency() {
     }
   }
   std::vector<uint32_t> start, facets, fill;  // facet id: 4 t + i
-  bucket_by_key(
-      num_keys,
-      [&](auto&& emit) {
-        for (uint32_t t = 0; t < slots; ++t)
+  parallel_bucket_by_key(
+      num_keys, slots,
+      [&](size_t first, size_t last, auto&& emit) {
+        for (auto t = uint32_t(first); t < last; ++t)
           if (!is_deleted(t))
             for (int i = 0; i < 4; ++i) {
               uint32_t v[3];

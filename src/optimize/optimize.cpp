@@ -295,10 +295,10 @@ size_t Optimizer::cvt_pass() {
   // the whole sweep instead of a traversal per vertex).
   {
     std::vector<uint32_t> fill;
-    bucket_by_key(
-        nv,
-        [&](auto&& emit) {
-          for (uint32_t t = 0; t < n_slots; ++t)
+    parallel_bucket_by_key(
+        nv, n_slots,
+        [&](size_t first, size_t last, auto&& emit) {
+          for (auto t = uint32_t(first); t < last; ++t)
             if (!mesh_.is_deleted(t))
               for (int i = 0; i < 4; ++i) emit(mesh_.vertex(t, i), t);
         },

@@ -493,19 +493,18 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
     std::vector<uint32_t> other;  // the larger end, bucketed by the smaller
     {
       std::vector<size_t> fill;
-      bucket_by_key(
-          nv,
-          [&](auto&& emit) {
-            static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-            for (size_t t = 0; t < nt; ++t) {
-              const uint32_t* v = &mesh.tet[4 * t];
-              for (const auto& e : kEdge) {
-                const uint32_t a = v[e[0]], b = v[e[1]];
-                emit(std::min(a, b), std::max(a, b));
-              }
-            }
-          },
-          start, other, fill);
+      auto emit_edges = [&](size_t first, size_t last, auto&& emit) {
+        static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+        for (size_t t = first; t < last; ++t) {
+          const uint32_t* v = &mesh.tet[4 * t];
+          for (const auto& e : kEdge) {
+            const uint32_t a = v[e[0]], b = v[e[1]];
+            emit(std::min(a, b), std::max(a, b));
+          }
+        }
+      };
+      if (parallel) parallel_bucket_by_key(nv, nt, emit_edges, start, other, fill);
+      else bucket_by_key(nv, [&](auto&& emit) { emit_edges(0, nt, emit); }, start, other, fill);
     }
       std::vector<size_t> unique_count(nv, 0);
     quality_detail::for_chunks(nv, parallel, [&](size_t begin, size_t end) {

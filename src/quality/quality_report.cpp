@@ -157,18 +157,17 @@ void classify_faces(const VolumeMesh& mesh, bool parallel, std::vector<uint32_t>
   std::vector<uint64_t> rest;  // (middle << 32) | largest, bucketed by the smallest
   {
     std::vector<size_t> fill;
-    bucket_by_key(
-        nv,
-        [&](auto&& emit) {
-          for (size_t t = 0; t < nt; ++t) {
-            for (int i = 0; i < 4; ++i) {
-              uint32_t f[3];
-              face_of(t, i, f);
-              emit(f[0], (uint64_t(f[1]) << 32) | f[2]);
-            }
-          }
-        },
-        start, rest, fill);
+    auto emit_faces = [&](size_t first, size_t last, auto&& emit) {
+      for (size_t t = first; t < last; ++t) {
+        for (int i = 0; i < 4; ++i) {
+          uint32_t f[3];
+          face_of(t, i, f);
+          emit(f[0], (uint64_t(f[1]) << 32) | f[2]);
+        }
+      }
+    };
+    if (parallel) parallel_bucket_by_key(nv, nt, emit_faces, start, rest, fill);
+    else bucket_by_key(nv, [&](auto&& emit) { emit_faces(0, nt, emit); }, start, rest, fill);
   }
   for_chunks(nv, parallel, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) std::sort(rest.begin() + start[v], rest.begin() + start[v + 1]);

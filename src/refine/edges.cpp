@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/buckets.hpp"
 #include "core/sizing.hpp"
 
 namespace anitet::refine_detail {
@@ -34,46 +35,21 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
       }
     }
   };
-  // The counting sort by the lower end, on every core: the tets in one range per chunk, each
-  // chunk counting its own items per vertex, then filling from offsets that put the chunks' items
-  // of one vertex in chunk order. So a bucket lists its items in tet order, as one loop would.
-  // 8 bytes per tet edge (the buckets hold six per tet: their memory traffic is most of the cost).
+  // The counting sort by the lower end, on every core (parallel_bucket_by_key: each bucket lists
+  // its items in tet order, as one loop would). 8 bytes per tet edge (the buckets hold six per
+  // tet: their memory traffic is most of the cost).
   const uint32_t nt = static_cast<uint32_t>(mesh.num_tet_slots());
-  const size_t tet_chunks = std::max<size_t>(1, std::min<size_t>(8, size_t(tbb::this_task_arena::max_concurrency())));
-  auto tets_of = [&](size_t c) {
-    return std::make_pair(uint32_t(uint64_t(nt) * c / tet_chunks), uint32_t(uint64_t(nt) * (c + 1) / tet_chunks));
-  };
-  std::vector<uint32_t>& counts = scratch.fill;  // tet_chunks x nv, then the tet_chunks' fill positions
-  counts.assign(tet_chunks * nv, 0);
-  tbb::parallel_for(size_t(0), tet_chunks, [&](size_t c) {
-    uint32_t* count = counts.data() + c * nv;  // (no reference: nv may be 0)
-    const auto [first, last] = tets_of(c);
-    for_each_edge(first, last, [&](uint32_t a, uint32_t, uint32_t, bool) { ++count[a]; });
-  });
-  std::vector<uint32_t>& start_w = scratch.start;
-  start_w.assign(nv + 1, 0);
-  for (size_t v = 0; v < nv; ++v) {
-    uint32_t total = 0;
-    for (size_t c = 0; c < tet_chunks; ++c) total += counts[c * nv + v];
-    start_w[v + 1] = start_w[v] + total;
-  }
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, 16384), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t v = r.begin(); v != r.end(); ++v) {
-      uint32_t at = start_w[v];
-      for (size_t c = 0; c < tet_chunks; ++c) at += std::exchange(counts[c * nv + v], at);
-    }
-  });
   // (The lists are rebuilt: freed before they grow, they are never held twice. Their last
   // copies were the peak of the 1e7-tet run.)
-  if (start_w[nv] > scratch.all.capacity()) std::vector<EdgeScratch::Entry>().swap(scratch.all);
-  scratch.all.resize(start_w[nv]);
-  tbb::parallel_for(size_t(0), tet_chunks, [&](size_t c) {
-    uint32_t* fill = counts.data() + c * nv;
-    const auto [first, last] = tets_of(c);
-    for_each_edge(first, last, [&](uint32_t a, uint32_t b, uint32_t t, bool s) {
-      scratch.all[fill[a]++] = EdgeScratch::Entry{b, t | (s ? EdgeScratch::Entry::kSurface : 0u)};
-    });
-  });
+  if (size_t(6) * nt > scratch.all.capacity()) std::vector<EdgeScratch::Entry>().swap(scratch.all);
+  parallel_bucket_by_key(
+      nv, nt,
+      [&](size_t first, size_t last, auto&& emit) {
+        for_each_edge(uint32_t(first), uint32_t(last), [&](uint32_t a, uint32_t b, uint32_t t, bool s) {
+          emit(a, EdgeScratch::Entry{b, t | (s ? EdgeScratch::Entry::kSurface : 0u)});
+        });
+      },
+      scratch.start, scratch.all, scratch.fill);
   const std::vector<uint32_t>& start = scratch.start;
   const std::vector<EdgeScratch::Entry>& all = scratch.all;
   // Duplicates are found within each bucket through a per-thread array holding, per upper end b,

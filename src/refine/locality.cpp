@@ -44,10 +44,10 @@ void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
   mesh.vflags.swap(vflags);
   // Tets grouped by the rank of their first vertex along the curve (slot order within a group).
   std::vector<uint32_t> start, order, fill;
-  bucket_by_key(
-      curve.size(),
-      [&](auto&& emit) {
-        for (uint32_t t = 0; t < slots; ++t) {
+  parallel_bucket_by_key(
+      curve.size(), slots,
+      [&](size_t first, size_t last, auto&& emit) {
+        for (auto t = uint32_t(first); t < last; ++t) {
           if (mesh.is_deleted(t)) continue;
           uint32_t r = TetMesh::kNone;
           for (int i = 0; i < 4; ++i)
