@@ -8,6 +8,7 @@
 #include "core/bvh.hpp"
 #include "delaunay/cavity_kernel.hpp"
 #include "delaunay/delaunay.hpp"
+#include "delaunay/slab_parts.hpp"
 
 namespace anitet {
 
@@ -37,8 +38,7 @@ struct BatchInserter::Impl {
   CavityKernel kernel;  // the one-by-one inserts
   std::vector<Part> parts;
   uint32_t last = TetMesh::kNone;  // the last tet the one-by-one inserts made
-  size_t seen = 0;                 // vertices 0..seen-1 are in box
-  Box3 box = {};
+  delaunay_detail::VertexBox box;
   double extent = 0.0;
 
   // The batch being inserted.
@@ -51,19 +51,6 @@ struct BatchInserter::Impl {
   std::vector<uint32_t> tets;  // the one-by-one inserts' tets
   std::vector<uint8_t> vertex_part, tet_part;
   std::vector<uint8_t> hint_usable;  // per point: its hint was live at the start, in its part or none
-
-  void see_new_vertices() {
-    const size_t nv = mesh.num_vertices();
-    seen = std::min(seen, nv);
-    if (seen == nv) return;
-    const Box3 fresh = bounding_box(&mesh.xyz[3 * seen], nv - seen);
-    for (int k = 0; k < 3; ++k) {
-      box.lo[k] = seen == 0 ? fresh.lo[k] : std::min(box.lo[k], fresh.lo[k]);
-      box.hi[k] = seen == 0 ? fresh.hi[k] : std::max(box.hi[k], fresh.hi[k]);
-    }
-    seen = nv;
-    extent = std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
-  }
 
   void record(uint32_t i, uint8_t in_list, std::vector<uint32_t>& into, const CavityKernel& k) {
     out->status[i] = InsertStatus::kInserted;
@@ -140,49 +127,21 @@ std::vector<uint32_t> BatchInserter::Impl::run_parts(const std::vector<uint32_t>
   for (Part& p : parts) {
     p.points.clear();
     p.left.clear();
-    p.pool.free.clear();
     p.inserted = 0;
   }
   for (uint32_t i : todo) parts[vertex_part[n0 + i]].points.push_back(i);
-  // Slot pools: the free slots dealt out in turn, then fresh ones, for 8 new tets per point (a
-  // point in a volume adds about 6.5); a task that runs out leaves its last points to the
-  // one-by-one inserts. The arrays are not resized while the tasks run.
+  // Slot pools for 8 new tets per point (a point in a volume adds about 6.5); a task that runs
+  // out leaves its last points to the one-by-one inserts.
   std::vector<size_t> want(np);
-  for (size_t k = 0; k < np; ++k) want[k] = 8 * parts[k].points.size() + 64;
-  size_t kept = 0;
-  for (size_t j = 0; j < mesh.free_tets.size(); ++j) {
-    Part& p = parts[j % np];
-    if (p.pool.free.size() < want[j % np]) p.pool.free.push_back(mesh.free_tets[j]);
-    else mesh.free_tets[kept++] = mesh.free_tets[j];
-  }
-  mesh.free_tets.resize(kept);
-  const auto slots_before = static_cast<uint32_t>(mesh.num_tet_slots());
-  size_t total = 0;
-  for (size_t k = 0; k < np; ++k) total += want[k] - std::min(want[k], parts[k].pool.free.size());
-  TetStorage store(mesh);
-  uint32_t next = store.append(total);
-  for (size_t t = next; t < size_t(next) + total; ++t) mesh.tet_flags[t] = tflag::kDeleted;
+  std::vector<SlotPool*> pools(np);
   for (size_t k = 0; k < np; ++k) {
-    Part& p = parts[k];
-    p.pool.next = next;
-    p.pool.end = next + static_cast<uint32_t>(want[k] - std::min(want[k], p.pool.free.size()));
-    next = p.pool.end;
+    want[k] = 8 * parts[k].points.size() + 64;
+    pools[k] = &parts[k].pool;
   }
-  // Each tet's part: that of its vertices when they agree.
-  const size_t slots = mesh.num_tet_slots();
-  tet_part.resize(slots);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, slots, 1 << 14), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t t = range.begin(); t < range.end(); ++t) {
-      const uint32_t* v = &mesh.tet_v[4 * t];
-      uint8_t o = CavityKernel::kNoPart;
-      if (!(mesh.tet_flags[t] & tflag::kDeleted)) {
-        o = vertex_part[v[0]];
-        if (vertex_part[v[1]] != o || vertex_part[v[2]] != o || (v[3] != TetMesh::kGhost && vertex_part[v[3]] != o))
-          o = CavityKernel::kNoPart;
-      }
-      tet_part[t] = o;
-    }
-  });
+  const auto slots_before = static_cast<uint32_t>(mesh.num_tet_slots());
+  TetStorage store(mesh);
+  delaunay_detail::fill_slot_pools(mesh, store, pools, want);
+  delaunay_detail::tet_parts_from_vertices(mesh, vertex_part, CavityKernel::kNoPart, tet_part);
   // A hint is a start for its point's task when it was live here and is of that part or none (a
   // tet no task changes); only then may the task read it.
   hint_usable.assign(n, 0);
@@ -194,10 +153,9 @@ std::vector<uint32_t> BatchInserter::Impl::run_parts(const std::vector<uint32_t>
     }
   tbb::parallel_for(size_t(0), np, [&](size_t k) { fill_part(k); }, tbb::simple_partitioner());
   // Unused slots back to the mesh's free list, in a fixed order.
+  delaunay_detail::return_slot_pools(mesh, pools);
   std::vector<uint32_t> left;
   for (Part& p : parts) {
-    mesh.free_tets.insert(mesh.free_tets.end(), p.pool.free.begin(), p.pool.free.end());
-    for (uint32_t t = p.pool.end; t > p.pool.next; --t) mesh.free_tets.push_back(t - 1);
     left.insert(left.end(), p.left.begin(), p.left.end());
     out->parallel += p.inserted;
   }
@@ -269,7 +227,7 @@ void BatchInserter::Impl::compact() {
   }
   mesh.xyz.resize(3 * size_t(next));
   mesh.vflags.resize(next);
-  seen = std::min(seen, size_t(next));
+  box.forget_from(next);
 }
 
 BatchInserter::BatchInserter(TetMesh& mesh, int partitions, size_t parallel_min, uint64_t seed)
@@ -310,7 +268,7 @@ void BatchInserter::insert(const double* points, const uint32_t* hints, size_t n
     if (finite) todo.push_back(static_cast<uint32_t>(i));
     else out.status[i] = InsertStatus::kInvalidPoint;
   }
-  m.see_new_vertices();
+  m.extent = m.box.update(mesh);
   // The points left by slabs along the longest axis mostly lie near the cuts: slabs along the
   // next axis take most of them.
   if (m.parts.size() >= 2 && todo.size() >= m.parallel_min) {

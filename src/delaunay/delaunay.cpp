@@ -12,6 +12,7 @@
 
 #include "core/bvh.hpp"
 #include "delaunay/cavity_kernel.hpp"
+#include "delaunay/slab_parts.hpp"
 #include "delaunay/spatial_sort.hpp"
 #include "delaunay/tet_storage.hpp"
 #include "predicates/predicates.hpp"
@@ -125,44 +126,15 @@ class ParallelBuild {
     // point than the mesh has so far (about 6.7 in a volume, 5 for points on a sphere, ghosts
     // included); the arrays are not resized while tasks run. A task that runs out leaves its
     // last points to the sequential inserts.
-    size_t fresh = 0;
     const double per_point = 1.1 * double(mesh_.num_tet_slots() - mesh_.free_tets.size()) / double(todo.front());
     std::vector<size_t> want(np);
+    std::vector<delaunay_detail::SlotPool*> pools(np);
     for (size_t k = 0; k < np; ++k) {
-      Part& p = parts_[k];
-      p.pool.free.clear();
-      want[k] = static_cast<size_t>(per_point * double(p.points.size())) + 256;
+      want[k] = static_cast<size_t>(per_point * double(parts_[k].points.size())) + 256;
+      pools[k] = &parts_[k].pool;
     }
-    for (size_t i = 0; i < mesh_.free_tets.size(); ++i) {
-      Part& p = parts_[i % np];
-      if (p.pool.free.size() < want[i % np]) p.pool.free.push_back(mesh_.free_tets[i]);
-      else mesh_.free_tets[fresh++] = mesh_.free_tets[i];  // kept for the sequential inserts
-    }
-    mesh_.free_tets.resize(fresh);
-    size_t total = 0;
-    for (size_t k = 0; k < np; ++k) total += want[k] - parts_[k].pool.free.size();
-    uint32_t next = store_.append(total);
-    for (size_t t = next; t < size_t(next) + total; ++t) mesh_.tet_flags[t] = tflag::kDeleted;
-    for (size_t k = 0; k < np; ++k) {
-      Part& p = parts_[k];
-      p.pool.next = next;
-      p.pool.end = next + static_cast<uint32_t>(want[k] - p.pool.free.size());
-      next = p.pool.end;
-    }
-    // Each tet's part: that of its real vertices when they agree.
-    const size_t slots = mesh_.num_tet_slots();
-    tet_part_.resize(slots);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, slots, 1 << 14), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t t = range.begin(); t < range.end(); ++t) {
-        const uint32_t* v = &mesh_.tet_v[4 * t];
-        uint8_t o = CavityKernel::kNoPart;
-        if (!(mesh_.tet_flags[t] & tflag::kDeleted)) {
-          o = part_[v[0]];
-          if (part_[v[1]] != o || part_[v[2]] != o || (v[3] != TetMesh::kGhost && part_[v[3]] != o)) o = CavityKernel::kNoPart;
-        }
-        tet_part_[t] = o;
-      }
-    });
+    delaunay_detail::fill_slot_pools(mesh_, store_, pools, want);
+    delaunay_detail::tet_parts_from_vertices(mesh_, part_, CavityKernel::kNoPart, tet_part_);
     // Each task's walk starts where its first point is (found before the tasks start), or near
     // there in a tet it may enter.
     for (size_t k = 0; k < np; ++k) {
@@ -176,10 +148,9 @@ class ParallelBuild {
     main.set_part(nullptr, CavityKernel::kNoPart);
     tbb::parallel_for(size_t(0), np, [&](size_t k) { fill_part(k); });
     // Unused slots back to the mesh's free list, in a fixed order.
+    delaunay_detail::return_slot_pools(mesh_, pools);
     std::vector<uint32_t> left;
     for (Part& p : parts_) {
-      mesh_.free_tets.insert(mesh_.free_tets.end(), p.pool.free.begin(), p.pool.free.end());
-      for (uint32_t t = p.pool.end; t > p.pool.next; --t) mesh_.free_tets.push_back(t - 1);
       left.insert(left.end(), p.left.begin(), p.left.end());
       stats.duplicates.insert(stats.duplicates.end(), p.duplicates.begin(), p.duplicates.end());
       stats.parallel_points += p.inserted;

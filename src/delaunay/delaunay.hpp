@@ -22,6 +22,7 @@
 #include "core/bvh.hpp"
 #include "core/status.hpp"
 #include "core/tet_mesh.hpp"
+#include "delaunay/slab_parts.hpp"
 
 namespace anitet {
 
@@ -163,9 +164,7 @@ class PointInserter {
   TetMesh& mesh_;
   std::unique_ptr<delaunay_detail::CavityKernel> kernel_;
   uint32_t last_tet_ = TetMesh::kNone;
-  // Bounding box of vertices 0..seen_-1, for the static filters.
-  size_t seen_ = 0;
-  Box3 box_ = {};
+  delaunay_detail::VertexBox box_;  // of the vertices, for the static filters
   void see_new_vertices();
 };
 

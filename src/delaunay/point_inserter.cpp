@@ -62,7 +62,7 @@ InsertResult PointInserter::insert(const double p[3], uint32_t hint, const Inser
   see_new_vertices();
   auto undo_vertex = [&] {
     mesh_.xyz.resize(3 * size_t(pid));
-    seen_ = std::min(seen_, size_t(pid));  // the next point takes its index (the box may stay larger)
+    box_.forget_from(pid);  // the next point takes its index (the box may stay larger)
     mesh_.vflags.resize(pid);
   };
 
@@ -97,17 +97,8 @@ InsertResult PointInserter::insert(const double p[3], uint32_t hint, const Inser
 }
 
 void PointInserter::see_new_vertices() {
-  const size_t n = mesh_.num_vertices();
-  seen_ = std::min(seen_, n);  // vertices removed at the end: the box stays a superset
-  if (seen_ == n) return;
-  const Box3 fresh = bounding_box(&mesh_.xyz[3 * seen_], n - seen_);
-  for (int k = 0; k < 3; ++k) {
-    box_.lo[k] = seen_ == 0 ? fresh.lo[k] : std::min(box_.lo[k], fresh.lo[k]);
-    box_.hi[k] = seen_ == 0 ? fresh.hi[k] : std::max(box_.hi[k], fresh.hi[k]);
-  }
-  seen_ = n;
   // The filters hold for coordinate differences up to the extent (non-finite: disabled).
-  kernel_->set_extent(std::max({box_.hi[0] - box_.lo[0], box_.hi[1] - box_.lo[1], box_.hi[2] - box_.lo[2]}));
+  kernel_->set_extent(box_.update(mesh_));
 }
 
 InsertResult insert_point(TetMesh& mesh, const double p[3], uint32_t hint, const InsertOptions& options,
