@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "io/number_text.hpp"
+#include "io/parallel_text.hpp"
 #include "io/reader_util.hpp"
 #include "io/surface_io.hpp"
 #include "io/text_scanner.hpp"
@@ -166,9 +167,9 @@ Result<VolumeMesh> parse_medit_volume(std::string_view data, const std::string& 
 void append_vertices(std::string& out, const std::vector<double>& xyz) {
   out += "\nVertices\n";
   append_line(out, xyz.size() / 3);
-  for (size_t v = 0; v < xyz.size() / 3; ++v) {
-    append_line(out, xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2], int32_t{0});
-  }
+  append_items(out, xyz.size() / 3, [&xyz](std::string& text, size_t v) {
+    append_line(text, xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2], int32_t{0});
+  });
 }
 
 // "Keyword / count / a b c [d] ref" with 1-based indices; refs may be empty (all 0).
@@ -180,14 +181,14 @@ void append_elements(std::string& out, const char* keyword, int n,
   out += keyword;
   out += "\n";
   append_line(out, count);
-  for (size_t e = 0; e < count; ++e) {
+  append_items(out, count, [&](std::string& text, size_t e) {
     for (int k = 0; k < n; ++k) {
-      append_int(out, int64_t{vertices[n * e + k]} + 1);
-      out += ' ';
+      append_int(text, int64_t{vertices[n * e + k]} + 1);
+      text += ' ';
     }
-    append_int(out, refs.empty() ? 0 : refs[e]);
-    out += '\n';
-  }
+    append_int(text, refs.empty() ? 0 : refs[e]);
+    text += '\n';
+  });
 }
 
 const char* kMeditHeader = "MeshVersionFormatted 2\n\nDimension 3\n";

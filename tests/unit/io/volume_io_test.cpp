@@ -1,4 +1,6 @@
 // Each volume reader on the box files of tests/data/io, and the .sol writer.
+#include "io/number_text.hpp"
+#include "io/parallel_text.hpp"
 #include "io/volume_io.hpp"
 
 #include <gtest/gtest.h>
@@ -130,6 +132,23 @@ TEST(VolumeWriters, RejectInconsistentArrays) {
   EXPECT_TRUE(to_vtu(mesh, {{"quality", {0.5}}}).ok());
   EXPECT_EQ(write_volume_mesh(mesh, test::temp_dir() + "/m.stl").code(), Error::UnsupportedFormat);
   EXPECT_EQ(write_volume_mesh(mesh, "/nonexistent_dir/m.mesh").code(), Error::FileNotFound);
+}
+
+}  // namespace
+}  // namespace anitet
+
+namespace anitet {
+namespace {
+
+// The parallel formatting gives one loop's text: over two windows of blocks and a short last
+// block, and for no item at all.
+TEST(ParallelText, AppendItemsIsOneLoopsText) {
+  for (size_t count : {size_t(0), size_t(5), size_t(16384 * 16 + 16384 * 3 + 7)}) {
+    std::string expected = "head\n", got = "head\n";
+    for (size_t i = 0; i < count; ++i) append_line(expected, uint64_t{i}, 0.5 * double(i));
+    append_items(got, count, [](std::string& text, size_t i) { append_line(text, uint64_t{i}, 0.5 * double(i)); });
+    EXPECT_EQ(got, expected) << count << " items";
+  }
 }
 
 }  // namespace

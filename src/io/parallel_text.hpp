@@ -1,0 +1,33 @@
+// Text output formatted on every core (internal header): the items' lines are formatted in
+// blocks by parallel tasks, a bounded window of blocks at a time, and appended in order, so the
+// text is the same as one loop's and at most one window (16 blocks) is held besides it.
+// (Armadillo's .mesh, 100 MB: formatting the numbers was the whole of the writer's 0.45 s.)
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+
+namespace anitet {
+
+// Appends format_item(text, i) for i = 0 .. count-1 to out, in that order.
+template <class FormatItem>
+void append_items(std::string& out, size_t count, FormatItem&& format_item) {
+  constexpr size_t kBlock = 16384, kWindow = 16;
+  std::vector<std::string> texts(std::min(kWindow, (count + kBlock - 1) / kBlock));
+  for (size_t w = 0; w < count; w += kBlock * kWindow) {
+    const size_t blocks = std::min(kWindow, (count - w + kBlock - 1) / kBlock);
+    tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+      std::string& text = texts[b];
+      text.clear();
+      const size_t first = w + b * kBlock, last = std::min(count, first + kBlock);
+      for (size_t i = first; i < last; ++i) format_item(text, i);
+    });
+    for (size_t b = 0; b < blocks; ++b) out += texts[b];
+  }
+}
+
+}  // namespace anitet
