@@ -256,6 +256,22 @@ TEST(QualityReport, GridSplitAndParallelAgree) {
   EXPECT_EQ(std::accumulate(a.rr_histogram.begin(), a.rr_histogram.end(), size_t(0)), a.tets);
 }
 
+// Many regions (past the few the report's scan collects before it sorts): each once, in order.
+TEST(QualityReport, ManyRegionsAreEachReportedOnce) {
+  VolumeMesh grid = test::kuhn_grid(3);
+  ASSERT_GE(grid.num_tets(), 140u);
+  grid.region.resize(grid.num_tets());
+  for (size_t t = 0; t < grid.num_tets(); ++t) grid.region[t] = int32_t(69 - t % 70);
+  const QualityReport r = report_of(grid, nullptr);
+  ASSERT_EQ(r.by_region.size(), 70u);
+  size_t tets = 0;
+  for (size_t k = 0; k < 70; ++k) {
+    EXPECT_EQ(r.by_region[k].region, int32_t(k));
+    tets += r.by_region[k].quality.tets;
+  }
+  EXPECT_EQ(tets, r.tets);
+}
+
 TEST(QualityReport, QualityPerRegionOnlyWithTwoRegionsOrMore) {
   VolumeMesh grid = test::kuhn_grid(2);
   EXPECT_TRUE(report_of(grid, nullptr).by_region.empty());  // no region array: one region
