@@ -11,6 +11,8 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <system_error>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -202,6 +204,25 @@ int run_mesh_pipeline(MeshArgs& args) {
       if (st.name == "sizing") st.seconds += field_seconds;
     r.seconds += field_seconds;
   }
+  // The mesh is written as it was measured unless --geodetic-output converts it after the
+  // report: then the file is written while the report is measured (both only read the mesh;
+  // armadillo: the writer's 0.45 s behind the report's 0.8 s).
+  bool write_now = !args.metric.geodetic_output;
+  int write_code = kExitOk;
+  std::thread writer;
+  if (write_now) {
+    try {
+      writer = std::thread([&] { write_code = write_outputs(args, r.mesh); });
+    } catch (const std::system_error&) {
+      write_now = false;  // no thread to be had: written after the report, as with --geodetic-output
+    }
+  }
+  struct JoinWriter {
+    std::thread& t;
+    ~JoinWriter() {
+      if (t.joinable()) t.join();
+    }
+  } join_writer{writer};
   // Measured in the local frame, against the surface that was meshed (with --report, by the
   // HTML report, which gives the same report).
   Result<QualityReport> quality = Status(Error::Internal, "not measured");
@@ -244,7 +265,9 @@ int run_mesh_pipeline(MeshArgs& args) {
   // surface bit for bit.
   if (!input_xyz.empty() && r.mesh.xyz.size() >= input_xyz.size())
     std::copy(input_xyz.begin(), input_xyz.end(), r.mesh.xyz.begin());
-  if (const int code = write_outputs(args, r.mesh); code != kExitOk) return code;
+  if (writer.joinable()) writer.join();
+  if (!write_now) write_code = write_outputs(args, r.mesh);
+  if (write_code != kExitOk) return write_code;
   const BoundaryLayerReport& bl = r.boundary_layer;
   if (args.json) {
     nlohmann::json stages = nlohmann::json::array();
