@@ -13,6 +13,8 @@
 #include <cstdio>
 #include <limits>
 #include <utility>
+
+#include "io/lazy_library.hpp"
 #endif
 
 namespace anitet {
@@ -22,6 +24,55 @@ namespace anitet {
 bool cgns_available() { return true; }
 
 namespace {
+
+// The CGNS functions this writer calls, from the library opened on the first write
+// (ANITET_CGNS_SONAME, found at configure time; see lazy_library.hpp). The calls below keep
+// their names: each is a macro for its pointer here.
+struct CgnsApi {
+  decltype(&::cg_open) open = nullptr;
+  decltype(&::cg_close) close = nullptr;
+  decltype(&::cg_get_error) get_error = nullptr;
+  decltype(&::cg_base_write) base_write = nullptr;
+  decltype(&::cg_goto) go_to = nullptr;
+  decltype(&::cg_dataclass_write) dataclass_write = nullptr;
+  decltype(&::cg_zone_write) zone_write = nullptr;
+  decltype(&::cg_coord_write) coord_write = nullptr;
+  decltype(&::cg_exponents_write) exponents_write = nullptr;
+  decltype(&::cg_section_write) section_write = nullptr;
+  decltype(&::cg_boco_write) boco_write = nullptr;
+  decltype(&::cg_boco_gridlocation_write) boco_gridlocation_write = nullptr;
+  std::string error;  // empty: every function was found
+};
+
+const CgnsApi& cgns_api() {
+  static const CgnsApi api = [] {
+    static LazyLibrary library(ANITET_CGNS_SONAME);
+    CgnsApi a;
+    const bool ok = library.bind(a.open, "cg_open") && library.bind(a.close, "cg_close") &&
+                    library.bind(a.get_error, "cg_get_error") && library.bind(a.base_write, "cg_base_write") &&
+                    library.bind(a.go_to, "cg_goto") && library.bind(a.dataclass_write, "cg_dataclass_write") &&
+                    library.bind(a.zone_write, "cg_zone_write") && library.bind(a.coord_write, "cg_coord_write") &&
+                    library.bind(a.exponents_write, "cg_exponents_write") &&
+                    library.bind(a.section_write, "cg_section_write") && library.bind(a.boco_write, "cg_boco_write") &&
+                    library.bind(a.boco_gridlocation_write, "cg_boco_gridlocation_write");
+    if (!ok) a.error = library.error().empty() ? std::string("incomplete CGNS library") : library.error();
+    return a;
+  }();
+  return api;
+}
+
+#define cg_open (cgns_api().open)
+#define cg_close (cgns_api().close)
+#define cg_get_error (cgns_api().get_error)
+#define cg_base_write (cgns_api().base_write)
+#define cg_goto (cgns_api().go_to)
+#define cg_dataclass_write (cgns_api().dataclass_write)
+#define cg_zone_write (cgns_api().zone_write)
+#define cg_coord_write (cgns_api().coord_write)
+#define cg_exponents_write (cgns_api().exponents_write)
+#define cg_section_write (cgns_api().section_write)
+#define cg_boco_write (cgns_api().boco_write)
+#define cg_boco_gridlocation_write (cgns_api().boco_gridlocation_write)
 
 CGNS_ENUMT(BCType_t) cgns_bc_type(PatchKind kind) {
   switch (kind) {
@@ -69,6 +120,8 @@ class CgnsFile {
 
 }  // namespace
 
+std::string cgns_load_error() { return cgns_api().error; }
+
 Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names) {
   if (Status s = check_volume_arrays(mesh); !s.ok()) return s;
   Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names);
@@ -80,6 +133,7 @@ Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNa
     return Status(Error::InvalidArgument, path + ": too many elements for this CGNS build's 32-bit sizes");
   }
   if (nt == 0) return Status(Error::InvalidArgument, path + ": a CGNS zone needs at least one tetrahedron");
+  if (!cgns_api().error.empty()) return Status(Error::NotImplemented, path + ": " + cgns_api().error);
 
   CgnsFile file(path);
   if (Status s = file.open(); !s.ok()) return s;
@@ -142,6 +196,7 @@ Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNa
 #else  // !ANITET_HAVE_CGNS
 
 bool cgns_available() { return false; }
+std::string cgns_load_error() { return "anitet was not built with CGNS"; }
 
 Status write_cgns(const VolumeMesh&, const std::string& path, const PatchNames&) {
   return Status(Error::NotImplemented, path + ": anitet was not built with CGNS (install libcgns-dev and "

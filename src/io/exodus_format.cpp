@@ -14,6 +14,8 @@
 #include <limits>
 #include <map>
 #include <utility>
+
+#include "io/lazy_library.hpp"
 #endif
 
 namespace anitet {
@@ -23,6 +25,54 @@ namespace anitet {
 bool exodus_available() { return true; }
 
 namespace {
+
+// The Exodus II functions this writer calls, from the library opened on the first write
+// (ANITET_EXODUS_SONAME, found at configure time; see lazy_library.hpp). The calls below keep
+// their names: each is a macro for its pointer here (ex_create is exodusII.h's macro for
+// ex_create_int).
+struct ExodusApi {
+  decltype(&::ex_create_int) create_int = nullptr;
+  decltype(&::ex_close) close = nullptr;
+  decltype(&::ex_put_init) put_init = nullptr;
+  decltype(&::ex_put_coord) put_coord = nullptr;
+  decltype(&::ex_put_coord_names) put_coord_names = nullptr;
+  decltype(&::ex_put_block) put_block = nullptr;
+  decltype(&::ex_put_conn) put_conn = nullptr;
+  decltype(&::ex_put_name) put_name = nullptr;
+  decltype(&::ex_put_set_param) put_set_param = nullptr;
+  decltype(&::ex_put_set) put_set = nullptr;
+  int* errval = nullptr;  // the library's exerrval
+  std::string error;  // empty: every function was found
+};
+
+const ExodusApi& exodus_api() {
+  static const ExodusApi api = [] {
+    static LazyLibrary library(ANITET_EXODUS_SONAME);
+    ExodusApi a;
+    const bool ok = library.bind(a.create_int, "ex_create_int") && library.bind(a.close, "ex_close") &&
+                    library.bind(a.put_init, "ex_put_init") && library.bind(a.put_coord, "ex_put_coord") &&
+                    library.bind(a.put_coord_names, "ex_put_coord_names") &&
+                    library.bind(a.put_block, "ex_put_block") && library.bind(a.put_conn, "ex_put_conn") &&
+                    library.bind(a.put_name, "ex_put_name") && library.bind(a.put_set_param, "ex_put_set_param") &&
+                    library.bind(a.put_set, "ex_put_set") && library.bind(a.errval, "exerrval");
+    if (!ok) a.error = library.error().empty() ? std::string("incomplete Exodus II library") : library.error();
+    return a;
+  }();
+  return api;
+}
+
+#define ex_create_int (exodus_api().create_int)
+#define ex_close (exodus_api().close)
+#define ex_put_init (exodus_api().put_init)
+#define ex_put_coord (exodus_api().put_coord)
+#define ex_put_coord_names (exodus_api().put_coord_names)
+#define ex_put_block (exodus_api().put_block)
+#define ex_put_conn (exodus_api().put_conn)
+#define ex_put_name (exodus_api().put_name)
+#define ex_put_set_param (exodus_api().put_set_param)
+#define ex_put_set (exodus_api().put_set)
+#undef exerrval
+#define exerrval (*exodus_api().errval)
 
 // Writes PATH.part-PID and moves it to PATH when complete; closes the file on every path and
 // removes the partial one when the write did not finish.
@@ -69,6 +119,8 @@ class ExodusFile {
 
 }  // namespace
 
+std::string exodus_load_error() { return exodus_api().error; }
+
 Status write_exodus(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names) {
   if (Status s = check_volume_arrays(mesh); !s.ok()) return s;
   Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names);
@@ -107,6 +159,7 @@ Status write_exodus(const VolumeMesh& mesh, const std::string& path, const Patch
     }
   }
 
+  if (!exodus_api().error.empty()) return Status(Error::NotImplemented, path + ": " + exodus_api().error);
   ExodusFile file(path);
   if (Status s = file.create(); !s.ok()) return s;
   const int id = file.id();
@@ -166,6 +219,7 @@ Status write_exodus(const VolumeMesh& mesh, const std::string& path, const Patch
 #else  // !ANITET_HAVE_EXODUS
 
 bool exodus_available() { return false; }
+std::string exodus_load_error() { return "anitet was not built with Exodus II"; }
 
 Status write_exodus(const VolumeMesh&, const std::string& path, const PatchNames&) {
   return Status(Error::NotImplemented, path + ": anitet was not built with Exodus II (install libexodusii-dev "

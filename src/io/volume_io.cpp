@@ -42,11 +42,13 @@ Status check_writable_volume_path(const std::string& path) {
       if (!cgns_available()) {
         return Status(Error::NotImplemented, path + ": anitet was not built with CGNS (libcgns-dev)");
       }
+      if (const std::string why = cgns_load_error(); !why.empty()) return Status(Error::NotImplemented, path + ": " + why);
       break;
     case VolumeFormat::Exodus:
       if (!exodus_available()) {
         return Status(Error::NotImplemented, path + ": anitet was not built with Exodus II (libexodusii-dev)");
       }
+      if (const std::string why = exodus_load_error(); !why.empty()) return Status(Error::NotImplemented, path + ": " + why);
       break;
     default:
       break;

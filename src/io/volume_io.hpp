@@ -21,11 +21,15 @@ enum class VolumeFormat { Medit, Gmsh, TetGen, Vtu, Su2, OpenFoam, Cgns, Exodus 
 // OpenFOAM polyMesh directory. Su2, OpenFoam, Cgns and Exodus are written only.
 Result<VolumeFormat> volume_format_from_path(const std::string& path);
 // Error::UnsupportedFormat unless the format of `path` can be written; Error::NotImplemented for
-// .cgns or .exo/.e when anitet was built without CGNS or Exodus II.
+// .cgns or .exo/.e when anitet was built without CGNS or Exodus II, or its library cannot be
+// opened.
 Status check_writable_volume_path(const std::string& path);
 // Whether this build has the CGNS / Exodus II writers (found by CMake at build time).
 bool cgns_available();
 bool exodus_available();
+// Why the writer's library cannot be opened now (it is opened on first use): empty when it can.
+std::string cgns_load_error();
+std::string exodus_load_error();
 
 // Reads a file chosen by extension. For TetGen give the .node or the .ele path: base.node and
 // base.ele are read, and base.face (boundary triangles with markers) when it exists.
