@@ -61,14 +61,10 @@ struct BatchInserter::Impl {
     into.insert(into.end(), k.new_tets().begin(), k.new_tets().end());
   }
 
-  bool live(uint32_t t) const { return t < mesh.num_tet_slots() && !mesh.is_deleted(t); }
-
   void insert_one(uint32_t i) {
     const uint32_t pid = n0 + i;
     const uint32_t hint = hints ? hints[i] : TetMesh::kNone;
-    uint32_t start = live(hint) ? hint : live(last) ? last : TetMesh::kNone;
-    for (uint32_t t = 0; start == TetMesh::kNone && t < mesh.num_tet_slots(); ++t)
-      if (!mesh.is_deleted(t)) start = t;
+    const uint32_t start = delaunay_detail::walk_start(mesh, hint, last);
     if (start == TetMesh::kNone) {
       out->status[i] = InsertStatus::kInvalidMesh;
       return;

@@ -39,10 +39,7 @@ InsertResult PointInserter::insert(const double p[3], uint32_t hint, const Inser
     ~CountOnExit() { counters.add_predicates_since(before); }
   } count_on_exit{kernel_->counters, predicates_before};
   InsertResult result;
-  auto live = [this](uint32_t t) { return t < mesh_.num_tet_slots() && !mesh_.is_deleted(t); };
-  uint32_t start = live(hint) ? hint : live(last_tet_) ? last_tet_ : TetMesh::kNone;
-  for (uint32_t t = 0; start == TetMesh::kNone && t < mesh_.num_tet_slots(); ++t)
-    if (!mesh_.is_deleted(t)) start = t;
+  const uint32_t start = delaunay_detail::walk_start(mesh_, hint, last_tet_);
   if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
     result.status = InsertStatus::kInvalidPoint;
     return result;

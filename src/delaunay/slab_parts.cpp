@@ -55,6 +55,15 @@ void tet_parts_from_vertices(const TetMesh& mesh, const std::vector<uint8_t>& ve
   });
 }
 
+uint32_t walk_start(const TetMesh& mesh, uint32_t hint, uint32_t last) {
+  auto live = [&mesh](uint32_t t) { return t < mesh.num_tet_slots() && !mesh.is_deleted(t); };
+  if (live(hint)) return hint;
+  if (live(last)) return last;
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
+    if (!mesh.is_deleted(t)) return t;
+  return TetMesh::kNone;
+}
+
 double VertexBox::update(const TetMesh& mesh) {
   const size_t nv = mesh.num_vertices();
   seen_ = std::min(seen_, nv);

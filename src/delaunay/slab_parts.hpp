@@ -1,6 +1,7 @@
 // What the slab tasks of the parallel bulk build (delaunay.cpp) and of BatchInserter
 // (batch_inserter.cpp) share (internal header): each task's slot pool, each tet's part, the
-// pools' leftovers given back, and the box of the vertices for the static filters.
+// pools' leftovers given back, and, with PointInserter, the box of the vertices for the static
+// filters and where a walk starts.
 #pragma once
 
 #include <cstddef>
@@ -26,6 +27,10 @@ void return_slot_pools(TetMesh& mesh, const std::vector<SlotPool*>& pools);
 // slots too); on every core.
 void tet_parts_from_vertices(const TetMesh& mesh, const std::vector<uint8_t>& vertex_part, uint8_t no_part,
                              std::vector<uint8_t>& tet_part);
+
+// Where a walk starts: `hint` when it is a live tet, else `last` when it is, else the first live
+// tet (kNone: the mesh has none).
+uint32_t walk_start(const TetMesh& mesh, uint32_t hint, uint32_t last);
 
 // The box of a mesh's vertices, grown as vertices are appended (removed ones may leave it larger:
 // a superset serves the static filters), and its largest side.
