@@ -55,7 +55,7 @@ const CgnsApi& cgns_api() {
                     library.bind(a.exponents_write, "cg_exponents_write") &&
                     library.bind(a.section_write, "cg_section_write") && library.bind(a.boco_write, "cg_boco_write") &&
                     library.bind(a.boco_gridlocation_write, "cg_boco_gridlocation_write");
-    if (!ok) a.error = library.error().empty() ? std::string("incomplete CGNS library") : library.error();
+    if (!ok) a.error = library.error();  // (bind() says why whenever it fails)
     return a;
   }();
   return api;
