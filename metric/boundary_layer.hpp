@@ -31,6 +31,12 @@
 namespace anitet {
 namespace metric {
 
+namespace detail {
+inline double dot3(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+}  // namespace detail
+
 struct BoundaryLayerOptions {
   double first_height = 0.0;          // h0 > 0: the first layer's thickness
   double growth = 1.2;                // r > 1: the layers' thickness ratio
@@ -54,7 +60,10 @@ struct BoundaryLayerStats {
 
 class BoundaryLayerField final : public SizingField {
  public:
-  struct Impl;
+  struct Impl;  // in the OpenVDB module (metric_field.hpp)
+  struct ImplDeleter {
+    void operator()(Impl* impl) const;
+  };
   // Error::InvalidArgument for bad options, Error::EmptyInput when no triangle is a wall,
   // Error::Internal if OpenVDB fails. The background must outlive the field.
   static Result<BoundaryLayerField> create(const SurfaceMesh& surface, const SizingField& background,
@@ -68,14 +77,49 @@ class BoundaryLayerField final : public SizingField {
   // The distance to the walls and the closest wall point; false beyond the band.
   bool wall_distance(const double p[3], double& d, double closest[3]) const;
 
+  // Internal (the module's result): takes ownership.
+  explicit BoundaryLayerField(Impl* impl);
+
  private:
-  explicit BoundaryLayerField(std::unique_ptr<Impl> impl);
-  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Impl, ImplDeleter> impl_;
 };
 
 // The point of triangle abc closest to p, with its barycentric weights (w[0] for a, ...).
-void closest_point_on_triangle(const double p[3], const double a[3], const double b[3],
-                               const double c[3], double q[3], double w[3]);
+inline void closest_point_on_triangle(const double p[3], const double a[3], const double b[3],
+                                      const double c[3], double q[3], double w[3]) {
+  // Voronoi regions of the vertices, then of the edges, else the face (barycentric from areas).
+  const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double ap[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+  const double bp[3] = {p[0] - b[0], p[1] - b[1], p[2] - b[2]};
+  const double cp[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+  const double d1 = detail::dot3(ab, ap), d2 = detail::dot3(ac, ap);
+  const double d3 = detail::dot3(ab, bp), d4 = detail::dot3(ac, bp);
+  const double d5 = detail::dot3(ab, cp), d6 = detail::dot3(ac, cp);
+  const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  if (d1 <= 0.0 && d2 <= 0.0) {
+    w[0] = 1.0, w[1] = 0.0, w[2] = 0.0;
+  } else if (d3 >= 0.0 && d4 <= d3) {
+    w[0] = 0.0, w[1] = 1.0, w[2] = 0.0;
+  } else if (d6 >= 0.0 && d5 <= d6) {
+    w[0] = 0.0, w[1] = 0.0, w[2] = 1.0;
+  } else if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    const double t = d1 / (d1 - d3);
+    w[0] = 1.0 - t, w[1] = t, w[2] = 0.0;
+  } else if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    const double t = d2 / (d2 - d6);
+    w[0] = 1.0 - t, w[1] = 0.0, w[2] = t;
+  } else if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    w[0] = 0.0, w[1] = 1.0 - t, w[2] = t;
+  } else {
+    const double s = 1.0 / (va + vb + vc);
+    w[1] = vb * s;
+    w[2] = vc * s;
+    w[0] = 1.0 - w[1] - w[2];
+  }
+  for (int k = 0; k < 3; ++k) q[k] = w[0] * a[k] + w[1] * b[k] + w[2] * c[k];
+}
 
 }  // namespace metric
 }  // namespace anitet

@@ -1,5 +1,9 @@
-// MetricField: a metric tensor field stored sparsely in OpenVDB grids (the only OpenVDB user of
-// the project; this header includes none of it).
+// MetricField: a metric tensor field stored sparsely in OpenVDB grids (this header includes none
+// of it). The OpenVDB code lives in a module, libanitet_vdb.so, opened on the first field built
+// or read (vdb_backend.hpp): linked, OpenVDB's 69,000 relocations took 60 ms at every start of
+// every program using the library; the pipeline now pays them on the core that builds the sizing
+// grid while stage 1 runs. Without the module, building or reading a field fails with
+// Error::NotImplemented.
 //
 // Two kinds share one uniform linear transform (voxel size, origin):
 //  - Isotropic: one grid of sizes h, trilinearly interpolated in h (so constant and linear size
@@ -38,7 +42,10 @@ namespace metric {
 class MetricField final : public SizingField {
  public:
   enum class Kind { Isotropic, Tensor };
-  struct Impl;
+  struct Impl;  // in the module
+  struct ImplDeleter {
+    void operator()(Impl* impl) const;
+  };
 
   MetricField(MetricField&&) noexcept;
   MetricField& operator=(MetricField&&) noexcept;
@@ -85,15 +92,20 @@ class MetricField final : public SizingField {
     void log_metrics(const double* points, size_t n, double* out);
     double edge_length(const double a[3], const double b[3]);
 
-    struct State;
+    struct State;  // in the module
+    struct StateDeleter {
+      void operator()(State* state) const;
+    };
 
    private:
-    std::unique_ptr<State> state_;
+    std::unique_ptr<State, StateDeleter> state_;
   };
 
+  // Internal (the module's result): takes ownership.
+  explicit MetricField(Impl* impl);
+
  private:
-  explicit MetricField(std::unique_ptr<Impl> impl);
-  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Impl, ImplDeleter> impl_;
   friend Status write_metric_vdb(const MetricField&, const std::string&, bool);
   friend Result<MetricField> read_metric_vdb(const std::string&);
 };
