@@ -56,6 +56,10 @@ class LayerBuilder {
   // metric frame (see frame_of).
   void star_normals(uint32_t a, const std::vector<uint32_t>& star, std::vector<double>& normals,
                     std::vector<double>& weights) const;
+  // The normals alone (the angles cost an atan2 each: skipped where only margins are asked).
+  void star_normals(uint32_t a, const std::vector<uint32_t>& star, std::vector<double>& normals) const;
+  void star_normals(uint32_t a, const std::vector<uint32_t>& star, std::vector<double>& normals,
+                    std::vector<double>* weights) const;
   // Stage 1's directions and margins are measured in the metric at the vertex: the star is mapped
   // by U (M = U^T U) before its normals and angles are taken. A push that makes walls of
   // stretched neighbours in space (the sides of bench/aniso_cube: triangles 0.1 x 0.001) is a

@@ -77,8 +77,18 @@ void LayerBuilder::frame_normal(uint32_t a, const double* p0, const double* p1, 
 
 void LayerBuilder::star_normals(uint32_t a, const std::vector<uint32_t>& star,
                                 std::vector<double>& normals, std::vector<double>& weights) const {
+  star_normals(a, star, normals, &weights);
+}
+
+void LayerBuilder::star_normals(uint32_t a, const std::vector<uint32_t>& star,
+                                std::vector<double>& normals) const {
+  star_normals(a, star, normals, nullptr);
+}
+
+void LayerBuilder::star_normals(uint32_t a, const std::vector<uint32_t>& star,
+                                std::vector<double>& normals, std::vector<double>* weights) const {
   normals.assign(3 * star.size(), 0.0);
-  weights.assign(star.size(), 0.0);
+  if (weights) weights->assign(star.size(), 0.0);
   const double* u = frame_of(a);
   double q[3][3];
   for (size_t i = 0; i < star.size(); ++i) {
@@ -93,7 +103,7 @@ void LayerBuilder::star_normals(uint32_t a, const std::vector<uint32_t>& star,
       }
     unit_normal(p[0], p[1], p[2], &normals[3 * i]);
     for (int j = 0; j < 3; ++j) normals[3 * i + j] = -normals[3 * i + j];
-    weights[i] = corner_angle(p[0], p[1], p[2]);
+    if (weights) (*weights)[i] = corner_angle(p[0], p[1], p[2]);
   }
 }
 
@@ -130,9 +140,10 @@ bool LayerBuilder::keeps_plans_visible(int halvings) {
       if (u >= plan_.size() || !plan_[u].valid || !plan_[u].waiting) continue;
       const Plan& p = plan_[u];
       const double need = halvings < kStrictHalvings ? p.keep : 0.0;
-      star_normals(u, front_.star(u), normals, weights);
+      star_normals(u, front_.star(u), normals);
       if (star_margin(normals, into_frame(u, p.d).data()) > need) continue;
       // The planned direction no longer sees u's new star well: look for another that does.
+      star_normals(u, front_.star(u), normals, weights);
       Replan r;
       r.v = u;
       bool improved = false;
@@ -192,7 +203,7 @@ Status LayerBuilder::push_step(const std::vector<uint32_t>& vertices, int layer)
     plan_targets(vertices);
   for (uint32_t v : order) {
     Plan& p = plan_[v];
-    star_normals(v, front_.star(v), normals, weights);
+    star_normals(v, front_.star(v), normals);
     p.keep = opt_.keep_margin * std::min(star_margin(normals, into_frame(v, p.d).data()), 0.5);
   }
   out_.stats.deferred_pushes += deferred.size();
@@ -272,7 +283,7 @@ void LayerBuilder::plan_targets(const std::vector<uint32_t>& vertices) {
       const double len = std::sqrt(dot3(disp, disp));
       if (!(len > 0.0)) continue;
       const double dir[3] = {disp[0] / len, disp[1] / len, disp[2] / len};
-      star_normals(v, front_.star(v), normals, weights);
+      star_normals(v, front_.star(v), normals);
       if (star_margin(normals, into_frame(v, dir).data()) < 0.5 * star_margin(normals, into_frame(v, d).data()))
         continue;
       std::copy_n(next, 3, &target[3 * v]);
@@ -444,7 +455,7 @@ Status LayerBuilder::push_vertex(uint32_t a, int layer) {
                                          std::to_string(a) + " at " + point_text(mesh_.point(a)) +
                                          ": its front star could not be taken off in " +
                                          std::to_string(round) + " partial pushes");
-    star_normals(a, star, normals, weights);
+    star_normals(a, star, normals);
     // The planned displacement, while it sees the star (the neighbours' pushes keep it so unless
     // they had to re-plan); else the best direction of the star as it is now.
     if (!whole_failed && round == 0 && a < plan_.size() && plan_[a].valid &&
@@ -456,6 +467,7 @@ Status LayerBuilder::push_vertex(uint32_t a, int layer) {
       ++out_.stats.push_fallbacks;
       continue;
     }
+    star_normals(a, star, normals, weights);  // (the angles weigh the directions)
     double d[3];
     bool improved = false;
     const double margin = visible_direction(normals, weights, d, &improved);
