@@ -527,13 +527,15 @@ bool LayerBuilder::best_apex(uint32_t a, const std::vector<uint32_t>& part, doub
   // The smallest radius ratio (in the metric at a) over both sets; -1 when a cone tet is not
   // positive (floating point: a choice only, the exact test decides), 0 for a future tet (its
   // neighbour would have to re-plan or shorten this push: see keeps_plans_visible).
-  auto quality = [&](const double* p) {
+  // A candidate is kept only when it beats the best so far (by 1e-9): once one tet is at or
+  // below that bar the rest cannot change the verdict, so the scan stops there (`stop`).
+  auto quality = [&](const double* p, double stop) {
     double q = 1.0;
-    for (size_t i = 0; i < own.size(); i += 3)
+    for (size_t i = 0; i < own.size() && q > stop; i += 3)
       q = std::min(q, signed_volume(own[i], own[i + 1], own[i + 2], p) > 0.0
                           ? radius_ratio_in(u, own[i], own[i + 1], own[i + 2], p)
                           : -1.0);
-    for (size_t i = 0; i < future.size(); i += 3) {
+    for (size_t i = 0; i < future.size() && q > stop; i += 3) {
       const double *x = future[i], *y = future[i + 1], *at = future[i + 2];
       q = std::min(q, signed_volume(p, y, x, at) > 0.0 ? radius_ratio_in(u, p, y, x, at) : 0.0);
     }
@@ -547,7 +549,7 @@ bool LayerBuilder::best_apex(uint32_t a, const std::vector<uint32_t>& part, doub
     // leaves makes flat tets in this layer's prisms and the next.
     if (scale < opt_.min_height_fraction) break;
     const double p[3] = {pa[0] + scale * disp[0], pa[1] + scale * disp[1], pa[2] + scale * disp[2]};
-    const double q = quality(p);
+    const double q = quality(p, best + 1e-9);
     if (q > best + 1e-9) {
       best = q;
       std::copy_n(p, 3, best_p);
@@ -578,7 +580,7 @@ bool LayerBuilder::best_apex(uint32_t a, const std::vector<uint32_t>& part, doub
           double p[3] = {best_p[0], best_p[1], best_p[2]};
           p[k] += sign * step;
           if (!near_plan(p)) continue;
-          const double q = quality(p);
+          const double q = quality(p, best + 1e-9);
           if (q > best + 1e-9) {
             best = q;
             std::copy_n(p, 3, best_p);
