@@ -16,7 +16,8 @@ step() { echo "== $*"; }
 step "install into $prefix"
 "$CMAKE" --install "$BUILD_DIR" --component capi --prefix "$prefix" >"$WORK_DIR/install.log"
 for f in "include/anitet.h" "$LIBDIR/libanitet.so" "$LIBDIR/pkgconfig/anitet.pc" \
-         "$LIBDIR/cmake/anitet/anitetConfig.cmake" "$DATADIR/anitet/fortran/anitet.f90"; do
+         "$LIBDIR/cmake/anitet/anitetConfig.cmake" "$DATADIR/anitet/fortran/anitet.f90" \
+         "$LIBDIR/anitet/libanitet_vdb.so"; do
   [ -e "$prefix/$f" ] || { echo "not installed: $f" >&2; exit 1; }
 done
 
@@ -34,6 +35,12 @@ libs=$(pkg-config --libs anitet)
 # shellcheck disable=SC2086 # flag lists
 "$C_COMPILER" -std=c99 -Wall -Wextra -pedantic -Werror $SANITIZE_FLAGS $cflags -I"$SPHERE_DIR" \
   "$CONSUMER_DIR/consumer.c" $libs -lm -Wl,-rpath,"$prefix/$LIBDIR" -o "$WORK_DIR/consumer-pc"
+
+step "the OpenVDB module opened is the installed one (found from libanitet.so)"
+LD_DEBUG=libs "$WORK_DIR/consumer-pc" >"$WORK_DIR/consumer-pc.libs" 2>&1
+grep -q "calling init: $prefix/.*anitet/libanitet_vdb.so" "$WORK_DIR/consumer-pc.libs" ||
+  { echo "the consumer did not open $prefix's libanitet_vdb.so:" >&2;
+    grep "libanitet_vdb\|libopenvdb" "$WORK_DIR/consumer-pc.libs" >&2; exit 1; }
 "$WORK_DIR/consumer-pc"
 
 if [ -n "${FORTRAN_COMPILER:-}" ]; then
