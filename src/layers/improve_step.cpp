@@ -229,14 +229,17 @@ void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
         candidates.push_back(best);
       }
       const double clear_now = clear_distance(v, p, edge);
-      // Best first; each candidate's worst tet computed once, not at every comparison.
+      // Best first; each candidate's worst tet computed once, not at every comparison. Only those
+      // beating `now` by 0.01 are tried, so a candidate's scan stops at its first tet at or below
+      // that bar (its value then sorts it among the ones never tried).
+      const double bar = now + 0.01;
       std::vector<std::pair<double, std::array<double, 3>>> ranked;
       ranked.reserve(candidates.size());
-      for (const auto& c : candidates) ranked.push_back({worst_tet_with(v, c.data(), tets[i]), c});
+      for (const auto& c : candidates) ranked.push_back({worst_tet_with(v, c.data(), tets[i], bar), c});
       std::sort(ranked.begin(), ranked.end(),
                 [](const auto& a, const auto& b) { return a.first > b.first; });
       for (const auto& [q, c] : ranked) {
-        if (!(q > now + 0.01)) break;
+        if (!(q > bar)) break;
         if (!keeps_clear(v, c.data(), std::min(0.5 * edge, 0.7 * clear_now))) continue;
         if (relocate_if_valid(v, c.data(), tets[i])) {
           ++moved;
