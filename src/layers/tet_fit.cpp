@@ -29,6 +29,26 @@ bool reversed(const uint32_t* t, const uint32_t f[3]) {
   return false;
 }
 
+// Whether one facet's plane keeps the front triangle t (corners q) off the closed tet except where
+// they share corners: every corner of t that is a corner of the tet is a corner of that facet,
+// and every other corner lies strictly on the far side of its plane (exact). Then t meets the tet
+// only in shared corners or a shared edge, and no triangle-triangle test below could find more.
+bool separated(const uint32_t v[4], const double* const facet[4][3], const uint32_t* t,
+               const double* const q[3]) {
+  for (int i = 0; i < 4; ++i) {
+    bool apart = true;
+    for (int k = 0; k < 3 && apart; ++k) {
+      if (t[k] == v[0] || t[k] == v[1] || t[k] == v[2] || t[k] == v[3]) {
+        apart = t[k] != v[i];  // facet i holds every tet corner but v[i] (kFacetVertex)
+      } else {
+        apart = predicates::orient3d(facet[i][0], facet[i][1], facet[i][2], q[k]) < 0;
+      }
+    }
+    if (apart) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 namespace {
@@ -81,6 +101,7 @@ bool fits(const Front& front, const std::vector<double>& xyz, const uint32_t v[4
       }
     }
     const Box3& tb = front.box(f);
+    if (separated(v, facet, t, q)) return true;
     for (int i = 0; i < 4; ++i) {
       if (closing[i] != Front::kNone || !boxes_overlap(facet_box[i], tb)) continue;
       ++counters.tri_tests;
