@@ -35,15 +35,19 @@ bool reversed(const uint32_t* t, const uint32_t f[3]) {
 // only in shared corners or a shared edge, and no triangle-triangle test below could find more.
 bool separated(const uint32_t v[4], const double* const facet[4][3], const uint32_t* t,
                const double* const q[3]) {
+  int corner[3];  // the tet corner each corner of t is, or -1
+  for (int k = 0; k < 3; ++k) {
+    corner[k] = -1;
+    for (int j = 0; j < 4; ++j)
+      if (t[k] == v[j]) corner[k] = j;
+  }
   for (int i = 0; i < 4; ++i) {
+    // Facet i holds every tet corner but v[i] (kFacetVertex).
+    if (corner[0] == i || corner[1] == i || corner[2] == i) continue;
     bool apart = true;
-    for (int k = 0; k < 3 && apart; ++k) {
-      if (t[k] == v[0] || t[k] == v[1] || t[k] == v[2] || t[k] == v[3]) {
-        apart = t[k] != v[i];  // facet i holds every tet corner but v[i] (kFacetVertex)
-      } else {
+    for (int k = 0; k < 3 && apart; ++k)
+      if (corner[k] < 0)
         apart = predicates::orient3d(facet[i][0], facet[i][1], facet[i][2], q[k]) < 0;
-      }
-    }
     if (apart) return true;
   }
   return false;
