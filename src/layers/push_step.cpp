@@ -529,15 +529,24 @@ bool LayerBuilder::best_apex(uint32_t a, const std::vector<uint32_t>& part, doub
   // neighbour would have to re-plan or shorten this push: see keeps_plans_visible).
   // A candidate is kept only when it beats the best so far (by 1e-9): once one tet is at or
   // below that bar the rest cannot change the verdict, so the scan stops there (`stop`).
+  // The radius ratios are measured on the points mapped by u (radius_ratio_in's values): the
+  // fixed points are mapped once here, the candidate once per call.
+  std::vector<std::array<double, 3>> own_u(own.size()), future_u(future.size());
+  for (size_t i = 0; i < own.size(); ++i) apply_factor(u, own[i], own_u[i].data());
+  for (size_t i = 0; i < future.size(); ++i) apply_factor(u, future[i], future_u[i].data());
   auto quality = [&](const double* p, double stop) {
+    double pu[3];
+    apply_factor(u, p, pu);
     double q = 1.0;
     for (size_t i = 0; i < own.size() && q > stop; i += 3)
       q = std::min(q, signed_volume(own[i], own[i + 1], own[i + 2], p) > 0.0
-                          ? radius_ratio_in(u, own[i], own[i + 1], own[i + 2], p)
+                          ? radius_ratio(own_u[i].data(), own_u[i + 1].data(), own_u[i + 2].data(), pu)
                           : -1.0);
     for (size_t i = 0; i < future.size() && q > stop; i += 3) {
       const double *x = future[i], *y = future[i + 1], *at = future[i + 2];
-      q = std::min(q, signed_volume(p, y, x, at) > 0.0 ? radius_ratio_in(u, p, y, x, at) : 0.0);
+      q = std::min(q, signed_volume(p, y, x, at) > 0.0
+                          ? radius_ratio(pu, future_u[i + 1].data(), future_u[i].data(), future_u[i + 2].data())
+                          : 0.0);
     }
     return q;
   };
