@@ -133,6 +133,16 @@ inline void gather(Acc& acc, const Coord& c, T v[8]) {
   }
 }
 
+// log(M) as xx xy yy xz yz zz from the grids' (xx yy zz) and (xy xz yz).
+ANITET_ALWAYS_INLINE void log_components(const Vec3d& diag, const Vec3d& off, double l[6]) {
+  l[0] = diag[0];
+  l[2] = diag[1];
+  l[5] = diag[2];
+  l[1] = off[0];
+  l[3] = off[1];
+  l[4] = off[2];
+}
+
 template <class T>
 inline T trilinear(const T v[8], double fx, double fy, double fz) {
   const T a = v[0] + (v[1] - v[0]) * fx, b = v[2] + (v[3] - v[2]) * fx;
@@ -182,13 +192,7 @@ struct MetricField::Sampler::State {
     Vec3d d[8], o[8];
     gather(diag, c, d);
     gather(off, c, o);
-    const Vec3d dd = trilinear(d, t[0], t[1], t[2]), oo = trilinear(o, t[0], t[1], t[2]);
-    l[0] = dd[0];
-    l[2] = dd[1];
-    l[5] = dd[2];
-    l[1] = oo[0];
-    l[3] = oo[1];
-    l[4] = oo[2];
+    log_components(trilinear(d, t[0], t[1], t[2]), trilinear(o, t[0], t[1], t[2]), l);
   }
 
   // Batches: points are visited in Morton order of their leaves (a radix sort), so that each
@@ -501,14 +505,7 @@ Status field_to_lattice(const Impl& f, size_t max_nodes, Lattice& lat) {
         if (lat.components == 1) {
           lat.values[n] = s.size.getValue(c);
         } else {
-          const Vec3d d = s.diag.getValue(c), o = s.off.getValue(c);
-          double* l = &lat.values[6 * n];
-          l[0] = d[0];
-          l[2] = d[1];
-          l[5] = d[2];
-          l[1] = o[0];
-          l[3] = o[1];
-          l[4] = o[2];
+          log_components(s.diag.getValue(c), s.off.getValue(c), &lat.values[6 * n]);
         }
       }
   return Status::success();
