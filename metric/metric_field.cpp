@@ -146,7 +146,30 @@ size_t MetricField::active_voxels() const { return backend().active_voxels(*impl
 size_t MetricField::leaf_count() const { return backend().leaf_count(*impl_); }
 size_t MetricField::memory_bytes() const { return backend().memory_bytes(*impl_); }
 
-void MetricField::metric(const double p[3], double m[6]) const { backend().metric(*impl_, p, m); }
+void MetricField::metric(const double p[3], double m[6]) const {
+  // One sampler per thread, kept for the last field this thread asked: consecutive queries are
+  // usually close, so its cached tree nodes pay off. Field ids are never reused, so a sampler of
+  // a destroyed field is never used again (an unsafe accessor's destructor does not touch its
+  // tree). The cache lives here, not in the module: thread_local storage in a dlopen'ed library
+  // is allocated per thread on demand, and LeakSanitizer's exit scan crashed now and then on
+  // the blocks of TBB's exiting workers.
+  struct Cache {
+    uint64_t id = 0;
+    Sampler::State* state = nullptr;
+    ~Cache() {
+      if (state) loaded_vdb_backend().delete_sampler(state);
+    }
+  };
+  thread_local Cache cache;
+  const VdbBackend& vdb = backend();
+  if (const uint64_t id = vdb.field_id(*impl_); cache.id != id) {
+    if (cache.state) vdb.delete_sampler(cache.state);
+    cache.state = nullptr;
+    cache.state = vdb.new_sampler(*impl_);
+    cache.id = id;
+  }
+  vdb.sampler_metric(*cache.state, p, m);
+}
 
 void MetricField::metrics(const double* points, size_t n, double* out) const {
   Sampler s(*this);

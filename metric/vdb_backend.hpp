@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "boundary_layer.hpp"
@@ -33,8 +34,8 @@ class VdbBackend {
   virtual size_t active_voxels(const Field& field) const = 0;
   virtual size_t leaf_count(const Field& field) const = 0;
   virtual size_t memory_bytes(const Field& field) const = 0;
-  // One query through a sampler kept per thread for the last field it asked.
-  virtual void metric(const Field& field, const double p[3], double m[6]) const = 0;
+  // Unique per field ever built (keys MetricField::metric's per-thread sampler).
+  virtual uint64_t field_id(const Field& field) const = 0;
 
   // MetricField::Sampler.
   virtual State* new_sampler(const Field& field) const = 0;

@@ -37,7 +37,7 @@ using DoubleTree = DoubleGrid::TreeType;
 using Vec3DTree = Vec3DGrid::TreeType;
 
 struct MetricField::Impl {
-  uint64_t id = 0;  // unique per field ever built: keys the per-thread sampler of metric()
+  uint64_t id = 0;  // unique per field ever built: keys the per-thread sampler of MetricField::metric
   Kind kind = Kind::Isotropic;
   DoubleGrid::Ptr size;  // isotropic: h
   Vec3DGrid::Ptr diag;   // tensor: log(M) xx yy zz
@@ -372,22 +372,7 @@ struct MetricField::Sampler::State {
 using Kind = MetricField::Kind;
 using Impl = MetricField::Impl;
 
-void cached_metric(const Impl& field, const double p[3], double m[6]) {
-  // One sampler per thread, kept for the last field this thread asked: consecutive queries are
-  // usually close, so its cached tree nodes pay off. Field ids are never reused, so a sampler of
-  // a destroyed field is never used again (an unsafe accessor's destructor does not touch its
-  // tree).
-  struct Cache {
-    uint64_t id = 0;
-    std::unique_ptr<MetricField::Sampler::State> state;
-  };
-  thread_local Cache cache;
-  if (cache.id != field.id) {
-    cache.state = std::make_unique<MetricField::Sampler::State>(field);
-    cache.id = field.id;
-  }
-  cache.state->metric(p, m);
-}
+uint64_t field_id(const Impl& field) { return field.id; }
 
 Status build_from_lattice(const Lattice& lat, double prune_tolerance, Impl** out) {
   Status st = check_lattice(lat);

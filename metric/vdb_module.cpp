@@ -25,9 +25,7 @@ class Backend final : public VdbBackend {
   size_t active_voxels(const Field& f) const override { return field_active_voxels(f); }
   size_t leaf_count(const Field& f) const override { return field_leaf_count(f); }
   size_t memory_bytes(const Field& f) const override { return field_memory_bytes(f); }
-  void metric(const Field& f, const double p[3], double m[6]) const override {
-    cached_metric(f, p, m);
-  }
+  uint64_t field_id(const Field& f) const override { return metric::field_id(f); }
 
   State* new_sampler(const Field& f) const override { return metric::new_sampler(f); }
   void delete_sampler(State* s) const override { metric::delete_sampler(s); }

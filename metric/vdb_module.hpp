@@ -21,7 +21,7 @@ double field_voxel_size(const MetricField::Impl& field);
 size_t field_active_voxels(const MetricField::Impl& field);
 size_t field_leaf_count(const MetricField::Impl& field);
 size_t field_memory_bytes(const MetricField::Impl& field);
-void cached_metric(const MetricField::Impl& field, const double p[3], double m[6]);
+uint64_t field_id(const MetricField::Impl& field);
 MetricField::Sampler::State* new_sampler(const MetricField::Impl& field);
 void delete_sampler(MetricField::Sampler::State* state);
 void sampler_metric(MetricField::Sampler::State& state, const double p[3], double m[6]);
