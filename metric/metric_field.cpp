@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "io/lazy_library.hpp"
@@ -17,12 +18,15 @@ namespace metric {
 
 namespace {
 
-// Where the module may be: $ANITET_VDB_MODULE; beside the binary holding this code, or where an
+// Where the module may be: $ANITET_VDB_MODULE alone when set; else beside the binary holding this code, or where an
 // install puts it relative to that binary (lib/anitet/ from lib/ or bin/: a relocated install);
 // then the build's and the install's own places (CMake).
 std::vector<std::string> module_candidates() {
   std::vector<std::string> out;
-  if (const char* env = std::getenv("ANITET_VDB_MODULE"); env && *env) out.emplace_back(env);
+  if (const char* env = std::getenv("ANITET_VDB_MODULE"); env && *env) {
+    out.emplace_back(env);  // the user's choice: nothing else is tried
+    return out;
+  }
   Dl_info info;
   if (dladdr(reinterpret_cast<void*>(&module_candidates), &info) && info.dli_fname) {
     std::string self = info.dli_fname;
@@ -52,13 +56,19 @@ const Loaded& load() {
     for (const std::string& path : module_candidates()) {
       // RTLD_LOCAL: the module's copies of the library's own code stay its own.
       auto* lib = new LazyLibrary(path.c_str());
+      const char* (*interface)() = nullptr;
       const VdbBackend* (*entry)() = nullptr;
-      if (lib->bind(entry, "anitet_vdb_backend_v1")) {
-        l.library = lib;
-        l.backend = entry();
-        return l;
+      if (lib->bind(interface, "anitet_vdb_interface") && lib->bind(entry, "anitet_vdb_backend_v1")) {
+        if (std::strcmp(interface(), ANITET_VDB_INTERFACE) == 0) {
+          l.library = lib;
+          l.backend = entry();
+          return l;
+        }
+        tried += "\n  " + path + ": built for another anitet (interface " + interface() +
+                 ", this one " + ANITET_VDB_INTERFACE + ")";
+      } else {
+        tried += "\n  " + lib->error();
       }
-      tried += "\n  " + lib->error();
       delete lib;
     }
     l.error = "the OpenVDB module " + std::string(ANITET_VDB_MODULE_NAME) +

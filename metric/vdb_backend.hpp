@@ -56,8 +56,9 @@ class VdbBackend {
 };
 
 // The module's backend, opened on the first call (thread-safe); null when the module cannot be
-// loaded, with the reason in *error. Looked for at $ANITET_VDB_MODULE, then beside the binary
-// that holds this library, then where the build and the install put it.
+// loaded, with the reason in *error. Looked for at $ANITET_VDB_MODULE alone when it is set; else
+// beside the binary that holds this library, then where the build and the install put it. A
+// module built with another interface (a hash of the headers that cross it) is passed over.
 const VdbBackend* vdb_backend(std::string* error = nullptr);
 
 // The backend of a field that exists (it was made by the backend, so the module is loaded).
@@ -66,5 +67,6 @@ const VdbBackend& loaded_vdb_backend();
 }  // namespace metric
 }  // namespace anitet
 
-// The module's one entry point.
+// The module's entry point, and the interface hash it was built with (compared first).
 extern "C" const anitet::metric::VdbBackend* anitet_vdb_backend_v1();
+extern "C" const char* anitet_vdb_interface();

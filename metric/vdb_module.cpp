@@ -64,3 +64,7 @@ anitet_vdb_backend_v1() {
   static const anitet::metric::Backend backend;
   return &backend;
 }
+
+// The interface this module was built with (metric/CMakeLists.txt): checked before the entry point
+// is called.
+extern "C" const char* anitet_vdb_interface() { return ANITET_VDB_INTERFACE; }

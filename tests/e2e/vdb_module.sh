@@ -14,4 +14,12 @@ grep -q 'calling init: .*libanitet_vdb' "$work.mesh.log" ||
   { echo "a mesh run did not load libanitet_vdb"; exit 1; }
 grep -q 'calling init: .*libopenvdb' "$work.mesh.log" ||
   { echo "a mesh run did not load libopenvdb"; exit 1; }
-echo "libopenvdb not loaded at start-up; loaded with libanitet_vdb by a mesh run"
+# $ANITET_VDB_MODULE alone is tried when set: a missing file, or a library that is not the module,
+# refuses the field (NotImplemented, exit 5) naming it, instead of crashing or meshing without it.
+for bad in "$work.missing.so" "$(ldd "$anitet" | awk '/libm\.so/ {print $3}')"; do
+  ANITET_VDB_MODULE=$bad "$anitet" mesh "$surface" -o "$work.bad.mesh" -q > "$work.bad.log" 2>&1
+  rc=$?
+  [ "$rc" = 5 ] || { echo "ANITET_VDB_MODULE=$bad: exit $rc, expected 5"; cat "$work.bad.log"; exit 1; }
+  grep -q "OpenVDB module" "$work.bad.log" || { echo "no clear error for $bad"; cat "$work.bad.log"; exit 1; }
+done
+echo "libopenvdb not loaded at start-up; loaded with libanitet_vdb by a mesh run; a wrong module refused"
