@@ -12,6 +12,17 @@
 
 namespace anitet::refine_detail {
 
+namespace {
+
+double normalized_length(const TetMesh& mesh, const std::vector<double>& metrics, uint32_t a, uint32_t b) {
+  const double* pa = mesh.point(a);
+  const double* pb = mesh.point(b);
+  const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+  return std::sqrt(metric_norm(&metrics[6 * size_t(a)], d) * metric_norm(&metrics[6 * size_t(b)], d));
+}
+
+}  // namespace
+
 void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std::vector<Edge>& edges,
                    EdgeScratch& scratch) {
   // Bucketed by the lower end (a counting sort), then deduplicated per bucket: linear in the
@@ -91,18 +102,163 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
       dedup_chunk(
           c,
           [&](uint32_t a, const EdgeScratch::Entry& e) {
-            const uint32_t b = e.b;
-            const double* pa = mesh.point(a);
-            const double* pb = mesh.point(b);
-            const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
-            *out++ = {a, b, e.tet & ~EdgeScratch::Entry::kSurface, (e.tet & EdgeScratch::Entry::kSurface) != 0,
-                      std::sqrt(metric_norm(&metrics[6 * size_t(a)], d) * metric_norm(&metrics[6 * size_t(b)], d))};
+            *out++ = {a, e.b, e.tet & ~EdgeScratch::Entry::kSurface, (e.tet & EdgeScratch::Entry::kSurface) != 0,
+                      false, normalized_length(mesh, metrics, a, e.b)};
           },
           [&](uint32_t j, const EdgeScratch::Entry& e) {
             edges[offset[c] + j].on_surface |= (e.tet & EdgeScratch::Entry::kSurface) != 0;
           });
     }
   });
+}
+
+EdgeStar edge_star(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, const uint8_t* changed) {
+  EdgeStar star{start, changed[start] ? start : TetMesh::kNone, false};
+  // t's two facets through ab are those opposite its other two vertices.
+  auto other_two = [&](uint32_t t, int& i, int& j) {
+    i = j = -1;
+    for (int k = 0; k < 4; ++k) {
+      const uint32_t v = mesh.vertex(t, k);
+      if (v != a && v != b) (i < 0 ? i : j) = k;
+    }
+  };
+  auto visit = [&](uint32_t t, int i, int j) {
+    star.min_tet = std::min(star.min_tet, t);
+    if (changed[t]) star.min_changed = std::min(star.min_changed, t);
+    star.on_surface |= mesh.facet_protected(t, i) || mesh.facet_protected(t, j);
+  };
+  int i0, j0;
+  other_two(start, i0, j0);
+  if (j0 < 0) return star;  // (start does not hold ab: not expected)
+  visit(start, i0, j0);
+  // Around the edge one way (leaving start across the facet opposite its vertex i0), and, when
+  // that meets a facet without neighbour, the other way.
+  for (int way = 0; way < 2; ++way) {
+    uint32_t t = start;
+    int leave = way == 0 ? i0 : j0;
+    uint32_t kept = mesh.vertex(start, way == 0 ? j0 : i0);  // on the facet crossed, with a and b
+    for (int steps = 0; steps < 4096; ++steps) {
+      if (mesh.tet_adj[4 * size_t(t) + leave] == TetMesh::kNoNeighbour) break;
+      const uint32_t n = mesh.neighbour(t, leave);
+      if (n == start) return star;  // the ring closed: every tet seen
+      const int entered = mesh.neighbour_facet(t, leave);  // n's vertex opposite the crossed facet
+      int next = -1;
+      for (int k = 0; k < 4; ++k)
+        if (mesh.vertex(n, k) == kept) next = k;
+      if (next < 0) return star;  // (not a valid mesh)
+      visit(n, entered, next);
+      kept = mesh.vertex(n, entered);
+      leave = next;
+      t = n;
+    }
+  }
+  return star;
+}
+
+void update_edges(const TetMesh& mesh, const std::vector<double>& metrics, const std::vector<uint8_t>& changed,
+                  const EdgeFilter& filter, std::vector<Edge>& previous, EdgeScratch& scratch) {
+  const uint8_t* ch = changed.data();
+  const size_t nt = mesh.num_tet_slots(), nv = mesh.num_vertices();
+  constexpr size_t kChunk = 4096;
+  // When most tets changed (refinement's first passes), collecting every edge is cheaper than
+  // measuring each changed tet's six (an edge is in about five of them); only the vetoes of the
+  // edges whose tets did not change are carried over.
+  size_t changed_live = 0;
+  for (size_t t = 0; t < nt; ++t) changed_live += ch[t] && !mesh.is_deleted(uint32_t(t));
+  if (2 * changed_live > mesh.num_live_tets()) {
+    std::vector<uint64_t> vetoed;
+    for (const Edge& e : previous)
+      if (e.vetoed && !mesh.is_deleted(e.tet) && !ch[e.tet] &&
+          edge_star(mesh, e.a, e.b, e.tet, ch).min_changed == TetMesh::kNone)
+        vetoed.push_back((uint64_t(e.a) << 32) | e.b);
+    std::sort(vetoed.begin(), vetoed.end());
+    std::vector<Edge>().swap(previous);
+    collect_edges(mesh, metrics, previous, scratch);
+    if (!vetoed.empty())
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, previous.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k != r.end(); ++k) {
+          Edge& e = previous[k];
+          if (e.length > filter.split_length &&
+              std::binary_search(vetoed.begin(), vetoed.end(), (uint64_t(e.a) << 32) | e.b))
+            e.vetoed = true;
+        }
+      });
+    return;
+  }
+  // The wanted edges of the changed tets (once per tet holding them), measured, in tet order.
+  struct Found {
+    uint32_t a, b;  // a < b
+    uint32_t tet;   // a changed tet holding it
+    double length;
+  };
+  const size_t tet_chunks = (nt + kChunk - 1) / kChunk;
+  std::vector<std::vector<Found>> found_parts(tet_chunks);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, tet_chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t c = r.begin(); c != r.end(); ++c)
+      for (size_t t = c * kChunk; t < std::min(nt, (c + 1) * kChunk); ++t) {
+        if (!ch[t] || mesh.is_deleted(uint32_t(t)) || mesh.is_ghost(uint32_t(t))) continue;
+        for (int k = 0; k < 6; ++k) {
+          uint32_t a = mesh.vertex(uint32_t(t), kEdgeVertex[k][0]), b = mesh.vertex(uint32_t(t), kEdgeVertex[k][1]);
+          if (a > b) std::swap(a, b);
+          const double length = normalized_length(mesh, metrics, a, b);
+          if (filter.wanted(mesh, a, b, length)) found_parts[c].push_back({a, b, uint32_t(t), length});
+        }
+      }
+  });
+  std::vector<Found> found;
+  for (const std::vector<Found>& part : found_parts) found.insert(found.end(), part.begin(), part.end());
+  std::vector<std::vector<Found>>().swap(found_parts);
+  // Grouped by the lower end (a counting sort: the items' indices in `found`).
+  std::vector<uint32_t> start, in_bucket, counts;
+  parallel_bucket_by_key(
+      nv, found.size(),
+      [&](size_t first, size_t last, auto&& emit) {
+        for (size_t k = first; k < last; ++k) emit(found[k].a, uint32_t(k));
+      },
+      start, in_bucket, counts);
+  // The edges of `previous` still wanted whose tets did not change: e.tet is live and was not made
+  // again (a destroyed edge's tets are all gone), and no changed tet holds the edge (it is not in
+  // a's group). Then each found edge once (its first entry in its group), with its star.
+  auto in_found = [&](uint32_t a, uint32_t b) {
+    for (uint32_t k = start[a]; k < start[a + 1]; ++k)
+      if (found[in_bucket[k]].b == b) return true;
+    return false;
+  };
+  const size_t carried_chunks = (previous.size() + kChunk - 1) / kChunk;
+  const size_t vertex_chunks = (nv + kChunk - 1) / kChunk;
+  std::vector<std::vector<Edge>> parts(carried_chunks + vertex_chunks);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, parts.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t c = r.begin(); c != r.end(); ++c) {
+      std::vector<Edge>& out = parts[c];
+      if (c < carried_chunks) {
+        for (size_t k = c * kChunk; k < std::min(previous.size(), (c + 1) * kChunk); ++k) {
+          const Edge& e = previous[k];
+          if (filter.wanted(mesh, e.a, e.b, e.length) && !mesh.is_deleted(e.tet) && !ch[e.tet] && !in_found(e.a, e.b))
+            out.push_back(e);
+        }
+        continue;
+      }
+      std::vector<uint32_t>& seen = scratch.where.local();  // per upper end: in the group scanned
+      if (seen.size() < nv) seen.resize(nv, TetMesh::kNone);
+      const size_t v0 = (c - carried_chunks) * kChunk;
+      for (size_t a = v0; a < std::min(nv, v0 + kChunk); ++a) {
+        for (uint32_t k = start[a]; k < start[a + 1]; ++k) {
+          const Found& f = found[in_bucket[k]];
+          if (seen[f.b] != TetMesh::kNone) continue;
+          seen[f.b] = 0;
+          const EdgeStar star = edge_star(mesh, f.a, f.b, f.tet, ch);
+          out.push_back({f.a, f.b, star.min_tet, star.on_surface, false, f.length});
+        }
+        for (uint32_t k = start[a]; k < start[a + 1]; ++k) seen[found[in_bucket[k]].b] = TetMesh::kNone;
+      }
+    }
+  });
+  size_t total = 0;
+  for (const std::vector<Edge>& part : parts) total += part.size();
+  std::vector<Edge> next;
+  next.reserve(total);
+  for (const std::vector<Edge>& part : parts) next.insert(next.end(), part.begin(), part.end());
+  previous.swap(next);
 }
 
 size_t live_vertex_count(const TetMesh& mesh) {

@@ -12,10 +12,11 @@
 namespace anitet::refine_detail {
 
 struct Edge {
-  uint32_t a, b;      // a < b
-  uint32_t tet;       // a live tet holding the edge (when collected)
-  bool on_surface;    // on a protected facet (an edge of S)
-  double length;      // normalized: sqrt(|e|_Ma * |e|_Mb)
+  uint32_t a, b;         // a < b
+  uint32_t tet;          // the live tet of lowest id holding the edge (when collected)
+  bool on_surface;       // on a protected facet (an edge of S)
+  bool vetoed = false;   // refinement: its split was vetoed, and no tet around it changed since
+  double length;         // normalized: sqrt(|e|_Ma * |e|_Mb)
 };
 
 // Working memory of collect_edges, kept between calls (large meshes: page faults dominated).
@@ -38,6 +39,36 @@ struct EdgeScratch {
 // tet slots.
 void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std::vector<Edge>& edges,
                    EdgeScratch& scratch);
+
+// The edges refinement acts on: longer than split_length (split unless on S) or shorter than
+// collapse_length with an end whose vflags have none of fixed_flags (collapsed).
+struct EdgeFilter {
+  double collapse_length, split_length;
+  uint8_t fixed_flags;
+  bool wanted(const TetMesh& mesh, uint32_t a, uint32_t b, double length) const {
+    return length > split_length ||
+           (length < collapse_length && !((mesh.vflags[a] & fixed_flags) && (mesh.vflags[b] & fixed_flags)));
+  }
+};
+
+// What the tets around edge ab (a tet of them: start) show, walking across every facet through
+// ab that has a neighbour (protected ones too): the lowest tet id (collect_edges's Edge::tet),
+// whether a facet through ab is protected (Edge::on_surface), and the lowest id among the tets
+// with changed[t] != 0 (kNone: none).
+struct EdgeStar {
+  uint32_t min_tet, min_changed;
+  bool on_surface;
+};
+EdgeStar edge_star(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, const uint8_t* changed);
+
+// The edge list of the next refinement pass without collecting every edge again: the edges of
+// `previous` that the filter wants and no tet around which changed (changed[t] != 0 for every
+// tet slot made since `previous` was collected), as they were (vetoed kept), and the wanted
+// edges of the changed live tets, measured. The same edges with the same fields as collect_edges
+// followed by the filter (Edge::vetoed aside), in another order; or, when most tets changed,
+// collect_edges's whole list with the vetoes carried. previous is replaced.
+void update_edges(const TetMesh& mesh, const std::vector<double>& metrics, const std::vector<uint8_t>& changed,
+                  const EdgeFilter& filter, std::vector<Edge>& previous, EdgeScratch& scratch);
 
 // Vertices used by a live tet.
 size_t live_vertex_count(const TetMesh& mesh);

@@ -163,9 +163,9 @@ class Refiner {
     return meshops::metric_shape_quality(map, mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
                                          mesh_.point(v[3]));
   }
-  size_t split_pass(const std::vector<refine_detail::Edge>& edges);
+  size_t split_pass(std::vector<refine_detail::Edge>& edges);
   struct Chosen;
-  void choose_splits(const std::vector<refine_detail::Edge>& edges, std::vector<Chosen>& chosen,
+  void choose_splits(std::vector<refine_detail::Edge>& edges, std::vector<Chosen>& chosen,
                      std::vector<double>& chosen_xyz, double lo[3], double hi[3]);
   // A live tet holding edge e's end a: the tet it was collected from when that still holds both
   // ends, else one of a's tets.
@@ -178,6 +178,11 @@ class Refiner {
   size_t collapse_pass(const std::vector<refine_detail::Edge>& edges);
   bool collapse(uint32_t v, uint32_t w, const double q[3]);
   Status check(const char* when) const;
+  // check_each_pass: the pass's edge list (update_edges) against a full collection.
+  Status check_edge_list(const std::vector<refine_detail::Edge>& edges, size_t edge_count) const;
+  refine_detail::EdgeFilter edge_filter() const {
+    return {options_.collapse_length, options_.split_length, uint8_t(vflag::kOnInputSurface | vflag::kLocked)};
+  }
 
   TetMesh& mesh_;
   const SizingField& field_;
@@ -211,11 +216,16 @@ class Refiner {
   void note_changed(const std::vector<uint32_t>& created) {
     ++epoch_;
     if (vertex_epoch_.size() < mesh_.num_vertices()) vertex_epoch_.resize(mesh_.num_vertices(), 0);
+    if (changed_.size() < mesh_.num_tet_slots()) changed_.resize(mesh_.num_tet_slots(), 0);
     for (uint32_t t : created) {
       for (int i = 0; i < 4; ++i) vertex_epoch_[mesh_.vertex(t, i)] = epoch_;
       if (t < flip_failed_at_.size()) flip_failed_at_[t] = 0;
+      changed_[t] = 1;
     }
   }
+  // Per tet slot: made since the pass's edge list was built (the next list measures only the
+  // edges around these again: refine_detail::update_edges).
+  std::vector<uint8_t> changed_;
   bool failed_unchanged(uint32_t t) const {
     if (t >= flip_failed_at_.size() || flip_failed_at_[t] == 0) return false;
     for (int i = 0; i < 4; ++i) {
@@ -556,14 +566,20 @@ size_t Refiner::metric_flip_pass() {
 // the mesh at every point (cold caches, long walks): most of refinement's time.
 // The choice half of split_pass: its lists (88 bytes per long edge and the spacing grid) go
 // when it returns, before the insertions allocate theirs.
-void Refiner::choose_splits(const std::vector<refine_detail::Edge>& edges, std::vector<Chosen>& chosen,
+void Refiner::choose_splits(std::vector<refine_detail::Edge>& edges, std::vector<Chosen>& chosen,
                             std::vector<double>& chosen_xyz, double lo[3], double hi[3]) {
   const auto choice_start = Clock::now();
   // The long edges by value, sorted on every core: sorting pointers read the edges at random
   // (armadillo: 1.5M of them in its first pass). The order is total (a, b name one edge).
+  // An edge vetoed in an earlier pass with no tet around it changed since would be vetoed again
+  // (the veto reads only its ring and its ends): it is not measured again (armadillo: 78k of
+  // the 83k long edges of the last pass).
   std::vector<refine_detail::Edge> longs;
-  for (const refine_detail::Edge& e : edges)
-    if (!e.on_surface && e.length > options_.split_length) longs.push_back(e);
+  for (const refine_detail::Edge& e : edges) {
+    if (e.on_surface || !(e.length > options_.split_length)) continue;
+    if (e.vetoed) ++stats_.split_rejected;
+    else longs.push_back(e);
+  }
   tbb::parallel_sort(longs.begin(), longs.end(), [](const refine_detail::Edge& x, const refine_detail::Edge& y) {
     return x.length != y.length ? x.length > y.length : (x.a != y.a ? x.a < y.a : x.b < y.b);
   });
@@ -617,6 +633,7 @@ void Refiner::choose_splits(const std::vector<refine_detail::Edge>& edges, std::
   constexpr size_t kBlock = 4096;
   enum : uint8_t { kRefused = 0, kVetoed = 1, kFree = 2 };
   std::vector<uint8_t> verdict(longs.size());  // per candidate: refused by the grid, vetoed, or free
+  std::vector<uint64_t> vetoed_keys;
   for (size_t b0 = 0; b0 < longs.size(); b0 += kBlock) {
     const size_t b1 = std::min(longs.size(), b0 + kBlock);
     tbb::parallel_for(tbb::blocked_range<size_t>(b0, b1, 256), [&](const tbb::blocked_range<size_t>& range) {
@@ -631,6 +648,7 @@ void Refiner::choose_splits(const std::vector<refine_detail::Edge>& edges, std::
     bool added = false;
     for (size_t i = b0; i < b1; ++i) {
       const Candidate& c = candidates[i];
+      if (verdict[i] == kVetoed) vetoed_keys.push_back((uint64_t(longs[i].a) << 32) | longs[i].b);
       if (verdict[i] != kFree || (added && grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing))) {
         ++stats_.split_rejected;
         continue;
@@ -641,10 +659,22 @@ void Refiner::choose_splits(const std::vector<refine_detail::Edge>& edges, std::
       chosen_xyz.insert(chosen_xyz.end(), c.m, c.m + 3);
     }
   }
+  // The vetoes, kept in the edge list for the next pass (update_edges drops an edge whose tets
+  // changed).
+  std::sort(vetoed_keys.begin(), vetoed_keys.end());
+  if (!vetoed_keys.empty())
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t k = r.begin(); k != r.end(); ++k) {
+        refine_detail::Edge& e = edges[k];
+        if (e.length > options_.split_length && !e.on_surface &&
+            std::binary_search(vetoed_keys.begin(), vetoed_keys.end(), (uint64_t(e.a) << 32) | e.b))
+          e.vetoed = true;
+      }
+    });
   stats_.seconds_choice += seconds_since(choice_start);
 }
 
-size_t Refiner::split_pass(const std::vector<refine_detail::Edge>& edges) {
+size_t Refiner::split_pass(std::vector<refine_detail::Edge>& edges) {
   std::vector<Chosen> chosen;
   std::vector<double> chosen_xyz;  // their points, 3 each, for the Hilbert sort
   double lo[3], hi[3];
@@ -836,6 +866,37 @@ Status Refiner::check(const char* when) const {
   return Status::success();
 }
 
+Status Refiner::check_edge_list(const std::vector<refine_detail::Edge>& edges, size_t edge_count) const {
+  if (!options_.check_each_pass) return Status::success();
+  std::vector<refine_detail::Edge> all;
+  refine_detail::EdgeScratch scratch;
+  refine_detail::collect_edges(mesh_, metrics_, all, scratch);
+  if (all.size() != edge_count)
+    return Status(Error::Internal, "refine: " + std::to_string(all.size()) + " edges, counted " +
+                                       std::to_string(edge_count));
+  const refine_detail::EdgeFilter filter = edge_filter();
+  std::vector<refine_detail::Edge> wanted, listed;
+  for (const refine_detail::Edge& e : all)
+    if (filter.wanted(mesh_, e.a, e.b, e.length)) wanted.push_back(e);
+  for (const refine_detail::Edge& e : edges)
+    if (filter.wanted(mesh_, e.a, e.b, e.length)) listed.push_back(e);
+  auto by_ends = [](const refine_detail::Edge& x, const refine_detail::Edge& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  };
+  std::sort(wanted.begin(), wanted.end(), by_ends);
+  std::sort(listed.begin(), listed.end(), by_ends);
+  bool same = wanted.size() == listed.size();
+  for (size_t k = 0; same && k < wanted.size(); ++k) {
+    const refine_detail::Edge &x = wanted[k], &y = listed[k];
+    same = x.a == y.a && x.b == y.b && x.tet == y.tet && x.on_surface == y.on_surface && x.length == y.length;
+  }
+  if (!same)
+    return Status(Error::Internal, "refine: the pass's edge list (" + std::to_string(listed.size()) +
+                                       " edges to split or collapse) differs from the mesh's (" +
+                                       std::to_string(wanted.size()) + ")");
+  return Status::success();
+}
+
 Result<RefineStats> Refiner::run() {
   const auto start = Clock::now();
   if (!(options_.size_scale > 0.0) || !(options_.split_length > options_.collapse_length) ||
@@ -861,12 +922,29 @@ Result<RefineStats> Refiner::run() {
   if (anisotropic_)
     if (Status st = metric_flip_sweeps(5); !st.ok()) return st;
   std::vector<refine_detail::Edge> edges;
+  // The mesh's edge count, for the stop rule: every change re-triangulates a ball and keeps the
+  // boundary, so V - E + F - T and the boundary faces stay and E changes by dV + dT.
+  size_t edges_at_start = 0, vertices_at_start = 0, tets_at_start = 0, edge_count = 0;
   for (int pass = 0; pass < options_.max_passes; ++pass) {
     // One edge list serves both halves of the pass: the splits mark the vertices whose edges
     // they changed, and the collapses skip those edges (they are measured again next pass).
+    // Every edge is measured in the first pass; after it, only around the tets the pass before
+    // made (update_edges), and the list holds only the edges a pass acts on.
     auto t = Clock::now();
-    refine_detail::collect_edges(mesh_, metrics_, edges, edge_scratch_);
+    if (pass == 0) {
+      refine_detail::collect_edges(mesh_, metrics_, edges, edge_scratch_);
+      edges_at_start = edge_count = edges.size();
+      vertices_at_start = stats_.vertices_before;
+      tets_at_start = mesh_.num_live_tets();
+    } else {
+      changed_.resize(mesh_.num_tet_slots(), 0);
+      refine_detail::update_edges(mesh_, metrics_, changed_, edge_filter(), edges, edge_scratch_);
+      edge_count = edges_at_start + (refine_detail::live_vertex_count(mesh_) - vertices_at_start) +
+                   (mesh_.num_live_tets() - tets_at_start);
+    }
+    changed_.assign(mesh_.num_tet_slots(), 0);
     stats_.seconds_edges += seconds_since(t);
+    if (Status st = check_edge_list(edges, edge_count); !st.ok()) return st;
     touched_.assign(mesh_.num_vertices(), 0);
     const size_t splits = split_pass(edges);
     if (Status st = check("after a split pass"); !st.ok()) return st;
@@ -884,7 +962,7 @@ Result<RefineStats> Refiner::run() {
     stats_.splits += splits;
     stats_.collapses += collapses;
     stats_.passes = pass + 1;
-    if (double(splits + collapses) < options_.stop_fraction * double(edges.size())) break;
+    if (double(splits + collapses) < options_.stop_fraction * double(edge_count)) break;
   }
   const auto t = Clock::now();
   refine_detail::collect_edges(mesh_, metrics_, edges, edge_scratch_);
