@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "io/lazy_library.hpp"
@@ -165,17 +166,12 @@ void MetricField::metric(const double p[3], double m[6]) const {
   // the blocks of TBB's exiting workers.
   struct Cache {
     uint64_t id = 0;
-    Sampler::State* state = nullptr;
-    ~Cache() {
-      if (state) loaded_vdb_backend().delete_sampler(state);
-    }
+    std::unique_ptr<Sampler::State, Sampler::StateDeleter> state;
   };
   thread_local Cache cache;
   const VdbBackend& vdb = backend();
   if (const uint64_t id = vdb.field_id(*impl_); cache.id != id) {
-    if (cache.state) vdb.delete_sampler(cache.state);
-    cache.state = nullptr;
-    cache.state = vdb.new_sampler(*impl_);
+    cache.state.reset(vdb.new_sampler(*impl_));
     cache.id = id;
   }
   vdb.sampler_metric(*cache.state, p, m);
