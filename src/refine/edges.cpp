@@ -170,19 +170,10 @@ void update_edges(const TetMesh& mesh, const std::vector<double>& metrics, const
     for (const Edge& e : previous)
       if (e.vetoed && !mesh.is_deleted(e.tet) && !ch[e.tet] &&
           edge_star(mesh, e.a, e.b, e.tet, ch).min_changed == TetMesh::kNone)
-        vetoed.push_back((uint64_t(e.a) << 32) | e.b);
-    std::sort(vetoed.begin(), vetoed.end());
+        vetoed.push_back(e.key());
     std::vector<Edge>().swap(previous);
     collect_edges(mesh, metrics, previous, scratch);
-    if (!vetoed.empty())
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, previous.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t k = r.begin(); k != r.end(); ++k) {
-          Edge& e = previous[k];
-          if (e.length > filter.split_length &&
-              std::binary_search(vetoed.begin(), vetoed.end(), (uint64_t(e.a) << 32) | e.b))
-            e.vetoed = true;
-        }
-      });
+    mark_vetoed(previous, vetoed, filter.split_length);
     return;
   }
   // The wanted edges of the changed tets (once per tet holding them), measured, in tet order.
@@ -259,6 +250,17 @@ void update_edges(const TetMesh& mesh, const std::vector<double>& metrics, const
   next.reserve(total);
   for (const std::vector<Edge>& part : parts) next.insert(next.end(), part.begin(), part.end());
   previous.swap(next);
+}
+
+void mark_vetoed(std::vector<Edge>& edges, std::vector<uint64_t>& keys, double split_length) {
+  if (keys.empty()) return;
+  std::sort(keys.begin(), keys.end());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      Edge& e = edges[k];
+      if (e.length > split_length && std::binary_search(keys.begin(), keys.end(), e.key())) e.vetoed = true;
+    }
+  });
 }
 
 size_t live_vertex_count(const TetMesh& mesh) {

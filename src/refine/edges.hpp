@@ -17,6 +17,7 @@ struct Edge {
   bool on_surface;       // on a protected facet (an edge of S)
   bool vetoed = false;   // refinement: its split was vetoed, and no tet around it changed since
   double length;         // normalized: sqrt(|e|_Ma * |e|_Mb)
+  uint64_t key() const { return (uint64_t(a) << 32) | b; }
 };
 
 // Working memory of collect_edges, kept between calls (large meshes: page faults dominated).
@@ -69,6 +70,9 @@ EdgeStar edge_star(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, 
 // collect_edges's whole list with the vetoes carried. previous is replaced.
 void update_edges(const TetMesh& mesh, const std::vector<double>& metrics, const std::vector<uint8_t>& changed,
                   const EdgeFilter& filter, std::vector<Edge>& previous, EdgeScratch& scratch);
+
+// Sets Edge::vetoed on the edges longer than split_length whose key() is in `keys` (sorted here).
+void mark_vetoed(std::vector<Edge>& edges, std::vector<uint64_t>& keys, double split_length);
 
 // Vertices used by a live tet.
 size_t live_vertex_count(const TetMesh& mesh);

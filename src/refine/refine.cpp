@@ -648,7 +648,7 @@ void Refiner::choose_splits(std::vector<refine_detail::Edge>& edges, std::vector
     bool added = false;
     for (size_t i = b0; i < b1; ++i) {
       const Candidate& c = candidates[i];
-      if (verdict[i] == kVetoed) vetoed_keys.push_back((uint64_t(longs[i].a) << 32) | longs[i].b);
+      if (verdict[i] == kVetoed) vetoed_keys.push_back(longs[i].key());
       if (verdict[i] != kFree || (added && grid.conflicts(c.m, c.r, c.iso ? nullptr : c.mm, options_.spacing))) {
         ++stats_.split_rejected;
         continue;
@@ -661,16 +661,7 @@ void Refiner::choose_splits(std::vector<refine_detail::Edge>& edges, std::vector
   }
   // The vetoes, kept in the edge list for the next pass (update_edges drops an edge whose tets
   // changed).
-  std::sort(vetoed_keys.begin(), vetoed_keys.end());
-  if (!vetoed_keys.empty())
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t k = r.begin(); k != r.end(); ++k) {
-        refine_detail::Edge& e = edges[k];
-        if (e.length > options_.split_length && !e.on_surface &&
-            std::binary_search(vetoed_keys.begin(), vetoed_keys.end(), (uint64_t(e.a) << 32) | e.b))
-          e.vetoed = true;
-      }
-    });
+  refine_detail::mark_vetoed(edges, vetoed_keys, options_.split_length);
   stats_.seconds_choice += seconds_since(choice_start);
 }
 
@@ -833,7 +824,7 @@ size_t Refiner::collapse_pass(const std::vector<refine_detail::Edge>& edges) {
   for (const refine_detail::Edge& e : shorts) {
     const uint32_t a = e.a, b = e.b;
     if (touched_[a] || touched_[b] || vt_.removed(a) || vt_.removed(b)) continue;
-    const uint64_t key = (uint64_t(a) << 32) | b;
+    const uint64_t key = e.key();
     if (refused_.count(key)) continue;  // refused in an earlier pass: not retried
     bool ok = false;
     if (fixed(a)) {
