@@ -130,6 +130,105 @@ bool LayerBuilder::relocate_if_valid(uint32_t v, const double to[3],
   return true;
 }
 
+bool LayerBuilder::candidate_moves(uint32_t v, const std::vector<uint32_t>& tets, double below,
+                                   Improvement& out) const {
+  out.ranked.clear();
+  const std::vector<uint32_t>& star = front_.star(v);
+  if (star.empty() || tets.empty()) return false;
+  const double* p = mesh_.point(v);
+  const double now = worst_tet_with(v, p, tets);
+  if (now >= below) return false;
+  // Candidates: along the direction that sees the star best, at fractions of the mean front
+  // edge at v, and towards the mean of the front neighbours lifted by that edge.
+  std::vector<double> normals, weights;
+  star_normals(v, star, normals, weights);
+  double d[3];
+  bool improved = false;
+  if (!(visible_direction(normals, weights, d, &improved) > 0.0)) return false;
+  out_of_frame(v, d);
+  double edge = 0.0, mean[3] = {0, 0, 0};
+  size_t count = 0;
+  for (uint32_t f : star) {
+    const uint32_t* t = front_.tri(f);
+    for (int k = 0; k < 3; ++k)
+      if (t[k] == v) {
+        const double* q = mesh_.point(t[(k + 1) % 3]);
+        const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+        edge += std::sqrt(dot3(e, e));
+        for (int j = 0; j < 3; ++j) mean[j] += q[j];
+        ++count;
+      }
+  }
+  if (count == 0) return false;
+  edge /= double(count);
+  for (double& x : mean) x /= double(count);
+  out.edge = edge;
+  std::vector<std::array<double, 3>> candidates;
+  // A cliff: v pushed much less than its neighbours (shrunk to fit): its own push line, at
+  // fractions of their mean push height.
+  const uint32_t o = out_.vertex_origin[v];
+  double nb_height = 0.0;
+  size_t nb_count = 0;
+  for (uint32_t f : star) {
+    const uint32_t* t = front_.tri(f);
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t u = t[k];
+      if (u == v || u >= out_.vertex_origin.size() || out_.vertex_origin[u] == TetMesh::kNone)
+        continue;
+      const double* q = mesh_.point(u);
+      const double* qo = mesh_.point(out_.vertex_origin[u]);
+      const double e[3] = {q[0] - qo[0], q[1] - qo[1], q[2] - qo[2]};
+      nb_height += std::sqrt(dot3(e, e));
+      ++nb_count;
+    }
+  }
+  if (o != TetMesh::kNone && nb_count > 0) {
+    const double* po = mesh_.point(o);
+    double u[3] = {p[0] - po[0], p[1] - po[1], p[2] - po[2]};
+    const double len = std::sqrt(dot3(u, u));
+    nb_height /= double(nb_count);
+    if (len > 0.0 && nb_height > len)
+      for (double w : {0.25, 0.5, 0.75, 1.0}) {
+        const double h = len + w * (nb_height - len);
+        candidates.push_back({po[0] + h * u[0] / len, po[1] + h * u[1] / len, po[2] + h * u[2] / len});
+      }
+  }
+  for (double s : {0.02, 0.05, 0.1, 0.2, 0.35, 0.5})
+    candidates.push_back({p[0] + s * edge * d[0], p[1] + s * edge * d[1], p[2] + s * edge * d[2]});
+  for (double s : {0.0, 0.1, 0.25}) {
+    const double rel[3] = {mean[0] - p[0], mean[1] - p[1], mean[2] - p[2]};
+    const double along = dot3(rel, d);
+    for (double w : {0.5, 1.0})
+      candidates.push_back({p[0] + w * (rel[0] - along * d[0]) + s * edge * d[0],
+                            p[1] + w * (rel[1] - along * d[1]) + s * edge * d[1],
+                            p[2] + w * (rel[2] - along * d[2]) + s * edge * d[2]});
+  }
+  // And a compass search on the worst tet from the best of them.
+  {
+    std::array<double, 3> best = {p[0], p[1], p[2]};
+    double best_q = now;
+    for (const auto& c : candidates) {
+      const double q = worst_tet_with(v, c.data(), tets, best_q);
+      if (q > best_q) {
+        best_q = q;
+        best = c;
+      }
+    }
+    compass_search(v, tets, 0.1 * edge, 0.005 * edge, best, best_q);
+    candidates.push_back(best);
+  }
+  // Best first; each candidate's worst tet computed once, not at every comparison. Only those
+  // beating `now` by 0.01 are kept, so a candidate's scan stops at its first tet at or below
+  // that bar (its value then sorts it among the ones dropped).
+  const double bar = now + 0.01;
+  out.ranked.reserve(candidates.size());
+  for (const auto& c : candidates) out.ranked.push_back({worst_tet_with(v, c.data(), tets, bar), c});
+  std::sort(out.ranked.begin(), out.ranked.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
+  while (!out.ranked.empty() && !(out.ranked.back().first > bar)) out.ranked.pop_back();
+  return true;
+}
+
 void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
   if (opt_.improve_passes <= 0 || first_new_vertex >= mesh_.num_vertices()) return;
   const uint32_t n = uint32_t(mesh_.num_vertices()) - first_new_vertex;
@@ -141,108 +240,48 @@ void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
       if (u >= first_new_vertex) tets[u - first_new_vertex].push_back(t);
     }
   }
-  std::vector<double> normals, weights;
+  // Each pass measures every vertex's candidate moves from the positions at its start, on both
+  // cores (reads only: frame_of's cache, the one thing they would write, is filled first), then
+  // moves the vertices one by one in order. A vertex next to one moved earlier in the pass (a
+  // vertex of its tets or of its front star) is measured again at its turn: so every vertex
+  // sees exactly what the one-by-one pass would, on any number of threads.
+  if (!sizing_.isotropic())
+    for (uint32_t i = 0; i < n; ++i) frame_of(first_new_vertex + i);
+  std::vector<Improvement> planned(n);
+  std::vector<uint8_t> wants(n), moved_now(n);
+  auto moved_near = [&](uint32_t i) {
+    auto moved = [&](uint32_t u) { return u >= first_new_vertex && moved_now[u - first_new_vertex]; };
+    for (uint32_t t : tets[i])
+      for (int k = 0; k < 4; ++k)
+        if (moved(mesh_.vertex(t, k))) return true;
+    for (uint32_t f : front_.star(first_new_vertex + i))
+      for (int k = 0; k < 3; ++k)
+        if (moved(front_.tri(f)[k])) return true;
+    return false;
+  };
+  Improvement again;
   for (int pass = 0; pass < opt_.improve_passes; ++pass) {
+    std::fill(moved_now.begin(), moved_now.end(), 0);
+    for_each_index(n, [&](size_t i) {
+      wants[i] = candidate_moves(first_new_vertex + uint32_t(i), tets[i], below, planned[i]);
+    });
     size_t moved = 0;
     for (uint32_t i = 0; i < n; ++i) {
       const uint32_t v = first_new_vertex + i;
-      const std::vector<uint32_t>& star = front_.star(v);
-      if (star.empty() || tets[i].empty()) continue;
-      const double* p = mesh_.point(v);
-      const double now = worst_tet_with(v, p, tets[i]);
-      if (now >= below) continue;
-      // Candidates: along the direction that sees the star best, at fractions of the mean front
-      // edge at v, and towards the mean of the front neighbours lifted by that edge.
-      star_normals(v, star, normals, weights);
-      double d[3];
-      bool improved = false;
-      if (!(visible_direction(normals, weights, d, &improved) > 0.0)) continue;
-      out_of_frame(v, d);
-      double edge = 0.0, mean[3] = {0, 0, 0};
-      size_t count = 0;
-      for (uint32_t f : star) {
-        const uint32_t* t = front_.tri(f);
-        for (int k = 0; k < 3; ++k)
-          if (t[k] == v) {
-            const double* q = mesh_.point(t[(k + 1) % 3]);
-            const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-            edge += std::sqrt(dot3(e, e));
-            for (int j = 0; j < 3; ++j) mean[j] += q[j];
-            ++count;
-          }
+      const Improvement* e = &planned[i];
+      if (moved > 0 && moved_near(i)) {
+        if (!candidate_moves(v, tets[i], below, again)) continue;
+        e = &again;
+      } else if (!wants[i]) {
+        continue;
       }
-      if (count == 0) continue;
-      edge /= double(count);
-      for (double& x : mean) x /= double(count);
-      std::vector<std::array<double, 3>> candidates;
-      // A cliff: v pushed much less than its neighbours (shrunk to fit): its own push line, at
-      // fractions of their mean push height.
-      const uint32_t o = out_.vertex_origin[v];
-      double nb_height = 0.0;
-      size_t nb_count = 0;
-      for (uint32_t f : star) {
-        const uint32_t* t = front_.tri(f);
-        for (int k = 0; k < 3; ++k) {
-          const uint32_t u = t[k];
-          if (u == v || u >= out_.vertex_origin.size() || out_.vertex_origin[u] == TetMesh::kNone)
-            continue;
-          const double* q = mesh_.point(u);
-          const double* qo = mesh_.point(out_.vertex_origin[u]);
-          const double e[3] = {q[0] - qo[0], q[1] - qo[1], q[2] - qo[2]};
-          nb_height += std::sqrt(dot3(e, e));
-          ++nb_count;
-        }
-      }
-      if (o != TetMesh::kNone && nb_count > 0) {
-        const double* po = mesh_.point(o);
-        double u[3] = {p[0] - po[0], p[1] - po[1], p[2] - po[2]};
-        const double len = std::sqrt(dot3(u, u));
-        nb_height /= double(nb_count);
-        if (len > 0.0 && nb_height > len)
-          for (double w : {0.25, 0.5, 0.75, 1.0}) {
-            const double h = len + w * (nb_height - len);
-            candidates.push_back({po[0] + h * u[0] / len, po[1] + h * u[1] / len, po[2] + h * u[2] / len});
-          }
-      }
-      for (double s : {0.02, 0.05, 0.1, 0.2, 0.35, 0.5})
-        candidates.push_back({p[0] + s * edge * d[0], p[1] + s * edge * d[1], p[2] + s * edge * d[2]});
-      for (double s : {0.0, 0.1, 0.25}) {
-        const double rel[3] = {mean[0] - p[0], mean[1] - p[1], mean[2] - p[2]};
-        const double along = dot3(rel, d);
-        for (double w : {0.5, 1.0})
-          candidates.push_back({p[0] + w * (rel[0] - along * d[0]) + s * edge * d[0],
-                                p[1] + w * (rel[1] - along * d[1]) + s * edge * d[1],
-                                p[2] + w * (rel[2] - along * d[2]) + s * edge * d[2]});
-      }
-      // And a compass search on the worst tet from the best of them.
-      {
-        std::array<double, 3> best = {p[0], p[1], p[2]};
-        double best_q = now;
-        for (const auto& c : candidates) {
-          const double q = worst_tet_with(v, c.data(), tets[i], best_q);
-          if (q > best_q) {
-            best_q = q;
-            best = c;
-          }
-        }
-        compass_search(v, tets[i], 0.1 * edge, 0.005 * edge, best, best_q);
-        candidates.push_back(best);
-      }
-      const double clear_now = clear_distance(v, p, edge);
-      // Best first; each candidate's worst tet computed once, not at every comparison. Only those
-      // beating `now` by 0.01 are tried, so a candidate's scan stops at its first tet at or below
-      // that bar (its value then sorts it among the ones never tried).
-      const double bar = now + 0.01;
-      std::vector<std::pair<double, std::array<double, 3>>> ranked;
-      ranked.reserve(candidates.size());
-      for (const auto& c : candidates) ranked.push_back({worst_tet_with(v, c.data(), tets[i], bar), c});
-      std::sort(ranked.begin(), ranked.end(),
-                [](const auto& a, const auto& b) { return a.first > b.first; });
-      for (const auto& [q, c] : ranked) {
-        if (!(q > bar)) break;
-        if (!keeps_clear(v, c.data(), std::min(0.5 * edge, 0.7 * clear_now))) continue;
+      if (e->ranked.empty()) continue;
+      const double clear_now = clear_distance(v, mesh_.point(v), e->edge);
+      for (const auto& [q, c] : e->ranked) {
+        if (!keeps_clear(v, c.data(), std::min(0.5 * e->edge, 0.7 * clear_now))) continue;
         if (relocate_if_valid(v, c.data(), tets[i])) {
           ++moved;
+          moved_now[i] = 1;
           ++out_.stats.improved_vertices;
           break;
         }
@@ -250,6 +289,7 @@ void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
     }
     if (moved == 0) break;
   }
+  planned.clear();
 }
 
 void LayerBuilder::smooth_interior(int passes) {

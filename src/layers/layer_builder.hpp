@@ -8,6 +8,9 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/sizing.hpp"
 #include "core/status.hpp"
 #include "core/surface_mesh.hpp"
@@ -18,6 +21,15 @@
 namespace anitet::layers {
 
 std::string point_text(const double* p);
+
+// body(i) for every i in [0, n), on the cores TBB gives: each i writes only its own data, so the
+// result does not depend on the threads.
+template <class Body>
+void for_each_index(size_t n, Body&& body) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 512), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) body(i);
+  });
+}
 
 class LayerBuilder {
  public:
@@ -95,6 +107,14 @@ class LayerBuilder {
   // Moves the layer's new front vertices whose worst tet is below `below`, when valid (see the
   // file).
   void improve_layer(uint32_t first_new_vertex, double below);
+  // A new front vertex's candidate moves, best first: those whose worst tet beats its present one
+  // (below `below`) by 0.01. False when it needs none or has no candidate.
+  struct Improvement {
+    double edge = 0.0;  // the mean front edge at the vertex
+    std::vector<std::pair<double, std::array<double, 3>>> ranked;
+  };
+  bool candidate_moves(uint32_t v, const std::vector<uint32_t>& tets, double below,
+                       Improvement& out) const;
   // After the last layer: moves T1's interior vertices (off S, off the final front, in no BL
   // tet) to raise the worst tet around each, a move kept only when every tet around stays
   // positive (exact). Their link is fixed, so the tets still tile the same star.

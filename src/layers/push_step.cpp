@@ -181,9 +181,13 @@ double LayerBuilder::target_height(uint32_t a, const double d[3]) const {
 
 Status LayerBuilder::push_step(const std::vector<uint32_t>& vertices, int layer) {
   plan_.assign(mesh_.num_vertices(), Plan());
-  std::vector<uint32_t> order, deferred;
-  std::vector<double> normals, weights;
-  for (uint32_t v : vertices) {
+  // The plans read the front only, each vertex's its own: on both cores. (frame_of's cache is
+  // filled first: it is the one thing they would write.)
+  if (!sizing_.isotropic())
+    for (uint32_t v : vertices) frame_of(v);
+  for_each_index(vertices.size(), [&](size_t i) {
+    const uint32_t v = vertices[i];
+    std::vector<double> normals, weights;
     star_normals(v, front_.star(v), normals, weights);
     Plan& p = plan_[v];
     bool improved = false;
@@ -191,21 +195,24 @@ Status LayerBuilder::push_step(const std::vector<uint32_t>& vertices, int layer)
     out_of_frame(v, p.d);
     p.valid = margin > 0.0;
     p.waiting = true;
-    (p.valid ? order : deferred).push_back(v);
     if (p.valid) {
       p.height = target_height(v, p.d);
       p.size = sized_height(v, p.d);
     }
-  }
+  });
+  std::vector<uint32_t> order, deferred;
+  for (uint32_t v : vertices) (plan_[v].valid ? order : deferred).push_back(v);
   if (bl_index_ >= 0)
     plan_boundary_layer(vertices);
   else
     plan_targets(vertices);
-  for (uint32_t v : order) {
+  for_each_index(order.size(), [&](size_t i) {
+    const uint32_t v = order[i];
     Plan& p = plan_[v];
+    std::vector<double> normals;
     star_normals(v, front_.star(v), normals);
     p.keep = opt_.keep_margin * std::min(star_margin(normals, into_frame(v, p.d).data()), 0.5);
-  }
+  });
   out_.stats.deferred_pushes += deferred.size();
   order.insert(order.end(), deferred.begin(), deferred.end());
   for (uint32_t v : order) {

@@ -191,15 +191,20 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
       !(options_.layers.boundary_layer.enabled() && options_.layers.boundary_layer.growth > 1.0))
     return Status(Error::InvalidArgument, "boundary-layer sizing needs a boundary layer (wall patches) with growth above 1");
   if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
-  // The default sizing grid needs the surface only: it is built on another core while stages 1
-  // and 2 run (armadillo: 0.3 s off the run on two cores; on one, the task runs at the wait).
+  // The default sizing grid needs the surface only: it is built on another core while stage 2
+  // runs on one (armadillo: 0.4 s; on one core, the task runs at the wait). Not during stage 1,
+  // whose plans and improvement passes use both cores (a task holding the second core left them
+  // one).
   std::optional<Result<metric::MetricField>> default_grid;
   tbb::task_group grid_task;
   struct WaitForGrid {
     tbb::task_group& group;
     ~WaitForGrid() { group.wait(); }
   } wait_for_grid{grid_task};
-  if ((options_.run_refine || options_.run_optimize) && !options_.sizing)
+  bool grid_started = false;
+  auto start_grid = [&] {
+    if (grid_started || !(options_.run_refine || options_.run_optimize) || options_.sizing) return;
+    grid_started = true;
     grid_task.run([&] {
       // An exception must not leave the task: the guard above waits in a destructor.
       try {
@@ -210,6 +215,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
         default_grid.emplace(Status(Error::Internal, std::string("building it threw: ") + e.what()));
       }
     });
+  };
   // Stages 1 and 2. When stage 2 cannot recover S1, stage 1 is run again with another number of
   // layers (fewer first, down to 1, then more, up to 3): S1 changes shape and its recovery may then
   // succeed (bimba_low: not with 2 layers, yes with 1). The fast split-constraints recovery is
@@ -264,6 +270,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
     result.layers_retries = attempt;
     result.layers_used = layer_options.layers;
     result.stages.push_back({attempt == 0 ? "layers" : "layers (retry)", since(t), layers->stats.tets});
+    start_grid();
 
     if (Status st = progress("recovery", kDoneAfterLayers); !st.ok()) return st;
     t = Clock::now();
@@ -338,6 +345,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
     const SizingField* field = options_.sizing;
     std::optional<metric::MetricField> grid;
     if (!field) {
+      start_grid();
       grid_task.wait();
       Result<metric::MetricField>& built = *default_grid;
       if (!built.ok()) return Status(built.status().code(), "sizing field: " + built.status().message());
