@@ -50,6 +50,7 @@ nlohmann::json layers_json(const LayersOutput& r, const LayersCheck& check) {
           {"pushes", {{"tried", s.pushes}, {"halved", s.pushes_halved}, {"halvings", s.push_halvings},
                       {"max_halvings", s.max_push_halvings}, {"halved_share", share(s.pushes_halved, s.pushes)},
                       {"deferred", s.deferred_pushes}, {"partial", s.partial_pushes},
+                      {"by_two_tasks", s.task_pushes},
                       {"fallbacks", s.push_fallbacks}, {"stopped_vertices", s.stopped_vertices},
                       {"improved_vertices", s.improved_vertices}, {"smoothed_vertices", s.smoothed_vertices}}},
           {"epsilon_halving", {{"loops", s.halving_loops}, {"halved_columns", s.halved_columns},
@@ -100,6 +101,7 @@ int run_mesh_layers(MeshArgs& args) {
   LayersOptions options;
   options.layers = args.layers;
   options.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
+  options.push_tasks_min_vertices = args.push_tasks_min_vertices;
   if (!args.bl_patches.empty()) {
     if (!(args.bl_first_height > 0.0)) {
       std::cerr << cmd << ": --bl-patches needs --bl-first-height (or --bl-yplus)\n";

@@ -133,6 +133,7 @@ int run_mesh_pipeline(MeshArgs& args) {
   options.attempts_seconds = args.attempts_seconds;
   options.recovery = recovery_options(args);
   options.layers.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
+  options.layers.push_tasks_min_vertices = args.push_tasks_min_vertices;
   if (!args.bl_patches.empty()) {
     if (!(args.bl_first_height > 0.0)) {
       std::cerr << cmd << ": --bl-patches needs --bl-first-height (or --bl-yplus)\n";

@@ -11,6 +11,7 @@
 #include "core/tet_mesh.hpp"
 #include "core/volume_mesh.hpp"
 #include "io/patch_names.hpp"
+#include "layers/layers.hpp"
 #include "optimize/optimize.hpp"
 #include "refine/refine.hpp"
 #include "recovery/recovery.hpp"
@@ -68,6 +69,7 @@ struct MeshArgs {
   int layers = 1;                       // stage 1 layer count
   double attempts_seconds = 240;        // MesherOptions::attempts_seconds
   std::string layer_scheme = "push";    // "push" (prism layers) or "faces" (the paper's)
+  size_t push_tasks_min_vertices = LayersOptions().push_tasks_min_vertices;
   std::vector<int> bl_patches;          // boundary-layer walls (patch labels); empty: none
   double bl_first_height = 0.0;         // h0 (given, or from --bl-yplus)
   double bl_yplus = 0.0;                // y+ of the first layer (0: not given)

@@ -138,6 +138,11 @@ int run(int argc, char** argv) {
                        "faces (the paper's: a tet on every face, then vertex pushes)")
       ->capture_default_str()
       ->check(CLI::IsMember({"push", "faces"}));
+  mesh_cmd->add_option("--push-tasks-min-vertices", mesh.push_tasks_min_vertices,
+                       "Stage 1 pushes a layer on two tasks, one per side of a plane, when it has at least "
+                       "this many front vertices (the same mesh on one core as on two); 0: every push one by "
+                       "one, in vertex order")
+      ->capture_default_str();
   const char* bl_group = "Boundary layer";
   mesh_cmd->add_option("--bl-patches", mesh.bl_patches,
                        "The input's patch labels (comma-separated) that are walls, each a whole shell: "

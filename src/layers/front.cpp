@@ -4,8 +4,27 @@
 
 namespace anitet::layers {
 
-Front::Front(const std::vector<double>& xyz, const Box3& bounds) : xyz_(xyz) {
+Front::Front(const std::vector<double>& xyz, const Box3& bounds) : xyz_(xyz), bounds_(bounds) {
   index_.reset(bounds);
+}
+
+Front::Front(const Front& from, const std::vector<double>& xyz, int axis, double cut, bool low_side)
+    : xyz_(xyz), tri_(from.tri_), owner_(from.owner_), box_(from.box_),
+      alive_(from.alive_.size(), 0), bounds_(from.bounds_), reuse_slots_(false) {
+  index_.reset(bounds_);
+  for (uint32_t f = 0; f < from.alive_.size(); ++f) {
+    if (!from.alive_[f]) continue;
+    const Box3& b = from.box_[f];
+    if (!(low_side ? b.lo[axis] < cut : b.hi[axis] > cut)) continue;
+    index_.insert(f, box_[f]);
+    alive_[f] = 1;
+    ++num_alive_;
+  }
+  // Each star in from's order (a push takes its star in that order: the same tets as on from).
+  star_.resize(from.star_.size());
+  for (size_t v = 0; v < from.star_.size(); ++v)
+    for (uint32_t f : from.star_[v])
+      if (alive_[f]) star_[v].push_back(f);
 }
 
 namespace {
@@ -50,7 +69,7 @@ void Front::unlink(uint32_t f) {
 
 uint32_t Front::add(uint32_t a, uint32_t b, uint32_t c, uint32_t owner_tet) {
   uint32_t f;
-  if (!free_.empty()) {
+  if (reuse_slots_ && !free_.empty()) {
     f = free_.back();
     free_.pop_back();
   } else {

@@ -33,6 +33,13 @@ class Front {
   // every vertex that will ever be on the front.
   Front(const std::vector<double>& xyz, const Box3& bounds);
 
+  // The triangles of `from` whose box reaches below `cut` along `axis` (low side) or above it
+  // (high side), in the same slots, over the coordinates `xyz` (a copy of from's, which may grow).
+  // For a push task that stays strictly on that side of the cut (LayerBuilder::push_sides): it
+  // sees every triangle a query strictly on its side can meet. Its own triangles get slots past
+  // from's (dead slots are never reused), so that the copied slots keep their ids.
+  Front(const Front& from, const std::vector<double>& xyz, int axis, double cut, bool low_side);
+
   uint32_t add(uint32_t a, uint32_t b, uint32_t c, uint32_t owner_tet);
   void remove(uint32_t f);
 
@@ -84,6 +91,8 @@ class Front {
   bool in_transaction_ = false;
   std::vector<int64_t> log_;
   std::vector<uint32_t> pending_free_;
+  Box3 bounds_;
+  bool reuse_slots_ = true;
 };
 
 }  // namespace anitet::layers

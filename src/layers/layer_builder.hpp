@@ -39,11 +39,32 @@ class LayerBuilder {
   Status run();
 
  private:
+  // A push task of push_sides: a copy of `main`'s state (vertex coordinates, plans, the front
+  // triangles on its side of the cut) into which it builds its own vertices and tets, numbered
+  // after main's, for merge_side to append.
+  LayerBuilder(const LayerBuilder& main, int axis, double cut, bool low_side);
+
   // ---- face step (layers.cpp) ----
   Status face_tet(uint32_t f, int layer);
 
   // ---- push step (push_step.cpp) ----
-  Status push_step(const std::vector<uint32_t>& vertices, int layer);
+  Status push_step(const std::vector<uint32_t>& vertices);
+  // The pushes of `order` (vertices with a valid plan) on two cores: the vertices whose push
+  // reaches across a plane (layers.hpp: the one fewest reach across) are pushed first, one by
+  // one; then those whose push (their
+  // star, their neighbours' stars and their apex's reach) stays on one side of it are pushed by
+  // two tasks, one per side, each on a copy of its side of the front. Returns the vertices left
+  // for the caller, in their order: those whose reach crosses the plane after the first pushes,
+  // and those whose planned push did not fit. The result does not depend on the threads.
+  Result<std::vector<uint32_t>> push_sides(const std::vector<uint32_t>& order);
+  // Pushes v as the layer's loop does (push_vertex, and what a failure means).
+  Status push_one(uint32_t v);
+  // A task's push of a: its planned whole-star push only (push_vertex's first try); false, with
+  // nothing changed but counters, when it does not fit.
+  bool push_planned(uint32_t a);
+  // Appends task w's vertices, tets and front changes (w copied this builder when it had nv0
+  // vertices).
+  void merge_side(const LayerBuilder& w, uint32_t nv0);
   // Takes a off the front: one push of its whole star, or (when no direction sees the whole
   // star) several pushes of visible parts of it.
   Status push_vertex(uint32_t a, int layer);
@@ -158,6 +179,7 @@ class LayerBuilder {
   void truncate_tets(size_t n);
   Status finish();
 
+  LayersOutput own_out_;  // a push task's output (out_ refers to it); unused by the main builder
   const SurfaceMesh& s_;
   const SizingField& sizing_;
   const LayersOptions& opt_;
@@ -194,6 +216,7 @@ class LayerBuilder {
   std::vector<Replan> replans_;  // new plans the push being tried needs (applied on success)
   std::vector<uint32_t> added_;  // front triangles added by the push being tried
   std::vector<uint32_t> near_;   // join_to_front: the front triangles near the cone being joined
+  std::vector<uint32_t> touched_plans_;  // vertices whose plan a push changed (merge_side)
   int remaining_layers_ = 1;     // layers still to build, the current one included
   int layer_ = 0;                // the layer being built (1-based)
   int bl_index_ = -1;            // the BL layer being built (0-based), -1: an ordinary layer
@@ -204,6 +227,16 @@ class LayerBuilder {
   // frame_of()'s cache: per vertex 0 unknown, 1 isotropic, 2 anisotropic (U in frame_).
   mutable std::vector<uint8_t> frame_state_;
   mutable std::vector<std::array<double, 9>> frame_;
+  // A push task's: the cut its pushes stay on one side of (axis -1: the main builder), the number
+  // of main's tets (the task's own tets are numbered from it on the front) and main's columns of
+  // those tets, and the front slots it copied.
+  int cut_axis_ = -1;
+  double cut_ = 0.0;
+  bool low_side_ = true;
+  uint32_t tet_base_ = 0;
+  const std::vector<uint32_t>* base_tet_column_ = nullptr;
+  std::vector<uint32_t> copied_slots_;
+  size_t base_slots_ = 0;
 };
 
 }  // namespace anitet::layers

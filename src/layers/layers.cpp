@@ -85,9 +85,37 @@ LayerBuilder::LayerBuilder(const SurfaceMesh& s, const SizingField& sizing,
     : s_(s), sizing_(sizing), opt_(options), out_(out), mesh_(out.mesh),
       front_(out.mesh.xyz, surface_bounds(s)) {}
 
+namespace {
+
+// A push task's starting output: main's vertices (the task adds its own after them), no tets.
+LayersOutput task_output(const LayersOutput& main) {
+  LayersOutput out;
+  out.mesh.xyz = main.mesh.xyz;
+  out.mesh.vflags = main.mesh.vflags;
+  out.vertex_origin = main.vertex_origin;
+  return out;
+}
+
+}  // namespace
+
+LayerBuilder::LayerBuilder(const LayerBuilder& main, int axis, double cut, bool low_side)
+    : own_out_(task_output(main.out_)), s_(main.s_), sizing_(main.sizing_), opt_(main.opt_),
+      out_(own_out_), mesh_(own_out_.mesh), front_(main.front_, own_out_.mesh.xyz, axis, cut, low_side),
+      plan_(main.plan_), remaining_layers_(main.remaining_layers_), layer_(main.layer_),
+      bl_index_(main.bl_index_), bl_layers_(main.bl_layers_), column_halved_(main.column_halved_),
+      frame_state_(main.frame_state_), frame_(main.frame_), cut_axis_(axis), cut_(cut),
+      low_side_(low_side), tet_base_(uint32_t(main.mesh_.num_tet_slots())),
+      base_tet_column_(&main.out_.tet_column), base_slots_(main.front_.num_slots()) {
+  for (uint32_t f = 0; f < base_slots_; ++f)
+    if (front_.alive(f)) copied_slots_.push_back(f);
+}
+
 uint32_t LayerBuilder::column_of(uint32_t f) const {
   const uint32_t owner = front_.owner(f);
-  return owner == Front::kNone ? f : out_.tet_column[owner];
+  if (owner == Front::kNone) return f;
+  // A push task's front holds main's tets (below tet_base_) and its own.
+  if (owner < tet_base_) return (*base_tet_column_)[owner];
+  return out_.tet_column[owner - tet_base_];
 }
 
 void LayerBuilder::commit_tet(const uint32_t v[4], const uint32_t closing[4]) {
@@ -105,8 +133,8 @@ void LayerBuilder::commit_tet(const uint32_t v[4], const uint32_t closing[4]) {
     } else {
       // kFacetVertex lists the facet with its normal into the tet: away from the region, as the
       // front's convention wants.
-      added_.push_back(
-          front_.add(v[kFacetVertex[i][0]], v[kFacetVertex[i][1]], v[kFacetVertex[i][2]], t));
+      added_.push_back(front_.add(v[kFacetVertex[i][0]], v[kFacetVertex[i][1]],
+                                  v[kFacetVertex[i][2]], t + tet_base_));
     }
   }
 }
@@ -216,7 +244,7 @@ Status LayerBuilder::run() {
       }
     }
     const uint32_t first_new_vertex = uint32_t(mesh_.num_vertices());
-    Status st = push_step(vertices, layer);
+    Status st = push_step(vertices);
     if (!st.ok()) return st;
     // Every move into the region takes room from the next layer (a cliff usually marks a tight
     // spot), so before the last layer only the really flat tets are worth it.

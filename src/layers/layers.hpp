@@ -43,6 +43,15 @@
 //     - a vertex whose star no direction sees (saddles on scanned surfaces, < 0.1% of vertices)
 //       is pushed last, and if its star is still not visible it is taken off in runs of
 //       consecutive triangles that one direction sees, each checked to fit very close to A.
+//    Two cores (options.push_tasks_min_vertices): a plane across the layer's vertices is chosen
+//    (on one of the three axes, at the 40th-60th percentile, the one fewest vertices' reach
+//    crosses: their star, their neighbours' stars, their apex); the vertices whose reach crosses
+//    it are pushed first, one by one; then the planned pushes of the others are made by two
+//    tasks, one per side, each on its own copy of its side of the front, and merged (low side
+//    first); those whose planned push did not fit are pushed after, one by one. The two tasks
+//    never meet the same triangle, and the split and the merge order do not depend on the
+//    threads: one core gives the same bits as two (the tasks give the bits of a one-by-one layer
+//    in that order).
 //
 // Schemes. kFacesThenPush is the paper's layer: face step on every triangle of the layer's
 // starting front, then push step on every vertex of it. It triples the front's triangle count per
@@ -158,6 +167,9 @@ struct LayersOptions {
   // Push step: the chosen height is at least this fraction of the planned one (before a push that
   // does not fit is shrunk).
   double min_height_fraction = 0.5;
+  // Ordinary layers with at least this many planned vertices push on two tasks (see the push
+  // step above; on one core they run one after the other, with the same result). 0: never.
+  size_t push_tasks_min_vertices = 2000;
   // After each ordinary layer: passes moving the new front vertices whose worst tet has a radius
   // ratio below improve_below (last layer) or improve_below_inner (the layers before: a move
   // into the region takes room from the next layer) further in, each checked exactly (0: off).
@@ -193,6 +205,7 @@ struct LayersStats {
   size_t replans = 0;             // waiting neighbours given a new direction by a push
   size_t deferred_pushes = 0;     // vertices whose star no direction saw at the layer's start
   size_t partial_pushes = 0;      // pushes of a visible part of a star no direction sees whole
+  size_t task_pushes = 0;         // pushes made by the two push tasks (the rest one by one)
   size_t stopped_vertices = 0;    // front vertices left in place by a layer (no push fitted)
   size_t push_fallbacks = 0;      // whole-star pushes that never fit, redone as partial pushes
   size_t improved_vertices = 0;   // front vertices moved after their layer (improve_passes)

@@ -2,6 +2,7 @@
 // exact fit test, and build_layers on built-in shapes and shared surfaces, audited by
 // check_layers (validity, input faces kept, S1 closed and off S, volumes).
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cctype>
@@ -430,6 +431,61 @@ TEST(Layers, IsDeterministic) {
   EXPECT_EQ(a.mesh.xyz, b.mesh.xyz);
   EXPECT_EQ(a.mesh.tet_v, b.mesh.tet_v);
   EXPECT_EQ(a.front_tri, b.front_tri);
+}
+
+// The push tasks (LayersOptions::push_tasks_min_vertices): fandisk's layers are pushed mostly by
+// the two tasks, and give the same bits on one thread as on two (the second layer's tasks number
+// their tets after the first layer's).
+TEST(Layers, PushTasksGiveTheSameLayersOnOneThreadAsOnTwo) {
+  const SurfaceMesh s = shared_surface("fandisk.off");
+  IsotropicSurfaceSizing sizing(s);
+  LayersOptions options;
+  options.layers = 2;
+  ASSERT_LT(options.push_tasks_min_vertices, s.num_vertices());
+  LayersOutput out[2];
+  for (int threads = 1; threads <= 2; ++threads) {
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      Result<LayersOutput> r = build_layers(s, sizing, options);
+      ASSERT_TRUE(r.ok()) << r.status().message();
+      out[threads - 1] = std::move(r).value();
+    });
+  }
+  expect_valid_layers(s, out[1], 2);
+  EXPECT_GT(out[1].stats.task_pushes, out[1].stats.pushes / 2);
+  EXPECT_LT(out[1].stats.task_pushes, out[1].stats.pushes);
+  EXPECT_EQ(out[0].mesh.xyz, out[1].mesh.xyz);
+  EXPECT_EQ(out[0].mesh.tet_v, out[1].mesh.tet_v);
+  EXPECT_EQ(out[0].mesh.tet_flags, out[1].mesh.tet_flags);
+  EXPECT_EQ(out[0].front_tri, out[1].front_tri);
+  EXPECT_EQ(out[0].tet_column, out[1].tet_column);
+  EXPECT_EQ(out[0].vertex_origin, out[1].vertex_origin);
+  // Without the tasks: a valid result too, with every push made one by one.
+  options.push_tasks_min_vertices = 0;
+  Result<LayersOutput> serial = build_layers(s, sizing, options);
+  ASSERT_TRUE(serial.ok()) << serial.status().message();
+  expect_valid_layers(s, serial.value(), 2);
+  EXPECT_EQ(serial->stats.task_pushes, 0u);
+}
+
+// The tasks on every small shape (thin slab, nested shells: sides with little room, vertices near
+// the cut), forced on by a threshold of one vertex.
+TEST(Layers, PushTasksOnSmallShapesAreValid) {
+  for (const ShapeCase& shape : kShapes)
+    for (int layers = 1; layers <= 3; ++layers) {
+      SCOPED_TRACE(std::string(shape.name) + ", " + std::to_string(layers) + " layers");
+      const SurfaceMesh s = shape.make();
+      IsotropicSurfaceSizing sizing(s);
+      LayersOptions options;
+      options.layers = layers;
+      options.push_tasks_min_vertices = 1;
+      Result<LayersOutput> out = build_layers(s, sizing, options);
+      ASSERT_TRUE(out.ok()) << out.status().message();
+      expect_valid_layers(s, out.value(), layers);
+      if (s.num_vertices() >= 100) {
+        EXPECT_GT(out->stats.task_pushes, 0u);
+      }
+    }
 }
 
 TEST(Layers, CheckerCatchesBrokenOutputs) {
