@@ -701,6 +701,22 @@ Result<std::vector<uint32_t>> LayerBuilder::push_sides(const std::vector<uint32_
   // reach lies strictly on one side of the cut go to that side's task: then the two tasks never
   // touch the same triangle, plan or vertex, and each one's copy of its side holds every triangle
   // its queries can meet. (Later pushes on a side stay within their own reach, on that side too.)
+  // (Each front vertex's star box first: a reach is the union of a few of them.)
+  std::vector<Box3> star_box;
+  auto measure_star_boxes = [&] {
+    star_box.resize(mesh_.num_vertices());
+    for_each_index(star_box.size(), [&](size_t u) {
+      const std::vector<uint32_t>& star = front_.star(uint32_t(u));
+      if (star.empty()) return;
+      Box3& b = star_box[u];
+      b = front_.box(star[0]);
+      for (uint32_t g : star)
+        for (int j = 0; j < 3; ++j) {
+          b.lo[j] = std::min(b.lo[j], front_.box(g).lo[j]);
+          b.hi[j] = std::max(b.hi[j], front_.box(g).hi[j]);
+        }
+    });
+  };
   std::vector<Box3> reach(order.size());
   auto measure_reach = [&](size_t i) {
     const uint32_t v = order[i];
@@ -709,13 +725,13 @@ Result<std::vector<uint32_t>> LayerBuilder::push_sides(const std::vector<uint32_
     for (uint32_t f : front_.star(v)) {
       const uint32_t* t = front_.tri(f);
       for (int k = 0; k < 3; ++k)
-        for (uint32_t g : front_.star(t[k]))
-          for (int j = 0; j < 3; ++j) {
-            r.lo[j] = std::min(r.lo[j], front_.box(g).lo[j]);
-            r.hi[j] = std::max(r.hi[j], front_.box(g).hi[j]);
-          }
+        for (int j = 0; j < 3; ++j) {
+          r.lo[j] = std::min(r.lo[j], star_box[t[k]].lo[j]);
+          r.hi[j] = std::max(r.hi[j], star_box[t[k]].hi[j]);
+        }
     }
   };
+  measure_star_boxes();
   for_each_index(order.size(), measure_reach);
   // The cut: among planes across each axis at the 40th to 60th percentiles of the vertices, the
   // one whose reach band (the vertices pushed one by one) is smallest. (A cut through a feature of
@@ -739,14 +755,15 @@ Result<std::vector<uint32_t>> LayerBuilder::push_sides(const std::vector<uint32_
     }
   }
   std::vector<uint8_t> side(order.size(), 2);  // 0 low, 1 high, 2 neither
-  auto find_sides = [&] {
+  auto find_sides = [&](bool measure_again) {
+    if (measure_again) measure_star_boxes();
     for_each_index(order.size(), [&](size_t i) {
       if (side[i] == 3) return;  // (pushed already)
-      measure_reach(i);
+      if (measure_again) measure_reach(i);
       side[i] = reach[i].hi[axis] < cut ? 0 : reach[i].lo[axis] > cut ? 1 : 2;
     });
   };
-  find_sides();
+  find_sides(false);
   // The vertices across the cut are pushed first, one by one, while their neighbours wait (pushed
   // after the tasks, squeezed between their neighbours' cones, they left worse tets: fandisk's
   // second layer 0.027 against 0.10). Their cones change the reach of the vertices next to them:
@@ -764,7 +781,7 @@ Result<std::vector<uint32_t>> LayerBuilder::push_sides(const std::vector<uint32_
         any = true;
       }
     if (!any) break;
-    find_sides();
+    find_sides(true);
   }
 
   const uint32_t nv0 = uint32_t(mesh_.num_vertices());
