@@ -51,11 +51,11 @@ class LayerBuilder {
   Status push_step(const std::vector<uint32_t>& vertices);
   // The pushes of `order` (vertices with a valid plan) on two cores: the vertices whose push
   // reaches across a plane (layers.hpp: the one fewest reach across) are pushed first, one by
-  // one; then those whose push (their
-  // star, their neighbours' stars and their apex's reach) stays on one side of it are pushed by
-  // two tasks, one per side, each on a copy of its side of the front. Returns the vertices left
-  // for the caller, in their order: those whose reach crosses the plane after the first pushes,
-  // and those whose planned push did not fit. The result does not depend on the threads.
+  // one; then those whose push (their star, their neighbours' stars and their apex's reach) stays
+  // on one side of it are pushed by two tasks, one per side, each on a copy of its side of the
+  // front. Returns the vertices left for the caller, in their order: those whose reach still
+  // crosses the plane after four rounds of first pushes, and those whose planned push did not
+  // fit. The result does not depend on the threads.
   Result<std::vector<uint32_t>> push_sides(const std::vector<uint32_t>& order);
   // Pushes v as the layer's loop does (push_vertex, and what a failure means).
   Status push_one(uint32_t v);
