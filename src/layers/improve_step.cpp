@@ -289,7 +289,6 @@ void LayerBuilder::improve_layer(uint32_t first_new_vertex, double below) {
     }
     if (moved == 0) break;
   }
-  planned.clear();
 }
 
 void LayerBuilder::smooth_interior(int passes) {

@@ -59,8 +59,12 @@ class LayerBuilder {
   Result<std::vector<uint32_t>> push_sides(const std::vector<uint32_t>& order);
   // Pushes v as the layer's loop does (push_vertex, and what a failure means).
   Status push_one(uint32_t v);
-  // A task's push of a: its planned whole-star push only (push_vertex's first try); false, with
-  // nothing changed but counters, when it does not fit.
+  // The planned push of a's whole star, while the plan still sees it (push_vertex's first try, a
+  // task's only one): 1 pushed, 0 tried and did not fit (nothing changed but counters), -1 not
+  // tried.
+  int planned_push(uint32_t a, const std::vector<uint32_t>& star, int layer);
+  // A task's push of a: its planned push only; false, with nothing changed but counters and a
+  // still waiting, when it does not fit.
   bool push_planned(uint32_t a);
   // Appends task w's vertices, tets and front changes (w copied this builder when it had nv0
   // vertices).

@@ -481,17 +481,16 @@ Status LayerBuilder::push_vertex(uint32_t a, int layer) {
                                          std::to_string(a) + " at " + point_text(mesh_.point(a)) +
                                          ": its front star could not be taken off in " +
                                          std::to_string(round) + " partial pushes");
-    star_normals(a, star, normals);
     // The planned displacement, while it sees the star (the neighbours' pushes keep it so unless
     // they had to re-plan); else the best direction of the star as it is now.
-    if (!whole_failed && round == 0 && a < plan_.size() && plan_[a].valid &&
-        star_margin(normals, into_frame(a, plan_[a].d).data()) > 0.0) {
-      const Plan& p = plan_[a];
-      const double disp[3] = {p.height * p.d[0], p.height * p.d[1], p.height * p.d[2]};
-      if (push_part(a, star, disp, layer).ok()) return Status::success();
-      whole_failed = true;
-      ++out_.stats.push_fallbacks;
-      continue;
+    if (!whole_failed && round == 0) {
+      const int planned = planned_push(a, star, layer);
+      if (planned > 0) return Status::success();
+      if (planned == 0) {
+        whole_failed = true;
+        ++out_.stats.push_fallbacks;
+        continue;
+      }
     }
     star_normals(a, star, normals, weights);  // (the angles weigh the directions)
     double d[3];
@@ -810,18 +809,23 @@ Result<std::vector<uint32_t>> LayerBuilder::push_sides(const std::vector<uint32_
   return rest;
 }
 
+int LayerBuilder::planned_push(uint32_t a, const std::vector<uint32_t>& star, int layer) {
+  if (a >= plan_.size() || !plan_[a].valid) return -1;
+  const Plan& p = plan_[a];
+  std::vector<double> normals;
+  star_normals(a, star, normals);
+  if (!(star_margin(normals, into_frame(a, p.d).data()) > 0.0)) return -1;
+  const double disp[3] = {p.height * p.d[0], p.height * p.d[1], p.height * p.d[2]};
+  return push_part(a, star, disp, layer).ok() ? 1 : 0;
+}
+
 bool LayerBuilder::push_planned(uint32_t a) {
   Plan& p = plan_[a];
   p.waiting = false;
   touched_plans_.push_back(a);
   const std::vector<uint32_t> star = front_.star(a);
   if (star.empty()) return true;  // (closed by its neighbours' pushes)
-  std::vector<double> normals;
-  star_normals(a, star, normals);
-  if (p.valid && star_margin(normals, into_frame(a, p.d).data()) > 0.0) {
-    const double disp[3] = {p.height * p.d[0], p.height * p.d[1], p.height * p.d[2]};
-    if (push_part(a, star, disp, layer_).ok()) return true;
-  }
+  if (planned_push(a, star, layer_) > 0) return true;
   p.waiting = true;
   return false;
 }
@@ -830,11 +834,9 @@ void LayerBuilder::merge_side(const LayerBuilder& w, uint32_t nv0) {
   // The task's vertices follow the ones already here (an earlier task's).
   const uint32_t shift = uint32_t(mesh_.num_vertices()) - nv0;
   auto vertex = [&](uint32_t v) { return v < nv0 ? v : v + shift; };
-  for (uint32_t v = nv0; v < w.mesh_.num_vertices(); ++v) {
-    mesh_.add_vertex(w.mesh_.point(v), w.mesh_.vflags[v]);
-    out_.vertex_origin.resize(mesh_.num_vertices(), TetMesh::kNone);
-    out_.vertex_origin[vertex(v)] = w.out_.vertex_origin[v];
-  }
+  for (uint32_t v = nv0; v < w.mesh_.num_vertices(); ++v) mesh_.add_vertex(w.mesh_.point(v), w.mesh_.vflags[v]);
+  out_.vertex_origin.resize(mesh_.num_vertices(), TetMesh::kNone);
+  for (uint32_t v = nv0; v < w.mesh_.num_vertices(); ++v) out_.vertex_origin[vertex(v)] = w.out_.vertex_origin[v];
   std::vector<uint32_t> tet(w.mesh_.num_tet_slots());
   for (uint32_t t = 0; t < w.mesh_.num_tet_slots(); ++t) {
     const uint32_t* q = &w.mesh_.tet_v[4 * size_t(t)];
