@@ -1,6 +1,7 @@
 #include "core/tet_ops.hpp"
 
 #include <algorithm>
+#include <iterator>
 
 #include "predicates/predicates.hpp"
 
@@ -25,6 +26,11 @@ void VertexTets::build(const TetMesh& mesh) {
 void VertexTets::note(const TetMesh& mesh, uint32_t t) {
   if (map_.size() < mesh.num_vertices()) map_.resize(mesh.num_vertices(), TetMesh::kNone);
   for (int i = 0; i < 4; ++i) map_[mesh.vertex(t, i)] = t;
+}
+
+uint32_t VertexTets::known_tet(const TetMesh& mesh, uint32_t v) const {
+  const uint32_t t = v < map_.size() ? map_[v] : TetMesh::kNone;
+  return t != TetMesh::kNone && tet_has_vertex(mesh, t, v) ? t : TetMesh::kNone;
 }
 
 uint32_t VertexTets::tet_of(const TetMesh& mesh, uint32_t v) {
@@ -55,6 +61,40 @@ void vertex_ball(TetMesh& mesh, uint32_t v, uint32_t start, std::vector<uint32_t
     }
   }
   for (uint32_t t : ball) mesh.tet_flags[t] &= uint16_t(~kBallMark);
+}
+
+bool vertex_ball_unmarked(const TetMesh& mesh, uint32_t v, uint32_t start, std::vector<uint32_t>& ball,
+                          size_t max_tets) {
+  ball.clear();
+  if (!tet_has_vertex(mesh, start, v)) return false;
+  // The tets seen, in an open-addressing table at most half full.
+  constexpr size_t kTable = 512;
+  max_tets = std::min(max_tets, kTable / 2);
+  uint32_t seen[kTable];
+  std::fill(std::begin(seen), std::end(seen), TetMesh::kNone);
+  auto insert = [&](uint32_t t) {  // false when t was there
+    size_t h = (uint64_t(t) * 0x9E3779B97F4A7C15ull) >> 55;  // 9 bits
+    while (seen[h] != TetMesh::kNone) {
+      if (seen[h] == t) return false;
+      h = (h + 1) & (kTable - 1);
+    }
+    seen[h] = t;
+    return true;
+  };
+  insert(start);
+  ball.push_back(start);
+  for (size_t k = 0; k < ball.size(); ++k) {
+    const uint32_t t = ball[k];
+    for (int i = 0; i < 4; ++i) {
+      if (mesh.vertex(t, i) == v) continue;
+      if (mesh.tet_adj[4 * size_t(t) + i] == TetMesh::kNoNeighbour) continue;
+      const uint32_t n = mesh.neighbour(t, i);
+      if (!insert(n)) continue;
+      if (ball.size() == max_tets) return false;
+      ball.push_back(n);
+    }
+  }
+  return true;
 }
 
 bool edge_ring(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, std::vector<uint32_t>& tets,
@@ -112,9 +152,13 @@ uint64_t pair_key(uint32_t a, uint32_t b) {
 
 }  // namespace
 
-bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
-                  ReplaceScratch& scratch, ConstrainedEdges rule) {
-  using Facet = ReplaceScratch::Facet;
+namespace {
+
+// The checks of a replacement that need no marks on the mesh: the old tets live, real and of
+// one region, the constrained-edges rule, every new tet real and positive by the exact orient3d
+// (vertex `moved` read at moved_to when given). Fills scratch.constrained.
+bool fresh_tets_fit(const TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
+                    ReplaceScratch& scratch, ConstrainedEdges rule, uint32_t moved, const double* moved_to) {
   if (old_tets.empty() || fresh.empty()) return false;
   const int32_t region = mesh.tet_region[old_tets[0]];
   std::vector<uint64_t>& constrained = scratch.constrained;
@@ -127,11 +171,11 @@ bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const st
       if ((mesh.tet_flags[t] >> (tflag::kEdgeConstrainedShift + k)) & 1u)
         constrained.push_back(pair_key(mesh.vertex(t, kEdgeVertex[k][0]), mesh.vertex(t, kEdgeVertex[k][1])));
   }
+  auto point = [&](uint32_t x) { return moved_to && x == moved ? moved_to : mesh.point(x); };
   for (const TetVerts& v : fresh) {
     for (uint32_t w : v)
       if (w == TetMesh::kGhost) return false;
-    if (predicates::orient3d(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3])) <= 0)
-      return false;
+    if (predicates::orient3d(point(v[0]), point(v[1]), point(v[2]), point(v[3])) <= 0) return false;
   }
   // Every constrained edge must survive.
   std::sort(constrained.begin(), constrained.end());
@@ -143,43 +187,77 @@ bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const st
         found = pair_key(fresh[n][kEdgeVertex[k][0]], fresh[n][kEdgeVertex[k][1]]) == e;
     if (!found) return false;
   }
+  return true;
+}
 
-  auto key_of = [](uint32_t p, uint32_t q, uint32_t r) {
-    std::array<uint32_t, 3> k = {p, q, r};
-    std::sort(k.begin(), k.end());
-    return k;
-  };
+std::array<uint32_t, 3> facet_key(uint32_t p, uint32_t q, uint32_t r) {
+  std::array<uint32_t, 3> k = {p, q, r};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// The old tets' outer facets t/i (`inside`: whether the neighbour across is an old tet) and the
+// new tets' facets into scratch.facets, sorted; false when a protected facet lies between two
+// old tets or the new tets do not close up against the old boundary: every key must appear
+// exactly twice, (old boundary, new) or (new, new).
+template <class Inside>
+bool facets_close(const TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
+                  ReplaceScratch& scratch, Inside&& inside) {
+  using Facet = ReplaceScratch::Facet;
   std::vector<Facet>& facets = scratch.facets;
   facets.clear();
-  for (uint32_t t : old_tets) mesh.tet_flags[t] |= kBallMark;
   for (uint32_t t : old_tets) {
     for (int i = 0; i < 4; ++i) {
       const uint64_t adj = mesh.tet_adj[4 * size_t(t) + i];
-      const bool inside = adj != TetMesh::kNoNeighbour && (mesh.tet_flags[adj >> 2] & kBallMark);
-      if (inside && !mesh.facet_protected(t, i)) continue;
-      if (inside) {  // a protected facet between two old tets: refuse to touch it
-        for (uint32_t s : old_tets) mesh.tet_flags[s] &= uint16_t(~kBallMark);
-        return false;
+      if (adj != TetMesh::kNoNeighbour && inside(uint32_t(adj >> 2))) {
+        if (mesh.facet_protected(t, i)) return false;  // a protected facet between two old tets
+        continue;
       }
       const int* f = kFacetVertex[i];
-      facets.push_back({key_of(mesh.vertex(t, f[0]), mesh.vertex(t, f[1]), mesh.vertex(t, f[2])), adj, 0,
+      facets.push_back({facet_key(mesh.vertex(t, f[0]), mesh.vertex(t, f[1]), mesh.vertex(t, f[2])), adj, 0,
                         uint8_t(mesh.facet_protected(t, i))});
     }
   }
-  for (uint32_t t : old_tets) mesh.tet_flags[t] &= uint16_t(~kBallMark);
   for (size_t n = 0; n < fresh.size(); ++n)
     for (int i = 0; i < 4; ++i) {
       const int* f = kFacetVertex[i];
-      facets.push_back({key_of(fresh[n][f[0]], fresh[n][f[1]], fresh[n][f[2]]), 4 * uint64_t(n) + uint64_t(i), 1, 0});
+      facets.push_back({facet_key(fresh[n][f[0]], fresh[n][f[1]], fresh[n][f[2]]), 4 * uint64_t(n) + uint64_t(i), 1, 0});
     }
   std::sort(facets.begin(), facets.end(), [](const Facet& x, const Facet& y) {
     return x.key != y.key ? x.key < y.key : x.is_new < y.is_new;
   });
-  // Every key must appear exactly twice: (old boundary, new) or (new, new).
   for (size_t k = 0; k < facets.size(); k += 2) {
     if (k + 1 >= facets.size() || facets[k].key != facets[k + 1].key || !facets[k + 1].is_new) return false;
     if (k + 2 < facets.size() && facets[k + 2].key == facets[k].key) return false;
   }
+  return true;
+}
+
+}  // namespace
+
+bool replacement_fits(const TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
+                      ReplaceScratch& scratch, ConstrainedEdges rule, uint32_t moved, const double* moved_to) {
+  if (!fresh_tets_fit(mesh, old_tets, fresh, scratch, rule, moved, moved_to)) return false;
+  std::vector<uint32_t>& sorted = scratch.sorted_old;
+  sorted.assign(old_tets.begin(), old_tets.end());
+  std::sort(sorted.begin(), sorted.end());
+  return facets_close(mesh, old_tets, fresh, scratch,
+                      [&](uint32_t t) { return std::binary_search(sorted.begin(), sorted.end(), t); });
+}
+
+bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
+                  ReplaceScratch& scratch, ConstrainedEdges rule) {
+  using Facet = ReplaceScratch::Facet;
+  if (!fresh_tets_fit(mesh, old_tets, fresh, scratch, rule, TetMesh::kNone, nullptr)) return false;
+  const int32_t region = mesh.tet_region[old_tets[0]];
+  const std::vector<uint64_t>& constrained = scratch.constrained;
+  // Marks on the old tets tell the inner facets (faster than replacement_fits' search).
+  for (uint32_t t : old_tets) mesh.tet_flags[t] |= kBallMark;
+  const bool closes =
+      facets_close(mesh, old_tets, fresh, scratch, [&](uint32_t t) { return (mesh.tet_flags[t] & kBallMark) != 0; });
+  for (uint32_t t : old_tets) mesh.tet_flags[t] &= uint16_t(~kBallMark);
+  if (!closes) return false;
+  const std::vector<Facet>& facets = scratch.facets;
 
   ReplaceScratch::SlotPool& pool = scratch.pool;
   if (scratch.use_pool && pool.free.size() + old_tets.size() + (pool.end - pool.next) < fresh.size()) return false;

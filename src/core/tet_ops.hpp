@@ -30,6 +30,9 @@ class VertexTets {
   }
   // A live tet holding v; repairs a stale entry by a scan of the mesh (rare).
   uint32_t tet_of(const TetMesh& mesh, uint32_t v);
+  // The entry of v when it is a live tet holding v, else kNone (no repair: callers on several
+  // threads may ask at once).
+  uint32_t known_tet(const TetMesh& mesh, uint32_t v) const;
   void note(const TetMesh& mesh, uint32_t t);  // t's vertices now point at t
   void forget(uint32_t v) { if (v < map_.size()) map_[v] = TetMesh::kNone; }
   bool removed(uint32_t v) const { return v < map_.size() && map_[v] == TetMesh::kNone; }
@@ -41,6 +44,11 @@ class VertexTets {
 
 // The tets holding v (a traversal across the facets through v, from a tet holding v).
 void vertex_ball(TetMesh& mesh, uint32_t v, uint32_t start, std::vector<uint32_t>& ball);
+// The same traversal (the same tets in the same order) without marking the mesh, so that
+// several threads may run it at once; false, `ball` incomplete, when v has more than max_tets
+// tets, or than 256 (it keeps the tets seen in a small table on the stack).
+bool vertex_ball_unmarked(const TetMesh& mesh, uint32_t v, uint32_t start, std::vector<uint32_t>& ball,
+                          size_t max_tets);
 
 // The tets around edge ab, in order, and the ring vertices: ring[i] and ring[i+1] are the other
 // two vertices of tets[i]. False when the edge touches a facet without neighbour or a protected
@@ -63,6 +71,7 @@ struct ReplaceScratch {
   std::vector<Facet> facets;
   std::vector<uint64_t> constrained;  // constrained edges of the old tets (vertex pair keys)
   std::vector<uint32_t> created;
+  std::vector<uint32_t> sorted_old;  // replacement_fits
   // Slots of one task among several replacing tets at once (the mesh's own free list and arrays
   // are not touched while they run): the old tets' slots go to `free`, new tets come from `free`,
   // then from [next, end). A replacement that needs more fails (mesh unchanged). Unused when
@@ -95,6 +104,12 @@ enum class ConstrainedEdges : uint8_t {
 // the new tet ids (in the order of `fresh`).
 bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
                   ReplaceScratch& scratch, ConstrainedEdges rule = ConstrainedEdges::kRefuse);
+// Whether replace_tets would succeed, without changing anything (several threads may ask at
+// once, each with its own scratch), with vertex `moved` read at moved_to when that is given (a
+// move tried before it is made). The pool is not looked at.
+bool replacement_fits(const TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
+                      ReplaceScratch& scratch, ConstrainedEdges rule, uint32_t moved = TetMesh::kNone,
+                      const double* moved_to = nullptr);
 // The same, also pointing the new tets' vertices at them in vt.
 bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const std::vector<TetVerts>& fresh,
                   VertexTets& vt, ReplaceScratch& scratch, ConstrainedEdges rule = ConstrainedEdges::kRefuse);

@@ -156,17 +156,14 @@ double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets, const
   return q;
 }
 
-bool collapse_tets(TetMesh& mesh, VertexTets& vt, uint32_t v, uint32_t tv, uint32_t w, bool w_moves,
-                   std::vector<uint32_t>& old, std::vector<TetVerts>& fresh, std::vector<uint32_t>& ball_w) {
-  vertex_ball(mesh, v, tv, old);
+bool collapse_replacement(const TetMesh& mesh, uint32_t v, uint32_t w, const std::vector<uint32_t>* ball_w,
+                          std::vector<uint32_t>& old, std::vector<TetVerts>& fresh) {
   bool adjacent = false;
   for (uint32_t t : old) adjacent |= tet_has_vertex(mesh, t, w);
   if (!adjacent) return false;
-  if (w_moves) {
-    vertex_ball(mesh, w, vt.tet_of(mesh, w), ball_w);
-    for (uint32_t t : ball_w)
+  if (ball_w)
+    for (uint32_t t : *ball_w)
       if (!tet_has_vertex(mesh, t, v)) old.push_back(t);
-  }
   fresh.clear();
   for (uint32_t t : old) {
     TetVerts f;
@@ -181,6 +178,13 @@ bool collapse_tets(TetMesh& mesh, VertexTets& vt, uint32_t v, uint32_t tv, uint3
     fresh.push_back(f);
   }
   return true;
+}
+
+bool collapse_tets(TetMesh& mesh, VertexTets& vt, uint32_t v, uint32_t tv, uint32_t w, bool w_moves,
+                   std::vector<uint32_t>& old, std::vector<TetVerts>& fresh, std::vector<uint32_t>& ball_w) {
+  vertex_ball(mesh, v, tv, old);
+  if (w_moves) vertex_ball(mesh, w, vt.tet_of(mesh, w), ball_w);
+  return collapse_replacement(mesh, v, w, w_moves ? &ball_w : nullptr, old, fresh);
 }
 
 double metric_max_size(const double m[6]) {

@@ -57,6 +57,10 @@ double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets, const
 // hand both to replace_tets.
 bool collapse_tets(TetMesh& mesh, VertexTets& vt, uint32_t v, uint32_t tv, uint32_t w, bool w_moves,
                    std::vector<uint32_t>& old, std::vector<TetVerts>& fresh, std::vector<uint32_t>& ball_w);
+// The same from v's ball, in `old` on entry, and w's when w moves (null otherwise); changes
+// nothing.
+bool collapse_replacement(const TetMesh& mesh, uint32_t v, uint32_t w, const std::vector<uint32_t>* ball_w,
+                          std::vector<uint32_t>& old, std::vector<TetVerts>& fresh);
 
 // The largest size of the metric M, 1 / sqrt(smallest eigenvalue): the Euclidean radius of the
 // unit ball of M (h for I / h^2).

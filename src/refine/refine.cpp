@@ -15,6 +15,7 @@
 #endif
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
@@ -177,6 +178,22 @@ class Refiner {
   }
   size_t collapse_pass(const std::vector<refine_detail::Edge>& edges);
   bool collapse(uint32_t v, uint32_t w, const double q[3]);
+  // A collapse's balls, replacement and replace_tets scratch (one per thread in a trial).
+  struct CollapseScratch {
+    std::vector<uint32_t> old, ball_w;
+    std::vector<meshops::TetVerts> fresh;
+    meshops::ReplaceScratch replace;
+  };
+  // Whether collapse(v, w, q) would be made: v's ball in s.old and, when w moves, w's in
+  // s.ball_w; changes nothing (several threads may ask at once).
+  bool collapse_fits(uint32_t v, uint32_t w, const double q[3], bool moves, CollapseScratch& s) const;
+  // Which of collapse_pass's alternatives for edge e would be made first (0, 1, 2), or none
+  // (kTrialRefused), against the mesh as it is; kTrialUnknown when it cannot tell without the
+  // sequential path (a stale vertex entry, a large ball).
+  static constexpr int kTrialRefused = -1, kTrialUnknown = -2;
+  int collapse_trial(const refine_detail::Edge& e, CollapseScratch& s) const;
+  CollapseScratch collapse_scratch_;
+  std::vector<uint8_t> collapse_changed_;  // per vertex: in a tet a collapse of this pass replaced
   Status check(const char* when) const;
   // check_each_pass: the pass's edge list (update_edges) against a full collection.
   Status check_edge_list(const std::vector<refine_detail::Edge>& edges, size_t edge_count) const;
@@ -234,7 +251,7 @@ class Refiner {
     }
     return true;
   }
-  std::vector<uint32_t> ball_w_, old_, ring_tets_, ring_;
+  std::vector<uint32_t> old_, ring_tets_, ring_;
   // One split pass's candidate midpoints (one per long edge, in length order), and the chosen
   // ones with their edges (one record to read per insertion). split_pass keeps them in locals,
   // so that the first pass's long lists do not stay allocated to the end.
@@ -757,16 +774,8 @@ size_t Refiner::split_pass(std::vector<refine_detail::Edge>& edges) {
   return done;
 }
 
-bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
-  const uint32_t tv = vt_.tet_of(mesh_, v);
-  if (tv == TetMesh::kNone) return false;
-  const double* pw = mesh_.point(w);
-  const bool moves = q[0] != pw[0] || q[1] != pw[1] || q[2] != pw[2];
-  if (!meshops::collapse_tets(mesh_, vt_, v, tv, w, moves, old_, fresh_, ball_w_)) return false;
-  // Try w at q; put it back on failure.
-  const double saved[3] = {pw[0], pw[1], pw[2]};
-  double* xw = &mesh_.xyz[3 * size_t(w)];
-  std::copy_n(q, 3, xw);
+bool Refiner::collapse_fits(uint32_t v, uint32_t w, const double q[3], bool moves, CollapseScratch& s) const {
+  if (!meshops::collapse_replacement(mesh_, v, w, moves ? &s.ball_w : nullptr, s.old, s.fresh)) return false;
   double mq[6];
   if (moves) field_.metric(q, mq);
   else std::copy_n(&metrics_[6 * size_t(w)], 6, mq);
@@ -774,42 +783,90 @@ bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
   // worst one it replaces when that was already below (so that bad regions can still coarsen).
   // Shapes are measured in the metric at q (for an isotropic field: as they are).
   const meshops::MetricMap in_mq = meshops::MetricMap::of(mq);
-  double floor = options_.min_collapse_quality;
-  if (floor > 0.0) {
-    std::copy_n(saved, 3, xw);
-    floor = std::min(floor, meshops::min_quality(mesh_, old_, in_mq));
-    std::copy_n(q, 3, xw);
-  }
   const double max_result =
       anisotropic_ ? options_.anisotropic_max_collapse_result : options_.max_collapse_result;
-  bool ok = true;
-  for (const meshops::TetVerts& f : fresh_) {
-    if (meshops::metric_shape_quality(in_mq, mesh_.point(f[0]), mesh_.point(f[1]), mesh_.point(f[2]),
-                                      mesh_.point(f[3])) < floor) {
-      ok = false;
-      break;
-    }
+  for (const meshops::TetVerts& f : s.fresh)
     for (uint32_t x : f) {
       if (x == w) continue;
       const double* px = mesh_.point(x);
       const double d[3] = {px[0] - q[0], px[1] - q[1], px[2] - q[2]};
       const double len = std::sqrt(metric_norm(mq, d) * metric_norm(&metrics_[6 * size_t(x)], d));
-      if (len > max_result) ok = false;
+      if (len > max_result) return false;
     }
-    if (!ok) break;
+  // Then the shapes (the lengths are cheaper to measure): the floor is the lower of
+  // min_collapse_quality and the worst old tet, measured only when a new tet is below the first.
+  const double bar = options_.min_collapse_quality;
+  double floor = bar;
+  bool floor_known = !(bar > 0.0);
+  auto point = [&](uint32_t x) { return x == w ? q : mesh_.point(x); };  // w at q
+  for (const meshops::TetVerts& f : s.fresh) {
+    const double qf = meshops::metric_shape_quality(in_mq, point(f[0]), point(f[1]), point(f[2]), point(f[3]));
+    if (qf >= bar) continue;
+    if (!floor_known) {
+      floor = std::min(bar, meshops::min_quality(mesh_, s.old, in_mq));  // w still at its place
+      floor_known = true;
+    }
+    if (qf < floor) return false;
   }
-  if (ok) ok = meshops::replace_tets(mesh_, old_, fresh_, vt_, scratch_);
-  if (!ok) {
+  return meshops::replacement_fits(mesh_, s.old, s.fresh, s.replace, meshops::ConstrainedEdges::kRefuse, w, q);
+}
+
+bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
+  const uint32_t tv = vt_.tet_of(mesh_, v);
+  if (tv == TetMesh::kNone) return false;
+  const double* pw = mesh_.point(w);
+  const bool moves = q[0] != pw[0] || q[1] != pw[1] || q[2] != pw[2];
+  CollapseScratch& s = collapse_scratch_;
+  meshops::vertex_ball(mesh_, v, tv, s.old);
+  if (moves) meshops::vertex_ball(mesh_, w, vt_.tet_of(mesh_, w), s.ball_w);
+  if (!collapse_fits(v, w, q, moves, s)) return false;
+  // The tets it changes: their vertices' trials are stale (collapse_pass).
+  for (uint32_t t : s.old)
+    for (int i = 0; i < 4; ++i) collapse_changed_[mesh_.vertex(t, i)] = 1;
+  double* xw = &mesh_.xyz[3 * size_t(w)];
+  const double saved[3] = {xw[0], xw[1], xw[2]};
+  std::copy_n(q, 3, xw);
+  if (!meshops::replace_tets(mesh_, s.old, s.fresh, vt_, scratch_)) {  // collapse_fits said it would
     std::copy_n(saved, 3, xw);
     return false;
   }
   vt_.forget(v);
   if (moves) update_metric(w);
-  for (const meshops::TetVerts& f : fresh_)
+  for (const meshops::TetVerts& f : s.fresh)
     for (uint32_t x : f) touched_[x] = 1;
   note_changed(scratch_.created);
   touched_[v] = 1;
   return true;
+}
+
+int Refiner::collapse_trial(const refine_detail::Edge& e, CollapseScratch& s) const {
+  const uint32_t a = e.a, b = e.b;
+  const uint32_t ta = vt_.known_tet(mesh_, a), tb = vt_.known_tet(mesh_, b);
+  if (ta == TetMesh::kNone || tb == TetMesh::kNone) return kTrialUnknown;
+  // Each alternative of collapse_pass, in its order: v's ball into s.old, w's into s.ball_w when
+  // w moves (balls too large for the unmarked traversal are left to the sequential loop).
+  constexpr size_t kMaxBall = 256;
+  auto fits = [&](uint32_t v, uint32_t tv, uint32_t w, uint32_t tw, const double* q, bool moves, bool& unknown) {
+    if (!meshops::vertex_ball_unmarked(mesh_, v, tv, s.old, kMaxBall) ||
+        (moves && !meshops::vertex_ball_unmarked(mesh_, w, tw, s.ball_w, kMaxBall))) {
+      unknown = true;
+      return false;
+    }
+    return collapse_fits(v, w, q, moves, s);
+  };
+  bool unknown = false;
+  if (fixed(a)) return fits(b, tb, a, ta, mesh_.point(a), false, unknown) ? 0 : unknown ? kTrialUnknown : kTrialRefused;
+  if (fixed(b)) return fits(a, ta, b, tb, mesh_.point(b), false, unknown) ? 0 : unknown ? kTrialUnknown : kTrialRefused;
+  double m[3];
+  metric_midpoint(a, b, m);
+  const double* pb = mesh_.point(b);
+  const bool m_moves = m[0] != pb[0] || m[1] != pb[1] || m[2] != pb[2];
+  if (fits(a, ta, b, tb, m, m_moves, unknown)) return 0;
+  if (unknown) return kTrialUnknown;
+  if (fits(a, ta, b, tb, pb, false, unknown)) return 1;
+  if (unknown) return kTrialUnknown;
+  if (fits(b, tb, a, ta, mesh_.point(a), false, unknown)) return 2;
+  return unknown ? kTrialUnknown : kTrialRefused;
 }
 
 size_t Refiner::collapse_pass(const std::vector<refine_detail::Edge>& edges) {
@@ -820,27 +877,50 @@ size_t Refiner::collapse_pass(const std::vector<refine_detail::Edge>& edges) {
     return x.length != y.length ? x.length < y.length : (x.a != y.a ? x.a < y.a : x.b < y.b);
   });
   touched_.resize(mesh_.num_vertices(), 0);
+  auto skipped = [&](const refine_detail::Edge& e) {
+    return touched_[e.a] || touched_[e.b] || vt_.removed(e.a) || vt_.removed(e.b) || refused_.count(e.key()) != 0;
+  };
+  // Each collapse tried on every core against the mesh as the pass starts (most are refused);
+  // then, in length order, the collapses are made one by one: an edge none of whose ends' tets a
+  // collapse changed meanwhile gets its trial's verdict, the others are tried again. The same
+  // collapses as trying each edge in turn.
+  std::vector<int8_t> trial(shorts.size(), kTrialUnknown);
+  {
+    tbb::enumerable_thread_specific<CollapseScratch> scratches;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, shorts.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+      CollapseScratch& s = scratches.local();
+      for (size_t i = r.begin(); i < r.end(); ++i)
+        if (!skipped(shorts[i])) trial[i] = static_cast<int8_t>(collapse_trial(shorts[i], s));
+    });
+  }
+  collapse_changed_.assign(mesh_.num_vertices(), 0);
   size_t done = 0;
-  for (const refine_detail::Edge& e : shorts) {
+  for (size_t i = 0; i < shorts.size(); ++i) {
+    const refine_detail::Edge& e = shorts[i];
+    if (skipped(e)) continue;
     const uint32_t a = e.a, b = e.b;
-    if (touched_[a] || touched_[b] || vt_.removed(a) || vt_.removed(b)) continue;
-    const uint64_t key = e.key();
-    if (refused_.count(key)) continue;  // refused in an earlier pass: not retried
+    int known = trial[i];
+    if (collapse_changed_[a] || collapse_changed_[b]) known = kTrialUnknown;
     bool ok = false;
-    if (fixed(a)) {
+    if (known == kTrialRefused) {
+      ok = false;
+    } else if (fixed(a)) {
       ok = collapse(b, a, mesh_.point(a));
     } else if (fixed(b)) {
       ok = collapse(a, b, mesh_.point(b));
     } else {
       double m[3];
       metric_midpoint(a, b, m);
-      ok = collapse(a, b, m) || collapse(a, b, mesh_.point(b)) || collapse(b, a, mesh_.point(a));
+      // Alternatives its trial found refused are not made again.
+      const int first = known == kTrialUnknown ? 0 : known;
+      ok = (first <= 0 && collapse(a, b, m)) || (first <= 1 && collapse(a, b, mesh_.point(b))) ||
+           collapse(b, a, mesh_.point(a));
     }
     if (ok) {
       ++done;
     } else {
       ++stats_.collapse_rejected;
-      refused_.insert(key);
+      refused_.insert(e.key());
     }
   }
   return done;

@@ -242,6 +242,75 @@ TEST(MeshOps, ReplaceTetsRefusesInvertedOrOpenResultsAndLeavesMeshAlone) {
   EXPECT_EQ(count_protected_facets(mesh), count_protected_facets(before));
 }
 
+// The ball without marks (what collapse trials use on several threads) is the marked one.
+TEST(MeshOps, UnmarkedBallIsTheBall) {
+  TetMesh mesh = coupled_sphere();
+  ASSERT_TRUE(refine_mesh(mesh, test::ConstantSizing(0.12), RefineOptions{}).ok());
+  meshops::VertexTets vt;
+  vt.build(mesh);
+  const std::vector<uint16_t> flags = mesh.tet_flags;
+  std::vector<uint32_t> marked, unmarked;
+  size_t compared = 0;
+  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
+    const uint32_t t = vt.known_tet(mesh, v);
+    if (t == TetMesh::kNone) continue;
+    meshops::vertex_ball(mesh, v, t, marked);
+    ASSERT_TRUE(meshops::vertex_ball_unmarked(mesh, v, t, unmarked, 256));
+    ASSERT_EQ(marked, unmarked) << "vertex " << v;
+    EXPECT_EQ(meshops::vertex_ball_unmarked(mesh, v, t, unmarked, marked.size() - 1), false);
+    ++compared;
+  }
+  EXPECT_GT(compared, 1000u);
+  EXPECT_EQ(mesh.tet_flags, flags);  // no scratch mark left behind
+}
+
+// replacement_fits says what replace_tets would do, for collapses of every kind of edge with the
+// kept end at its place or moved to the edge's midpoint (a move that may invert tets).
+TEST(MeshOps, ReplacementFitsTellsWhatReplaceTetsDoes) {
+  TetMesh mesh = coupled_sphere();
+  ASSERT_TRUE(refine_mesh(mesh, test::ConstantSizing(0.15), RefineOptions{}).ok());
+  meshops::VertexTets vt;
+  vt.build(mesh);
+  meshops::ReplaceScratch scratch;
+  std::vector<uint32_t> old, ball_w;
+  std::vector<meshops::TetVerts> fresh;
+  size_t fits = 0, refused = 0;
+  for (uint32_t t = 0; t < mesh.num_tet_slots() && fits + refused < 4000; t += 7) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+    const uint32_t v = mesh.vertex(t, 0), w = mesh.vertex(t, 1);
+    for (bool moves : {false, true}) {
+      ASSERT_TRUE(meshops::collapse_tets(mesh, vt, v, vt.tet_of(mesh, v), w, moves, old, fresh, ball_w));
+      double q[3];
+      for (int k = 0; k < 3; ++k) q[k] = moves ? 0.5 * (mesh.point(v)[k] + mesh.point(w)[k]) : mesh.point(w)[k];
+      const bool said = meshops::replacement_fits(mesh, old, fresh, scratch, meshops::ConstrainedEdges::kRefuse, w, q);
+      TetMesh copy = mesh;
+      std::copy_n(q, 3, &copy.xyz[3 * size_t(w)]);
+      meshops::VertexTets copy_vt = vt;
+      EXPECT_EQ(said, meshops::replace_tets(copy, old, fresh, copy_vt, scratch)) << "edge " << v << " " << w;
+      (said ? fits : refused) += 1;
+    }
+  }
+  // Both answers occur (collapses onto S's vertices are refused by the protected facets).
+  EXPECT_GT(fits, 100u);
+  EXPECT_GT(refused, 100u);
+}
+
+// The collapses are tried on every core, then made in order: coarsening gives the same mesh with
+// one thread as with the default.
+TEST(Refine, CoarseningIsTheSameWithOneThreadOrMany) {
+  TetMesh m[2] = {coupled_sphere(), coupled_sphere()};
+  for (int k = 0; k < 2; ++k) {
+    RefineOptions o;
+    ASSERT_TRUE(refine_mesh(m[k], test::ConstantSizing(0.15), o).ok());
+    o.num_threads = k == 0 ? 0 : 1;
+    Result<RefineStats> r = refine_mesh(m[k], test::ConstantSizing(0.4), o);
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    EXPECT_GT(r->collapses, 100u);
+  }
+  EXPECT_EQ(m[0].xyz, m[1].xyz);
+  EXPECT_EQ(m[0].tet_v, m[1].tet_v);
+}
+
 TEST(MeshOps, ShapeQualityOfRegularAndFlatTets) {
   const double a[3] = {1, 1, 1}, b[3] = {1, -1, -1}, c[3] = {-1, 1, -1}, d[3] = {-1, -1, 1};
   EXPECT_NEAR(meshops::radius_ratio(b, a, c, d), 1.0, 1e-12);
