@@ -71,9 +71,14 @@ void keep_regions(TetMesh& mesh, const std::vector<int32_t>& comp, const std::ve
 }
 
 bool set_edge_constrained(TetMesh& mesh, const std::vector<uint32_t>& ball, uint32_t a, uint32_t b, bool on) {
+  return set_edge_constrained(mesh, ball.data(), ball.size(), a, b, on);
+}
+
+bool set_edge_constrained(TetMesh& mesh, const uint32_t* tets, size_t n, uint32_t a, uint32_t b, bool on) {
   bool found = false;
-  for (uint32_t t : ball)
+  for (size_t i = 0; i < n; ++i)
     for (int k = 0; k < 6; ++k) {
+      const uint32_t t = tets[i];
       const uint32_t x = mesh.vertex(t, kEdgeVertex[k][0]), y = mesh.vertex(t, kEdgeVertex[k][1]);
       if (!((x == a && y == b) || (x == b && y == a))) continue;
       found = true;

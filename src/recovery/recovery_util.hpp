@@ -90,6 +90,8 @@ void keep_regions(TetMesh& mesh, const std::vector<int32_t>& comp, const std::ve
 // Sets (or clears) the constrained bit of edge (a b) in every tet of `ball` (tets around a) that
 // has it; false when none has it.
 bool set_edge_constrained(TetMesh& mesh, const std::vector<uint32_t>& ball, uint32_t a, uint32_t b, bool on);
+// The same over the n tets at `tets`.
+bool set_edge_constrained(TetMesh& mesh, const uint32_t* tets, size_t n, uint32_t a, uint32_t b, bool on);
 
 // Live tets that are not ghosts.
 size_t count_live_tets(const TetMesh& mesh);

@@ -10,6 +10,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "core/buckets.hpp"
 #include "core/tet_ops.hpp"
 #include "delaunay/delaunay.hpp"
 #include "predicates/predicates.hpp"
@@ -165,9 +166,34 @@ class SplitRecoverer : public DegeneracyOracle {
   // becomes its vertices' entry in vt_.
   void tets_made(const std::vector<uint32_t>& tets) {
     changed();
-    for (uint32_t t : tets)
+    for (uint32_t t : tets) {
       if (!mesh_.is_ghost(t)) vt_.note(mesh_, t);
+      for (int i = 0; i < 4; ++i)
+        if (const uint32_t x = mesh_.vertex(t, i); x < snap_dirty_.size()) snap_dirty_[x] = 1;
+    }
   }
+  // A snapshot of every vertex's tets, built on every core before a sweep that asks about many
+  // edges or triangles: a vertex none of whose tets changed since (every vertex of a changed tet
+  // is one of a made tet: no vertex goes) reads its tets there instead of walking its ball. In
+  // tet order, not ball order: only for the questions the order does not change (has_edge,
+  // find_facet, mark_edge_constrained).
+  std::vector<uint32_t> snap_start_, snap_tets_, snap_counts_;
+  std::vector<uint8_t> snap_dirty_;  // per vertex of the snapshot: its tets changed since
+  struct TetSpan {
+    const uint32_t* first;
+    size_t count;
+    const uint32_t* begin() const { return first; }
+    const uint32_t* end() const { return first + count; }
+  };
+  TetSpan tets_of(uint32_t v) {
+    if (v < snap_dirty_.size() && !snap_dirty_[v])
+      return {snap_tets_.data() + snap_start_[v], size_t(snap_start_[v + 1] - snap_start_[v])};
+    const std::vector<uint32_t>& b = ball(v);
+    return {b.data(), b.size()};
+  }
+  // Takes the snapshot when `questions` lookups are to come: worth a scan of every tet when they
+  // are more than half the vertices (a ball walk each otherwise).
+  void snapshot_tets(size_t questions);
   std::vector<uint32_t> tet_stamp_;
   uint32_t stamp_ = 0;
   std::vector<std::array<uint32_t, 3>> crossings_;  // split_triangle(): (tet, p, r) per crossing edge
@@ -235,6 +261,10 @@ void SplitRecoverer::remove_tri(uint32_t k) {
 
 void SplitRecoverer::build_constraints() {
   const size_t nf = S_.num_triangles();
+  // (A closed surface has 3/2 edges per triangle; the splits add some.)
+  input_edge_id_.reserve(3 * nf / 2 + 16);
+  edges_.reserve(2 * nf + 16);
+  edge_keys_.reserve(2 * nf + 16);
   for (uint32_t f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = S_.tri[3 * f + k], b = S_.tri[3 * f + (k + 1) % 3];
@@ -389,14 +419,29 @@ const std::vector<uint32_t>& SplitRecoverer::ball(uint32_t v) {
   return ball_;
 }
 
+void SplitRecoverer::snapshot_tets(size_t questions) {
+  const size_t nv = mesh_.num_vertices();
+  if (2 * questions < nv) return;
+  parallel_bucket_by_key(
+      nv, mesh_.num_tet_slots(),
+      [&](size_t first, size_t last, auto&& emit) {
+        for (auto t = uint32_t(first); t < last; ++t)
+          if (!mesh_.is_deleted(t))
+            for (int i = 0; i < 4; ++i)
+              if (const uint32_t x = mesh_.vertex(t, i); x < nv) emit(x, t);
+      },
+      snap_start_, snap_tets_, snap_counts_);
+  snap_dirty_.assign(nv, 0);
+}
+
 bool SplitRecoverer::has_edge(uint32_t a, uint32_t b) {
-  for (uint32_t t : ball(a))
+  for (uint32_t t : tets_of(a))
     if (meshops::tet_has_vertex(mesh_, t, b)) return true;
   return false;
 }
 
 bool SplitRecoverer::find_facet(const Tri& tr, uint32_t& tet, int& facet) {
-  for (uint32_t t : ball(tr[0])) {
+  for (uint32_t t : tets_of(tr[0])) {
     int missing = -1, found = 0;
     for (int i = 0; i < 4; ++i) {
       const uint32_t v = mesh_.vertex(t, i);
@@ -423,7 +468,8 @@ void SplitRecoverer::protect(uint32_t k) {
 }
 
 void SplitRecoverer::mark_edge_constrained(uint32_t a, uint32_t b) {
-  set_edge_constrained(mesh_, ball(a), a, b, true);
+  const TetSpan tets = tets_of(a);
+  set_edge_constrained(mesh_, tets.first, tets.count, a, b, true);
 }
 
 // Marks edge (a b) constrained when it is in the mesh (RecoveryOptions::split_defend_edges).
@@ -1200,6 +1246,7 @@ Status SplitRecoverer::run() {
     // began): their chains are fixed, so a missing one is split.
     size_t missing_edges = 0;
     const size_t n_keys = edge_keys_.size();
+    snapshot_tets(n_keys);
     for (size_t i = 0; i < n_keys; ++i) {
       const uint64_t key = edge_keys_[i];
       CEdge* e = still_open(key, true);
@@ -1230,6 +1277,7 @@ Status SplitRecoverer::run() {
     out_.stats.flips += flips;
     if (opt_.split_face_edges) recover_face_edges(cap);
     // Protect every triangle present, then split the missing ones.
+    snapshot_tets(size_t(std::count(ct_state_.begin(), ct_state_.end(), kMissing)));
     std::vector<uint32_t> missing;
     for (uint32_t k = 0; k < ct_.size(); ++k) {
       if (ct_state_[k] != kMissing) continue;
@@ -1293,6 +1341,7 @@ Status SplitRecoverer::run() {
     out_.s2_patch.push_back(ct_face_[k] < S_.patch.size() ? S_.patch[ct_face_[k]] : 0);
   }
   // Constrained edge bits on every subsegment of an input edge.
+  snapshot_tets(edges_.size());
   for (const auto& [key, e] : edges_)
     if (e.input_edge != kNone) mark_edge_constrained(uint32_t(key >> 32), uint32_t(key & 0xffffffffu));
   out_.input_edges = edge_v_;
