@@ -885,7 +885,7 @@ size_t Refiner::collapse_pass(const std::vector<refine_detail::Edge>& edges) {
   // collapse changed meanwhile gets its trial's verdict, the others are tried again. The same
   // collapses as trying each edge in turn.
   std::vector<int8_t> trial(shorts.size(), kTrialUnknown);
-  {
+  if (options_.collapse_trials) {
     tbb::enumerable_thread_specific<CollapseScratch> scratches;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, shorts.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
       CollapseScratch& s = scratches.local();

@@ -37,6 +37,26 @@ TetMesh coupled_sphere() {
   return c.ok() ? std::move(c->mesh) : TetMesh{};
 }
 
+// Two copies of the coupled sphere refined to `first` (when positive), then to `size` with the
+// default threads (m[0]) and with one thread (m[1]): the same mesh, and more than at_least of
+// `count` in the second refinement.
+void refine_with_one_thread_or_many(TetMesh (&m)[2], double first, double size, size_t RefineStats::*count,
+                                    size_t at_least) {
+  for (int k = 0; k < 2; ++k) {
+    m[k] = coupled_sphere();
+    RefineOptions o;
+    if (first > 0.0) {
+      ASSERT_TRUE(refine_mesh(m[k], test::ConstantSizing(first), o).ok());
+    }
+    o.num_threads = k == 0 ? 0 : 1;
+    Result<RefineStats> r = refine_mesh(m[k], test::ConstantSizing(size), o);
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    EXPECT_GT(r.value().*count, at_least);
+  }
+  EXPECT_EQ(m[0].xyz, m[1].xyz);
+  EXPECT_EQ(m[0].tet_v, m[1].tet_v);
+}
+
 }  // namespace
 
 TEST(Refine, KeepsSurfaceAndValidityAfterEveryPass) {
@@ -116,16 +136,8 @@ TEST(Refine, CollectEdgesMatchesAPlainScan) {
 // The split points are measured in parallel, chosen and inserted in one order: the same mesh
 // with one thread as with the default.
 TEST(Refine, SameMeshWithOneThreadOrMany) {
-  TetMesh m[2] = {coupled_sphere(), coupled_sphere()};
-  for (int k = 0; k < 2; ++k) {
-    RefineOptions o;
-    o.num_threads = k == 0 ? 0 : 1;
-    Result<RefineStats> r = refine_mesh(m[k], test::ConstantSizing(0.1), o);
-    ASSERT_TRUE(r.ok()) << r.status().message();
-    EXPECT_GT(r->splits, 1000u);
-  }
-  EXPECT_EQ(m[0].xyz, m[1].xyz);
-  EXPECT_EQ(m[0].tet_v, m[1].tet_v);
+  TetMesh m[2];
+  refine_with_one_thread_or_many(m, 0.0, 0.1, &RefineStats::splits, 1000);
   RefineOptions bad;
   bad.num_threads = -1;
   EXPECT_EQ(refine_mesh(m[0], test::ConstantSizing(0.1), bad).status().code(), Error::InvalidArgument);
@@ -298,15 +310,25 @@ TEST(MeshOps, ReplacementFitsTellsWhatReplaceTetsDoes) {
 // The collapses are tried on every core, then made in order: coarsening gives the same mesh with
 // one thread as with the default.
 TEST(Refine, CoarseningIsTheSameWithOneThreadOrMany) {
+  TetMesh m[2];
+  refine_with_one_thread_or_many(m, 0.15, 0.4, &RefineStats::collapses, 100);
+}
+
+// The collapse trials (on every core, against the mesh as the pass starts) make the collapses
+// that trying each edge in turn makes.
+TEST(Refine, CollapseTrialsMakeTheCollapsesOneByOneMakes) {
   TetMesh m[2] = {coupled_sphere(), coupled_sphere()};
+  size_t collapses[2] = {0, 0};
   for (int k = 0; k < 2; ++k) {
     RefineOptions o;
     ASSERT_TRUE(refine_mesh(m[k], test::ConstantSizing(0.15), o).ok());
-    o.num_threads = k == 0 ? 0 : 1;
+    o.collapse_trials = k == 0;
     Result<RefineStats> r = refine_mesh(m[k], test::ConstantSizing(0.4), o);
     ASSERT_TRUE(r.ok()) << r.status().message();
-    EXPECT_GT(r->collapses, 100u);
+    collapses[k] = r->collapses;
   }
+  EXPECT_GT(collapses[0], 100u);
+  EXPECT_EQ(collapses[0], collapses[1]);
   EXPECT_EQ(m[0].xyz, m[1].xyz);
   EXPECT_EQ(m[0].tet_v, m[1].tet_v);
 }
