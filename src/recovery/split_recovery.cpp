@@ -261,10 +261,6 @@ void SplitRecoverer::remove_tri(uint32_t k) {
 
 void SplitRecoverer::build_constraints() {
   const size_t nf = S_.num_triangles();
-  // (A closed surface has 3/2 edges per triangle; the splits add some.)
-  input_edge_id_.reserve(3 * nf / 2 + 16);
-  edges_.reserve(2 * nf + 16);
-  edge_keys_.reserve(2 * nf + 16);
   for (uint32_t f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = S_.tri[3 * f + k], b = S_.tri[3 * f + (k + 1) % 3];
