@@ -184,9 +184,9 @@ class Refiner {
     std::vector<meshops::TetVerts> fresh;
     meshops::ReplaceScratch replace;
   };
-  // Whether collapse(v, w, q) would be made: v's ball in s.old and, when w moves, w's in
-  // s.ball_w; changes nothing (several threads may ask at once).
-  bool collapse_fits(uint32_t v, uint32_t w, const double q[3], bool moves, CollapseScratch& s) const;
+  // Whether a collapse onto w, put at q, would be made, its replacement (collapse_tets or
+  // collapse_replacement) in s.old and s.fresh; changes nothing (several threads may ask at once).
+  bool collapse_fits(uint32_t w, const double q[3], bool moves, CollapseScratch& s) const;
   // Which of collapse_pass's alternatives for edge e would be made first (0, 1, 2), or none
   // (kTrialRefused), against the mesh as it is; kTrialUnknown when it cannot tell without the
   // sequential path (a stale vertex entry, a large ball).
@@ -774,8 +774,7 @@ size_t Refiner::split_pass(std::vector<refine_detail::Edge>& edges) {
   return done;
 }
 
-bool Refiner::collapse_fits(uint32_t v, uint32_t w, const double q[3], bool moves, CollapseScratch& s) const {
-  if (!meshops::collapse_replacement(mesh_, v, w, moves ? &s.ball_w : nullptr, s.old, s.fresh)) return false;
+bool Refiner::collapse_fits(uint32_t w, const double q[3], bool moves, CollapseScratch& s) const {
   double mq[6];
   if (moves) field_.metric(q, mq);
   else std::copy_n(&metrics_[6 * size_t(w)], 6, mq);
@@ -817,9 +816,9 @@ bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
   const double* pw = mesh_.point(w);
   const bool moves = q[0] != pw[0] || q[1] != pw[1] || q[2] != pw[2];
   CollapseScratch& s = collapse_scratch_;
-  meshops::vertex_ball(mesh_, v, tv, s.old);
-  if (moves) meshops::vertex_ball(mesh_, w, vt_.tet_of(mesh_, w), s.ball_w);
-  if (!collapse_fits(v, w, q, moves, s)) return false;
+  if (!meshops::collapse_tets(mesh_, vt_, v, tv, w, moves, s.old, s.fresh, s.ball_w) ||
+      !collapse_fits(w, q, moves, s))
+    return false;
   // The tets it changes: their vertices' trials are stale (collapse_pass).
   for (uint32_t t : s.old)
     for (int i = 0; i < 4; ++i) collapse_changed_[mesh_.vertex(t, i)] = 1;
@@ -852,7 +851,8 @@ int Refiner::collapse_trial(const refine_detail::Edge& e, CollapseScratch& s) co
       unknown = true;
       return false;
     }
-    return collapse_fits(v, w, q, moves, s);
+    return meshops::collapse_replacement(mesh_, v, w, moves ? &s.ball_w : nullptr, s.old, s.fresh) &&
+           collapse_fits(w, q, moves, s);
   };
   bool unknown = false;
   if (fixed(a)) return fits(b, tb, a, ta, mesh_.point(a), false, unknown) ? 0 : unknown ? kTrialUnknown : kTrialRefused;
