@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -93,8 +94,9 @@ Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOp
       lo[k] = std::min(lo[k], x);
       hi[k] = std::max(hi[k], x);
     }
-  // Per-triangle size, and the mean edge length for the default voxel size.
+  // Per-triangle size, and the mean and median edge lengths for the default voxel size.
   std::vector<double> tri_size(nt);
+  std::vector<double> edge_lengths(options.voxel_size > 0.0 ? 0 : 3 * nt);
   double edge_sum = 0.0;
   for (size_t t = 0; t < nt; ++t) {
     const uint32_t* f = &surface.tri[3 * t];
@@ -104,10 +106,23 @@ Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOp
     const double l1 = dist(surface.point(f[1]), surface.point(f[2]));
     const double l2 = dist(surface.point(f[2]), surface.point(f[0]));
     edge_sum += l0 + l1 + l2;
+    if (!edge_lengths.empty()) {
+      edge_lengths[3 * t] = l0;
+      edge_lengths[3 * t + 1] = l1;
+      edge_lengths[3 * t + 2] = l2;
+    }
     tri_size[t] = options.triangle_size == TriangleSize::Shortest ? std::min({l0, l1, l2})
                                                                   : (l0 + l1 + l2) / 3.0;
   }
-  double h = options.voxel_size > 0.0 ? options.voxel_size : edge_sum / (3.0 * nt);
+  double h = options.voxel_size;
+  if (!(h > 0.0)) {
+    // The mean edge length, unless a few long edges (needle fans, long CAD strips) make it more
+    // than twice the median: the grid must resolve the sizes of most triangles (adis16480: mean
+    // 3.2 mm, median 0.26 mm; at 3.2 mm its rotated copy got 60% fewer tets than it).
+    auto mid = edge_lengths.begin() + std::ptrdiff_t(edge_lengths.size() / 2);
+    std::nth_element(edge_lengths.begin(), mid, edge_lengths.end());
+    h = std::min(edge_sum / (3.0 * nt), 2.0 * *mid);
+  }
   if (!(h > 0.0)) return Status(Error::InvalidArgument, "the surface has only zero-length edges");
   // Grow the voxel until the lattice fits the memory bound.
   Lattice lat;

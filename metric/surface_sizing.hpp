@@ -39,7 +39,8 @@ struct SurfaceSizingOptions {
   TriangleSize triangle_size = TriangleSize::Shortest;
   Pinning pinning = Pinning::HalfVoxelBand;
   Smoothing smoothing = Smoothing::Laplacian;
-  double voxel_size = 0.0;  // 0: the surface's mean edge length (grown to fit max_voxels)
+  // 0: the surface's mean edge length, at most twice its median one (grown to fit max_voxels)
+  double voxel_size = 0.0;
   int padding = 2;          // voxels added around the surface's bounding box on each side
   double tolerance = 1e-3;  // stop when max |change| < tolerance * mean pinned size
   int max_iterations = 20000;

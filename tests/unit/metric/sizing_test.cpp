@@ -404,6 +404,37 @@ TEST(SurfaceSizing, MemoryBoundGrowsTheVoxel) {
   EXPECT_TRUE(st.converged);
 }
 
+// The default voxel is the mean edge length, but at most twice the median one: adis16480's needle
+// fans (edges of 40 mm beside a median of 0.26 mm) made the mean 3.2 mm, coarser than most of
+// its triangles, and its rotated copy then got 60% fewer tets.
+TEST(SurfaceSizing, DefaultVoxelIsTheMeanEdgeAtMostTwiceTheMedian) {
+  for (const char* name : {"fandisk.off", "adis16480.stl"}) {
+    SCOPED_TRACE(name);
+    Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/" + name);
+    ASSERT_TRUE(s.ok());
+    std::vector<double> lengths;
+    double sum = 0.0;
+    for (size_t t = 0; t < s->num_triangles(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const double* a = s->point(s->tri[3 * t + k]);
+        const double* b = s->point(s->tri[3 * t + (k + 1) % 3]);
+        lengths.push_back(std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+        sum += lengths.back();
+      }
+    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+    const double mean = sum / double(lengths.size()), median = lengths[lengths.size() / 2];
+    SurfaceSizingStats st;
+    ASSERT_TRUE(surface_sizing(s.value(), SurfaceSizingOptions{}, &st).ok());
+    if (std::string(name) == "fandisk.off") {
+      EXPECT_LT(mean, 2.0 * median);
+      EXPECT_NEAR(st.voxel_size, mean, 1e-12 * mean);
+    } else {
+      EXPECT_GT(mean, 10.0 * median);
+      EXPECT_DOUBLE_EQ(st.voxel_size, 2.0 * median);
+    }
+  }
+}
+
 TEST(SurfaceSizing, Errors) {
   SurfaceMesh empty;
   EXPECT_EQ(surface_sizing(empty).status().code(), Error::EmptyInput);
