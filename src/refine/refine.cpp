@@ -186,7 +186,7 @@ class Refiner {
   };
   // Whether a collapse onto w, put at q, would be made, its replacement (collapse_tets or
   // collapse_replacement) in s.old and s.fresh; changes nothing (several threads may ask at once).
-  bool collapse_fits(uint32_t w, const double q[3], bool moves, CollapseScratch& s) const;
+  bool collapse_fits(uint32_t v, uint32_t w, const double q[3], bool moves, CollapseScratch& s) const;
   // Which of collapse_pass's alternatives for edge e would be made first (0, 1, 2), or none
   // (kTrialRefused), against the mesh as it is; kTrialUnknown when it cannot tell without the
   // sequential path (a stale vertex entry, a large ball).
@@ -774,7 +774,7 @@ size_t Refiner::split_pass(std::vector<refine_detail::Edge>& edges) {
   return done;
 }
 
-bool Refiner::collapse_fits(uint32_t w, const double q[3], bool moves, CollapseScratch& s) const {
+bool Refiner::collapse_fits(uint32_t v, uint32_t w, const double q[3], bool moves, CollapseScratch& s) const {
   double mq[6];
   if (moves) field_.metric(q, mq);
   else std::copy_n(&metrics_[6 * size_t(w)], 6, mq);
@@ -784,13 +784,21 @@ bool Refiner::collapse_fits(uint32_t w, const double q[3], bool moves, CollapseS
   const meshops::MetricMap in_mq = meshops::MetricMap::of(mq);
   const double max_result =
       anisotropic_ ? options_.anisotropic_max_collapse_result : options_.max_collapse_result;
+  auto length = [&](const double* p, const double* mp, uint32_t x) {
+    const double* px = mesh_.point(x);
+    const double d[3] = {px[0] - p[0], px[1] - p[1], px[2] - p[2]};
+    return std::sqrt(metric_norm(mp, d) * metric_norm(&metrics_[6 * size_t(x)], d));
+  };
+  const double* mv = &metrics_[6 * size_t(v)];
+  const double* mw = &metrics_[6 * size_t(w)];
+  const bool degenerate = length(mesh_.point(w), mw, v) < options_.degenerate_length;
   for (const meshops::TetVerts& f : s.fresh)
     for (uint32_t x : f) {
       if (x == w) continue;
-      const double* px = mesh_.point(x);
-      const double d[3] = {px[0] - q[0], px[1] - q[1], px[2] - q[2]};
-      const double len = std::sqrt(metric_norm(mq, d) * metric_norm(&metrics_[6 * size_t(x)], d));
-      if (len > max_result) return false;
+      const double len = length(q, mq, x);
+      if (len > max_result &&
+          !(degenerate && len <= std::max(length(mesh_.point(v), mv, x), length(mesh_.point(w), mw, x))))
+        return false;
     }
   // Then the shapes (the lengths are cheaper to measure): the floor is the lower of
   // min_collapse_quality and the worst old tet, measured only when a new tet is below the first.
@@ -817,7 +825,7 @@ bool Refiner::collapse(uint32_t v, uint32_t w, const double q[3]) {
   const bool moves = q[0] != pw[0] || q[1] != pw[1] || q[2] != pw[2];
   CollapseScratch& s = collapse_scratch_;
   if (!meshops::collapse_tets(mesh_, vt_, v, tv, w, moves, s.old, s.fresh, s.ball_w) ||
-      !collapse_fits(w, q, moves, s))
+      !collapse_fits(v, w, q, moves, s))
     return false;
   // The tets it changes: their vertices' trials are stale (collapse_pass).
   for (uint32_t t : s.old)
@@ -852,7 +860,7 @@ int Refiner::collapse_trial(const refine_detail::Edge& e, CollapseScratch& s) co
       return false;
     }
     return meshops::collapse_replacement(mesh_, v, w, moves ? &s.ball_w : nullptr, s.old, s.fresh) &&
-           collapse_fits(w, q, moves, s);
+           collapse_fits(v, w, q, moves, s);
   };
   bool unknown = false;
   if (fixed(a)) return fits(b, tb, a, ta, mesh_.point(a), false, unknown) ? 0 : unknown ? kTrialUnknown : kTrialRefused;

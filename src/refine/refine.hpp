@@ -13,7 +13,10 @@
 //     positive by the exact orient3d, no protected facet is lost, no new edge is longer than
 //     max_collapse_result and no changed tet falls below min_collapse_quality (the shape measure
 //     of refine/mesh_ops.hpp, taken in the metric at the collapse point), or below the worst tet
-//     it replaces when that one was worse.
+//     it replaces when that one was worse. An edge shorter than degenerate_length (points a
+//     recovery put within rounding of each other) may create edges up to the longer of its
+//     ends' old edges to the same vertex instead: next to surface triangles larger than the
+//     size, every edge there is already too long, and such clusters stayed.
 // Anisotropic metrics (some vertex's metric is not a multiple of I): lengths, the metric
 // midpoint, the spacing filter and the collapse shape test all use the tensor, and
 //   - midpoints go in through an anisotropic Delaunay kernel (cavity: the edge's ring grown by
@@ -56,6 +59,9 @@ struct RefineOptions {
   double max_collapse_result = 1.3;    // longest edge a collapse may create (normalized)
   double anisotropic_max_collapse_result = 1.41;  // the same, with an anisotropic metric
   double min_collapse_quality = 0.05;  // lowest meshops::shape_quality a collapse may create
+  // Edges shorter than this (normalized) are collapsed even where max_collapse_result refuses
+  // every new edge, as long as no new edge is longer than the ends' old ones (see the top).
+  double degenerate_length = 0.01;
   int max_passes = 30;
   double stop_fraction = 1e-3;  // stop when a pass changes fewer than this share of the edges
   bool collapse = true;

@@ -169,6 +169,52 @@ TEST(Refine, CoarsensWithoutTouchingSurface) {
   EXPECT_TRUE(st.ok()) << st.message();
 }
 
+// Two free points within rounding of each other (as a recovery leaves on needle fans) where the
+// size is far below every edge: max_collapse_result refuses every collapse there, and the pair
+// stayed. degenerate_length collapses it, creating no edge longer than the ends' old ones.
+TEST(Refine, CollapsesPointsWithinRoundingOfEachOtherWhereEveryEdgeIsTooLong) {
+  for (double degenerate : {0.01, 0.0}) {
+    SCOPED_TRACE(degenerate);
+    TetMesh mesh = coupled_sphere();
+    uint32_t v = 0;
+    while (v < mesh.num_vertices() && (mesh.vflags[v] & vflag::kOnInputSurface)) ++v;
+    ASSERT_LT(v, mesh.num_vertices());
+    const double p[3] = {mesh.point(v)[0] + 1e-9, mesh.point(v)[1], mesh.point(v)[2]};
+    const InsertResult ins = insert_point(mesh, p);
+    ASSERT_TRUE(ins.ok());
+    // The shortest edge at least `above` long.
+    auto shortest_edge = [&](double above) {
+      double shortest = INFINITY;
+      for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
+        if (!mesh.is_deleted(t) && !mesh.is_ghost(t))
+          for (const auto& e : kEdgeVertex) {
+            const double* a = mesh.point(mesh.vertex(t, e[0]));
+            const double* b = mesh.point(mesh.vertex(t, e[1]));
+            const double d = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+            if (d >= above) shortest = std::min(shortest, d);
+          }
+      return shortest;
+    };
+    ASSERT_LT(shortest_edge(0.0), 1e-8);
+    const double before = shortest_edge(1e-8);
+    RefineOptions o;
+    o.split_length = 1e9;  // collapses only
+    o.degenerate_length = degenerate;
+    o.check_each_pass = true;
+    Result<RefineStats> r = refine_mesh(mesh, test::ConstantSizing(0.01), o);  // every other edge ~30
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    if (degenerate > 0.0) {
+      EXPECT_EQ(r->collapses, 1u);
+      EXPECT_GT(shortest_edge(0.0), before - 1e-9);  // the pair is gone, nothing shorter made
+    } else {
+      EXPECT_EQ(r->collapses, 0u);
+      EXPECT_LT(shortest_edge(0.0), 1e-8);
+    }
+    test::expect_surface_kept(test::icosphere(2), mesh, "sphere");
+    EXPECT_TRUE(check_mesh(mesh).ok());
+  }
+}
+
 TEST(Refine, KnightWithSurfaceSizing) {
   Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/decimated-knight.off");
   ASSERT_TRUE(s.ok()) << s.status().message();
