@@ -184,7 +184,7 @@ class Refiner {
     std::vector<meshops::TetVerts> fresh;
     meshops::ReplaceScratch replace;
   };
-  // Whether a collapse onto w, put at q, would be made, its replacement (collapse_tets or
+  // Whether the collapse of v onto w, put at q, would be made, its replacement (collapse_tets or
   // collapse_replacement) in s.old and s.fresh; changes nothing (several threads may ask at once).
   bool collapse_fits(uint32_t v, uint32_t w, const double q[3], bool moves, CollapseScratch& s) const;
   // Which of collapse_pass's alternatives for edge e would be made first (0, 1, 2), or none
@@ -1057,6 +1057,10 @@ Result<RefineStats> Refiner::run() {
 }  // namespace
 
 double metric_size(const double m[6]) {
+  // Isotropic: 1/sqrt(m), correctly rounded, so a surface scaled by a power of two gets sizes
+  // scaled exactly (pow is not, and an ulp moved split points and then whole meshes).
+  if (m[1] == 0.0 && m[3] == 0.0 && m[4] == 0.0 && m[0] == m[2] && m[0] == m[5] && m[0] > 0.0)
+    return 1.0 / std::sqrt(m[0]);
   const double det = m[0] * (m[2] * m[5] - m[4] * m[4]) - m[1] * (m[1] * m[5] - m[4] * m[3]) +
                      m[3] * (m[1] * m[4] - m[2] * m[3]);
   return det > 0.0 ? std::pow(det, -1.0 / 6.0) : 1.0;

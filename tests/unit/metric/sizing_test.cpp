@@ -435,6 +435,35 @@ TEST(SurfaceSizing, DefaultVoxelIsTheMeanEdgeAtMostTwiceTheMedian) {
   }
 }
 
+// Scaled by a power of two, the surface is the same in floating point: the field scales exactly
+// (every size times the factor, at the scaled points), so the mesh does too.
+TEST(SurfaceSizing, FieldScalesExactlyWithAPowerOfTwo) {
+  Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/decimated-knight.off");
+  ASSERT_TRUE(s.ok());
+  for (int e : {-20, 20}) {
+    SCOPED_TRACE(e);
+    SurfaceMesh scaled = s.value();
+    for (double& c : scaled.xyz) c = std::ldexp(c, e);
+    Result<MetricField> a = surface_sizing_field(s.value());
+    Result<MetricField> b = surface_sizing_field(scaled);
+    ASSERT_TRUE(a.ok() && b.ok());
+    EXPECT_EQ(std::ldexp(a->voxel_size(), e), b->voxel_size());
+    MetricField::Sampler sa(a.value()), sb(b.value());
+    size_t differ = 0;
+    for (size_t v = 0; v + 2 < s->num_vertices(); v += 3) {
+      double p[3], q[3], ma[6], mb[6];
+      for (int k = 0; k < 3; ++k) {  // a point between three surface vertices: inside voxels
+        p[k] = (s->point(v)[k] + s->point(v + 1)[k] + s->point(v + 2)[k]) / 3.0;
+        q[k] = std::ldexp(p[k], e);
+      }
+      sa.metric(p, ma);
+      sb.metric(q, mb);
+      differ += std::ldexp(mb[0], 2 * e) != ma[0];
+    }
+    EXPECT_EQ(differ, 0u);
+  }
+}
+
 TEST(SurfaceSizing, Errors) {
   SurfaceMesh empty;
   EXPECT_EQ(surface_sizing(empty).status().code(), Error::EmptyInput);

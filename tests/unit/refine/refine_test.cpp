@@ -215,6 +215,37 @@ TEST(Refine, CollapsesPointsWithinRoundingOfEachOtherWhereEveryEdgeIsTooLong) {
   }
 }
 
+// A size growing along x, for a mesh scaled by `scale`, a power of two: h(scale p) = scale h(p)
+// exactly.
+class GradedAlongX final : public SizingField {
+ public:
+  explicit GradedAlongX(double scale) : scale_(scale) {}
+  void metric(const double p[3], double m[6]) const override {
+    isotropic_metric(scale_ * (0.12 + 0.05 * (p[0] / scale_ + 1.0)), m);
+  }
+
+ private:
+  double scale_;
+};
+
+// Scaled by a power of two, a mesh and its field are the same in floating point: refinement
+// gives the same mesh, scaled (the sizes once came from pow(det M, -1/6), which moved split
+// points by an ulp).
+TEST(Refine, SameMeshScaledByAPowerOfTwo) {
+  for (int e : {-20, 20}) {
+    SCOPED_TRACE(e);
+    TetMesh a = coupled_sphere(), b = coupled_sphere();
+    for (double& c : b.xyz) c = std::ldexp(c, e);
+    ASSERT_TRUE(refine_mesh(a, GradedAlongX(1.0), RefineOptions{}).ok());
+    ASSERT_TRUE(refine_mesh(b, GradedAlongX(std::ldexp(1.0, e)), RefineOptions{}).ok());
+    ASSERT_EQ(a.xyz.size(), b.xyz.size());
+    size_t moved = 0;
+    for (size_t k = 0; k < a.xyz.size(); ++k) moved += std::ldexp(a.xyz[k], e) != b.xyz[k];
+    EXPECT_EQ(moved, 0u);
+    EXPECT_EQ(a.tet_v, b.tet_v);
+  }
+}
+
 TEST(Refine, KnightWithSurfaceSizing) {
   Result<SurfaceMesh> s = read_surface(std::string(ANITET_SURFACES_DIR) + "/decimated-knight.off");
   ASSERT_TRUE(s.ok()) << s.status().message();
