@@ -4,12 +4,13 @@
 # variant at a time), meshed with `anitet mesh` and checked with meshcheck.py against the moved
 # surface (the translated ones after an exact shift back): valid, boundary constrained, volume
 # kept to 1e-9. With the variant `given` first (the default), every other run's tet count is
-# compared with the surface's as given: beyond COUNT_TOL percent (default 5) the run fails. One
-# line per run, then a summary and the largest count deviation.
-# Needs python3-numpy and python3-meshio. Not run by CI (about half an hour on 2 cores).
+# compared with the surface's as given: beyond COUNT_TOL percent (default 5) the run fails; the
+# variants scale2p-20 and scale2p20 (by 2^-20 and 2^20, exact in floating point) must give the
+# given mesh itself, scaled ("exact"). One line per run, then a summary and the largest count
+# deviation. Needs python3-numpy and python3-meshio. Not run by CI (about 45 minutes on 2 cores).
 set -u
-anitet=$(realpath "${1:?usage: run.sh ANITET [given rotate scale1e-4 scale1e4 translate1e6 (default), also scale1e-6 scale1e6]}"); shift
-variants=${*:-given rotate scale1e-4 scale1e4 translate1e6}
+anitet=$(realpath "${1:?usage: run.sh ANITET [given rotate scale1e-4 scale1e4 translate1e6 scale2p-20 scale2p20 (default), also scale1e-6 scale1e6]}"); shift
+variants=${*:-given rotate scale1e-4 scale1e4 translate1e6 scale2p-20 scale2p20}
 count_tol=${COUNT_TOL:-5}
 declare -A given_tets
 here=$(cd "$(dirname "$0")" && pwd)
@@ -53,6 +54,19 @@ print(d["tets"], "ok" if ok else "FAIL", "nonpositive=%d missing=%d steiner_on_S
       worst=$(awk "BEGIN{d = 100 * ($tets / ${given_tets[$f]} - 1); d = d < 0 ? -d : d; printf \"%.1f\", (d > $worst ? d : $worst)}")
       awk "BEGIN{d = 100 * ($tets / ${given_tets[$f]} - 1); exit !(d > $count_tol || d < -$count_tol)}" &&
         verdict="${verdict/ ok / COUNT }"
+    fi
+    # Scaled by a power of two the surface is the same in floating point: the mesh must be the
+    # given one's, scaled exactly (same points in the same order, same tets).
+    if [[ $v == scale2p* && $verdict == *" ok "* ]]; then
+      given_out=$tmp/${f%.*}-given-out.mesh
+      same=$($py -c '
+import sys, meshio, numpy as np
+a, b = meshio.read(sys.argv[1]), meshio.read(sys.argv[2])
+s = 2.0 ** int(sys.argv[3])
+same = a.points.shape == b.points.shape and np.array_equal(a.points * s, b.points) and \
+  np.array_equal(a.cells_dict["tetra"], b.cells_dict["tetra"])
+print("same" if same else "differs")' "$given_out" "$out" "${v#scale2p}" 2>/dev/null)
+      [[ $same == same ]] && verdict="$verdict exact" || verdict="${verdict/ ok / NOT-EXACT }"
     fi
     [[ $rc == 0 && $verdict == *" ok "* ]] || { fail=$((fail + 1)); verdict="$verdict rc=$rc $(head -c 200 "$tmp/log" | tr '\n' ' ')"; }
     printf '%-20s %-13s %8.2f %9s %8s %s\n' "$f" "$v" "$(awk "BEGIN{print $e - $s}")" "$tets" "$dev" "${verdict#* }"

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """transform.py IN OUT.mesh VARIANT: the surface IN moved by VARIANT and written as a Medit .mesh
 with every coordinate in full double precision. VARIANT is given (unmoved), rotate (a random rotation,
-seeded by the file name so reruns match), scale1e-4, scale1e4, scale1e-6, scale1e6 or translate1e6. Exactly equal
+seeded by the file name so reruns match), scale1e-4, scale1e4, scale1e-6, scale1e6, translate1e6, or
+scale2p-20 and scale2p20 (by 2^-20 and 2^20: exact, so the same surface up to scale). Exactly equal
 input points are merged first (STL repeats them per triangle). back1e6 moves a Medit mesh by -1e6 exactly (to
 check a translated result where digits are not lost to cancellation)."""
 import hashlib
@@ -58,6 +59,10 @@ def main():
         points = points * 1e-6
     elif variant == "scale1e6":
         points = points * 1e6
+    elif variant == "scale2p-20":
+        points = points * 2.0**-20
+    elif variant == "scale2p20":
+        points = points * 2.0**20
     elif variant == "translate1e6":
         points = points + 1e6
     else:
