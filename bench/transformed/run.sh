@@ -57,7 +57,7 @@ print(d["tets"], "ok" if ok else "FAIL", "nonpositive=%d missing=%d steiner_on_S
     fi
     # Scaled by a power of two the surface is the same in floating point: the mesh must be the
     # given one's, scaled exactly (same points in the same order, same tets).
-    if [[ $v == scale2p* && $verdict == *" ok "* ]]; then
+    if [[ $v == scale2p* && $verdict == *" ok "* && -n ${given_tets[$f]:-} ]]; then
       given_out=$tmp/${f%.*}-given-out.mesh
       same=$($py -c '
 import sys, meshio, numpy as np
