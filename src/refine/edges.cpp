@@ -12,17 +12,6 @@
 
 namespace anitet::refine_detail {
 
-namespace {
-
-double normalized_length(const TetMesh& mesh, const std::vector<double>& metrics, uint32_t a, uint32_t b) {
-  const double* pa = mesh.point(a);
-  const double* pb = mesh.point(b);
-  const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
-  return std::sqrt(metric_norm(&metrics[6 * size_t(a)], d) * metric_norm(&metrics[6 * size_t(b)], d));
-}
-
-}  // namespace
-
 void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std::vector<Edge>& edges,
                    EdgeScratch& scratch) {
   // Bucketed by the lower end (a counting sort), then deduplicated per bucket: linear in the

@@ -784,20 +784,17 @@ bool Refiner::collapse_fits(uint32_t v, uint32_t w, const double q[3], bool move
   const meshops::MetricMap in_mq = meshops::MetricMap::of(mq);
   const double max_result =
       anisotropic_ ? options_.anisotropic_max_collapse_result : options_.max_collapse_result;
-  auto length = [&](const double* p, const double* mp, uint32_t x) {
-    const double* px = mesh_.point(x);
-    const double d[3] = {px[0] - p[0], px[1] - p[1], px[2] - p[2]};
-    return std::sqrt(metric_norm(mp, d) * metric_norm(&metrics_[6 * size_t(x)], d));
-  };
-  const double* mv = &metrics_[6 * size_t(v)];
-  const double* mw = &metrics_[6 * size_t(w)];
-  const bool degenerate = length(mesh_.point(w), mw, v) < options_.degenerate_length;
+  using refine_detail::normalized_length;
+  const bool degenerate = normalized_length(mesh_, metrics_, w, v) < options_.degenerate_length;
   for (const meshops::TetVerts& f : s.fresh)
     for (uint32_t x : f) {
       if (x == w) continue;
-      const double len = length(q, mq, x);
+      const double* px = mesh_.point(x);
+      const double d[3] = {px[0] - q[0], px[1] - q[1], px[2] - q[2]};
+      const double len = std::sqrt(metric_norm(mq, d) * metric_norm(&metrics_[6 * size_t(x)], d));
       if (len > max_result &&
-          !(degenerate && len <= std::max(length(mesh_.point(v), mv, x), length(mesh_.point(w), mw, x))))
+          !(degenerate && len <= std::max(normalized_length(mesh_, metrics_, v, x),
+                                          normalized_length(mesh_, metrics_, w, x))))
         return false;
     }
   // Then the shapes (the lengths are cheaper to measure): the floor is the lower of
