@@ -6,10 +6,14 @@
 # kept to 1e-9. With the variant `given` first (the default), every other run's tet count is
 # compared with the surface's as given: beyond COUNT_TOL percent (default 5) the run fails; the
 # variants scale2p-20 and scale2p20 (by 2^-20 and 2^20, exact in floating point) must give the
-# given mesh itself, scaled ("exact"). One line per run, then a summary and the largest count
-# deviation. Needs python3-numpy and python3-meshio. Not run by CI (about 45 minutes on 2 cores).
+# given mesh itself, scaled ("exact"). The variants ulp1, ulp2, ... (not in the default list) move
+# every coordinate by at most one ulp, at random: the rounding an inexact transform adds, without
+# the transform, so their counts show how far rounding alone moves a surface's count (say
+# `SURFACES=adis16480.stl run.sh ANITET given ulp1 ulp2 ulp3 ulp4`). One line per run, then a
+# summary and the largest count deviation. Needs python3-numpy and python3-meshio. Not run by CI
+# (about 45 minutes on 2 cores).
 set -u
-anitet=$(realpath "${1:?usage: run.sh ANITET [given rotate scale1e-4 scale1e4 translate1e6 scale2p-20 scale2p20 (default), also scale1e-6 scale1e6]}"); shift
+anitet=$(realpath "${1:?usage: run.sh ANITET [given rotate scale1e-4 scale1e4 translate1e6 scale2p-20 scale2p20 (default), also scale1e-6 scale1e6 ulp1 ulp2 ...]}"); shift
 variants=${*:-given rotate scale1e-4 scale1e4 translate1e6 scale2p-20 scale2p20}
 count_tol=${COUNT_TOL:-5}
 declare -A given_tets

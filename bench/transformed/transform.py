@@ -2,8 +2,10 @@
 """transform.py IN OUT.mesh VARIANT: the surface IN moved by VARIANT and written as a Medit .mesh
 with every coordinate in full double precision. VARIANT is given (unmoved), rotate (a random rotation,
 seeded by the file name so reruns match), scale1e-4, scale1e4, scale1e-6, scale1e6, translate1e6, or
-scale2p-20 and scale2p20 (by 2^-20 and 2^20: exact, so the same surface up to scale). Exactly equal
-input points are merged first (STL repeats them per triangle). back1e6 moves a Medit mesh by -1e6 exactly (to
+scale2p-20 and scale2p20 (by 2^-20 and 2^20: exact, so the same surface up to scale), or ulp1, ulp2, ...
+(every coordinate moved by -1, 0 or +1 ulp at random, seeded by the file name and the number: the
+rounding any inexact transform adds, without the transform). Exactly equal input points are merged
+first (STL repeats them per triangle). back1e6 moves a Medit mesh by -1e6 exactly (to
 check a translated result where digits are not lost to cancellation)."""
 import hashlib
 import os
@@ -65,6 +67,11 @@ def main():
         points = points * 2.0**20
     elif variant == "translate1e6":
         points = points + 1e6
+    elif variant.startswith("ulp") and variant[3:].isdigit():
+        key = os.path.basename(src) + ":" + variant
+        rng = np.random.default_rng(int(hashlib.sha256(key.encode()).hexdigest()[:8], 16))
+        step = rng.integers(-1, 2, size=points.shape)
+        points = np.where(step > 0, np.nextafter(points, np.inf), np.where(step < 0, np.nextafter(points, -np.inf), points))
     else:
         sys.exit("transform.py: unknown variant " + variant)
     to_medit.write_medit(dst, points, tris)
