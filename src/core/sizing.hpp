@@ -62,14 +62,20 @@ inline double metric_norm(const double m[6], const double v[3]) {
   return std::sqrt(std::max(q, 0.0));
 }
 
-// Normalized length of the edge ab: the geometric mean of its length in the metrics at both ends
-// (exact for a size that varies geometrically along the edge, cheap, and symmetric in a and b).
-inline double metric_edge_length(const SizingField& field, const double a[3], const double b[3]) {
+// Normalized length of the edge ab: the geometric mean of its length in the metrics ma at a and
+// mb at b (exact for a size that varies geometrically along the edge, cheap, and symmetric in a
+// and b).
+inline double metric_edge_length(const double ma[6], const double a[3], const double mb[6], const double b[3]) {
   const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  return std::sqrt(metric_norm(ma, e) * metric_norm(mb, e));
+}
+
+// The same with the metrics of `field` at both ends.
+inline double metric_edge_length(const SizingField& field, const double a[3], const double b[3]) {
   double ma[6], mb[6];
   field.metric(a, ma);
   field.metric(b, mb);
-  return std::sqrt(metric_norm(ma, e) * metric_norm(mb, e));
+  return metric_edge_length(ma, a, mb, b);
 }
 
 // Normalized length of ab in one given metric (e.g. the metric at an element's centroid).

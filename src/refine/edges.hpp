@@ -1,7 +1,6 @@
 // The edges of a TetMesh with their normalized lengths (shared by refinement and the reports).
 #pragma once
 
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -16,10 +15,7 @@ namespace anitet::refine_detail {
 // Normalized length of the edge between vertices a and b: sqrt(|e|_Ma * |e|_Mb), with each
 // vertex's metric at metrics[6 v].
 inline double normalized_length(const TetMesh& mesh, const std::vector<double>& metrics, uint32_t a, uint32_t b) {
-  const double* pa = mesh.point(a);
-  const double* pb = mesh.point(b);
-  const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
-  return std::sqrt(metric_norm(&metrics[6 * size_t(a)], d) * metric_norm(&metrics[6 * size_t(b)], d));
+  return metric_edge_length(&metrics[6 * size_t(a)], mesh.point(a), &metrics[6 * size_t(b)], mesh.point(b));
 }
 
 struct Edge {

@@ -634,12 +634,9 @@ void Refiner::choose_splits(std::vector<refine_detail::Edge>& edges, std::vector
   auto vetoed = [&](const refine_detail::Edge* e, const Candidate& c, std::vector<uint32_t>& ring_tets,
                     std::vector<uint32_t>& ring) {
     if (!anisotropic_ && holds_edge(*e) && meshops::edge_ring(mesh_, e->a, e->b, e->tet, ring_tets, ring))
-      for (uint32_t v : ring) {
-        const double* pv = mesh_.point(v);
-        const double d[3] = {pv[0] - c.m[0], pv[1] - c.m[1], pv[2] - c.m[2]};
-        if (std::sqrt(metric_norm(c.mm, d) * metric_norm(&metrics_[6 * size_t(v)], d)) < options_.collapse_length)
+      for (uint32_t v : ring)
+        if (metric_edge_length(c.mm, c.m, &metrics_[6 * size_t(v)], mesh_.point(v)) < options_.collapse_length)
           return true;
-      }
     return too_close_to_protected_facet(c.m, c.mm);
   };
   // The choice, block by block in length order. A block's candidates are first checked on every
@@ -789,9 +786,7 @@ bool Refiner::collapse_fits(uint32_t v, uint32_t w, const double q[3], bool move
   for (const meshops::TetVerts& f : s.fresh)
     for (uint32_t x : f) {
       if (x == w) continue;
-      const double* px = mesh_.point(x);
-      const double d[3] = {px[0] - q[0], px[1] - q[1], px[2] - q[2]};
-      const double len = std::sqrt(metric_norm(mq, d) * metric_norm(&metrics_[6 * size_t(x)], d));
+      const double len = metric_edge_length(mq, q, &metrics_[6 * size_t(x)], mesh_.point(x));
       if (len > max_result &&
           !(degenerate && len <= std::max(normalized_length(mesh_, metrics_, v, x),
                                           normalized_length(mesh_, metrics_, w, x))))
