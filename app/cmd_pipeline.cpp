@@ -20,6 +20,7 @@
 #include "exit_codes.hpp"
 #include "io/file_bytes.hpp"
 #include "io/volume_io.hpp"
+#include "metric/metric_field.hpp"
 #include "metric_options.hpp"
 #include "pipeline/mesher.hpp"
 #include "quality/html_report.hpp"
@@ -110,6 +111,11 @@ int run_mesh_pipeline(MeshArgs& args) {
   if (const int code = check_output_path(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
+  // The OpenVDB module (the sizing field's) opens on another core from here (60-90 ms of
+  // relocations). Not before the checks: their first TBB calls initialize TBB, which opens
+  // libraries too and would wait for the loader's lock.
+  std::optional<metric::VdbModulePreload> preload;
+  if (!(args.no_refine && args.no_optimize) || wants_sizing_field(args.metric)) preload.emplace();
   if (const int code = check_patch_names(args, checked); code != kExitOk) return code;
 
   // --geodetic: the surface to a local frame in metres (validated again there: the checks are

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <new>
+#include <system_error>
 #include <vector>
 
 #include "io/lazy_library.hpp"
@@ -96,6 +98,24 @@ const VdbBackend* vdb_backend(std::string* error) {
 }
 
 const VdbBackend& loaded_vdb_backend() { return *load().backend; }
+
+VdbModulePreload::VdbModulePreload() {
+  try {
+    thread_ = std::thread([] {
+      try {
+        load();
+      } catch (const std::bad_alloc&) {
+        // The first field built tries again and reports it.
+      }
+    });
+  } catch (const std::system_error&) {
+    // Opened by the first field instead.
+  }
+}
+
+VdbModulePreload::~VdbModulePreload() {
+  if (thread_.joinable()) thread_.join();
+}
 
 // ---- Sampler -----------------------------------------------------------------------------------
 

@@ -1,8 +1,8 @@
 // MetricField: a metric tensor field stored sparsely in OpenVDB grids (this header includes none
 // of it). The OpenVDB code lives in a module, libanitet_vdb.so, opened on the first field built
 // or read (vdb_backend.hpp): linked, OpenVDB's 69,000 relocations took 60 ms at every start of
-// every program using the library; the pipeline now pays them on the core that builds the sizing
-// grid while stage 1 runs. Without the module, building or reading a field fails with
+// every program using the library; the pipeline now pays them on a thread of their own while
+// stage 1 runs (VdbModulePreload). Without the module, building or reading a field fails with
 // Error::NotImplemented.
 //
 // Two kinds share one uniform linear transform (voxel size, origin):
@@ -31,6 +31,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "core/sizing.hpp"
 #include "core/status.hpp"
@@ -38,6 +39,22 @@
 
 namespace anitet {
 namespace metric {
+
+// Opens the module on a thread of its own (60-90 ms of relocations on one core), so that a field
+// built later finds it open. Meanwhile the loader's lock is held: a thread's first use of a
+// thread_local with a destructor (glibc's __cxa_thread_atexit_impl) waits for it, which is why
+// the pipeline starts this before stage 1 rather than beside stage 2. Building a field while it
+// runs waits for it; the destructor joins it. Nothing happens when no thread can be had.
+class VdbModulePreload {
+ public:
+  VdbModulePreload();
+  ~VdbModulePreload();
+  VdbModulePreload(const VdbModulePreload&) = delete;
+  VdbModulePreload& operator=(const VdbModulePreload&) = delete;
+
+ private:
+  std::thread thread_;
+};
 
 class MetricField final : public SizingField {
  public:

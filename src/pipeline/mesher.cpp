@@ -7,12 +7,14 @@
 #include <exception>
 #include <new>
 #include <optional>
+#include <system_error>
+#include <thread>
 
-#include <tbb/task_group.h>
 
 #include "core/bvh.hpp"
 #include "core/sizing.hpp"
 #include "metric/boundary_layer.hpp"
+#include "metric/metric_field.hpp"
 
 namespace anitet {
 
@@ -177,6 +179,10 @@ Status check_coordinate_range(const SurfaceMesh& s) {
 Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   const auto start = Clock::now();
   if (Status st = check_coordinate_range(surface); !st.ok()) return st;
+  // The default grid's OpenVDB module opens during stage 1 (see metric::VdbModulePreload; at
+  // once when the caller opened it already).
+  std::optional<metric::VdbModulePreload> preload;
+  if ((options_.run_refine || options_.run_optimize) && !options_.sizing) preload.emplace();
   auto progress = [&](const char* stage, double fraction) -> Status {
     if (options_.progress && !options_.progress(stage, fraction))
       return Status(Error::Cancelled, std::string("cancelled at stage '") + stage + "'");
@@ -192,29 +198,42 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
     return Status(Error::InvalidArgument, "boundary-layer sizing needs a boundary layer (wall patches) with growth above 1");
   if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
   // The default sizing grid needs the surface only: it is built on another core while stage 2
-  // runs on one (armadillo: 0.4 s; on one core, the task runs at the wait). Not during stage 1,
-  // whose plans and improvement passes use both cores (a task holding the second core left them
-  // one).
+  // runs on one (armadillo: 0.4 s). Not during stage 1, whose plans and improvement passes use
+  // both cores. On its own thread, not a TBB task: a TBB thread waiting inside stage 2's parallel
+  // loops may pick a queued task up and run it nested there, so stage 2 waited for the grid (a
+  // cube: 0.09 s of recovery, all of it the module's relocations; armadillo's recovery was slower
+  // on two cores than on one). When no thread can be had, it is built at the wait.
   std::optional<Result<metric::MetricField>> default_grid;
-  tbb::task_group grid_task;
-  struct WaitForGrid {
-    tbb::task_group& group;
-    ~WaitForGrid() { group.wait(); }
-  } wait_for_grid{grid_task};
+  auto build_grid = [&] {
+    // An exception must not leave the thread (std::terminate) nor the wait's destructor.
+    try {
+      default_grid.emplace(metric::surface_sizing_field(surface, options_.surface_sizing));
+    } catch (const std::bad_alloc&) {
+      default_grid.emplace(Status(Error::OutOfMemory, "out of memory"));
+    } catch (const std::exception& e) {
+      default_grid.emplace(Status(Error::Internal, std::string("building it threw: ") + e.what()));
+    }
+  };
+  std::thread grid_thread;
+  struct JoinGrid {
+    std::thread& thread;
+    ~JoinGrid() {
+      if (thread.joinable()) thread.join();
+    }
+  } join_grid{grid_thread};
   bool grid_started = false;
   auto start_grid = [&] {
     if (grid_started || !(options_.run_refine || options_.run_optimize) || options_.sizing) return;
     grid_started = true;
-    grid_task.run([&] {
-      // An exception must not leave the task: the guard above waits in a destructor.
-      try {
-        default_grid.emplace(metric::surface_sizing_field(surface, options_.surface_sizing));
-      } catch (const std::bad_alloc&) {
-        default_grid.emplace(Status(Error::OutOfMemory, "out of memory"));
-      } catch (const std::exception& e) {
-        default_grid.emplace(Status(Error::Internal, std::string("building it threw: ") + e.what()));
-      }
-    });
+    try {
+      grid_thread = std::thread(build_grid);
+    } catch (const std::system_error&) {
+      // Built by wait_for_grid.
+    }
+  };
+  auto wait_for_grid = [&] {
+    if (grid_thread.joinable()) grid_thread.join();
+    if (!default_grid) build_grid();
   };
   // Stages 1 and 2. When stage 2 cannot recover S1, stage 1 is run again with another number of
   // layers (fewer first, down to 1, then more, up to 3): S1 changes shape and its recovery may then
@@ -346,7 +365,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
     std::optional<metric::MetricField> grid;
     if (!field) {
       start_grid();
-      grid_task.wait();
+      wait_for_grid();
       Result<metric::MetricField>& built = *default_grid;
       if (!built.ok()) return Status(built.status().code(), "sizing field: " + built.status().message());
       grid.emplace(std::move(built).value());
