@@ -36,9 +36,12 @@ void bucket_by_key(size_t num_keys, EmitAll&& emit_all, std::vector<Index>& star
 // tasks, each into its own positions of every bucket, range after range: so a bucket lists its
 // items in source order, exactly as bucket_by_key over all sources would, whatever the threads.
 // counts is scratch memory: ranges x num_keys.
-template <class Index, class Value, class EmitRange>
+// Values: a std::vector of any allocator (an UninitVector: sized without being written, then
+// filled here on every core).
+template <class Index, class Values, class EmitRange>
 void parallel_bucket_by_key(size_t num_keys, size_t num_items, EmitRange&& emit_range, std::vector<Index>& start,
-                            std::vector<Value>& values, std::vector<Index>& counts) {
+                            Values& values, std::vector<Index>& counts) {
+  using Value = typename Values::value_type;
   const size_t threads = size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   // (Small inputs: one range, not worth a task; the counts cost ranges x num_keys.)
   const size_t ranges = std::max<size_t>(1, std::min({size_t(8), threads, num_items / 16384}));

@@ -79,7 +79,7 @@ void measure_lengths(const TetMesh& mesh, const SizingField& field, const Refine
   const ScaledSizing scaled(field, options.size_scale > 0.0 ? options.size_scale : 1.0);
   std::vector<double> metrics(6 * mesh.num_vertices());
   for (uint32_t v = 0; v < mesh.num_vertices(); ++v) scaled.metric(mesh.point(v), &metrics[6 * size_t(v)]);
-  std::vector<refine_detail::Edge> edges;
+  refine_detail::EdgeList edges;
   refine_detail::EdgeScratch scratch;
   refine_detail::collect_edges(mesh, metrics, edges, scratch);
   refine_detail::length_summary(edges, options.collapse_length, options.split_length, stats.length_mean,

@@ -12,7 +12,7 @@
 
 namespace anitet::refine_detail {
 
-void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std::vector<Edge>& edges,
+void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, EdgeList& edges,
                    EdgeScratch& scratch) {
   // Bucketed by the lower end (a counting sort), then deduplicated per bucket: linear in the
   // tets, where one global sort of every tet's six edges dominated refinement.
@@ -40,7 +40,7 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
   const uint32_t nt = static_cast<uint32_t>(mesh.num_tet_slots());
   // (The lists are rebuilt: freed before they grow, they are never held twice. Their last
   // copies were the peak of the 1e7-tet run.)
-  if (size_t(6) * nt > scratch.all.capacity()) std::vector<EdgeScratch::Entry>().swap(scratch.all);
+  if (size_t(6) * nt > scratch.all.capacity()) UninitVector<EdgeScratch::Entry>().swap(scratch.all);
   parallel_bucket_by_key(
       nv, nt,
       [&](size_t first, size_t last, auto&& emit) {
@@ -50,7 +50,7 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
       },
       scratch.start, scratch.all, scratch.fill);
   const std::vector<uint32_t>& start = scratch.start;
-  const std::vector<EdgeScratch::Entry>& all = scratch.all;
+  const UninitVector<EdgeScratch::Entry>& all = scratch.all;
   // Duplicates are found within each bucket through a per-thread array holding, per upper end b,
   // the position of (a, b) while bucket a is scanned (kNone otherwise: each bucket clears what it
   // set). In chunks of vertices on every core: a first pass counts each chunk's edges, a second
@@ -83,7 +83,7 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std:
                                   [](uint32_t, const EdgeScratch::Entry&) {});
   });
   for (size_t c = 0; c < chunks; ++c) offset[c + 1] += offset[c];
-  if (offset[chunks] > edges.capacity()) std::vector<Edge>().swap(edges);
+  if (offset[chunks] > edges.capacity()) EdgeList().swap(edges);
   edges.resize(offset[chunks]);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t c = r.begin(); c != r.end(); ++c) {
@@ -145,7 +145,7 @@ EdgeStar edge_star(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, 
 }
 
 void update_edges(const TetMesh& mesh, const std::vector<double>& metrics, const std::vector<uint8_t>& changed,
-                  const EdgeFilter& filter, std::vector<Edge>& previous, EdgeScratch& scratch) {
+                  const EdgeFilter& filter, EdgeList& previous, EdgeScratch& scratch) {
   const uint8_t* ch = changed.data();
   const size_t nt = mesh.num_tet_slots(), nv = mesh.num_vertices();
   constexpr size_t kChunk = 4096;
@@ -160,7 +160,7 @@ void update_edges(const TetMesh& mesh, const std::vector<double>& metrics, const
       if (e.vetoed && !mesh.is_deleted(e.tet) && !ch[e.tet] &&
           edge_star(mesh, e.a, e.b, e.tet, ch).min_changed == TetMesh::kNone)
         vetoed.push_back(e.key());
-    std::vector<Edge>().swap(previous);
+    EdgeList().swap(previous);
     collect_edges(mesh, metrics, previous, scratch);
     mark_vetoed(previous, vetoed, filter.split_length);
     return;
@@ -235,13 +235,13 @@ void update_edges(const TetMesh& mesh, const std::vector<double>& metrics, const
   });
   size_t total = 0;
   for (const std::vector<Edge>& part : parts) total += part.size();
-  std::vector<Edge> next;
+  EdgeList next;
   next.reserve(total);
   for (const std::vector<Edge>& part : parts) next.insert(next.end(), part.begin(), part.end());
   previous.swap(next);
 }
 
-void mark_vetoed(std::vector<Edge>& edges, std::vector<uint64_t>& keys, double split_length) {
+void mark_vetoed(EdgeList& edges, std::vector<uint64_t>& keys, double split_length) {
   if (keys.empty()) return;
   std::sort(keys.begin(), keys.end());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
@@ -263,7 +263,7 @@ size_t live_vertex_count(const TetMesh& mesh) {
   return n;
 }
 
-void length_summary(const std::vector<Edge>& edges, double collapse_length, double split_length, double& mean,
+void length_summary(const EdgeList& edges, double collapse_length, double split_length, double& mean,
                     double& in_range) {
   size_t counted = 0, inside = 0;
   double sum = 0.0;

@@ -9,6 +9,7 @@
 
 #include "core/sizing.hpp"
 #include "core/tet_mesh.hpp"
+#include "core/uninit_vector.hpp"
 
 namespace anitet::refine_detail {
 
@@ -22,10 +23,12 @@ struct Edge {
   uint32_t a, b;         // a < b
   uint32_t tet;          // the live tet of lowest id holding the edge (when collected)
   bool on_surface;       // on a protected facet (an edge of S)
-  bool vetoed = false;   // refinement: its split was vetoed, and no tet around it changed since
+  bool vetoed;           // refinement: its split was vetoed, and no tet around it changed since
   double length;         // normalized: sqrt(|e|_Ma * |e|_Mb)
   uint64_t key() const { return (uint64_t(a) << 32) | b; }
 };
+// (No member initializers: an EdgeList's resize writes nothing, its fill writes every field.)
+using EdgeList = UninitVector<Edge>;
 
 // Working memory of collect_edges, kept between calls (large meshes: page faults dominated).
 struct EdgeScratch {
@@ -36,7 +39,7 @@ struct EdgeScratch {
   };
   std::vector<uint32_t> start;  // per vertex: its bucket's first entry in `all`
   std::vector<uint32_t> fill;   // per chunk of tets and vertex: counts, then fill positions
-  std::vector<Entry> all;
+  UninitVector<Entry> all;  // sized, then filled on every core
   // Per thread: the position of each upper end's edge in the bucket being scanned, else kNone
   // (collect_edges). Kept here, not thread_local, so that the memory goes with the scratch.
   tbb::enumerable_thread_specific<std::vector<uint32_t>> where;
@@ -45,7 +48,7 @@ struct EdgeScratch {
 // Every edge of the live tets once, a < b, grouped by a (ascending); within a group the order
 // follows the tets (deterministic). metrics: 6 per vertex. The mesh must have fewer than 2^31
 // tet slots.
-void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, std::vector<Edge>& edges,
+void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, EdgeList& edges,
                    EdgeScratch& scratch);
 
 // The edges refinement acts on: longer than split_length (split unless on S) or shorter than
@@ -76,17 +79,17 @@ EdgeStar edge_star(const TetMesh& mesh, uint32_t a, uint32_t b, uint32_t start, 
 // followed by the filter (Edge::vetoed aside), in another order; or, when most tets changed,
 // collect_edges's whole list with the vetoes carried. previous is replaced.
 void update_edges(const TetMesh& mesh, const std::vector<double>& metrics, const std::vector<uint8_t>& changed,
-                  const EdgeFilter& filter, std::vector<Edge>& previous, EdgeScratch& scratch);
+                  const EdgeFilter& filter, EdgeList& previous, EdgeScratch& scratch);
 
 // Sets Edge::vetoed on the edges longer than split_length whose key() is in `keys` (sorted here).
-void mark_vetoed(std::vector<Edge>& edges, std::vector<uint64_t>& keys, double split_length);
+void mark_vetoed(EdgeList& edges, std::vector<uint64_t>& keys, double split_length);
 
 // Vertices used by a live tet.
 size_t live_vertex_count(const TetMesh& mesh);
 
 // Mean normalized length of the edges not on a protected facet, and the share of them in
 // [collapse_length, split_length] (1 when there are none).
-void length_summary(const std::vector<Edge>& edges, double collapse_length, double split_length, double& mean,
+void length_summary(const EdgeList& edges, double collapse_length, double split_length, double& mean,
                     double& in_range);
 
 }  // namespace anitet::refine_detail

@@ -164,9 +164,9 @@ class Refiner {
     return meshops::metric_shape_quality(map, mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
                                          mesh_.point(v[3]));
   }
-  size_t split_pass(std::vector<refine_detail::Edge>& edges);
+  size_t split_pass(refine_detail::EdgeList& edges);
   struct Chosen;
-  void choose_splits(std::vector<refine_detail::Edge>& edges, std::vector<Chosen>& chosen,
+  void choose_splits(refine_detail::EdgeList& edges, std::vector<Chosen>& chosen,
                      std::vector<double>& chosen_xyz, double lo[3], double hi[3]);
   // A live tet holding edge e's end a: the tet it was collected from when that still holds both
   // ends, else one of a's tets.
@@ -176,7 +176,7 @@ class Refiner {
   bool holds_edge(const refine_detail::Edge& e) const {
     return meshops::tet_has_vertex(mesh_, e.tet, e.a) && meshops::tet_has_vertex(mesh_, e.tet, e.b);
   }
-  size_t collapse_pass(const std::vector<refine_detail::Edge>& edges);
+  size_t collapse_pass(const refine_detail::EdgeList& edges);
   bool collapse(uint32_t v, uint32_t w, const double q[3]);
   // A collapse's balls, replacement and replace_tets scratch (one per thread in a trial).
   struct CollapseScratch {
@@ -196,7 +196,7 @@ class Refiner {
   std::vector<uint8_t> collapse_changed_;  // per vertex: in a tet a collapse of this pass replaced
   Status check(const char* when) const;
   // check_each_pass: the pass's edge list (update_edges) against a full collection.
-  Status check_edge_list(const std::vector<refine_detail::Edge>& edges, size_t edge_count) const;
+  Status check_edge_list(const refine_detail::EdgeList& edges, size_t edge_count) const;
   refine_detail::EdgeFilter edge_filter() const {
     return {options_.collapse_length, options_.split_length, uint8_t(vflag::kOnInputSurface | vflag::kLocked)};
   }
@@ -583,7 +583,7 @@ size_t Refiner::metric_flip_pass() {
 // the mesh at every point (cold caches, long walks): most of refinement's time.
 // The choice half of split_pass: its lists (88 bytes per long edge and the spacing grid) go
 // when it returns, before the insertions allocate theirs.
-void Refiner::choose_splits(std::vector<refine_detail::Edge>& edges, std::vector<Chosen>& chosen,
+void Refiner::choose_splits(refine_detail::EdgeList& edges, std::vector<Chosen>& chosen,
                             std::vector<double>& chosen_xyz, double lo[3], double hi[3]) {
   const auto choice_start = Clock::now();
   // The long edges by value, sorted on every core: sorting pointers read the edges at random
@@ -591,7 +591,7 @@ void Refiner::choose_splits(std::vector<refine_detail::Edge>& edges, std::vector
   // An edge vetoed in an earlier pass with no tet around it changed since would be vetoed again
   // (the veto reads only its ring and its ends): it is not measured again (armadillo: 78k of
   // the 83k long edges of the last pass).
-  std::vector<refine_detail::Edge> longs;
+  refine_detail::EdgeList longs;
   for (const refine_detail::Edge& e : edges) {
     if (e.on_surface || !(e.length > options_.split_length)) continue;
     if (e.vetoed) ++stats_.split_rejected;
@@ -679,7 +679,7 @@ void Refiner::choose_splits(std::vector<refine_detail::Edge>& edges, std::vector
   stats_.seconds_choice += seconds_since(choice_start);
 }
 
-size_t Refiner::split_pass(std::vector<refine_detail::Edge>& edges) {
+size_t Refiner::split_pass(refine_detail::EdgeList& edges) {
   std::vector<Chosen> chosen;
   std::vector<double> chosen_xyz;  // their points, 3 each, for the Hilbert sort
   double lo[3], hi[3];
@@ -869,8 +869,8 @@ int Refiner::collapse_trial(const refine_detail::Edge& e, CollapseScratch& s) co
   return unknown ? kTrialUnknown : kTrialRefused;
 }
 
-size_t Refiner::collapse_pass(const std::vector<refine_detail::Edge>& edges) {
-  std::vector<refine_detail::Edge> shorts;  // by value, as in split_pass
+size_t Refiner::collapse_pass(const refine_detail::EdgeList& edges) {
+  refine_detail::EdgeList shorts;  // by value, as in split_pass
   for (const refine_detail::Edge& e : edges)
     if (e.length < options_.collapse_length && !(fixed(e.a) && fixed(e.b))) shorts.push_back(e);
   tbb::parallel_sort(shorts.begin(), shorts.end(), [](const refine_detail::Edge& x, const refine_detail::Edge& y) {
@@ -937,16 +937,16 @@ Status Refiner::check(const char* when) const {
   return Status::success();
 }
 
-Status Refiner::check_edge_list(const std::vector<refine_detail::Edge>& edges, size_t edge_count) const {
+Status Refiner::check_edge_list(const refine_detail::EdgeList& edges, size_t edge_count) const {
   if (!options_.check_each_pass) return Status::success();
-  std::vector<refine_detail::Edge> all;
+  refine_detail::EdgeList all;
   refine_detail::EdgeScratch scratch;
   refine_detail::collect_edges(mesh_, metrics_, all, scratch);
   if (all.size() != edge_count)
     return Status(Error::Internal, "refine: " + std::to_string(all.size()) + " edges, counted " +
                                        std::to_string(edge_count));
   const refine_detail::EdgeFilter filter = edge_filter();
-  std::vector<refine_detail::Edge> wanted, listed;
+  refine_detail::EdgeList wanted, listed;
   for (const refine_detail::Edge& e : all)
     if (filter.wanted(mesh_, e.a, e.b, e.length)) wanted.push_back(e);
   for (const refine_detail::Edge& e : edges)
@@ -992,7 +992,7 @@ Result<RefineStats> Refiner::run() {
 
   if (anisotropic_)
     if (Status st = metric_flip_sweeps(5); !st.ok()) return st;
-  std::vector<refine_detail::Edge> edges;
+  refine_detail::EdgeList edges;
   // The mesh's edge count, for the stop rule: every change re-triangulates a ball and keeps the
   // boundary, so V - E + F - T and the boundary faces stay and E changes by dV + dT.
   size_t edges_at_start = 0, vertices_at_start = 0, tets_at_start = 0, edge_count = 0;

@@ -95,7 +95,7 @@ TEST(Refine, CollectEdgesMatchesAPlainScan) {
     const double m[6] = {1 / (h * h), 0, 1 / (h * h), 0, 0, 1 / (h * h)};
     std::copy_n(m, 6, &metrics[6 * size_t(v)]);
   }
-  std::vector<refine_detail::Edge> edges;
+  refine_detail::EdgeList edges;
   refine_detail::EdgeScratch scratch;
   refine_detail::collect_edges(mesh, metrics, edges, scratch);
 
