@@ -78,6 +78,9 @@ std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r)
   rows.emplace_back("stage 2 Steiner points on S1", std::to_string(r.recovery.steiner_on_edges) + " on edges, " +
                                                         std::to_string(r.recovery.steiner_on_faces) + " in faces (" +
                                                         recovery_strategy_name(r.recovery.strategy) + ")");
+  rows.emplace_back("stage 2 time", "Delaunay " + fixed(r.recovery.seconds_delaunay, "%.3f s") + ", recovery " +
+                                        fixed(r.recovery.seconds_recovery, "%.3f s") + ", carving " +
+                                        fixed(r.recovery.seconds_carve, "%.3f s"));
   if (r.boundary_layer.layers > 0)
     rows.emplace_back("boundary layer", std::to_string(r.boundary_layer.layers) + " layers on " +
                                             std::to_string(r.boundary_layer.wall_vertices) + " wall vertices, " +
@@ -286,7 +289,10 @@ int run_mesh_pipeline(MeshArgs& args) {
         {"recovery", {{"steiner_on_s1_edges", r.recovery.steiner_on_edges},
                       {"steiner_on_s1_faces", r.recovery.steiner_on_faces},
                       {"strategy", r.recovery.strategy},
-                      {"strategy_name", recovery_strategy_name(r.recovery.strategy)}}},
+                      {"strategy_name", recovery_strategy_name(r.recovery.strategy)},
+                      {"seconds", {{"delaunay", r.recovery.seconds_delaunay},
+                                   {"recovery", r.recovery.seconds_recovery},
+                                   {"carving", r.recovery.seconds_carve}}}}},
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
         {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"parallel_splits", r.refine.parallel_splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range},
@@ -341,6 +347,8 @@ int run_mesh_pipeline(MeshArgs& args) {
               << r.recovery.steiner_on_faces << " in faces (" << recovery_strategy_name(r.recovery.strategy)
               << "); coupling split " << r.couple.edge_split_tets
               << " T1 tets and re-coned " << r.couple.faces_reconed << " S1 faces\n"
+              << "  stage 2 time: Delaunay " << r.recovery.seconds_delaunay << " s, recovery "
+              << r.recovery.seconds_recovery << " s, carving " << r.recovery.seconds_carve << " s\n"
               << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits (" << r.refine.parallel_splits << " by the slab tasks), "
               << r.refine.collapses << " collapses (" << r.refine.split_rejected << " splits put off, "
               << r.refine.collapse_rejected << " collapses refused); normalized edge length mean " << r.refine.length_mean
