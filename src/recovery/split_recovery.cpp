@@ -10,6 +10,9 @@
 #include <unordered_set>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/buckets.hpp"
 #include "core/tet_ops.hpp"
 #include "delaunay/delaunay.hpp"
@@ -1336,10 +1339,20 @@ Status SplitRecoverer::run() {
     out_.s2_face.push_back(ct_face_[k]);
     out_.s2_patch.push_back(ct_face_[k] < S_.patch.size() ? S_.patch[ct_face_[k]] : 0);
   }
-  // Constrained edge bits on every subsegment of an input edge.
-  snapshot_tets(edges_.size());
-  for (const auto& [key, e] : edges_)
-    if (e.input_edge != kNone) mark_edge_constrained(uint32_t(key >> 32), uint32_t(key & 0xffffffffu));
+  // Constrained edge bits on every subsegment of an input edge: each tet marks its own edges, on
+  // every core (a ball per edge, one edge after the other, took 0.17 s of one core on armadillo).
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, mesh_.num_tet_slots(), 4096),
+                    [&](const tbb::blocked_range<uint32_t>& r) {
+                      for (uint32_t t = r.begin(); t != r.end(); ++t) {
+                        if (mesh_.is_deleted(t)) continue;
+                        for (int k = 0; k < 6; ++k) {
+                          const auto it = edges_.find(
+                              edge_key(mesh_.vertex(t, kEdgeVertex[k][0]), mesh_.vertex(t, kEdgeVertex[k][1])));
+                          if (it != edges_.end() && it->second.input_edge != kNone)
+                            mesh_.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
+                        }
+                      }
+                    });
   out_.input_edges = edge_v_;
   out_.stats.seconds_recovery = seconds_since(t1);
   const auto t2 = Clock::now();
