@@ -10,7 +10,6 @@
 #include <system_error>
 #include <thread>
 
-
 #include "core/bvh.hpp"
 #include "core/sizing.hpp"
 #include "metric/boundary_layer.hpp"
@@ -199,10 +198,9 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
   // The default sizing grid needs the surface only: it is built on another core while stage 2
   // runs on one (armadillo: 0.4 s). Not during stage 1, whose plans and improvement passes use
-  // both cores. On its own thread, not a TBB task: a TBB thread waiting inside stage 2's parallel
-  // loops may pick a queued task up and run it nested there, so stage 2 waited for the grid (a
-  // cube: 0.09 s of recovery, all of it the module's relocations; armadillo's recovery was slower
-  // on two cores than on one). When no thread can be had, it is built at the wait.
+  // both cores. On a thread of its own rather than as a TBB task, so that no TBB wait inside
+  // stage 2's parallel loops can take the task up and run it nested there (stage 2 would then wait
+  // for the grid). When no thread can be had, it is built at the wait.
   std::optional<Result<metric::MetricField>> default_grid;
   auto build_grid = [&] {
     // An exception must not leave the thread (std::terminate) nor the wait's destructor.
