@@ -10,6 +10,7 @@
 // DelaunayOptions::partitions). Then, on the random cube, anitet with 1 and 2 threads (same
 // mesh, bit for bit) and with partitions = 1 (one point at a time), alternated, best of the
 // repeats: `speedup_2_threads: X` (1 thread over 2) and `speedup_vs_one_at_a_time: Y`.
+// Built with the command-line tool's allocator (huge pages for large blocks; see CMakeLists.txt).
 // The machines are shared and noisy: compare ratios, not times.
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
