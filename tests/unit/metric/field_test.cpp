@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <thread>
@@ -60,6 +61,29 @@ TEST(MetricField, ConstantSizeIsExact) {
     random_point(rng, lat, 0.5, p);  // also outside: clamped
     f->metric(p, m);
     for (int c = 0; c < 6; ++c) ASSERT_EQ(m[c], want[c]);
+  }
+}
+
+// Fields built on two threads while the module is being opened by a third (the pipeline's
+// order: VdbModulePreload, then the grid) all succeed and are the same field.
+TEST(VdbModulePreload, FieldsBuiltWhileItRunsAreTheSame) {
+  const Lattice lat = size_lattice(12, 0.1, [](const double* p) { return 0.2 + 0.05 * p[0]; });
+  std::optional<Result<MetricField>> a, b;
+  {
+    VdbModulePreload preload;
+    std::thread other([&] { b.emplace(MetricField::from_lattice(lat)); });
+    a.emplace(MetricField::from_lattice(lat));
+    other.join();
+  }
+  ASSERT_TRUE(a->ok()) << a->status().message();
+  ASSERT_TRUE(b->ok()) << b->status().message();
+  std::mt19937_64 rng(7);
+  for (int n = 0; n < 100; ++n) {
+    double p[3], ma[6], mb[6];
+    random_point(rng, lat, 0.0, p);
+    a->value().metric(p, ma);
+    b->value().metric(p, mb);
+    for (int c = 0; c < 6; ++c) ASSERT_EQ(ma[c], mb[c]);
   }
 }
 
