@@ -24,16 +24,13 @@ void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
     });
   };
   // Every used vertex's rank along a Hilbert curve through the mesh's box.
-  std::vector<std::atomic<uint8_t>> used_flag(nv);
+  std::vector<std::atomic<uint8_t>> used(nv);  // (atomic: tets sharing a vertex mark it at once)
   for_range(slots, [&](size_t t) {
     if (!mesh.is_deleted(uint32_t(t)))
       for (int i = 0; i < 4; ++i)
         if (mesh.vertex(uint32_t(t), i) != TetMesh::kGhost)
-          used_flag[mesh.vertex(uint32_t(t), i)].store(1, std::memory_order_relaxed);
+          used[mesh.vertex(uint32_t(t), i)].store(1, std::memory_order_relaxed);
   });
-  std::vector<uint8_t> used(nv);
-  for_range(nv, [&](size_t v) { used[v] = used_flag[v].load(std::memory_order_relaxed); });
-  std::vector<std::atomic<uint8_t>>().swap(used_flag);
   std::vector<uint32_t> curve;
   for (uint32_t v = 0; v < nv; ++v)
     if (used[v]) curve.push_back(v);
