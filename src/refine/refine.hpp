@@ -11,7 +11,8 @@
 //     the midpoint when neither is on S, the free end onto the other when one is (a vertex of S
 //     never moves and is never removed). A collapse is applied only when every changed tet is
 //     positive by the exact orient3d, no protected facet is lost, no new edge is longer than
-//     max_collapse_result and no changed tet falls below min_collapse_quality (the shape measure
+//     max_collapse_result (or, to a vertex of S, than that vertex's longest edge of S, which
+//     nothing shortens) and no changed tet falls below min_collapse_quality (the shape measure
 //     of refine/mesh_ops.hpp, taken in the metric at the collapse point), or below the worst tet
 //     it replaces when that one was worse. An edge shorter than degenerate_length (points a
 //     recovery put within rounding of each other) may create edges up to the longer of its
