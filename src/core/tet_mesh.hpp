@@ -43,6 +43,9 @@ namespace tflag {
 constexpr uint16_t kFacetProtectedMask = 0x000f;
 constexpr uint16_t kEdgeConstrainedShift = 4;
 constexpr uint16_t kEdgeConstrainedMask = 0x03f0;
+// The bit of a tet's edge k (kEdgeVertex order): a constrained edge, which no flip or cavity
+// removes (a subsegment of an input edge).
+constexpr uint16_t edge_constrained_bit(int k) { return uint16_t(1u << (kEdgeConstrainedShift + k)); }
 constexpr uint16_t kScratchMask = 0x7c00;  // transient marks of a running algorithm
 constexpr uint16_t kDeleted = 1u << 15;
 }  // namespace tflag
@@ -91,6 +94,11 @@ class TetMesh {
     tet_adj[4 * size_t(n) + j] = 4 * uint64_t(t) + uint64_t(i);
   }
   bool facet_protected(uint32_t t, int i) const { return (tet_flags[t] >> i) & 1u; }
+  bool edge_constrained(uint32_t t, int k) const { return (tet_flags[t] & tflag::edge_constrained_bit(k)) != 0; }
+  void set_edge_constrained(uint32_t t, int k, bool on) {
+    if (on) tet_flags[t] |= tflag::edge_constrained_bit(k);
+    else tet_flags[t] &= uint16_t(~tflag::edge_constrained_bit(k));
+  }
   void set_facet_protected(uint32_t t, int i, bool on) {
     if (on) tet_flags[t] |= uint16_t(1u << i);
     else tet_flags[t] &= uint16_t(~(1u << i));

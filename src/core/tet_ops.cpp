@@ -168,7 +168,7 @@ bool fresh_tets_fit(const TetMesh& mesh, const std::vector<uint32_t>& old_tets, 
     if (!(mesh.tet_flags[t] & tflag::kEdgeConstrainedMask)) continue;
     if (rule == ConstrainedEdges::kRefuse) return false;
     for (int k = 0; k < 6; ++k)
-      if ((mesh.tet_flags[t] >> (tflag::kEdgeConstrainedShift + k)) & 1u)
+      if (mesh.edge_constrained(t, k))
         constrained.push_back(pair_key(mesh.vertex(t, kEdgeVertex[k][0]), mesh.vertex(t, kEdgeVertex[k][1])));
   }
   auto point = [&](uint32_t x) { return moved_to && x == moved ? moved_to : mesh.point(x); };
@@ -287,7 +287,7 @@ bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const st
     for (int k = 0; k < 6 && !constrained.empty(); ++k)
       if (std::binary_search(constrained.begin(), constrained.end(),
                              pair_key(v[kEdgeVertex[k][0]], v[kEdgeVertex[k][1]])))
-        mesh.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
+        mesh.set_edge_constrained(t, k, true);
     created.push_back(t);
   }
   for (size_t k = 0; k < facets.size(); k += 2) {

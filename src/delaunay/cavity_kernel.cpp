@@ -549,7 +549,7 @@ bool CavityKernel::defend_constrained_edges(uint32_t t0, uint32_t pid) {
     const uint16_t f = store_->flags(c);
     if (!(f & tflag::kEdgeConstrainedMask)) continue;
     for (int k = 0; k < 6 && marks_.get(c) == TetMarks::kIn; ++k) {
-      if (!((f >> (tflag::kEdgeConstrainedShift + k)) & 1u)) continue;
+      if (!(f & tflag::edge_constrained_bit(k))) continue;
       const uint32_t* cv = store_->verts(c);
       const uint32_t a = cv[kEdgeVertex[k][0]], b = cv[kEdgeVertex[k][1]];
       // Walk around edge ab: leave each tet through the facet (a b y) opposite its vertex x.
@@ -688,8 +688,8 @@ void CavityKernel::fill_cavity(uint32_t pid, bool carry) {
           const int k1 = (k0 + 1) % 3;
           const int c0 = kFacetVertex[b.cfacet][(k0 + b.rot) % 3];
           const int c1 = kFacetVertex[b.cfacet][(k1 + b.rot) % 3];
-          if ((b.cflags >> (tflag::kEdgeConstrainedShift + kEdgeIndex[c0][c1])) & 1u)
-            flags |= static_cast<uint16_t>(1u << (tflag::kEdgeConstrainedShift + kEdgeIndex[slot[k0]][slot[k1]]));
+          if (b.cflags & tflag::edge_constrained_bit(kEdgeIndex[c0][c1]))
+            flags |= tflag::edge_constrained_bit(kEdgeIndex[slot[k0]][slot[k1]]);
         }
       }
     }

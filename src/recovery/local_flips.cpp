@@ -81,8 +81,7 @@ bool remove_edge(TetMesh& mesh, const EdgeRing& ring, const uint32_t* want, int 
   for (uint32_t t : ring.tets) {
     for (int k = 0; k < 6; ++k) {
       const uint32_t a = mesh.vertex(t, kEdgeVertex[k][0]), b = mesh.vertex(t, kEdgeVertex[k][1]);
-      if (pair_key(a, b) == pair_key(ring.p, ring.q) &&
-          ((mesh.tet_flags[t] >> (tflag::kEdgeConstrainedShift + k)) & 1u))
+      if (pair_key(a, b) == pair_key(ring.p, ring.q) && mesh.edge_constrained(t, k))
         return false;
     }
     for (int i = 0; i < 4; ++i) {

@@ -82,9 +82,7 @@ bool set_edge_constrained(TetMesh& mesh, const uint32_t* tets, size_t n, uint32_
       const uint32_t x = mesh.vertex(t, kEdgeVertex[k][0]), y = mesh.vertex(t, kEdgeVertex[k][1]);
       if (!((x == a && y == b) || (x == b && y == a))) continue;
       found = true;
-      const auto bit = uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
-      if (on) mesh.tet_flags[t] |= bit;
-      else mesh.tet_flags[t] &= uint16_t(~bit);
+      mesh.set_edge_constrained(t, k, on);
     }
   return found;
 }

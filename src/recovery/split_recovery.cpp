@@ -1349,7 +1349,7 @@ Status SplitRecoverer::run() {
                           const auto it = edges_.find(
                               edge_key(mesh_.vertex(t, kEdgeVertex[k][0]), mesh_.vertex(t, kEdgeVertex[k][1])));
                           if (it != edges_.end() && it->second.input_edge != kNone)
-                            mesh_.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
+                            mesh_.set_edge_constrained(t, k, true);
                         }
                       }
                     });

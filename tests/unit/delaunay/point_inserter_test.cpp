@@ -270,7 +270,7 @@ TEST(PointInserter, ForcedKeepNeverDestroysAConstrainedEdge) {
       for (int k = 0; k < 6; ++k) {
         const uint32_t x = mesh.vertex(t, kEdgeVertex[k][0]), y = mesh.vertex(t, kEdgeVertex[k][1]);
         if ((x == a && y == b) || (x == b && y == a))
-          mesh.tet_flags[t] = uint16_t(mesh.tet_flags[t] | (1u << (tflag::kEdgeConstrainedShift + k)));
+          mesh.set_edge_constrained(t, k, true);
       }
     // Near the edge's middle, inside t0.
     double p[3];
@@ -328,7 +328,7 @@ TEST(PointInserter, EarlyRefusalNeverChangesTheOutcome) {
         for (int k = 0; k < 6; ++k) {
           const uint32_t x = a.vertex(t, kEdgeVertex[k][0]), y = a.vertex(t, kEdgeVertex[k][1]);
           if ((x == u && y == w) || (x == w && y == u))
-            a.tet_flags[t] = uint16_t(a.tet_flags[t] | (1u << (tflag::kEdgeConstrainedShift + k)));
+            a.set_edge_constrained(t, k, true);
         }
     }
     TetMesh b = a;
@@ -492,7 +492,7 @@ TEST_F(ProtectedWall, WallSurvivesRandomInsertions) {
     mesh_.tet_region[t] = centroid_z(t) < 2.0 ? 1 : 2;
     for (int e = 0; e < 6; ++e)  // every edge lying in the wall is constrained, in every tet
       if (on_wall(t, kEdgeVertex[e][0]) && on_wall(t, kEdgeVertex[e][1]))
-        mesh_.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + e));
+        mesh_.set_edge_constrained(t, e, true);
   }
   PointInserter inserter(mesh_, 5);
   std::mt19937_64 rng(21);
@@ -520,7 +520,7 @@ TEST_F(ProtectedWall, WallSurvivesRandomInsertions) {
     ASSERT_EQ(mesh_.tet_region[t], centroid_z(t) < 2.0 ? 1 : 2) << "tet " << t << " crossed the wall";
     for (int e = 0; e < 6; ++e) {
       const bool in_wall = on_wall(t, kEdgeVertex[e][0]) && on_wall(t, kEdgeVertex[e][1]);
-      ASSERT_EQ(in_wall, bool((mesh_.tet_flags[t] >> (tflag::kEdgeConstrainedShift + e)) & 1u))
+      ASSERT_EQ(in_wall, mesh_.edge_constrained(t, e))
           << "edge " << e << " of tet " << t;
     }
   }

@@ -302,8 +302,8 @@ TEST(RecoveryKernel, ConstrainedEdgeSurvivesInsertions) {
         const uint32_t x = m.vertex(t, kEdgeVertex[k][0]), y = m.vertex(t, kEdgeVertex[k][1]);
         if ((x == a && y == b) || (x == b && y == a)) {
           found = true;
-          if (check) EXPECT_TRUE((m.tet_flags[t] >> (tflag::kEdgeConstrainedShift + k)) & 1u);
-          else m.tet_flags[t] |= uint16_t(1u << (tflag::kEdgeConstrainedShift + k));
+          if (check) EXPECT_TRUE(m.edge_constrained(t, k));
+          else m.set_edge_constrained(t, k, true);
         }
       }
     }
