@@ -277,7 +277,9 @@ class Refiner {
   // added later are not on S: 0).
   std::vector<double> longest_s_edge_;
   void measure_s_edges();
-  double longest_s_edge(uint32_t v) const { return v < longest_s_edge_.size() ? longest_s_edge_[v] : 0.0; }
+  double longest_s_edge(uint32_t v) const {
+    return options_.collapse_to_s_edge_length && v < longest_s_edge_.size() ? longest_s_edge_[v] : 0.0;
+  }
 };
 
 // The tets refinement will make, about: each tet's volume over that of the regular tet whose
@@ -805,8 +807,8 @@ bool Refiner::collapse_fits(uint32_t v, uint32_t w, const double q[3], bool move
   const meshops::MetricMap in_mq = meshops::MetricMap::of(mq);
   const double max_result =
       anisotropic_ ? options_.anisotropic_max_collapse_result : options_.max_collapse_result;
-  // A new edge to a vertex of S may be as long as that vertex's longest edge of S, which no
-  // split shortens: beside sliver triangles of S every collapse otherwise made such an edge
+  // An edge from w to a vertex x of S may be as long as x's longest edge of S, which no split
+  // shortens (collapse_to_s_edge_length): beside sliver triangles of S every collapse otherwise made such an edge
   // and was refused, and the recovery's Steiner points stayed (adis16480: 137k refusals, 141k
   // tets out of refinement; the tet count then moved by 8% with the input's rounding).
   using refine_detail::normalized_length;

@@ -11,8 +11,8 @@
 //     the midpoint when neither is on S, the free end onto the other when one is (a vertex of S
 //     never moves and is never removed). A collapse is applied only when every changed tet is
 //     positive by the exact orient3d, no protected facet is lost, no new edge is longer than
-//     max_collapse_result (or, to a vertex of S, than that vertex's longest edge of S, which
-//     nothing shortens) and no changed tet falls below min_collapse_quality (the shape measure
+//     max_collapse_result (or, from the kept point to a vertex of S, than that vertex's longest
+//     edge of S, which nothing shortens) and no changed tet falls below min_collapse_quality (the shape measure
 //     of refine/mesh_ops.hpp, taken in the metric at the collapse point), or below the worst tet
 //     it replaces when that one was worse. An edge shorter than degenerate_length (points a
 //     recovery put within rounding of each other) may create edges up to the longer of its
@@ -63,6 +63,10 @@ struct RefineOptions {
   // Edges shorter than this (normalized) are collapsed even where max_collapse_result refuses
   // every new edge, as long as no new edge is longer than the ends' old ones (see the top).
   double degenerate_length = 0.01;
+  // A collapse may make an edge from its kept point to a vertex x of S as long as x's longest
+  // edge of S (which no split shortens), beyond max_collapse_result. false: max_collapse_result
+  // for every edge (as before 4ca970c).
+  bool collapse_to_s_edge_length = true;
   int max_passes = 30;
   double stop_fraction = 1e-3;  // stop when a pass changes fewer than this share of the edges
   bool collapse = true;
