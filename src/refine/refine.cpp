@@ -778,21 +778,19 @@ size_t Refiner::split_pass(refine_detail::EdgeList& edges) {
   return done;
 }
 
+// From index_protected_facets' list (each protected facet once): those with all three vertices
+// on S are S's triangles.
 void Refiner::measure_s_edges() {
   longest_s_edge_.assign(mesh_.num_vertices(), 0.0);
   auto on_s = [&](uint32_t v) { return (mesh_.vflags[v] & vflag::kOnInputSurface) != 0; };
-  for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
-    if (mesh_.is_deleted(t)) continue;
-    for (int i = 0; i < 4; ++i) {
-      const int* f = kFacetVertex[i];
-      const uint32_t fv[3] = {mesh_.vertex(t, f[0]), mesh_.vertex(t, f[1]), mesh_.vertex(t, f[2])};
-      if (!mesh_.facet_protected(t, i) || !on_s(fv[0]) || !on_s(fv[1]) || !on_s(fv[2])) continue;
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t a = fv[k], b = fv[(k + 1) % 3];
-        const double len = refine_detail::normalized_length(mesh_, metrics_, a, b);
-        longest_s_edge_[a] = std::max(longest_s_edge_[a], len);
-        longest_s_edge_[b] = std::max(longest_s_edge_[b], len);
-      }
+  for (size_t f = 0; f < facet_tri_.size(); f += 3) {
+    const uint32_t* fv = &facet_tri_[f];
+    if (!on_s(fv[0]) || !on_s(fv[1]) || !on_s(fv[2])) continue;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = fv[k], b = fv[(k + 1) % 3];
+      const double len = refine_detail::normalized_length(mesh_, metrics_, a, b);
+      longest_s_edge_[a] = std::max(longest_s_edge_[a], len);
+      longest_s_edge_[b] = std::max(longest_s_edge_[b], len);
     }
   }
 }
@@ -808,9 +806,9 @@ bool Refiner::collapse_fits(uint32_t v, uint32_t w, const double q[3], bool move
   const double max_result =
       anisotropic_ ? options_.anisotropic_max_collapse_result : options_.max_collapse_result;
   // An edge from w to a vertex x of S may be as long as x's longest edge of S, which no split
-  // shortens (collapse_to_s_edge_length): beside sliver triangles of S every collapse otherwise made such an edge
-  // and was refused, and the recovery's Steiner points stayed (adis16480: 137k refusals, 141k
-  // tets out of refinement; the tet count then moved by 8% with the input's rounding).
+  // shortens (collapse_to_s_edge_length): beside sliver triangles of S every collapse otherwise
+  // made such an edge and was refused, and the recovery's Steiner points stayed (adis16480: 137k
+  // refusals, 141k tets out of refinement; the tet count then moved by 8% with the rounding).
   using refine_detail::normalized_length;
   const bool degenerate = normalized_length(mesh_, metrics_, w, v) < options_.degenerate_length;
   for (const meshops::TetVerts& f : s.fresh)

@@ -12,12 +12,13 @@
 //     never moves and is never removed). A collapse is applied only when every changed tet is
 //     positive by the exact orient3d, no protected facet is lost, no new edge is longer than
 //     max_collapse_result (or, from the kept point to a vertex of S, than that vertex's longest
-//     edge of S, which nothing shortens) and no changed tet falls below min_collapse_quality (the shape measure
-//     of refine/mesh_ops.hpp, taken in the metric at the collapse point), or below the worst tet
-//     it replaces when that one was worse. An edge shorter than degenerate_length (points a
-//     recovery put within rounding of each other) may create edges up to the longer of its
-//     ends' old edges to the same vertex instead: next to surface triangles larger than the
-//     size, every edge there is already too long, and such clusters stayed.
+//     edge of S, which nothing shortens) and no changed tet falls below min_collapse_quality
+//     (the shape measure of refine/mesh_ops.hpp, taken in the metric at the collapse point), or
+//     below the worst tet it replaces when that one was worse. An edge shorter than
+//     degenerate_length (points a recovery put within rounding of each other) may create edges
+//     up to the longer of its ends' old edges to the same vertex instead: next to surface
+//     triangles larger than the size, every edge there is already too long, and such clusters
+//     stayed.
 // Anisotropic metrics (some vertex's metric is not a multiple of I): lengths, the metric
 // midpoint, the spacing filter and the collapse shape test all use the tensor, and
 //   - midpoints go in through an anisotropic Delaunay kernel (cavity: the edge's ring grown by
