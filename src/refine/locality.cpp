@@ -73,10 +73,21 @@ void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
   std::vector<uint32_t> new_tet(slots, TetMesh::kNone);
   for_range(order.size(), [&](size_t k) { new_tet[order[k]] = static_cast<uint32_t>(k); });
   const size_t nt = order.size();
-  std::vector<uint32_t> tet_v(4 * nt);
-  std::vector<uint64_t> tet_adj(4 * nt);
-  std::vector<uint16_t> tet_flags(nt);
-  std::vector<int32_t> tet_region(nt);
+  // A sixteenth more room: the optimizer's flips take new slots right after this, and growing
+  // the arrays then copied all of them to fresh pages (armadillo: 278 MB, first touched).
+  const size_t room = nt + nt / 16;
+  std::vector<uint32_t> tet_v;
+  std::vector<uint64_t> tet_adj;
+  std::vector<uint16_t> tet_flags;
+  std::vector<int32_t> tet_region;
+  tet_v.reserve(4 * room);
+  tet_adj.reserve(4 * room);
+  tet_flags.reserve(room);
+  tet_region.reserve(room);
+  tet_v.resize(4 * nt);
+  tet_adj.resize(4 * nt);
+  tet_flags.resize(nt);
+  tet_region.resize(nt);
   for_range(nt, [&](size_t k) {
     const uint32_t t = order[k];
     for (int i = 0; i < 4; ++i) {
