@@ -106,7 +106,7 @@ struct FlipContext {
   size_t flips23 = 0, edge_removals = 0;
   const Quality* quality = &Quality::euclidean();
   FlipMemo memo{};
-  // flip_sweep() runs its first round on two tasks when it has at least this many tets to try.
+  // flip_sweep() runs a round on two tasks when it has at least this many tets to try.
   size_t parallel_min = 4096;
   // Inside one of those tasks (set by flip_sweep): the task may read and change only the tets
   // whose four vertices have side[v] == me; an attempt that needs another tet (or more slots
@@ -178,7 +178,7 @@ std::vector<uint32_t> tets_below(const TetMesh& m, double quality, const Quality
                                  FlipMemo* memo = nullptr);
 // Tries edge removals then 2-3 flips on every live tet below `quality`, then for at most
 // `rounds` - 1 more rounds on the new tets still below it. Returns the number of flips. With at
-// least c.parallel_min tets to try, the first round runs on two tasks, one per side of the median
+// least c.parallel_min tets to try, a round runs on two tasks, one per side of the median
 // plane across the vertices' longest extent, each on the tets all of whose vertices lie on its
 // side (they read and change disjoint tets; slots from pools of their own), then the tets left
 // (across the plane, or whose flip needed a tet across it) in slot order. The result depends on
