@@ -17,55 +17,91 @@ namespace anitet {
 
 namespace quality_detail {
 
-Stats make_stats(std::vector<double> values) {
+namespace {
+
+// The statistics of values[i] for the i that keep(i) says, without copying them: a pass for the
+// count, extremes and the mean (a Neumaier sum in index order), then the 1st percentile's two
+// order statistics from a histogram of the values and a selection among the few in their bins
+// (a copy of every value and nth_element over it was most of this; the figures are the same).
+template <class Keep>
+Stats stats_kept(const std::vector<double>& values, Keep&& keep) {
   Stats s;
-  s.count = values.size();
-  if (values.empty()) return s;
-  // Neumaier summation: the mean stays accurate for millions of values.
   double sum = 0.0, comp = 0.0;
-  s.min = values[0];
-  s.max = values[0];
-  for (double x : values) {
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!keep(i)) continue;
+    const double x = values[i];
+    if (s.count++ == 0) s.min = s.max = x;
     const double t = sum + x;
     comp += std::fabs(sum) >= std::fabs(x) ? (sum - t) + x : (x - t) + sum;
     sum = t;
     s.min = std::min(s.min, x);
     s.max = std::max(s.max, x);
   }
-  s.mean = (sum + comp) / double(values.size());
+  if (s.count == 0) return s;
+  s.mean = (sum + comp) / double(s.count);
   // numpy.percentile's default ("linear"): interpolate between ranks floor(q) and floor(q) + 1.
-  const double rank = 0.01 * double(values.size() - 1);
+  const double rank = 0.01 * double(s.count - 1);
   const size_t lo = static_cast<size_t>(std::floor(rank));
   const double frac = rank - double(lo);
-  std::nth_element(values.begin(), values.begin() + lo, values.end());
-  const double a = values[lo];
+  const size_t hi = std::min(lo + 1, s.count - 1);
+  // Bins over [min, max]: x <= y gives bin(x) <= bin(y) ((x - min) * scale is monotone).
+  constexpr size_t kBins = 4096;
+  const double scale = s.max > s.min ? double(kBins) / (s.max - s.min) : 0.0;
+  auto bin = [&](double x) {
+    const double u = (x - s.min) * scale;
+    return u >= double(kBins - 1) ? kBins - 1 : u > 0.0 ? static_cast<size_t>(u) : size_t(0);
+  };
+  std::vector<size_t> count(kBins, 0);
+  for (size_t i = 0; i < values.size(); ++i)
+    if (keep(i)) ++count[bin(values[i])];
+  size_t below = 0, first = 0;  // values in bins before `first`; first: the bin of rank lo
+  while (below + count[first] <= lo) below += count[first++];
+  size_t last = first, upto = below + count[first];  // last: the bin of rank hi
+  while (upto <= hi) upto += count[++last];
+  std::vector<double> near;
+  near.reserve(upto - below);
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!keep(i)) continue;
+    const size_t k = bin(values[i]);
+    if (k >= first && k <= last) near.push_back(values[i]);
+  }
+  const size_t at = lo - below;
+  std::nth_element(near.begin(), near.begin() + long(at), near.end());
+  const double a = near[at];
   double b = a;
-  if (lo + 1 < values.size()) b = *std::min_element(values.begin() + lo + 1, values.end());
+  if (at + 1 < near.size()) b = *std::min_element(near.begin() + long(at) + 1, near.end());
   s.p01 = frac >= 0.5 ? b - (b - a) * (1.0 - frac) : a + (b - a) * frac;
   return s;
 }
 
+}  // namespace
+
+Stats make_stats(const std::vector<double>& values) {
+  return stats_kept(values, [](size_t) { return true; });
+}
+
+Stats make_stats_where(const std::vector<double>& values, const std::vector<uint8_t>& select, uint8_t value) {
+  return stats_kept(values, [&](size_t i) { return select[i] == value; });
+}
+
 QualitySplit split_quality(const TetData& data, const std::vector<uint8_t>& select, uint8_t value) {
   QualitySplit q;
-  std::vector<double> rr, mr;
   double dmin = 180.0;
   size_t good = 0, bad = 0;
   for (size_t t = 0; t < select.size(); ++t) {
     if (select[t] != value) continue;
     const double r = data.radius_ratio[t];
-    rr.push_back(r);
-    mr.push_back(data.mean_ratio[t]);
+    ++q.tets;
     dmin = std::min(dmin, data.min_dihedral[t]);
     good += r > 0.4;
     bad += r < 0.1;
   }
-  q.tets = rr.size();
   if (q.tets == 0) return q;
   q.min_dihedral_deg = dmin;
   q.good_fraction = double(good) / double(q.tets);
   q.bad_fraction = double(bad) / double(q.tets);
-  q.radius_ratio = make_stats(std::move(rr));
-  q.mean_ratio = make_stats(std::move(mr));
+  q.radius_ratio = make_stats_where(data.radius_ratio, select, value);
+  q.mean_ratio = make_stats_where(data.mean_ratio, select, value);
   return q;
 }
 

@@ -14,8 +14,10 @@ struct TetData {
   std::vector<int8_t> orient;  // exact orient3d sign; 2: positive, not certified in doubles
 };
 
-// Statistics of the values (taken by value: the percentile reorders them). Empty gives zeros.
-Stats make_stats(std::vector<double> values);
+// Statistics of the values. Empty gives zeros.
+Stats make_stats(const std::vector<double>& values);
+// The same of the values[i] whose select[i] == value (in index order).
+Stats make_stats_where(const std::vector<double>& values, const std::vector<uint8_t>& select, uint8_t value);
 
 // Quality of the tets whose select flag is set.
 QualitySplit split_quality(const TetData& data, const std::vector<uint8_t>& select, uint8_t value);
