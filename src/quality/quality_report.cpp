@@ -156,14 +156,16 @@ TetData measure_tets(const VolumeMesh& mesh, bool parallel) {
       const uint32_t* v = &mesh.tet[4 * t];
       const double *a = mesh.point(v[0]), *b = mesh.point(v[1]), *c = mesh.point(v[2]),
                    *e = mesh.point(v[3]);
-      const int o = predicates::orient3d(a, b, c, e);
+      // A certified sign is the exact one: the exact predicate only for the uncertified.
+      const int certified = predicates::orient3d_certified(a, b, c, e);
+      const int o = certified != 0 ? certified : predicates::orient3d(a, b, c, e);
       TetMeasures m = tet_measures(a, b, c, e);
       if (o == 0) {  // exactly flat: the float volume is rounding noise
         m.radius_ratio = 0.0;
         m.mean_ratio = 0.0;
       }
       // 2: positive, but a double evaluation of the volume could find it zero or negative.
-      d.orient[t] = static_cast<int8_t>(o > 0 && predicates::orient3d_certified(a, b, c, e) <= 0 ? 2 : o);
+      d.orient[t] = static_cast<int8_t>(o > 0 && certified <= 0 ? 2 : o);
       d.volume[t] = m.volume;
       d.radius_ratio[t] = m.radius_ratio;
       d.mean_ratio[t] = m.mean_ratio;
