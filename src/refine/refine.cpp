@@ -41,7 +41,8 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 // meshops::metric_max_size) sits at the level whose cell is at least 2 r_q, and two points p, q
 // conflict when their distance is below `spacing` in both metrics M_p and M_q (isotropic:
 // closer than spacing * min(h_p, h_q)). The radii bound the Euclidean extent of those balls, so
-// a conflicting q lies within half a cell of p on every axis: in the 2x2x2 cells around p.
+// a conflicting q lies within min(r_p, half a cell) of p on every axis: in the 2x2x2 cells
+// around p at most.
 class SpacingGrid {
  public:
   SpacingGrid(const double origin[3], double base) : base_(base) { std::copy_n(origin, 3, origin_); }
@@ -50,12 +51,19 @@ class SpacingGrid {
     for (int level = 0; level < kLevels; ++level) {
       if (!(levels_used_ & (1u << level))) continue;
       const double cell = std::ldexp(base_, level);
-      int64_t c[3];
-      for (int k = 0; k < 3; ++k) c[k] = static_cast<int64_t>(std::floor((p[k] - origin_[k]) / cell - 0.5));
-      for (int dx = 0; dx <= 1; ++dx)
-        for (int dy = 0; dy <= 1; ++dy)
-          for (int dz = 0; dz <= 1; ++dz) {
-            for (uint32_t q = cells_.find(key(level, c[0] + dx, c[1] + dy, c[2] + dz)); q != kEnd; q = next_[q]) {
+      // A conflicting q is closer than min(r, r_q) <= min(r, cell / 2) on every axis: only the
+      // cells that box meets (the 2x2x2 around p at most; at the levels of points larger than
+      // p, mostly one).
+      const double w = std::min(r, 0.5 * cell) * (1.0 + 1e-9);  // (a margin for rounding)
+      int64_t lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = static_cast<int64_t>(std::floor((p[k] - origin_[k] - w) / cell));
+        hi[k] = static_cast<int64_t>(std::floor((p[k] - origin_[k] + w) / cell));
+      }
+      for (int64_t cx = lo[0]; cx <= hi[0]; ++cx)
+        for (int64_t cy = lo[1]; cy <= hi[1]; ++cy)
+          for (int64_t cz = lo[2]; cz <= hi[2]; ++cz) {
+            for (uint32_t q = cells_.find(key(level, cx, cy, cz)); q != kEnd; q = next_[q]) {
               const double* x = pts_[q].x;
               const double d2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
                                 (x[2] - p[2]) * (x[2] - p[2]);
