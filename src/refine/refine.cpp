@@ -282,12 +282,10 @@ class Refiner {
   RefineStats stats_;
   size_t protected_facets_ = 0;
   // Per vertex of S: the normalized length of its longest edge of S (measure_s_edges; vertices
-  // added later are not on S: 0).
+  // added later are not on S: 0). Empty without collapse_to_s_edge_length.
   std::vector<double> longest_s_edge_;
   void measure_s_edges();
-  double longest_s_edge(uint32_t v) const {
-    return options_.collapse_to_s_edge_length && v < longest_s_edge_.size() ? longest_s_edge_[v] : 0.0;
-  }
+  double longest_s_edge(uint32_t v) const { return v < longest_s_edge_.size() ? longest_s_edge_[v] : 0.0; }
 };
 
 // The tets refinement will make, about: each tet's volume over that of the regular tet whose
@@ -1021,7 +1019,8 @@ Result<RefineStats> Refiner::run() {
     anisotropic_ |= !meshops::MetricMap::of(&metrics_[6 * size_t(v)]).identity;
   }
   protected_facets_ = count_protected_facets(mesh_);
-  measure_s_edges();
+  // (Without collapse_to_s_edge_length the list stays empty: every vertex reads 0.)
+  if (options_.collapse_to_s_edge_length) measure_s_edges();
   reserve_for_refinement();
   stats_.vertices_before = refine_detail::live_vertex_count(mesh_);
   stats_.tets_before = mesh_.num_live_tets();
