@@ -4,14 +4,16 @@
 // costs a fault when first touched; on the paravirtualized machines here those faults were a
 // fifth of armadillo's run (22.9 and 27.0 s against 18.9 and 19.3 s with this file, run
 // alternately; glibc's glibc.malloc.hugetlb=1 tunable gave 18.2 and 23.9 s; the same meshes).
-// Peak memory grows a little (armadillo 585 -> 646 MB): whole huge pages.
 //
-// Freed blocks of 2 MiB and more are kept for reuse (a request of up to 1.5 times smaller takes
-// one): first touches of fresh huge pages cost about 0.4 ms per MiB here (the kernel zeroes
-// them), and each refinement pass and the report free and allocate again arrays of the same
-// sizes (armadillo: 975 huge-page faults per run, 695 with the cache, 0.3-0.8 s less). The cache
-// holds at most 256 MiB, and never so much that cached and live blocks together exceed the
-// largest total the live ones have reached: the peak memory stays what it was.
+// They come from one reserved range of address space (an arena), in whole 2 MiB pages, and a
+// freed block stays in it, resident, for any later request it can hold (split, or merged with
+// its free neighbours): a first touch of a fresh huge page costs about 0.8 ms here (the kernel
+// zeroes it), and the refinement's passes, the optimizer and the report free and allocate again
+// arrays of ever new sizes (keeping only blocks of about the same size for reuse, as before,
+// still left armadillo 640-740 huge-page faults per run). Free blocks are handed back to the
+// kernel (madvise MADV_DONTNEED, the range kept) whenever live and free blocks together would
+// exceed the largest total the live ones have reached: the peak memory stays what it was. When
+// the range cannot be reserved or is full, blocks come from aligned_alloc as before.
 //
 // Only the executable replaces the global operator new: the library (and so the C ABI and the
 // Python binding) leaves allocation to its host. Not under the sanitizers, whose own operator new
@@ -28,8 +30,10 @@
 #if defined(__linux__) && !defined(ANITET_SANITIZED)
 
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -39,99 +43,182 @@
 namespace {
 
 constexpr std::size_t kHugePage = std::size_t(1) << 21;
-constexpr std::size_t kCacheCap = std::size_t(256) << 20;
 
-struct Block {
-  void* p;
-  std::size_t size;
+// A run of whole huge pages of the arena, as page indices from its base.
+struct Run {
+  std::size_t first, pages;
+  bool resident;  // touched since the kernel last had it back (counts towards the peak)
 };
 
-// The blocks of 2 MiB and more, live and cached, in fixed tables (no allocation under the lock:
-// operator new must not call itself). A block the live table has no room for is not cached.
-class HugeBlocks {
+// The arena: a reserved range (MAP_NORESERVE: no memory until touched), used from the bottom up
+// to `top_`; live blocks' sizes in a page-indexed table, free runs in an address-ordered table.
+// Fixed tables only: operator new must not call itself under the lock.
+class Arena {
  public:
-  // A cached block of at least `size` bytes and at most 1.5 times as many (the smallest), or null.
-  void* reuse(std::size_t size) {
+  // A block of `pages` huge pages, or null (no arena, or no room: the caller falls back).
+  void* allocate(std::size_t pages) {
     std::lock_guard<std::mutex> hold(lock_);
-    std::size_t best = cached_n_;
-    for (std::size_t i = 0; i < cached_n_; ++i)
-      if (cached_[i].size >= size && cached_[i].size <= size + size / 2 &&
-          (best == cached_n_ || cached_[i].size < cached_[best].size))
-        best = i;
-    if (best == cached_n_ || live_n_ == kLive) return nullptr;
-    const Block b = cached_[best];
-    std::copy(cached_ + best + 1, cached_ + cached_n_, cached_ + best);
-    --cached_n_;
-    cached_bytes_ -= b.size;
-    add_live(b);
-    return b.p;
-  }
-  // A fresh block of `size` bytes: the cache first gives back what would raise the peak.
-  void* fresh(std::size_t size) {
-    std::unique_lock<std::mutex> hold(lock_);
-    const std::size_t live_after = live_bytes_ + size;
-    const std::size_t peak = std::max(peak_live_, live_after);
-    evict_while([&] { return live_after + cached_bytes_ > peak; });
-    hold.unlock();
-    void* p = std::aligned_alloc(kHugePage, size);
-    if (p == nullptr) return nullptr;
-    madvise(p, size, MADV_HUGEPAGE);  // advice only: a refusal leaves ordinary pages
-    hold.lock();
-    if (live_n_ < kLive) add_live({p, size});
-    return p;
-  }
-  // Whether p was a live block here (then it is cached or freed).
-  bool release(void* p) {
-    std::lock_guard<std::mutex> hold(lock_);
-    for (std::size_t i = live_n_; i-- > 0;) {
-      if (live_[i].p != p) continue;
-      const Block b = live_[i];
-      live_[i] = live_[--live_n_];
-      live_bytes_ -= b.size;
-      if (cached_n_ == kCached) evict_while([&] { return cached_n_ == kCached; });
-      cached_[cached_n_++] = b;
-      cached_bytes_ += b.size;
-      evict_while([&] { return cached_bytes_ > kCacheCap; });
-      return true;
+    if (!reserved() || pages > kMaxBlockPages) return nullptr;
+    std::size_t first = 0;
+    const std::size_t best = best_fit(pages);
+    if (best < free_n_) {
+      Run& r = free_[best];
+      first = r.first;
+      if (r.resident) free_resident_ -= pages;
+      r.first += pages;
+      r.pages -= pages;
+      if (r.pages == 0) erase(best);
+    } else if (free_n_ > 0 && free_[free_n_ - 1].first + free_[free_n_ - 1].pages == top_) {
+      // The free run at the top grows into fresh pages (a growing array's usual pattern).
+      const Run r = free_[free_n_ - 1];
+      if (r.first + pages > capacity_) return nullptr;
+      if (r.resident) free_resident_ -= r.pages;
+      erase(free_n_ - 1);
+      first = r.first;
+      top_ = first + pages;
+    } else {
+      if (top_ + pages > capacity_) return nullptr;
+      first = top_;
+      top_ += pages;
     }
-    return false;
+    block_pages_[first] = static_cast<std::uint32_t>(pages);
+    live_ += pages;
+    peak_ = std::max(peak_, live_);
+    give_back_above_peak();
+    return base_ + first * kHugePage;
+  }
+  // Lock-free: the range is set once (a block freed here was allocated after that).
+  bool owns(const void* p) const {
+    const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(p);
+    return at >= begin_.load(std::memory_order_acquire) && at < end_.load(std::memory_order_acquire);
+  }
+  void release(void* p) {
+    std::lock_guard<std::mutex> hold(lock_);
+    const std::size_t first = std::size_t(static_cast<char*>(p) - base_) / kHugePage;
+    const std::size_t pages = block_pages_[first];
+    block_pages_[first] = 0;
+    live_ -= pages;
+    insert({first, pages, true});
+    free_resident_ += pages;
   }
 
  private:
-  static constexpr std::size_t kLive = 4096, kCached = 256;
-  void add_live(const Block& b) {
-    live_[live_n_++] = b;
-    live_bytes_ += b.size;
-    peak_live_ = std::max(peak_live_, live_bytes_);
+  static constexpr std::size_t kMaxRuns = 4096;
+  static constexpr std::size_t kMaxBlockPages = std::size_t(1) << 31;
+
+  // Reserves the range on first use: twice the machine's memory (at most 1 TiB), and the table
+  // of block sizes, one entry per page (both untouched until used).
+  bool reserved() {
+    if (base_ != nullptr || tried_) return base_ != nullptr;
+    tried_ = true;
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    std::size_t bytes = pages > 0 && page > 0 ? 2 * std::size_t(pages) * std::size_t(page) : std::size_t(64) << 30;
+    bytes = std::min(bytes, std::size_t(1) << 40);
+    const std::size_t huge_pages = bytes / kHugePage;
+    if (huge_pages == 0) return false;
+    void* table = mmap(nullptr, huge_pages * sizeof(std::uint32_t), PROT_READ | PROT_WRITE,
+                       MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (table == MAP_FAILED) return false;
+    // One page more, to start on a huge-page boundary.
+    void* range = mmap(nullptr, bytes + kHugePage, PROT_READ | PROT_WRITE,
+                       MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (range == MAP_FAILED) {
+      munmap(table, huge_pages * sizeof(std::uint32_t));
+      return false;
+    }
+    const std::uintptr_t at = (reinterpret_cast<std::uintptr_t>(range) + kHugePage - 1) & ~(kHugePage - 1);
+    madvise(range, bytes + kHugePage, MADV_HUGEPAGE);  // advice only: a refusal leaves ordinary pages
+    block_pages_ = static_cast<std::uint32_t*>(table);
+    base_ = reinterpret_cast<char*>(at);
+    capacity_ = huge_pages;
+    end_.store(at + huge_pages * kHugePage, std::memory_order_release);
+    begin_.store(at, std::memory_order_release);
+    return true;
   }
-  // Frees the oldest cached blocks while `more` says so.
-  template <class F>
-  void evict_while(F&& more) {
-    while (cached_n_ > 0 && more()) {
-      std::free(cached_[0].p);
-      cached_bytes_ -= cached_[0].size;
-      std::copy(cached_ + 1, cached_ + cached_n_, cached_);
-      --cached_n_;
+  // The free run to take `pages` from: the smallest resident one that holds them, else the
+  // smallest one; free_n_ when none does.
+  std::size_t best_fit(std::size_t pages) const {
+    std::size_t best = free_n_;
+    for (std::size_t i = 0; i < free_n_; ++i) {
+      const Run& r = free_[i];
+      if (r.pages < pages) continue;
+      if (best == free_n_ || (r.resident && !free_[best].resident) ||
+          (r.resident == free_[best].resident && r.pages < free_[best].pages))
+        best = i;
+    }
+    return best;
+  }
+  // Adds a free run, merged with free neighbours of the same residency.
+  void insert(Run run) {
+    std::size_t at = 0;
+    while (at < free_n_ && free_[at].first < run.first) ++at;
+    if (at < free_n_ && free_[at].resident == run.resident && run.first + run.pages == free_[at].first) {
+      run.pages += free_[at].pages;
+      erase(at);
+    }
+    if (at > 0 && free_[at - 1].resident == run.resident && free_[at - 1].first + free_[at - 1].pages == run.first) {
+      free_[at - 1].pages += run.pages;
+      return;
+    }
+    if (free_n_ == kMaxRuns) {  // no room to remember it: the kernel has its pages back, the range is lost
+      if (run.resident) {
+        madvise(base_ + run.first * kHugePage, run.pages * kHugePage, MADV_DONTNEED);
+        free_resident_ -= run.pages;
+      }
+      return;
+    }
+    std::copy_backward(free_ + at, free_ + free_n_, free_ + free_n_ + 1);
+    free_[at] = run;
+    ++free_n_;
+  }
+  void erase(std::size_t i) {
+    std::copy(free_ + i + 1, free_ + free_n_, free_ + i);
+    --free_n_;
+  }
+  // While live and resident free pages exceed the live peak, the kernel takes back the top part
+  // of the largest resident free run.
+  void give_back_above_peak() {
+    while (live_ + free_resident_ > peak_) {
+      std::size_t largest = free_n_;
+      for (std::size_t i = 0; i < free_n_; ++i)
+        if (free_[i].resident && (largest == free_n_ || free_[i].pages > free_[largest].pages)) largest = i;
+      if (largest == free_n_) return;
+      Run& r = free_[largest];
+      const std::size_t pages = std::min(r.pages, live_ + free_resident_ - peak_);
+      const Run back{r.first + r.pages - pages, pages, false};
+      madvise(base_ + back.first * kHugePage, pages * kHugePage, MADV_DONTNEED);
+      free_resident_ -= pages;
+      r.pages -= pages;
+      if (r.pages == 0) erase(largest);
+      insert(back);
     }
   }
+
   std::mutex lock_;
-  Block live_[kLive];
-  Block cached_[kCached];
-  std::size_t live_n_ = 0, cached_n_ = 0;
-  std::size_t live_bytes_ = 0, cached_bytes_ = 0, peak_live_ = 0;
+  bool tried_ = false;
+  char* base_ = nullptr;
+  std::size_t capacity_ = 0, top_ = 0;  // in huge pages
+  std::uint32_t* block_pages_ = nullptr;
+  std::atomic<std::uintptr_t> begin_{UINTPTR_MAX}, end_{0};  // the range, for owns()
+  Run free_[kMaxRuns];
+  std::size_t free_n_ = 0;
+  std::size_t live_ = 0, peak_ = 0, free_resident_ = 0;  // in huge pages
 };
 
 // Never destroyed: operator delete may run after static destructors.
-HugeBlocks& huge_blocks() {
-  static HugeBlocks* blocks = new (std::malloc(sizeof(HugeBlocks))) HugeBlocks();
-  return *blocks;
+Arena& arena() {
+  static Arena* a = new (std::malloc(sizeof(Arena))) Arena();
+  return *a;
 }
 
 void* allocate(std::size_t n) {
   if (n >= kHugePage) {
-    const std::size_t rounded = (n + kHugePage - 1) & ~(kHugePage - 1);
-    if (void* p = huge_blocks().reuse(rounded)) return p;
-    if (void* p = huge_blocks().fresh(rounded)) return p;
+    const std::size_t pages = n / kHugePage + (n % kHugePage != 0);
+    if (void* p = arena().allocate(pages)) return p;
+    if (void* p = std::aligned_alloc(kHugePage, pages * kHugePage)) {
+      madvise(p, pages * kHugePage, MADV_HUGEPAGE);
+      return p;
+    }
   } else if (void* p = std::malloc(n > 0 ? n : 1)) {
     return p;
   }
@@ -139,10 +226,8 @@ void* allocate(std::size_t n) {
 }
 
 void release(void* p) noexcept {
-  // Only a 2 MiB-aligned pointer can be a huge block (malloc's small blocks rarely are).
-  if (p != nullptr && (reinterpret_cast<std::uintptr_t>(p) & (kHugePage - 1)) == 0 && huge_blocks().release(p))
-    return;
-  std::free(p);
+  if (p != nullptr && arena().owns(p)) arena().release(p);
+  else std::free(p);
 }
 
 }  // namespace
