@@ -19,9 +19,11 @@ namespace anitet {
 // emit_all(emit) calls emit(key, value) once per item, key < num_keys, and must make the same
 // calls each time: it runs twice (counting, then filling). Afterwards the values of key k are
 // values[start[k] .. start[k + 1]). fill is scratch memory (kept by callers that call often).
-template <class Index, class Value, class EmitAll>
-void bucket_by_key(size_t num_keys, EmitAll&& emit_all, std::vector<Index>& start, std::vector<Value>& values,
+// Values: a std::vector of any allocator.
+template <class Index, class Values, class EmitAll>
+void bucket_by_key(size_t num_keys, EmitAll&& emit_all, std::vector<Index>& start, Values& values,
                    std::vector<Index>& fill) {
+  using Value = typename Values::value_type;
   start.assign(num_keys + 1, 0);
   emit_all([&](size_t key, const Value&) { ++start[key + 1]; });
   for (size_t k = 0; k < num_keys; ++k) start[k + 1] += start[k];
