@@ -16,6 +16,7 @@
 #include "core/buckets.hpp"
 #include "quality/parallel_for.hpp"
 #include "quality/report_detail.hpp"
+#include "quality/tet_measures.hpp"
 
 namespace anitet {
 
@@ -89,7 +90,7 @@ struct Hist {
 struct TetTally {
   Hist rr, mr, dihedral;
   size_t boundary_tets = 0;
-  double max_dihedral[2] = {0.0, 0.0};  // interior, boundary
+  double max_dihedral_key[2] = {0.0, 0.0};  // interior, boundary (tet_measures_keyed's keys)
   size_t lt5[2] = {0, 0}, lt10[2] = {0, 0};
 };
 
@@ -379,7 +380,7 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
         tally.mr.bnd[mb] += 1;
       }
       const int g = bnd ? 1 : 0;
-      tally.max_dihedral[g] = std::max(tally.max_dihedral[g], data.max_dihedral[t]);
+      tally.max_dihedral_key[g] = std::max(tally.max_dihedral_key[g], data.max_dihedral_key[t]);
       tally.lt5[g] += data.min_dihedral[t] < 5.0;
       tally.lt10[g] += data.min_dihedral[t] < 10.0;
       // The six dihedral angles: 180 degrees minus the angle between the inward face normals.
@@ -439,7 +440,7 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
     total.dihedral.add(t.dihedral);
     total.boundary_tets += t.boundary_tets;
     for (int g = 0; g < 2; ++g) {
-      total.max_dihedral[g] = std::max(total.max_dihedral[g], t.max_dihedral[g]);
+      total.max_dihedral_key[g] = std::max(total.max_dihedral_key[g], t.max_dihedral_key[g]);
       total.lt5[g] += t.lt5[g];
       total.lt10[g] += t.lt10[g];
     }
@@ -627,8 +628,8 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
      grp([](const QualitySplit& q) { return num("%.4f", q.mean_ratio.mean); }));
   g3("min dihedral (deg)", num("%.2f", r.min_dihedral_deg),
      grp([](const QualitySplit& q) { return num("%.2f", q.min_dihedral_deg); }));
-  qrow("max dihedral (deg)", num("%.2f", r.max_dihedral_deg), num("%.2f", total.max_dihedral[1]),
-       num("%.2f", total.max_dihedral[0]));
+  qrow("max dihedral (deg)", num("%.2f", r.max_dihedral_deg), num("%.2f", max_dihedral_from_key(total.max_dihedral_key[1])),
+       num("%.2f", max_dihedral_from_key(total.max_dihedral_key[0])));
   qrow("min dihedral &lt; 5&deg;", std::to_string(r.tets_dihedral_lt_5deg), std::to_string(total.lt5[1]),
        std::to_string(total.lt5[0]));
   qrow("min dihedral &lt; 10&deg;", std::to_string(r.tets_dihedral_lt_10deg), std::to_string(total.lt10[1]),

@@ -152,7 +152,7 @@ TetData measure_tets(const VolumeMesh& mesh, bool parallel) {
   d.radius_ratio.resize(nt);
   d.mean_ratio.resize(nt);
   d.min_dihedral.resize(nt);
-  d.max_dihedral.resize(nt);
+  d.max_dihedral_key.resize(nt);
   d.orient.resize(nt);
   for_chunks(nt, parallel, [&](size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
@@ -162,7 +162,7 @@ TetData measure_tets(const VolumeMesh& mesh, bool parallel) {
       // A certified sign is the exact one: the exact predicate only for the uncertified.
       const int certified = predicates::orient3d_certified(a, b, c, e);
       const int o = certified != 0 ? certified : predicates::orient3d(a, b, c, e);
-      TetMeasures m = tet_measures(a, b, c, e);
+      TetMeasures m = tet_measures_keyed(a, b, c, e, d.max_dihedral_key[t]);
       if (o == 0) {  // exactly flat: the float volume is rounding noise
         m.radius_ratio = 0.0;
         m.mean_ratio = 0.0;
@@ -173,7 +173,6 @@ TetData measure_tets(const VolumeMesh& mesh, bool parallel) {
       d.radius_ratio[t] = m.radius_ratio;
       d.mean_ratio[t] = m.mean_ratio;
       d.min_dihedral[t] = m.min_dihedral_deg;
-      d.max_dihedral[t] = m.max_dihedral_deg;
     }
   });
   return d;
@@ -343,7 +342,7 @@ Result<QualityReport> quality_detail::compute_quality_report_keep(const VolumeMe
     }
     r.min_dihedral_deg = dmin.min;
     r.dihedral_p01_deg = dmin.p01;
-    r.max_dihedral_deg = *std::max_element(d.max_dihedral.begin(), d.max_dihedral.end());
+    r.max_dihedral_deg = max_dihedral_from_key(*std::max_element(d.max_dihedral_key.begin(), d.max_dihedral_key.end()));
   }
 
   if (mesh.region.size() == r.tets && r.tets > 0) {

@@ -10,7 +10,8 @@ namespace anitet::quality_detail {
 
 // Per-tet measures of the whole mesh, index = tet id.
 struct TetData {
-  std::vector<double> volume, radius_ratio, mean_ratio, min_dihedral, max_dihedral;
+  std::vector<double> volume, radius_ratio, mean_ratio, min_dihedral;
+  std::vector<double> max_dihedral_key;  // tet_measures_keyed's key: max_dihedral_from_key gives the angle
   std::vector<int8_t> orient;  // exact orient3d sign; 2: positive, not certified in doubles
 };
 

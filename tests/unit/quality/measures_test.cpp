@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
+#include <algorithm>
 
 #include "quality/tet_measures.hpp"
 
@@ -123,6 +126,38 @@ TEST(TetMeasures, AgreesWithIndependentFormulaOnRandomTets) {
     EXPECT_LE(m.min_dihedral_deg, m.max_dihedral_deg);
     EXPECT_LE(m.min_dihedral_deg, deg(std::acos(1.0 / 3.0)) + 1e-9);  // the regular tet maximises it
   }
+}
+
+TEST(TetMeasures, KeyedMeasuresOrderTheLargestDihedralsAsTheirAngles) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<std::pair<double, double>> key_angle;
+  for (int k = 0; k < 1000; ++k) {
+    double p[4][3];
+    for (auto& q : p)
+      for (double& x : q) x = u(rng);
+    const TetMeasures m = tet_measures(p[0], p[1], p[2], p[3]);
+    double key = -1.0;
+    const TetMeasures n = tet_measures_keyed(p[0], p[1], p[2], p[3], key);
+    EXPECT_EQ(n.volume, m.volume);
+    EXPECT_EQ(n.radius_ratio, m.radius_ratio);
+    EXPECT_EQ(n.mean_ratio, m.mean_ratio);
+    EXPECT_EQ(n.min_dihedral_deg, m.min_dihedral_deg);
+    EXPECT_GE(key, 0.0);
+    EXPECT_LE(key, 2.0);
+    EXPECT_NEAR(max_dihedral_from_key(key), m.max_dihedral_deg, 1e-11) << "tet " << k;
+    key_angle.emplace_back(key, m.max_dihedral_deg);
+  }
+  std::sort(key_angle.begin(), key_angle.end());
+  for (size_t k = 1; k < key_angle.size(); ++k) EXPECT_LE(key_angle[k - 1].second, key_angle[k].second + 1e-11);
+  // The ends: 0, 90 and 180 degrees.
+  EXPECT_EQ(max_dihedral_from_key(0.0), 0.0);
+  EXPECT_NEAR(max_dihedral_from_key(1.0), 90.0, 1e-13);
+  EXPECT_NEAR(max_dihedral_from_key(2.0), 180.0, 1e-13);
+  const double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0}, d[3] = {0.3, 0.3, 0};
+  double flat_key = 0.0;
+  tet_measures_keyed(a, b, c, d, flat_key);
+  EXPECT_NEAR(max_dihedral_from_key(flat_key), 180.0, 1e-12);
 }
 
 TEST(TetMeasures, NearlyFlatTetsStayBelowTheirBound) {
