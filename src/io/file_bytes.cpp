@@ -49,31 +49,41 @@ Result<std::string> read_file_bytes(const std::string& path) {
 
 namespace {
 
-Status write_directly(const std::string& path, const std::string& shown, std::string_view bytes) {
+using Produce = std::function<bool(const std::function<bool(std::string_view)>&)>;
+
+Status write_directly(const std::string& path, const std::string& shown, const Produce& produce) {
   FilePtr file(std::fopen(path.c_str(), "wb"));
   if (!file) return io_error("create", shown, errno);
-  if (std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
-    return io_error("write", shown, errno ? errno : EIO);
-  }
+  int err = 0;
+  const bool finished = produce([&](std::string_view bytes) {
+    if (err == 0 && std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) err = errno ? errno : EIO;
+    return err == 0;
+  });
+  if (err != 0) return io_error("write", shown, err);
+  if (!finished) return Status(Error::Internal, "'" + shown + "': the writer stopped before the end");
   if (std::fclose(file.release()) != 0) return io_error("write", shown, errno ? errno : EIO);
   return Status::success();
 }
 
 }  // namespace
 
-Status write_file_bytes(const std::string& path, std::string_view bytes) {
+Status write_file_with(const std::string& path, const Produce& produce) {
   // A regular file is written beside its final name and renamed into place, so a failed or
   // interrupted write never leaves a truncated file that looks complete (and an old file stays
   // whole until the new one is). Devices, pipes and symbolic links (whose target a rename would
   // not replace) are written as they are.
   struct stat info;
-  if (lstat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) return write_directly(path, path, bytes);
+  if (lstat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) return write_directly(path, path, produce);
   const std::string temp = partial_path(path);
-  if (Status s = write_directly(temp, path, bytes); !s.ok()) {
+  if (Status s = write_directly(temp, path, produce); !s.ok()) {
     std::remove(temp.c_str());
     return s;
   }
   return move_into_place(temp, path);
+}
+
+Status write_file_bytes(const std::string& path, std::string_view bytes) {
+  return write_file_with(path, [bytes](const std::function<bool(std::string_view)>& write) { return write(bytes); });
 }
 
 std::string partial_path(const std::string& path) { return path + ".part-" + std::to_string(getpid()); }

@@ -2,6 +2,7 @@
 // directly); writers build the whole file in memory and write it in one call.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -16,6 +17,12 @@ Result<std::string> read_file_bytes(const std::string& path);
 // left half-written (devices, pipes and symbolic links are written directly).
 // Error::FileNotFound when it cannot be created, written or renamed; the partial file is removed.
 Status write_file_bytes(const std::string& path, std::string_view bytes);
+
+// The same, for a file written as it is made: produce(write) calls write(bytes) for each piece
+// in order (write returns false once writing failed; then produce should stop) and returns
+// whether it finished. The file appears at PATH only when it did and every write succeeded.
+Status write_file_with(const std::string& path,
+                       const std::function<bool(const std::function<bool(std::string_view)>&)>& produce);
 
 // The name a writer fills before moving it into place: PATH.part-PID.
 std::string partial_path(const std::string& path);

@@ -1,8 +1,12 @@
 // Medit .mesh (ASCII): keyword sections "Vertices n / x y z ref", "Triangles n / a b c ref",
 // "Quadrilaterals n / a b c d ref", "Tetrahedra n / a b c d ref" (1-based), "Dimension 3",
 // '#' comments, "End". Other sections are skipped. Also the .sol writer.
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "io/file_bytes.hpp"
 
 #include "io/number_text.hpp"
 #include "io/parallel_text.hpp"
@@ -164,24 +168,29 @@ Result<VolumeMesh> parse_medit_volume(std::string_view data, const std::string& 
   return mesh;
 }
 
-void append_vertices(std::string& out, const std::vector<double>& xyz) {
-  out += "\nVertices\n";
-  append_line(out, xyz.size() / 3);
-  append_items(out, xyz.size() / 3, [&xyz](std::string& text, size_t v) {
+// The sections, handed to sink(std::string_view) piece by piece (a string or a file).
+template <class Sink>
+void write_vertices(Sink&& sink, const std::vector<double>& xyz) {
+  std::string head = "\nVertices\n";
+  append_line(head, xyz.size() / 3);
+  sink(std::string_view(head));
+  write_items(sink, xyz.size() / 3, [&xyz](std::string& text, size_t v) {
     append_line(text, xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2], int32_t{0});
   });
 }
 
 // "Keyword / count / a b c [d] ref" with 1-based indices; refs may be empty (all 0).
-void append_elements(std::string& out, const char* keyword, int n,
-                     const std::vector<uint32_t>& vertices, const std::vector<int32_t>& refs) {
+template <class Sink>
+void write_elements(Sink&& sink, const char* keyword, int n, const std::vector<uint32_t>& vertices,
+                    const std::vector<int32_t>& refs) {
   size_t count = vertices.size() / n;
   if (count == 0) return;
-  out += "\n";
-  out += keyword;
-  out += "\n";
-  append_line(out, count);
-  append_items(out, count, [&](std::string& text, size_t e) {
+  std::string head = "\n";
+  head += keyword;
+  head += "\n";
+  append_line(head, count);
+  sink(std::string_view(head));
+  write_items(sink, count, [&](std::string& text, size_t e) {
     for (int k = 0; k < n; ++k) {
       append_int(text, int64_t{vertices[n * e + k]} + 1);
       text += ' ';
@@ -189,6 +198,14 @@ void append_elements(std::string& out, const char* keyword, int n,
     append_int(text, refs.empty() ? 0 : refs[e]);
     text += '\n';
   });
+}
+
+void append_vertices(std::string& out, const std::vector<double>& xyz) {
+  write_vertices([&out](std::string_view text) { out += text; }, xyz);
+}
+void append_elements(std::string& out, const char* keyword, int n, const std::vector<uint32_t>& vertices,
+                     const std::vector<int32_t>& refs) {
+  write_elements([&out](std::string_view text) { out += text; }, keyword, n, vertices, refs);
 }
 
 const char* kMeditHeader = "MeshVersionFormatted 2\n\nDimension 3\n";
@@ -213,24 +230,54 @@ Result<std::string> to_medit(const SurfaceMesh& mesh) {
   return out;
 }
 
-Result<std::string> to_medit(const VolumeMesh& mesh, const PatchNames& patch_names) {
-  Status valid = check_volume_arrays(mesh);
-  if (!valid.ok()) return valid;
-  Result<std::vector<NamedPatch>> named = named_patches(mesh.bnd_patch, patch_names);
-  if (!named.ok()) return named.status();
-  std::string out = kMeditHeader;
+namespace {
+
+// The volume mesh's text, handed to sink piece by piece; `named` from medit_patch_names.
+template <class Sink>
+void write_medit_volume_text(const VolumeMesh& mesh, const std::vector<NamedPatch>& named, Sink&& sink) {
+  std::string head = kMeditHeader;
   // Medit has no names: the patch names go in comments (readers skip lines starting with '#').
-  if (!named.value().empty()) out += "\n";
-  for (const NamedPatch& p : named.value()) {
-    out += "# patch ";
-    append_int(out, p.label);
-    out += ' ' + p.name + '\n';
+  if (!named.empty()) head += "\n";
+  for (const NamedPatch& p : named) {
+    head += "# patch ";
+    append_int(head, p.label);
+    head += ' ' + p.name + '\n';
   }
-  append_vertices(out, mesh.xyz);
-  append_elements(out, "Triangles", 3, mesh.bnd_tri, mesh.bnd_patch);
-  append_elements(out, "Tetrahedra", 4, mesh.tet, mesh.region);
-  out += "\nEnd\n";
+  sink(std::string_view(head));
+  write_vertices(sink, mesh.xyz);
+  write_elements(sink, "Triangles", 3, mesh.bnd_tri, mesh.bnd_patch);
+  write_elements(sink, "Tetrahedra", 4, mesh.tet, mesh.region);
+  sink(std::string_view("\nEnd\n"));
+}
+
+// The mesh's arrays checked and its patches named, before anything is written.
+Result<std::vector<NamedPatch>> medit_patch_names(const VolumeMesh& mesh, const PatchNames& patch_names) {
+  if (Status valid = check_volume_arrays(mesh); !valid.ok()) return valid;
+  return named_patches(mesh.bnd_patch, patch_names);
+}
+
+}  // namespace
+
+Result<std::string> to_medit(const VolumeMesh& mesh, const PatchNames& patch_names) {
+  Result<std::vector<NamedPatch>> named = medit_patch_names(mesh, patch_names);
+  if (!named.ok()) return named.status();
+  std::string out;
+  write_medit_volume_text(mesh, named.value(), [&out](std::string_view text) { out += text; });
   return out;
+}
+
+Status write_medit_volume(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names) {
+  Result<std::vector<NamedPatch>> named = medit_patch_names(mesh, patch_names);
+  if (!named.ok()) return named.status();
+  // Streamed to the file: armadillo's 100 MB of text went through a string grown by doubling
+  // (its copies and fresh pages) before one write.
+  return write_file_with(path, [&](const std::function<bool(std::string_view)>& write) {
+    bool ok = true;
+    write_medit_volume_text(mesh, named.value(), [&](std::string_view bytes) {
+      if (ok) ok = write(bytes);
+    });
+    return ok;
+  });
 }
 
 Result<std::string> to_sol(const VolumeMesh& mesh) {

@@ -105,7 +105,7 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
   }
   Result<std::string> bytes = std::string();
   switch (format.value()) {
-    case VolumeFormat::Medit: bytes = to_medit(mesh, patch_names); break;
+    case VolumeFormat::Medit: return write_medit_volume(mesh, path, patch_names);
     case VolumeFormat::Gmsh: bytes = to_gmsh(mesh, patch_names); break;
     case VolumeFormat::Vtu:
       if (Result<std::vector<NamedPatch>> named = named_patches(mesh.bnd_patch, patch_names); !named.ok()) {

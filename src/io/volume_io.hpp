@@ -81,6 +81,8 @@ Status write_sol(const VolumeMesh& mesh, const std::string& path);
 //   on tets) and each tet scalar (-1 on triangles: VTK's ASCII parser does not read "nan"); the
 //   vertex metric, when present, as point data "size" (1 value) or "metric" (6 components).
 Result<std::string> to_medit(const VolumeMesh& mesh, const PatchNames& patch_names = {});
+// The same text streamed to a file (write_file_with: PATH.part-PID, then renamed into place).
+Status write_medit_volume(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names = {});
 Result<std::string> to_gmsh(const VolumeMesh& mesh, const PatchNames& patch_names = {});
 Result<std::string> to_vtu(const VolumeMesh& mesh, const std::vector<TetScalar>& tet_scalars = {});
 Result<std::string> to_sol(const VolumeMesh& mesh);
