@@ -1,5 +1,6 @@
 // MetricField's side in the library: every call goes to the OpenVDB module (vdb_backend.hpp),
 // which this file opens on the first field built or read.
+#include <atomic>
 #include "metric_field.hpp"
 
 #include <dlfcn.h>
@@ -99,7 +100,16 @@ const VdbBackend* vdb_backend(std::string* error) {
 
 const VdbBackend& loaded_vdb_backend() { return *load().backend; }
 
+namespace {
+// Whether some VdbModulePreload started its thread (or found none to be had).
+std::atomic<bool> preload_started{false};
+}  // namespace
+
 VdbModulePreload::VdbModulePreload() {
+  // One opening thread per process: a second one, asked for while the first holds the loader's
+  // lock (the CLI's preload, then the Mesher's), waits for that lock to be created at all (a new
+  // thread's TLS is set up under it): airplane's main thread stalled 30-50 ms at stage 1's start.
+  if (preload_started.exchange(true)) return;
   try {
     thread_ = std::thread([] {
       try {

@@ -44,7 +44,8 @@ namespace metric {
 // built later finds it open. Meanwhile the loader's lock is held: a thread's first use of a
 // thread_local with a destructor (glibc's __cxa_thread_atexit_impl) waits for it, which is why
 // the pipeline starts this before stage 1 rather than beside stage 2. Building a field while it
-// runs waits for it; the destructor joins it. Nothing happens when no thread can be had.
+// runs waits for it; the destructor joins it. Nothing happens when no thread can be had, nor
+// for any preload after a process's first (the module is open or opening then).
 class VdbModulePreload {
  public:
   VdbModulePreload();
