@@ -6,6 +6,8 @@
 #include <cmath>
 #include <set>
 
+#include <tbb/parallel_invoke.h>
+
 #include "core/bvh.hpp"
 #include "predicates/predicates.hpp"
 #include "validate/repair.hpp"
@@ -317,20 +319,31 @@ ValidationReport validate_surface(SurfaceMesh& s, const ValidationOptions& optio
 
   std::vector<uint8_t> usable, testable;
   check_degenerate(s, geometry_ok, out, usable, testable);
-  check_duplicates(s, out);
-
-  const topology::EdgeTable edges = topology::build_edge_table(s, usable);
-  const topology::Topology topo = topology::analyse(s, usable, edges);
-  report_topology(s, edges, topo, out);
+  // The combinatorial checks (duplicates, edges, shells) beside the geometric ones (the BVH and
+  // the intersecting pairs, which report nothing yet): the report's entries keep their order.
+  topology::EdgeTable edges;
+  topology::Topology topo;
+  TriangleBVH bvh;
+  auto combinatorial = [&] {
+    check_duplicates(s, out);
+    edges = topology::build_edge_table(s, usable);
+    topo = topology::analyse(s, usable, edges);
+    report_topology(s, edges, topo, out);
+  };
+  auto geometric = [&] {
+    if (geometry_ok) bvh.build(s.xyz.data(), s.tri.data(), s.num_triangles());
+    if (geometry_ok && options.check_self_intersections)
+      report.intersecting_pairs = find_intersecting_pairs(s, bvh, testable, options.num_threads);
+  };
+  if (options.num_threads == 1) {
+    combinatorial();
+    geometric();
+  } else {
+    tbb::parallel_invoke(combinatorial, geometric);
+  }
   std::vector<std::vector<uint32_t>> shell_tris(topo.shell_first_triangle.size());
   for (size_t t = 0; t < s.num_triangles(); ++t) {
     if (topo.shell_of[t] >= 0) shell_tris[topo.shell_of[t]].push_back(static_cast<uint32_t>(t));
-  }
-
-  TriangleBVH bvh;
-  if (geometry_ok) bvh.build(s.xyz.data(), s.tri.data(), s.num_triangles());
-  if (geometry_ok && options.check_self_intersections) {
-    report.intersecting_pairs = find_intersecting_pairs(s, bvh, testable, options.num_threads);
   }
   const std::vector<uint8_t> crossed =
       report_intersections(s, topo, report.intersecting_pairs, out);
