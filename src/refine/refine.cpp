@@ -1014,10 +1014,14 @@ Result<RefineStats> Refiner::run() {
   index_protected_facets();
   metrics_.resize(6 * mesh_.num_vertices());
   size_.resize(mesh_.num_vertices());
-  for (uint32_t v = 0; v < mesh_.num_vertices(); ++v) {
-    update_metric(v);
+  // The field's metric at every vertex, on every core (its queries are thread-safe, as the
+  // split choice's are).
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(mesh_.num_vertices()), 1024),
+                    [&](const tbb::blocked_range<uint32_t>& r) {
+                      for (uint32_t v = r.begin(); v < r.end(); ++v) update_metric(v);
+                    });
+  for (uint32_t v = 0; v < mesh_.num_vertices(); ++v)
     anisotropic_ |= !meshops::MetricMap::of(&metrics_[6 * size_t(v)]).identity;
-  }
   protected_facets_ = count_protected_facets(mesh_);
   // (Without collapse_to_s_edge_length the list stays empty: every vertex reads 0.)
   if (options_.collapse_to_s_edge_length) measure_s_edges();
