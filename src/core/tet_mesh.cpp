@@ -7,6 +7,9 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/buckets.hpp"
 #include "predicates/predicates.hpp"
 
@@ -90,30 +93,43 @@ Status TetMesh::build_adjacency() {
             }
       },
       start, facets, fill);
-  std::vector<std::pair<uint64_t, uint32_t>> group;  // (other two vertices, facet id)
-  for (size_t key = 0; key < num_keys; ++key) {
-    group.clear();
-    for (uint32_t k = start[key]; k < start[key + 1]; ++k) {
-      uint32_t v[3];
-      sorted_facet(facets[k] >> 2, int(facets[k] & 3), v);
-      group.emplace_back((uint64_t(v[1]) << 32) | v[2], facets[k]);
-    }
-    std::sort(group.begin(), group.end());
-    for (size_t a = 0; a < group.size();) {
-      size_t b = a + 1;
-      while (b < group.size() && group[b].first == group[a].first) ++b;
-      if (b - a > 2) {
-        std::ostringstream msg;
-        msg << "facet (" << key << ", " << (group[a].first >> 32) << ", " << (group[a].first & 0xffffffffu)
-            << ") is shared by more than two tets (tet " << (group[a + 2].second >> 2) << " among them)";
-        return Status(Error::InvalidMesh, msg.str());
+  // Each group pairs its own facets only (a facet is in its smallest vertex's group): the groups
+  // are paired on every core, in chunks; the error reported is the first in key order, as one
+  // loop would report it.
+  constexpr size_t kChunk = 4096;
+  const size_t chunks = (num_keys + kChunk - 1) / kChunk;
+  std::vector<std::string> errors(chunks);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<std::pair<uint64_t, uint32_t>> group;  // (other two vertices, facet id)
+    for (size_t c = r.begin(); c != r.end(); ++c) {
+      for (size_t key = c * kChunk; key < std::min(num_keys, (c + 1) * kChunk) && errors[c].empty(); ++key) {
+        group.clear();
+        for (uint32_t k = start[key]; k < start[key + 1]; ++k) {
+          uint32_t v[3];
+          sorted_facet(facets[k] >> 2, int(facets[k] & 3), v);
+          group.emplace_back((uint64_t(v[1]) << 32) | v[2], facets[k]);
+        }
+        std::sort(group.begin(), group.end());
+        for (size_t a = 0; a < group.size();) {
+          size_t b = a + 1;
+          while (b < group.size() && group[b].first == group[a].first) ++b;
+          if (b - a > 2) {
+            std::ostringstream msg;
+            msg << "facet (" << key << ", " << (group[a].first >> 32) << ", " << (group[a].first & 0xffffffffu)
+                << ") is shared by more than two tets (tet " << (group[a + 2].second >> 2) << " among them)";
+            errors[c] = msg.str();
+            break;
+          }
+          if (b - a == 2)
+            link(group[a].second >> 2, int(group[a].second & 3), group[a + 1].second >> 2,
+                 int(group[a + 1].second & 3));
+          a = b;
+        }
       }
-      if (b - a == 2)
-        link(group[a].second >> 2, int(group[a].second & 3), group[a + 1].second >> 2,
-             int(group[a + 1].second & 3));
-      a = b;
     }
-  }
+  });
+  for (const std::string& e : errors)
+    if (!e.empty()) return Status(Error::InvalidMesh, e);
   return Status::success();
 }
 

@@ -92,6 +92,24 @@ TEST(TetMesh, RejectsFacetSharedByThreeTets) {
   EXPECT_EQ(m.build_adjacency().code(), Error::InvalidMesh);
 }
 
+TEST(TetMesh, ReportsTheFirstFacetSharedByThreeTetsInVertexOrder) {
+  // Two such facets, on vertices 9000.. and 100..: the groups are paired in chunks on every
+  // core, and the error named is the one a single loop over the vertices meets first.
+  TetMesh m;
+  for (int v = 0; v < 9010; ++v) {
+    const double q[3] = {double(v), double(v % 7), double(v % 11)};
+    m.add_vertex(q);
+  }
+  for (uint32_t b : {9000u, 100u}) {
+    m.new_tet(b, b + 1, b + 2, b + 3);
+    m.new_tet(b, b + 1, b + 2, b + 4);
+    m.new_tet(b, b + 2, b + 1, b + 5);
+  }
+  const Status s = m.build_adjacency();
+  EXPECT_EQ(s.code(), Error::InvalidMesh);
+  EXPECT_NE(s.message().find("facet (100, 101, 102)"), std::string::npos) << s.message();
+}
+
 TEST(TetMesh, RejectsAVertexThatDoesNotExist) {
   TetMesh m;
   const double p[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
