@@ -98,8 +98,8 @@ class Arena {
     const std::size_t pages = block_pages_[first];
     block_pages_[first] = 0;
     live_ -= pages;
+    free_resident_ += pages;  // (before insert, which takes it back when it has no room)
     insert({first, pages, true});
-    free_resident_ += pages;
   }
 
  private:

@@ -1,10 +1,10 @@
 // MetricField's side in the library: every call goes to the OpenVDB module (vdb_backend.hpp),
 // which this file opens on the first field built or read.
-#include <atomic>
 #include "metric_field.hpp"
 
 #include <dlfcn.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>

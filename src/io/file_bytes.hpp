@@ -1,5 +1,6 @@
 // Whole-file reads and writes. Readers parse from memory (fast, and tests can feed bytes
-// directly); writers build the whole file in memory and write it in one call.
+// directly); writers build the whole file in memory and write it in one call, or hand it over
+// piece by piece (write_file_with: the Medit volume writer).
 #pragma once
 
 #include <functional>
@@ -19,7 +20,7 @@ Result<std::string> read_file_bytes(const std::string& path);
 Status write_file_bytes(const std::string& path, std::string_view bytes);
 
 // The same, for a file written as it is made: produce(write) calls write(bytes) for each piece
-// in order (write returns false once writing failed; then produce should stop) and returns
+// in order (write returns false once writing failed, and drops every later piece) and returns
 // whether it finished. The file appears at PATH only when it did and every write succeeded.
 Status write_file_with(const std::string& path,
                        const std::function<bool(const std::function<bool(std::string_view)>&)>& produce);
