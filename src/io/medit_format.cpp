@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "io/file_bytes.hpp"
-
 #include "io/number_text.hpp"
 #include "io/parallel_text.hpp"
 #include "io/reader_util.hpp"
