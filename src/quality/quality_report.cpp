@@ -5,12 +5,9 @@
 #include <cmath>
 #include <sstream>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
-#include "core/buckets.hpp"
-#include "core/uninit_vector.hpp"
+#include "core/tet_faces.hpp"
 #include "predicates/predicates.hpp"
 #include "quality/parallel_for.hpp"
 #include "quality/report_detail.hpp"
@@ -178,101 +175,6 @@ TetData measure_tets(const VolumeMesh& mesh, bool parallel) {
   return d;
 }
 
-// Faces by multiplicity: faces used once are boundary faces (appended as sorted triples), faces
-// used more than twice are counted. A counting sort on the smallest vertex, then each vertex's
-// few faces (about 23 on a mesh of the usual shape) counted in a small open-addressing table;
-// on every core, each chunk of vertices' boundary faces appended in vertex order (then in the
-// order of their first tet): the same list on any number of threads.
-void classify_faces(const VolumeMesh& mesh, bool parallel, std::vector<uint32_t>& boundary,
-                    size_t& shared_by_more_than_two) {
-  const size_t nv = mesh.num_vertices();
-  const size_t nt = mesh.num_tets();
-  auto face_of = [&](size_t t, int i, uint32_t f[3]) {
-    const uint32_t* v = &mesh.tet[4 * t];
-    int k = 0;
-    for (int j = 0; j < 4; ++j) {
-      if (j != i) f[k++] = v[j];
-    }
-    if (f[0] > f[1]) std::swap(f[0], f[1]);
-    if (f[1] > f[2]) std::swap(f[1], f[2]);
-    if (f[0] > f[1]) std::swap(f[0], f[1]);
-  };
-  std::vector<size_t> start;
-  UninitVector<uint64_t> rest;  // (middle << 32) | largest, bucketed by the smallest
-  {
-    std::vector<size_t> fill;
-    auto emit_faces = [&](size_t first, size_t last, auto&& emit) {
-      for (size_t t = first; t < last; ++t) {
-        for (int i = 0; i < 4; ++i) {
-          uint32_t f[3];
-          face_of(t, i, f);
-          emit(f[0], (uint64_t(f[1]) << 32) | f[2]);
-        }
-      }
-    };
-    if (parallel) parallel_bucket_by_key(nv, nt, emit_faces, start, rest, fill);
-    else bucket_by_key(nv, [&](auto&& emit) { emit_faces(0, nt, emit); }, start, rest, fill);
-  }
-  constexpr size_t kChunk = 16384;
-  const size_t chunks = (nv + kChunk - 1) / kChunk;
-  std::vector<std::vector<uint32_t>> found(chunks);
-  std::vector<size_t> shared(chunks, 0);
-  auto count_faces = [&](size_t first_chunk, size_t last_chunk) {
-    // The table: slots of (face, count), a power of two at least twice the bucket's size; `used`
-    // lists the slots taken, in the order of the faces' first appearance.
-    std::vector<uint64_t> key;
-    std::vector<uint32_t> count, used;
-    for (size_t c = first_chunk; c < last_chunk; ++c) {
-      std::vector<uint32_t>& out = found[c];
-      for (size_t v = c * kChunk; v < std::min(nv, (c + 1) * kChunk); ++v) {
-        const size_t n = start[v + 1] - start[v];
-        if (n == 0) continue;
-        size_t slots = 16;
-        while (slots < 2 * n) slots *= 2;
-        if (key.size() < slots) {
-          key.resize(slots);
-          count.assign(slots, 0);
-        }
-        const size_t mask = slots - 1;
-        used.clear();
-        for (size_t k = start[v]; k < start[v + 1]; ++k) {
-          const uint64_t f = rest[k];
-          size_t at = size_t((f * 0x9E3779B97F4A7C15ull) >> 40) & mask;
-          while (count[at] != 0 && key[at] != f) at = (at + 1) & mask;
-          if (count[at]++ == 0) {
-            key[at] = f;
-            used.push_back(uint32_t(at));
-          }
-        }
-        for (uint32_t at : used) {
-          if (count[at] == 1) {
-            out.push_back(uint32_t(v));
-            out.push_back(uint32_t(key[at] >> 32));
-            out.push_back(uint32_t(key[at] & 0xffffffffu));
-          } else if (count[at] > 2) {
-            ++shared[c];
-          }
-          count[at] = 0;
-        }
-      }
-    }
-  };
-  if (parallel && chunks > 1) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1),
-                      [&](const tbb::blocked_range<size_t>& r) { count_faces(r.begin(), r.end()); });
-  } else {
-    count_faces(0, chunks);
-  }
-  shared_by_more_than_two = 0;
-  size_t total = 0;
-  for (size_t c = 0; c < chunks; ++c) total += found[c].size();
-  boundary.reserve(boundary.size() + total);
-  for (size_t c = 0; c < chunks; ++c) {
-    boundary.insert(boundary.end(), found[c].begin(), found[c].end());
-    shared_by_more_than_two += shared[c];
-  }
-}
-
 }  // namespace
 
 Result<QualityReport> compute_quality_report(const VolumeMesh& mesh,
@@ -372,8 +274,9 @@ Result<QualityReport> quality_detail::compute_quality_report_keep(const VolumeMe
     }
   }
 
-  boundary.clear();
-  classify_faces(mesh, options.parallel, boundary, r.faces_shared_by_more_than_two);
+  FaceCensus faces = census_faces(mesh.tet.data(), mesh.num_tets(), mesh.num_vertices(), options.parallel);
+  boundary = std::move(faces.boundary);
+  r.faces_shared_by_more_than_two = faces.shared_by_more_than_two;
   r.boundary_faces = boundary.size() / 3;
   r.valid = r.nonpositive_tets == 0 && r.faces_shared_by_more_than_two == 0;
 
