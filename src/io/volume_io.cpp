@@ -1,11 +1,24 @@
 // Format choice by extension, file access and array checks for tetrahedral meshes.
 #include "io/volume_io.hpp"
 
+#include "core/tet_faces.hpp"
 #include "io/file_bytes.hpp"
 
 namespace anitet {
 
 namespace {
+
+// "a b c" of three 0-based vertex ids, written 1-based as in the files.
+std::string one_based(const uint32_t* v) {
+  return std::to_string(uint64_t{v[0]} + 1) + " " + std::to_string(uint64_t{v[1]} + 1) + " " +
+         std::to_string(uint64_t{v[2]} + 1);
+}
+
+// The formats whose boundary elements a solver reads as its boundary conditions: every boundary
+// face of the tets must be one of them.
+bool has_markers(VolumeFormat f) {
+  return f == VolumeFormat::Su2 || f == VolumeFormat::OpenFoam || f == VolumeFormat::Cgns || f == VolumeFormat::Exodus;
+}
 
 // The last component of a path, trailing slashes ignored.
 std::string last_component(std::string path) {
@@ -103,6 +116,13 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
                                                 "' (expected .mesh, .msh, .vtu, .su2, .cgns, .exo, .e or a "
                                                 ".../polyMesh directory)");
   }
+  if (format.value() == VolumeFormat::TetGen) return check_writable_volume_path(path);
+  // Nothing wrong is written: the boundary elements are checked against the tets first.
+  const bool cover = has_markers(format.value()) || !mesh.bnd_tri.empty();
+  if (Status st = check_boundary_elements(mesh, cover); !st.ok()) {
+    return Status(st.code(), path + ": not written: " + st.message() +
+                                 (mesh.bnd_tri.empty() ? " (this format's boundary markers need them)" : ""));
+  }
   Result<std::string> bytes = std::string();
   switch (format.value()) {
     case VolumeFormat::Medit: return write_medit_volume(mesh, path, patch_names);
@@ -117,7 +137,7 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
     case VolumeFormat::OpenFoam: return write_openfoam(mesh, path, patch_names);
     case VolumeFormat::Cgns: return write_cgns(mesh, path, patch_names);
     case VolumeFormat::Exodus: return write_exodus(mesh, path, patch_names);
-    case VolumeFormat::TetGen: return check_writable_volume_path(path);
+    case VolumeFormat::TetGen: break;  // refused above
   }
   if (!bytes.ok()) return bytes.status();
   return write_file_bytes(path, bytes.value());
@@ -148,6 +168,44 @@ Status check_volume_arrays(const VolumeMesh& mesh) {
                                          " refers to vertex " + std::to_string(mesh.bnd_tri[i]) +
                                          " of " + std::to_string(nv));
     }
+  }
+  return Status::success();
+}
+
+Status check_boundary_elements(const VolumeMesh& mesh, bool cover) {
+  if (Status st = check_volume_arrays(mesh); !st.ok()) return st;
+  const FaceCensus faces = census_faces(mesh.tet.data(), mesh.num_tets(), mesh.num_vertices(), /*parallel=*/true,
+                                        mesh.bnd_tri.data(), mesh.num_boundary_triangles());
+  if (faces.shared_by_more_than_two > 0) {
+    return Status(Error::InvalidMesh, std::to_string(faces.shared_by_more_than_two) +
+                                          " faces are shared by more than two tetrahedra (overlapping tets)");
+  }
+  size_t not_faces = 0, first = 0;
+  for (size_t b = faces.tets_of_triangle.size(); b-- > 0;) {
+    if (faces.tets_of_triangle[b] == 0) {
+      ++not_faces;
+      first = b;
+    }
+  }
+  if (not_faces > 0) {
+    return Status(Error::InvalidMesh, std::to_string(not_faces) + " of " + std::to_string(mesh.num_boundary_triangles()) +
+                                          " boundary triangles are not faces of the tetrahedra; first: triangle " +
+                                          std::to_string(first + 1) + " (vertices " + one_based(&mesh.bnd_tri[3 * first]) +
+                                          ", 1-based)");
+  }
+  if (!faces.repeated.empty()) {
+    const uint32_t b = faces.repeated[0];
+    return Status(Error::InvalidMesh, std::to_string(faces.repeated.size()) +
+                                          " boundary triangles repeat a face an earlier one gives; first: triangle " +
+                                          std::to_string(uint64_t{b} + 1) + " (vertices " + one_based(&mesh.bnd_tri[3 * size_t(b)]) +
+                                          ", 1-based)");
+  }
+  const std::vector<uint32_t>& uncovered = mesh.bnd_tri.empty() ? faces.boundary : faces.uncovered;
+  if (cover && !uncovered.empty()) {
+    return Status(Error::InvalidMesh, std::to_string(uncovered.size() / 3) + " of " +
+                                          std::to_string(faces.boundary.size() / 3) +
+                                          " boundary faces of the tetrahedra are no boundary triangle; first: vertices " +
+                                          one_based(uncovered.data()) + " (1-based)");
   }
   return Status::success();
 }

@@ -55,7 +55,8 @@ struct TetScalar {
   std::vector<double> values;
 };
 
-// Writes a file chosen by volume_format_from_path: .mesh (Medit), .msh (Gmsh 4.1), .vtu (VTK
+// Writes a file chosen by volume_format_from_path, after check_boundary_elements (no file when it
+// fails): .mesh (Medit), .msh (Gmsh 4.1), .vtu (VTK
 // XML), .su2, an OpenFOAM polyMesh directory, .cgns, .exo/.e. `tet_scalars` are written by .vtu
 // only. Error::InvalidArgument for inconsistent arrays. The boundary patches are named by
 // `patch_names` (label -> name, see patch_names.hpp; unnamed labels get patch<label>) in every
@@ -139,5 +140,14 @@ Status write_exodus(const VolumeMesh& mesh, const std::string& path, const Patch
 // Error::InvalidArgument unless the array sizes agree; Error::BadIndex for an index that is not
 // a vertex. Writers run this first.
 Status check_volume_arrays(const VolumeMesh& mesh);
+
+// What write_volume_mesh checks before it writes anything, so that no file it writes puts a
+// solver's boundary conditions on the wrong faces: check_volume_arrays; no face shared by more
+// than two tets; every boundary triangle a face of the tets (an interface between two tets
+// allowed) and no face given twice; with `cover`, every boundary face of the tets (a face of one
+// tet) a boundary triangle. Error::InvalidMesh naming the first problem, 1-based as in the files.
+// write_volume_mesh asks for `cover` when the mesh has boundary triangles, and always for the
+// formats whose markers are a solver's boundary conditions (SU2, OpenFOAM, CGNS, Exodus II).
+Status check_boundary_elements(const VolumeMesh& mesh, bool cover);
 
 }  // namespace anitet
