@@ -130,11 +130,12 @@ int run_mesh_layers(MeshArgs& args) {
     return kExitInternal;
   }
 
-  VolumeMesh vm = r.mesh.to_volume_mesh(false);
-  vm.bnd_tri = surface.tri;
-  vm.bnd_patch = surface.patch;
-  vm.bnd_tri.insert(vm.bnd_tri.end(), r.front_tri.begin(), r.front_tri.end());
-  vm.bnd_patch.insert(vm.bnd_patch.end(), r.num_front_triangles(), front_label);
+  // S and S1 as patches; vertices of no tet (input vertices of no triangle) dropped.
+  std::vector<uint32_t> bnd_tri = surface.tri;
+  std::vector<int32_t> bnd_patch = surface.patch;
+  bnd_tri.insert(bnd_tri.end(), r.front_tri.begin(), r.front_tri.end());
+  bnd_patch.insert(bnd_patch.end(), r.num_front_triangles(), front_label);
+  const VolumeMesh vm = r.mesh.to_volume_mesh(/*drop_unused_vertices=*/true, bnd_tri, bnd_patch);
   if (const int code = write_outputs(args, vm); code != kExitOk) return code;
   const std::string front_file = front_path(args.output);
   if (Status st = write_surface(front_surface(r), front_file); !st.ok()) {

@@ -31,9 +31,7 @@ int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
   // Tets flat to rounding are valid for the exact predicates, but a solver or checker computing
   // volumes in doubles may find them inverted: flips remove them (no vertex of S can move).
   const FlatTetFlips flat = flip_flat_tets(out.mesh);
-  VolumeMesh vm = out.mesh.to_volume_mesh(/*drop_unused_vertices=*/false);
-  vm.bnd_tri = out.s2_tri;
-  vm.bnd_patch = out.s2_patch;
+  const VolumeMesh vm = out.mesh.to_volume_mesh(/*drop_unused_vertices=*/true, out.s2_tri, out.s2_patch);
   if (const int code = write_outputs(args, vm); code != kExitOk) return code;
   if (!args.quiet) {
     const RecoveryStats& st = out.stats;

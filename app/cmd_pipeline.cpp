@@ -273,8 +273,8 @@ int run_mesh_pipeline(MeshArgs& args) {
   // The input's vertices come first, in input order: written back exactly as read (the round
   // trip through the local frame is exact only to ~1e-9 m), so the output keeps the input
   // surface bit for bit.
-  if (!input_xyz.empty() && r.mesh.xyz.size() >= input_xyz.size())
-    std::copy(input_xyz.begin(), input_xyz.end(), r.mesh.xyz.begin());
+  for (size_t v = 0; v < r.input_vertex.size() && 3 * v + 2 < input_xyz.size(); ++v)
+    if (r.input_vertex[v] != TetMesh::kNone) std::copy_n(&input_xyz[3 * v], 3, &r.mesh.xyz[3 * size_t(r.input_vertex[v])]);
   if (writer.joinable()) writer.join();
   if (!write_now) write_code = write_outputs(args, r.mesh);
   if (write_code != kExitOk) return write_code;

@@ -133,10 +133,17 @@ Status TetMesh::build_adjacency() {
   return Status::success();
 }
 
-VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices) const {
+VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices, std::vector<uint32_t>* vertex_map) const {
+  return to_volume_mesh(drop_unused_vertices, {}, {}, vertex_map);
+}
+
+VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices, const std::vector<uint32_t>& bnd_tri,
+                                   const std::vector<int32_t>& bnd_patch, std::vector<uint32_t>* vertex_map) const {
   VolumeMesh out;
   const size_t nv = num_vertices();
-  std::vector<uint32_t> remap(nv, kNone);
+  std::vector<uint32_t> local;
+  std::vector<uint32_t>& remap = vertex_map ? *vertex_map : local;
+  remap.assign(nv, kNone);
   if (!drop_unused_vertices)
     for (size_t v = 0; v < nv; ++v) remap[v] = static_cast<uint32_t>(v);
   for (uint32_t t = 0; t < num_tet_slots(); ++t) {
@@ -146,6 +153,8 @@ VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices) const {
       if (remap[v] == kNone) remap[v] = 0;  // mark used; numbered below in vertex order
     }
   }
+  for (uint32_t v : bnd_tri)
+    if (v < nv && remap[v] == kNone) remap[v] = 0;
   if (drop_unused_vertices) {
     uint32_t next = 0;
     for (size_t v = 0; v < nv; ++v)
@@ -159,6 +168,9 @@ VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices) const {
     for (int i = 0; i < 4; ++i) out.tet.push_back(remap[vertex(t, i)]);
     out.region.push_back(tet_region[t]);
   }
+  out.bnd_tri.reserve(bnd_tri.size());
+  for (uint32_t v : bnd_tri) out.bnd_tri.push_back(v < nv ? remap[v] : kNone);
+  out.bnd_patch = bnd_patch;
   return out;
 }
 

@@ -108,8 +108,15 @@ class TetMesh {
   // readers); facets without a partner get kNoNeighbour. Fails on a facet shared by > 2 tets.
   Status build_adjacency();
 
-  // The live non-ghost tets as a compact VolumeMesh (unused vertices dropped when asked).
-  VolumeMesh to_volume_mesh(bool drop_unused_vertices = true) const;
+  // The live non-ghost tets as a compact VolumeMesh, in slot order. Vertices keep their order;
+  // with drop_unused_vertices those of no tet are dropped and the rest renumbered, and
+  // `vertex_map` (when given) gets old id -> new id (kNone for a dropped one).
+  VolumeMesh to_volume_mesh(bool drop_unused_vertices = true, std::vector<uint32_t>* vertex_map = nullptr) const;
+  // The same with boundary triangles (3 vertex ids of this mesh each, one patch label each)
+  // renumbered with the vertices: their vertices are never dropped, so a triangle that is no face
+  // of the tets stays in the output for the writers' check to find.
+  VolumeMesh to_volume_mesh(bool drop_unused_vertices, const std::vector<uint32_t>& bnd_tri,
+                            const std::vector<int32_t>& bnd_patch, std::vector<uint32_t>* vertex_map = nullptr) const;
   static TetMesh from_volume_mesh(const VolumeMesh& m);
 };
 

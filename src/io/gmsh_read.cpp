@@ -1,6 +1,8 @@
 // Gmsh .msh reader: format 4.1 (ASCII and binary) and 2.x (ASCII). Sections other than
-// $MeshFormat, $Entities, $Nodes and $Elements are skipped. Node tags may be sparse.
+// $MeshFormat, $PhysicalNames, $Entities, $Nodes and $Elements are skipped. Node tags may be
+// sparse.
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -39,6 +41,39 @@ struct GmshContent {
   std::vector<int32_t> tri_entity, tet_entity;      // entity (elementary) tag
   std::vector<int32_t> tri_physical, tet_physical;  // first physical tag, 0 when none
 };
+
+// $PhysicalNames: a count, then lines `dim tag "name"` (the name may hold spaces); those of
+// dimension 2 are kept.
+Status read_physical_names(std::string_view text, size_t first_line, const std::string& name,
+                           std::vector<std::pair<int32_t, std::string>>& surface_names) {
+  size_t line_no = first_line, pos = 0;
+  bool have_count = false;
+  while (pos < text.size()) {
+    size_t eol = text.find('\n', pos);
+    if (eol == std::string_view::npos) eol = text.size();
+    std::string_view line = text.substr(pos, eol - pos);
+    const size_t at = line_no++;
+    pos = eol + 1;
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
+    while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
+    if (line.empty()) continue;
+    if (!have_count) {
+      have_count = true;
+      continue;
+    }
+    const size_t quote = line.find('"');
+    const size_t end = quote == std::string_view::npos ? std::string_view::npos : line.find('"', quote + 1);
+    char* stop = nullptr;
+    const std::string head(line.substr(0, quote));
+    const long dim = std::strtol(head.c_str(), &stop, 10);
+    const long tag = std::strtol(stop, &stop, 10);
+    if (end == std::string_view::npos || tag < INT32_MIN || tag > INT32_MAX) {
+      return Status(Error::Parse, name + ":" + std::to_string(at) + ": expected a physical name line (dim tag \"name\")");
+    }
+    if (dim == 2) surface_names.emplace_back(int32_t(tag), std::string(line.substr(quote + 1, end - quote - 1)));
+  }
+  return Status::success();
+}
 
 // Reads the numbers of a section, from text or from binary (4.1 binary: int = 4 bytes,
 // size_t = 8 bytes, double = 8 bytes, little-endian).
@@ -425,6 +460,13 @@ Status resolve_nodes(const std::string& name, const GmshContent& content, const 
   return Status::success();
 }
 
+std::vector<int32_t> labels(const std::vector<int32_t>& entity,
+                            const std::vector<int32_t>& physical) {
+  std::vector<int32_t> out(entity.size());
+  for (size_t i = 0; i < entity.size(); ++i) out[i] = physical[i] != 0 ? physical[i] : entity[i];
+  return out;
+}
+
 Result<SurfaceMesh> parse_gmsh_surface(std::string_view data, const std::string& name) {
   GmshContent content;
   Status status = parse_gmsh(data, name, content);
@@ -436,15 +478,8 @@ Result<SurfaceMesh> parse_gmsh_surface(std::string_view data, const std::string&
   status = resolve_nodes(name, content, "triangle", 3, content.tri_nodes, mesh.tri);
   if (!status.ok()) return status;
   mesh.xyz = std::move(content.xyz);
-  mesh.patch = std::move(content.tri_entity);
+  mesh.patch = labels(content.tri_entity, content.tri_physical);
   return mesh;
-}
-
-std::vector<int32_t> labels(const std::vector<int32_t>& entity,
-                            const std::vector<int32_t>& physical) {
-  std::vector<int32_t> out(entity.size());
-  for (size_t i = 0; i < entity.size(); ++i) out[i] = physical[i] != 0 ? physical[i] : entity[i];
-  return out;
 }
 
 Result<VolumeMesh> parse_gmsh_volume(std::string_view data, const std::string& name) {
@@ -474,6 +509,21 @@ Result<SurfaceMesh> read_gmsh_surface(std::string_view data, const std::string& 
 
 Result<VolumeMesh> read_gmsh_volume(std::string_view data, const std::string& name) {
   return catch_bad_alloc(name, [&] { return parse_gmsh_volume(data, name); });
+}
+
+Result<PatchNames> gmsh_surface_names(std::string_view data, const std::string& name) {
+  PatchNames names;
+  const size_t at = data.find("$PhysicalNames");
+  if (at == std::string_view::npos) return names;
+  const size_t body = data.find('\n', at);
+  const size_t end = data.find("$EndPhysicalNames", at);
+  if (body == std::string_view::npos || end == std::string_view::npos || end < body)
+    return Status(Error::Parse, name + ": $PhysicalNames has no $EndPhysicalNames");
+  const size_t line = size_t(std::count(data.begin(), data.begin() + std::ptrdiff_t(body), '\n')) + 2;
+  std::vector<std::pair<int32_t, std::string>> list;
+  if (Status st = read_physical_names(data.substr(body + 1, end - body - 1), line, name, list); !st.ok()) return st;
+  for (auto& [tag, text] : list) names[tag] = std::move(text);
+  return names;
 }
 
 }  // namespace anitet

@@ -1,6 +1,7 @@
 // Medit .mesh (ASCII): keyword sections "Vertices n / x y z ref", "Triangles n / a b c ref",
 // "Quadrilaterals n / a b c d ref", "Tetrahedra n / a b c d ref" (1-based), "Dimension 3",
 // '#' comments, "End". Other sections are skipped. Also the .sol writer.
+#include <cstdlib>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -209,10 +210,35 @@ void append_elements(std::string& out, const char* keyword, int n, const std::ve
 
 const char* kMeditHeader = "MeshVersionFormatted 2\n\nDimension 3\n";
 
+// The patch names anitet's writer puts in comment lines "# patch LABEL NAME" (Medit has no
+// names). Other comments, and lines of another shape, are comments only.
+void read_patch_name_comments(std::string_view data, PatchNames& names) {
+  constexpr std::string_view kPrefix = "# patch ";
+  for (size_t at = data.find(kPrefix); at != std::string_view::npos; at = data.find(kPrefix, at + 1)) {
+    if (at > 0 && data[at - 1] != '\n') continue;
+    size_t eol = data.find('\n', at);
+    std::string line(data.substr(at + kPrefix.size(), (eol == std::string_view::npos ? data.size() : eol) - at - kPrefix.size()));
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    const size_t space = line.find(' ');
+    if (space == std::string::npos) continue;
+    char* end = nullptr;
+    const long label = std::strtol(line.c_str(), &end, 10);
+    const std::string text = line.substr(space + 1);
+    if (end != line.c_str() + space || label < INT32_MIN || label > INT32_MAX || !check_patch_name(text).ok()) continue;
+    names[int32_t(label)] = text;
+  }
+}
+
 }  // namespace
 
 Result<SurfaceMesh> read_medit_surface(std::string_view data, const std::string& name) {
   return catch_bad_alloc(name, [&] { return parse_medit_surface(data, name); });
+}
+
+PatchNames medit_patch_names(std::string_view data) {
+  PatchNames names;
+  read_patch_name_comments(data, names);
+  return names;
 }
 
 Result<VolumeMesh> read_medit_volume(std::string_view data, const std::string& name) {

@@ -13,20 +13,29 @@
 
 #include "core/status.hpp"
 #include "core/surface_mesh.hpp"
+#include "core/volume_mesh.hpp"
 #include "io/patch_names.hpp"
 
 namespace anitet {
 
-enum class SurfaceFormat { Off, Obj, Stl, Ply, Medit, Gmsh, Su2 };
+enum class SurfaceFormat { Off, Obj, Stl, Ply, Medit, Gmsh, Su2, Vtu, TetGen };
 
-// From the extension, case-insensitive: .off .obj .stl .ply .mesh .msh .su2.
+// From the extension, case-insensitive: .off .obj .stl .ply .mesh .msh .su2 .vtu .node/.ele.
 Result<SurfaceFormat> surface_format_from_path(const std::string& path);
 
 // Reads a file, choosing the format from its extension. `names`, when given, receives the patch
-// names the file carries (SU2 markers; other formats: none).
+// names the file carries for the labels its triangles have (SU2 markers, Gmsh physical names,
+// anitet's "# patch" comments in Medit files; other formats: none); a name that is no valid patch
+// name (patch_names.hpp) is Error::InvalidArgument. A volume mesh (.mesh, .msh, .vtu, .su2, TetGen .node/.ele)
+// gives its surface: its boundary triangles with their patch labels, else (.mesh .msh .vtu
+// .node/.ele without any) the boundary faces of its tets, outward, patch 0; every vertex of the
+// file is kept in file order, so the tets' interior vertices are vertices of no triangle.
 Result<SurfaceMesh> read_surface(const std::string& path, PatchNames* names = nullptr);
+// The same from bytes (TetGen, which has two files, only from its path).
 Result<SurfaceMesh> read_surface(std::string_view data, SurfaceFormat format,
-                                 const std::string& name);
+                                 const std::string& name, PatchNames* names = nullptr);
+// The surface of a volume mesh, as read_surface gives it.
+Result<SurfaceMesh> surface_of_volume(const VolumeMesh& mesh);
 
 // OFF (also COFF/NOFF/STOFF: extra per-vertex values are skipped); patches 0.
 Result<SurfaceMesh> read_off(std::string_view data, const std::string& name);
@@ -40,10 +49,16 @@ Result<SurfaceMesh> read_stl(std::string_view data, const std::string& name);
 // PLY ascii, binary_little_endian or binary_big_endian: `vertex` x y z and the `face` index list.
 Result<SurfaceMesh> read_ply(std::string_view data, const std::string& name);
 // Medit .mesh (ASCII): Vertices and Triangles (refs become patches; Quadrilaterals are split).
+// anitet's writer puts the patch names in comment lines "# patch LABEL NAME".
 Result<SurfaceMesh> read_medit_surface(std::string_view data, const std::string& name);
-// Gmsh .msh 4.1 (ASCII or binary) or 2.2 (ASCII): triangles (type 2); patch = the entity tag of
-// the surface the triangle is on (the elementary tag in 2.2).
+// The names in those comments (any label; unchecked lines are comments only).
+PatchNames medit_patch_names(std::string_view data);
+// Gmsh .msh 4.1 (ASCII or binary) or 2.2 (ASCII): triangles (type 2); patch = the first physical
+// tag of the surface the triangle is on, else its entity (elementary) tag (the same rule as
+// read_gmsh_volume).
 Result<SurfaceMesh> read_gmsh_surface(std::string_view data, const std::string& name);
+// The names of its physical groups of dimension 2 ($PhysicalNames), by physical tag, unchecked.
+Result<PatchNames> gmsh_surface_names(std::string_view data, const std::string& name);
 
 // SU2 native mesh: the triangles (and split quadrilaterals) of its boundary markers, marker i in
 // file order as patch label i + 1, its MARKER_TAG in `names` (a tag that is no valid patch

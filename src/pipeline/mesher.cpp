@@ -438,12 +438,12 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
       if (!mesh.is_deleted(k) && mesh.tet_region[k] >= int32_t(coupled->stats.bodies)) ++result.boundary_layer.tets;
     result.boundary_layer.reduced_vertices = result.layers.bl_reduced_vertices;
   }
-  // Vertices removed by coarsening are dropped; the input's stay first, in input order (they
-  // bound S's facets, so they are all used).
-  // Refinement and the optimizer's collapses remove vertices.
-  result.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/options_.run_refine || options_.run_optimize);
-  result.mesh.bnd_tri = surface.tri;
-  result.mesh.bnd_patch = surface.patch;
+  // Vertices of no tet are dropped (those coarsening removed, and input vertices of no triangle,
+  // e.g. a volume mesh's interior ones); the input's others stay first, in input order. The
+  // boundary triangles are the input's, renumbered with the vertices.
+  std::vector<uint32_t> vertex_map;
+  result.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/true, surface.tri, surface.patch, &vertex_map);
+  result.input_vertex.assign(vertex_map.begin(), vertex_map.begin() + std::ptrdiff_t(surface.num_vertices()));
   result.stages.push_back({"output", since(t), result.mesh.num_tets()});
   if (Status st = progress("done", 1.0); !st.ok()) return st;
   result.seconds = since(start);

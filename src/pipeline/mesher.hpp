@@ -105,9 +105,12 @@ struct BoundaryLayerReport {
 };
 
 struct MesherResult {
-  // Vertices: the input's first, in input order; tets positive; regions per body; boundary
-  // triangles: the input's, with their patch labels.
+  // Vertices: the input's first, in input order (but those of no input triangle, which no tet
+  // uses); tets positive; regions per body; boundary triangles: the input's, with their patch
+  // labels.
   VolumeMesh mesh;
+  // [v]: the vertex of `mesh` that input vertex v became; TetMesh::kNone for one of no triangle.
+  std::vector<uint32_t> input_vertex;
   std::vector<StageReport> stages;
   LayersStats layers;      // of the stage-1 run that stage 2 recovered
   int layers_used = 0;     // the layer count of that run

@@ -320,12 +320,20 @@ TEST(MeditReader, QuadsAndErrors) {
             Error::UnsupportedFormat);
 }
 
-TEST(GmshReader, Surface41AsciiPatchIsTheEntityTag) {
+// The patch of a triangle is its surface's first physical tag (surface 1 is the physical group
+// 101 "left"), else the entity (elementary) tag: the same rule as the volume reader's, so that a
+// Gmsh user's physical groups are the patches and their names the patch names.
+const std::vector<int32_t> kGmshSurfacePatches = {101, 101, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6};
+
+TEST(GmshReader, Surface41AsciiPatchIsThePhysicalTag) {
   Result<SurfaceMesh> mesh = read_box("box41.msh");
   ASSERT_TRUE(mesh.ok()) << mesh.status().message();
   expect_box_vertices(mesh.value());
   EXPECT_EQ(mesh->tri, kBoxTris);
-  EXPECT_EQ(mesh->patch, kBoxPatches);
+  EXPECT_EQ(mesh->patch, kGmshSurfacePatches);
+  PatchNames names;
+  ASSERT_TRUE(read_surface(io_data("box41.msh"), &names).ok());
+  EXPECT_EQ(names, (PatchNames{{101, "left"}}));  // "solid" names a volume
 }
 
 TEST(GmshReader, Surface41Binary) {
@@ -333,15 +341,15 @@ TEST(GmshReader, Surface41Binary) {
   ASSERT_TRUE(mesh.ok()) << mesh.status().message();
   expect_box_vertices(mesh.value());
   EXPECT_EQ(mesh->tri, kBoxTris);
-  EXPECT_EQ(mesh->patch, kBoxPatches);
+  EXPECT_EQ(mesh->patch, kGmshSurfacePatches);
 }
 
-TEST(GmshReader, Surface22PatchIsTheElementaryTag) {
+TEST(GmshReader, Surface22PatchIsThePhysicalTag) {
   Result<SurfaceMesh> mesh = read_box("box22.msh");
   ASSERT_TRUE(mesh.ok()) << mesh.status().message();
   expect_box_vertices(mesh.value());
   EXPECT_EQ(mesh->tri, kBoxTris);
-  EXPECT_EQ(mesh->patch, kBoxPatches);
+  EXPECT_EQ(mesh->patch, kGmshSurfacePatches);
 }
 
 TEST(GmshReader, Errors) {
