@@ -21,15 +21,6 @@ namespace anitet::cli {
 
 namespace {
 
-// "out/t1.mesh" -> "out/t1.front.off"
-std::string front_path(const std::string& output) {
-  const size_t slash = output.find_last_of('/');
-  const size_t dot = output.find_last_of('.');
-  const std::string stem = (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-                               ? output
-                               : output.substr(0, dot);
-  return stem + ".front.off";
-}
 
 nlohmann::json layers_json(const LayersOutput& r, const LayersCheck& check) {
   const LayersStats& s = r.stats;
@@ -90,7 +81,7 @@ int run_mesh_layers(MeshArgs& args) {
     std::cerr << cmd << ": --stop-after layers is serial: run `anitet mesh`\n";
     return kExitNotImplemented;
   }
-  if (const int code = check_output_path(args); code != kExitOk) return code;
+  if (const int code = check_output_paths(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
   const SurfaceMesh& surface = checked.surface;

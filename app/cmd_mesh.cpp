@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "io/file_bytes.hpp"
 #include "io/volume_io.hpp"
 #include "optimize/optimize.hpp"
 #include "recovery/recovery.hpp"
@@ -18,6 +19,12 @@ RecoveryOptions recovery_options(const MeshArgs& args) {
 }
 
 namespace {
+
+std::string join_paths(const std::vector<std::string>& paths) {
+  std::string out;
+  for (const std::string& p : paths) out += (out.empty() ? "'" : ", '") + p + "'";
+  return out;
+}
 
 // `anitet recover`: the conforming Delaunay tetrahedralization of the surface (stage 2 alone);
 // the boundary triangles written are the recovered surface S2 with the input's patch labels.
@@ -54,14 +61,40 @@ int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
 
 }  // namespace
 
-int check_output_path(const MeshArgs& args) {
+int check_output_file(const std::string& command, const std::string& path, bool directory) {
+  if (Status s = check_can_create(path, directory); !s.ok()) {
+    std::cerr << "anitet " << command << ": " << s.message() << " (checked before any work)\n";
+    return kExitReadError;
+  }
+  return kExitOk;
+}
+
+int check_output_paths(const MeshArgs& args) {
   for (const std::string& path : output_paths(args)) {
     if (Status s = check_writable_volume_path(path); !s.ok()) {
       std::cerr << "anitet " << args.command << ": cannot write '" << path << "': " << s.message() << "\n";
       return s.code() == Error::NotImplemented ? kExitNotImplemented : kExitUsage;
     }
   }
+  for (const std::string& path : output_paths(args)) {
+    const bool directory = volume_format_from_path(path).value() == VolumeFormat::OpenFoam;
+    if (const int code = check_output_file(args.command, path, directory); code != kExitOk) return code;
+  }
+  std::vector<std::string> others = {args.report_html, args.metric.write_metric, args.metric.write_sizing};
+  if (args.stop_after == "layers") others.push_back(front_path(args.output));
+  for (const std::string& path : others)
+    if (!path.empty())
+      if (const int code = check_output_file(args.command, path, false); code != kExitOk) return code;
   return kExitOk;
+}
+
+std::string front_path(const std::string& output) {
+  const size_t slash = output.find_last_of('/');
+  const size_t dot = output.find_last_of('.');
+  const std::string stem = (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+                               ? output
+                               : output.substr(0, dot);
+  return stem + ".front.off";
 }
 
 std::vector<std::string> output_paths(const MeshArgs& args) {
@@ -71,13 +104,29 @@ std::vector<std::string> output_paths(const MeshArgs& args) {
 }
 
 int write_outputs(const MeshArgs& args, const VolumeMesh& mesh) {
+  // Every output is attempted, so that one full disk or bad directory costs only its own file;
+  // then the user is told plainly which files are complete.
+  std::vector<std::string> written;
+  int code = kExitOk;
   for (const std::string& path : output_paths(args)) {
-    if (Status s = write_volume_mesh(mesh, path, args.patch_names); !s.ok()) {
-      std::cerr << "anitet " << args.command << ": cannot write '" << path << "': " << s.message() << "\n";
-      return kExitReadError;
+    const Status s = write_volume_mesh(mesh, path, args.patch_names);
+    if (s.ok()) {
+      written.push_back(path);
+      continue;
     }
+    // The writers' own check of a mesh anitet made failing is a bug of anitet's, not the user's.
+    const bool internal = s.code() == Error::InvalidMesh || s.code() == Error::BadIndex || s.code() == Error::InvalidArgument;
+    std::cerr << "anitet " << args.command << ": " << (internal ? "internal error: " : "") << "cannot write '" << path
+              << "': " << s.message() << "\n";
+    if (code == kExitOk || internal) code = internal ? kExitInternal : kExitReadError;
   }
-  return kExitOk;
+  if (code != kExitOk) {
+    std::cerr << "anitet " << args.command << ": "
+              << (written.empty() ? std::string("no output was written")
+                                  : "written and complete: " + join_paths(written) + "; the others were not written")
+              << "\n";
+  }
+  return code;
 }
 
 int check_patch_names(MeshArgs& args, const CheckedSurface& input, const std::vector<int32_t>& extra_labels) {
@@ -111,7 +160,7 @@ int check_patch_names(MeshArgs& args, const CheckedSurface& input, const std::ve
 
 int run_mesh(MeshArgs& args) {
   // A bad output name is a usage error, found before any work.
-  if (const int code = check_output_path(args); code != kExitOk) return code;
+  if (const int code = check_output_paths(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate(args.command, args.input, checked); code != kExitOk) return code;
   if (const int code = check_patch_names(args, checked); code != kExitOk) return code;

@@ -111,7 +111,7 @@ int exit_code_of(Error e) {
 
 int run_mesh_pipeline(MeshArgs& args) {
   const std::string cmd = "anitet mesh";
-  if (const int code = check_output_path(args); code != kExitOk) return code;
+  if (const int code = check_output_paths(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
   // The OpenVDB module (the sizing field's) opens on another core from here (60-90 ms of
@@ -235,6 +235,7 @@ int run_mesh_pipeline(MeshArgs& args) {
   } join_writer{writer};
   // Measured in the local frame, against the surface that was meshed (with --report, by the
   // HTML report, which gives the same report).
+  std::vector<std::string> not_written;  // the report or metric files that could not be written
   Result<QualityReport> quality = Status(Error::Internal, "not measured");
   if (args.report_html.empty()) {
     quality = compute_quality_report(r.mesh, &checked.surface);
@@ -249,7 +250,7 @@ int run_mesh_pipeline(MeshArgs& args) {
     if (html.ok()) {
       if (Status st = write_file_bytes(args.report_html, html.value().html); !st.ok()) {
         std::cerr << cmd << ": cannot write report '" << args.report_html << "': " << st.message() << "\n";
-        return kExitReadError;
+        not_written.push_back(args.report_html);
       }
       quality = std::move(html).value().report;
     } else {
@@ -263,7 +264,8 @@ int run_mesh_pipeline(MeshArgs& args) {
   if (field) {
     if (Status st = write_metric_outputs(args.metric, *field, checked.surface, r.mesh); !st.ok()) {
       std::cerr << cmd << ": cannot write the sizing field: " << st.message() << "\n";
-      return kExitReadError;
+      for (const std::string& path : {args.metric.write_metric, args.metric.write_sizing})
+        if (!path.empty()) not_written.push_back(path);
     }
   }
   if (Status st = restore_geodetic(args.metric, frame.value(), r.mesh); !st.ok()) {
@@ -278,6 +280,12 @@ int run_mesh_pipeline(MeshArgs& args) {
   if (writer.joinable()) writer.join();
   if (!write_now) write_code = write_outputs(args, r.mesh);
   if (write_code != kExitOk) return write_code;
+  if (!not_written.empty()) {
+    // The meshes are complete; say so, and which files are not, before the run's report.
+    std::string list;
+    for (const std::string& p : not_written) list += (list.empty() ? "'" : ", '") + p + "'";
+    std::cerr << cmd << ": the mesh files are written and complete; not written: " << list << "\n";
+  }
   const BoundaryLayerReport& bl = r.boundary_layer;
   if (args.json) {
     nlohmann::json stages = nlohmann::json::array();
@@ -319,6 +327,7 @@ int run_mesh_pipeline(MeshArgs& args) {
                                    {"flips", r.optimize.seconds_flips}, {"slivers", r.optimize.seconds_slivers},
                                    {"certify", r.optimize.seconds_certify}}}}},
         {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
+    out["not_written"] = not_written;
     std::cout << out.dump(1) << "\n";
   } else if (!args.quiet) {
     std::cout << "anitet mesh: " << args.input << " -> " << args.output << ": " << r.mesh.num_vertices()
@@ -377,9 +386,9 @@ int run_mesh_pipeline(MeshArgs& args) {
                 << 100.0 * double(mq.below_04) / double(mq.tets) << "%)\n";
     }
     std::cout << quality_report_text(quality.value());
-    if (!args.report_html.empty()) std::cout << "html report: " << args.report_html << "\n";
+    if (!args.report_html.empty() && not_written.empty()) std::cout << "html report: " << args.report_html << "\n";
   }
-  return kExitOk;
+  return not_written.empty() ? kExitOk : kExitReadError;
 }
 
 namespace {

@@ -90,9 +90,17 @@ struct MeshArgs {
 int run_mesh(MeshArgs& args);
 // The recovery options --recovery asks for.
 RecoveryOptions recovery_options(const MeshArgs& args);
-// Before any work: the output's format can be written. Returns kExitOk, or after printing the
-// reason kExitUsage (kExitNotImplemented for .cgns/.exo in a build without the library).
-int check_output_path(const MeshArgs& args);
+// Before any work: every file the command will write (-o, --also-write, --report,
+// --write-metric, --write-sizing, the front of --stop-after layers) has a format that can be
+// written and can be created (io's check_can_create). Returns kExitOk, or after printing the
+// reason kExitUsage for a format that cannot be written, kExitNotImplemented for .cgns/.exo in a
+// build without the library, kExitReadError for a file that cannot be created.
+int check_output_paths(const MeshArgs& args);
+// Before any work, for any command: `path` (a file, or a directory a writer creates) can be
+// created: kExitOk, else the reason printed and kExitReadError.
+int check_output_file(const std::string& command, const std::string& path, bool directory = false);
+// The front surface `mesh --stop-after layers` writes beside OUT: "out/t1.mesh" -> "out/t1.front.off".
+std::string front_path(const std::string& output);
 // -o and every --also-write, in that order.
 std::vector<std::string> output_paths(const MeshArgs& args);
 // Writes mesh to every output path; kExitOk, or kExitReadError after printing which failed.

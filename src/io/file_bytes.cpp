@@ -1,5 +1,6 @@
 #include "io/file_bytes.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -84,6 +85,48 @@ Status write_file_with(const std::string& path, const Produce& produce) {
 
 Status write_file_bytes(const std::string& path, std::string_view bytes) {
   return write_file_with(path, [bytes](const std::function<bool(std::string_view)>& write) { return write(bytes); });
+}
+
+namespace {
+
+// Creates and removes `probe`; the error names `shown`.
+Status probe_file(const std::string& probe, const std::string& shown) {
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) return io_error("create", shown, errno);
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return Status::success();
+}
+
+}  // namespace
+
+Status check_can_create(const std::string& path, bool directory) {
+  if (path.empty()) return Status(Error::FileNotFound, "cannot create a file with an empty name");
+  struct stat info;
+  if (directory) {
+    std::string dir = path;
+    while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
+    if (stat(dir.c_str(), &info) == 0 && !S_ISDIR(info.st_mode)) return io_error("create directory", path, ENOTDIR);
+    // The nearest existing ancestor: the writer creates the rest.
+    while (stat(dir.c_str(), &info) != 0) {
+      if (errno != ENOENT) return io_error("create directory", path, errno);
+      const size_t slash = dir.find_last_of('/');
+      dir = slash == std::string::npos ? "." : slash == 0 ? "/" : dir.substr(0, slash);
+    }
+    if (!S_ISDIR(info.st_mode)) return io_error("create directory", path, ENOTDIR);
+    return probe_file(dir + "/.anitet-probe-" + std::to_string(getpid()), path);
+  }
+  if (lstat(path.c_str(), &info) == 0) {
+    if (S_ISDIR(info.st_mode)) return io_error("create", path, EISDIR);
+    if (!S_ISREG(info.st_mode)) {  // written directly (write_file_with): it must open for writing
+      const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC | O_NONBLOCK);
+      // ENXIO: a FIFO no one reads yet; ENOENT: a dangling link, whose target the writer creates.
+      if (fd < 0 && errno != ENXIO && errno != ENOENT) return io_error("open", path, errno);
+      if (fd >= 0) ::close(fd);
+      return Status::success();
+    }
+  }
+  return probe_file(partial_path(path), path);
 }
 
 std::string partial_path(const std::string& path) { return path + ".part-" + std::to_string(getpid()); }

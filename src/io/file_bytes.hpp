@@ -25,6 +25,14 @@ Status write_file_bytes(const std::string& path, std::string_view bytes);
 Status write_file_with(const std::string& path,
                        const std::function<bool(const std::function<bool(std::string_view)>&)>& produce);
 
+// Before any work: whether a writer could create PATH, so that a long run does not end in
+// "cannot write". A file: PATH.part-PID is created and removed (an existing device, pipe or
+// symbolic link is opened for writing, as the writers would); PATH must not be a directory. With
+// `directory` (a writer that creates PATH and its parents, e.g. an OpenFOAM polyMesh): PATH is a
+// directory or does not exist, and a probe file can be created in its nearest existing ancestor.
+// Error::FileNotFound with the reason.
+Status check_can_create(const std::string& path, bool directory = false);
+
 // The name a writer fills before moving it into place: PATH.part-PID.
 std::string partial_path(const std::string& path);
 // Renames `partial` to `path` (replacing it); on failure removes `partial` and returns
