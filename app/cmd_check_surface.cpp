@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -33,6 +34,20 @@ std::string describe_example(const ProblemExample& e) {
     }
   }
   return os.str();
+}
+
+struct PatchCount {
+  int32_t label = 0;
+  size_t triangles = 0;
+};
+
+// The patch labels the triangles carry, in increasing order, with their triangle counts.
+std::vector<PatchCount> patch_counts(const SurfaceMesh& s) {
+  std::map<int32_t, size_t> count;
+  for (int32_t p : s.patch) ++count[p];
+  std::vector<PatchCount> out;
+  for (const auto& [label, n] : count) out.push_back({label, n});
+  return out;
 }
 
 }  // namespace
@@ -118,22 +133,57 @@ std::string describe_validation(const std::string& path, const CheckedSurface& c
 }
 
 int run_check_surface(const CheckSurfaceArgs& args) {
+  if (!args.output.empty()) {
+    if (Result<SurfaceFormat> f = surface_format_from_path(args.output);
+        !f.ok() || !(f.value() == SurfaceFormat::Off || f.value() == SurfaceFormat::Obj ||
+                     f.value() == SurfaceFormat::Stl || f.value() == SurfaceFormat::Medit)) {
+      std::cerr << "anitet check-surface: cannot write '" << args.output
+                << "': the repaired surface is written as .off, .obj, .stl or .mesh\n";
+      return kExitUsage;
+    }
+    if (const int code = check_output_file("check-surface", args.output); code != kExitOk) return code;
+  }
   CheckedSurface checked;
   const int code = load_and_validate("check-surface", args.input, checked, false);
   if (code == kExitReadError) return code;
+  const std::vector<PatchCount> patches = patch_counts(checked.surface);
+  bool written = false;
+  if (!args.output.empty() && code == kExitOk) {
+    if (Status st = write_surface(checked.surface, args.output); !st.ok()) {
+      std::cerr << "anitet check-surface: " << st.message() << "\n";
+      return kExitReadError;
+    }
+    written = true;
+  }
   if (args.json) {
     nlohmann::json j = nlohmann::json::parse(report_to_json(checked.report), nullptr, false);
     if (j.is_discarded() || !j.is_object()) j = nlohmann::json::object();
     j["file"] = args.input;
     j["vertices"] = checked.surface.num_vertices();
     j["triangles"] = checked.surface.num_triangles();
+    nlohmann::json list = nlohmann::json::array();
+    for (const PatchCount& p : patches)
+      list.push_back({{"label", p.label}, {"name", patch_name(checked.names, p.label)}, {"named", checked.names.count(p.label) > 0}, {"triangles", p.triangles}});
+    j["patches"] = list;
+    j["written"] = written ? nlohmann::json(args.output) : nlohmann::json(nullptr);
     j["ok"] = checked.report.ok();
     std::cout << j.dump(2) << "\n";
   } else {
     std::cout << describe_validation(args.input, checked);
+    std::cout << "  patches:";
+    for (const PatchCount& p : patches) {
+      const auto named = checked.names.find(p.label);
+      std::cout << " " << p.label << (named != checked.names.end() ? " '" + named->second + "'" : std::string()) << " ("
+                << p.triangles << " triangles)" << (&p == &patches.back() ? "" : ",");
+    }
+    std::cout << "\n";
+    if (written) std::cout << "  repaired surface written: " << args.output << "\n";
   }
   std::cout.flush();  // the report first, then the verdict on stderr
-  if (code == kExitInvalidInput) print_invalid_surface("check-surface", args.input, checked.report);
+  if (code == kExitInvalidInput) {
+    print_invalid_surface("check-surface", args.input, checked.report);
+    if (!args.output.empty()) std::cerr << "anitet check-surface: '" << args.output << "' not written: the surface is invalid\n";
+  }
   return code;
 }
 

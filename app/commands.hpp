@@ -36,6 +36,7 @@ const DistributedRun* distributed_run();  // null in the serial tool
 
 struct CheckSurfaceArgs {
   std::string input;
+  std::string output;  // -o: the repaired surface (.off .obj .stl .mesh); empty: none
   bool json = false;
 };
 int run_check_surface(const CheckSurfaceArgs& args);

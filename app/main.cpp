@@ -28,6 +28,9 @@ int run(int argc, char** argv) {
   CLI::App* check_cmd = app.add_subcommand(
       "check-surface", "Read and validate a triangulated surface; report problems and safe repairs");
   check_cmd->add_option("IN", check.input, "Surface file (.off .obj .stl .ply .mesh .msh, or .su2: its boundary markers)")->required();
+  check_cmd->add_option("-o,--output", check.output,
+                        "Write the surface after the safe repairs (merged vertices, reoriented triangles and "
+                        "shells) here when it is valid: .off, .obj, .stl (float: lossy) or .mesh (keeps patch labels)");
   check_cmd->add_flag("--json", check.json, "Print the report as JSON");
 
   QualityArgs quality;

@@ -293,6 +293,36 @@ void nest_and_orient(SurfaceMesh& s, const TriangleBVH& bvh, const topology::Top
             });
 }
 
+// Shells whose neighbours disagree on the orientation but that are closed and orientable are
+// made consistent (a repair, as the whole-shell flip is), and the topology measured again; a
+// non-orientable one is an error naming an edge where no orientation agrees.
+void reorient_triangles(SurfaceMesh& s, const std::vector<uint8_t>& usable, topology::EdgeTable& edges,
+                        topology::Topology& topo, ValidationReport& report, ReportBuilder& out) {
+  const std::vector<repair::ShellReorientation> done = repair::orient_shells_consistently(s, edges, topo);
+  std::vector<repair::ShellReorientation> failed;
+  bool changed = false;
+  for (const repair::ShellReorientation& r : done) {
+    if (!r.orientable) {
+      failed.push_back(r);
+      continue;
+    }
+    changed = true;
+    report.repairs.push_back(Repair{"reoriented_triangles", r.flipped,
+                                    "reoriented " + std::to_string(r.flipped) + " of the " +
+                                        std::to_string(topo.shell_size[r.shell]) + " triangles of shell " +
+                                        std::to_string(r.shell) + " to match their neighbours"});
+  }
+  if (changed) topo = topology::analyse(s, usable, edges);  // the same edges, now consistent
+  if (failed.empty()) return;
+  const auto& f = failed[0];
+  out.add(Error::InconsistentOrientation, Severity::Error, "non_orientable_shell", failed.size(),
+          std::to_string(failed.size()) + " shells are not orientable (no orientation of their triangles agrees "
+          "across every edge, as on a Moebius band); first: shell " + std::to_string(f.shell) + " at edge (" +
+          std::to_string(f.edge_lo) + ", " + std::to_string(f.edge_hi) + ") " + format_point(s.point(f.edge_lo)) +
+          " - " + format_point(s.point(f.edge_hi)),
+          [&](size_t k) { return out.example({topo.shell_first_triangle[failed[k].shell]}, {failed[k].edge_lo, failed[k].edge_hi}); });
+}
+
 void report_unreferenced(const SurfaceMesh& s, ReportBuilder& out) {
   std::vector<uint8_t> referenced(s.num_vertices(), 0);
   for (uint32_t v : s.tri) referenced[v] = 1;
@@ -328,7 +358,6 @@ ValidationReport validate_surface(SurfaceMesh& s, const ValidationOptions& optio
     check_duplicates(s, out);
     edges = topology::build_edge_table(s, usable);
     topo = topology::analyse(s, usable, edges);
-    report_topology(s, edges, topo, out);
   };
   auto geometric = [&] {
     if (geometry_ok) bvh.build(s.xyz.data(), s.tri.data(), s.num_triangles());
@@ -341,6 +370,9 @@ ValidationReport validate_surface(SurfaceMesh& s, const ValidationOptions& optio
   } else {
     tbb::parallel_invoke(combinatorial, geometric);
   }
+  // Orientation only now: the geometric half reads the triangles (which flips do not move).
+  if (options.orient_triangles) reorient_triangles(s, usable, edges, topo, report, out);
+  report_topology(s, edges, topo, out);
   std::vector<std::vector<uint32_t>> shell_tris(topo.shell_first_triangle.size());
   for (size_t t = 0; t < s.num_triangles(); ++t) {
     if (topo.shell_of[t] >= 0) shell_tris[topo.shell_of[t]].push_back(static_cast<uint32_t>(t));

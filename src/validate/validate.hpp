@@ -24,6 +24,9 @@
 // Repairs (applied to the surface in place, listed in the report):
 //   - vertices with exactly equal coordinates are merged (the first one is kept, the others are
 //     removed and the remaining ids compacted; report.vertex_map maps old ids to new ones);
+//   - shells whose edges all have two triangles but whose neighbours disagree on orientation
+//     are made consistent when they are orientable (the fewer triangles flipped; a
+//     non-orientable shell is an error, non_orientable_shell, naming an edge);
 //   - closed, consistently oriented shells are flipped to the expected orientation.
 //
 // Orientation rule. Shells are the connected components of triangles across edges. Every shell is
@@ -49,6 +52,7 @@ namespace anitet {
 
 struct ValidationOptions {
   bool merge_duplicate_vertices = true;  // repair: merge vertices with exactly equal coordinates
+  bool orient_triangles = true;          // repair: make orientable shells consistent (polygon soups)
   bool orient_shells = true;             // repair: flip closed shells oriented against the rule
   bool check_self_intersections = true;  // the (most expensive) exact intersection search
   size_t max_examples = 5;               // instances kept per problem kind
@@ -74,7 +78,7 @@ struct Problem {
 };
 
 struct Repair {
-  std::string kind;  // "merged_duplicate_vertices" or "flipped_shell"
+  std::string kind;  // "merged_duplicate_vertices", "reoriented_triangles" or "flipped_shell"
   size_t count = 0;  // vertices removed, or triangles flipped
   std::string message;
 };

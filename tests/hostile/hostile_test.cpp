@@ -686,13 +686,28 @@ TEST(HostileSurface, NonManifoldVertexTwoTetsTouching) {
   EXPECT_EQ(report.count(Error::OpenBoundary), 0u) << report.summary();
 }
 
+// One triangle facing the other way on a closed orientable shell: reoriented to match its
+// neighbours (a repair the report lists) and meshed; refused when that repair is off.
 TEST(HostileSurface, InconsistentOrientationOneTriangleFlipped) {
   SurfaceMesh m = cube();
   std::swap(m.tri[4], m.tri[5]);
-  expect_problem(validate(m), Error::InconsistentOrientation);
+  SurfaceMesh kept = m;
+  ValidationOptions no_repair;
+  no_repair.orient_triangles = false;
+  expect_problem(validate_surface(kept, no_repair), Error::InconsistentOrientation);
+  SurfaceMesh repaired = m;
+  const ValidationReport report = validate_surface(repaired);
+  EXPECT_TRUE(report.ok()) << report.summary();
+  ASSERT_EQ(report.repairs.size(), 1u);
+  EXPECT_EQ(report.repairs[0].kind, "reoriented_triangles");
+  EXPECT_EQ(repaired.tri, cube().tri);
   Result<MesherResult> r = Mesher(fast_options()).run(m);
-  ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().code(), Error::InconsistentOrientation) << r.status().message();
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  MesherOptions strict = fast_options();
+  strict.validation.orient_triangles = false;
+  Result<MesherResult> refused = Mesher(strict).run(m);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), Error::InconsistentOrientation) << refused.status().message();
 }
 
 TEST(HostileSurface, InvertedClosedSurfaceIsFlippedOrReported) {

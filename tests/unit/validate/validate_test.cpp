@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "test_surfaces.hpp"
 
@@ -134,11 +135,81 @@ TEST(Validate, NonManifoldVertexTwoCubesAtACorner) {
 TEST(Validate, InconsistentOrientation) {
   SurfaceMesh s = test::cube();
   std::swap(s.tri[1], s.tri[2]);  // flip triangle 0
-  const ValidationReport r = validate_surface(s);
+  ValidationOptions no_repair;
+  no_repair.orient_triangles = false;
+  SurfaceMesh kept = s;
+  const ValidationReport r = validate_surface(kept, no_repair);
   EXPECT_EQ(r.status().code(), Error::InconsistentOrientation);
   EXPECT_EQ(r.count(Error::InconsistentOrientation), 3u);
   EXPECT_EQ(errors(r), 1u) << r.summary();
   EXPECT_FALSE(r.shells[0].closed);
+  // The repair: the one triangle that disagrees with its neighbours is flipped back.
+  const ValidationReport repaired = validate_surface(s);
+  EXPECT_TRUE(repaired.ok()) << repaired.summary();
+  ASSERT_NE(find_repair(repaired, "reoriented_triangles"), nullptr);
+  EXPECT_EQ(find_repair(repaired, "reoriented_triangles")->count, 1u);
+  EXPECT_EQ(s.tri, test::cube().tri);
+  EXPECT_TRUE(repaired.shells[0].closed);
+}
+
+// A polygon soup of a closed surface (every triangle with its own corners, a random half of them
+// facing the other way), as STL files of other tools often are: merged, reoriented consistently
+// (the fewer triangles flipped), then outward; every triangle ends as in the original.
+TEST(Validate, PolygonSoupFacingEitherWayIsReoriented) {
+  const SurfaceMesh sphere = test::sphere(3);
+  SurfaceMesh soup;
+  std::mt19937 rng(7);
+  size_t flipped = 0;
+  for (size_t t = 0; t < sphere.num_triangles(); ++t) {
+    const bool flip = rng() % 2 == 0;
+    flipped += flip;
+    for (int k : {0, flip ? 2 : 1, flip ? 1 : 2}) {
+      const double* p = sphere.point(sphere.tri[3 * t + size_t(k)]);
+      soup.add_vertex(p[0], p[1], p[2]);
+    }
+    soup.add_triangle(uint32_t(3 * t), uint32_t(3 * t + 1), uint32_t(3 * t + 2));
+  }
+  // Facing inward on the whole (more flipped than not): the shell repair turns it outward after.
+  SurfaceMesh inward = soup;
+  for (size_t t = 0; t < inward.num_triangles(); ++t) std::swap(inward.tri[3 * t + 1], inward.tri[3 * t + 2]);
+  for (SurfaceMesh* s : {&soup, &inward}) {
+    const ValidationReport r = validate_surface(*s);
+    ASSERT_TRUE(r.ok()) << r.summary();
+    const Repair* re = find_repair(r, "reoriented_triangles");
+    ASSERT_NE(re, nullptr);
+    EXPECT_EQ(re->count, std::min(flipped, sphere.num_triangles() - flipped));
+    EXPECT_NE(re->message.find("to match their neighbours"), std::string::npos) << re->message;
+    EXPECT_GT(r.shells[0].signed_volume, 0.0);
+    // Each triangle faces as in the original sphere (outward): its normal points away from the centre.
+    for (size_t t = 0; t < s->num_triangles(); ++t) {
+      const double *a = s->point(s->tri[3 * t]), *b = s->point(s->tri[3 * t + 1]), *c = s->point(s->tri[3 * t + 2]);
+      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      ASSERT_GT(n[0] * a[0] + n[1] * a[1] + n[2] * a[2], 0.0) << "triangle " << t;
+    }
+  }
+}
+
+// The real projective plane (6 vertices, 10 triangles, every edge on two): closed but no
+// orientation agrees across all its edges. Refused, naming an edge; nothing flipped.
+TEST(Validate, NonOrientableShellIsRefused) {
+  SurfaceMesh s;
+  const double p[6][3] = {{0, 0, 1}, {1, 0, 0}, {0.3, 0.95, 0}, {-0.8, 0.6, 0.1}, {-0.8, -0.6, 0.2}, {0.3, -0.95, 0.3}};
+  for (const auto& q : p) s.add_vertex(q[0], q[1], q[2]);
+  const uint32_t t[10][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 1},
+                             {1, 2, 4}, {2, 3, 5}, {3, 4, 1}, {4, 5, 2}, {5, 1, 3}};
+  for (const auto& c : t) s.add_triangle(c[0], c[1], c[2]);
+  const SurfaceMesh before = s;
+  const ValidationReport r = validate_surface(s);
+  EXPECT_FALSE(r.ok());
+  const Problem* p_no = r.find("non_orientable_shell");
+  ASSERT_NE(p_no, nullptr) << r.summary();
+  EXPECT_EQ(p_no->code, Error::InconsistentOrientation);
+  EXPECT_NE(p_no->message.find("at edge ("), std::string::npos) << p_no->message;
+  ASSERT_EQ(p_no->examples.size(), 1u);
+  EXPECT_EQ(p_no->examples[0].vertices.size(), 2u);
+  EXPECT_EQ(find_repair(r, "reoriented_triangles"), nullptr);
+  EXPECT_EQ(s.tri, before.tri);
 }
 
 TEST(Validate, DegenerateTriangles) {
