@@ -327,6 +327,7 @@ int run_mesh_pipeline(MeshArgs& args) {
                                    {"flips", r.optimize.seconds_flips}, {"slivers", r.optimize.seconds_slivers},
                                    {"certify", r.optimize.seconds_certify}}}}},
         {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
+    out["ok"] = not_written.empty();
     out["not_written"] = not_written;
     std::cout << out.dump(1) << "\n";
   } else if (!args.quiet) {

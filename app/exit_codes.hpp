@@ -10,4 +10,17 @@ constexpr int kExitReadError = 3;       // a file cannot be read, parsed or writ
 constexpr int kExitInvalidInput = 4;    // the input is read but invalid (e.g. an open surface)
 constexpr int kExitNotImplemented = 5;  // the requested stage does not exist yet
 
+// A stable name of each code, for JSON ("internal_error", "usage", ...).
+inline const char* exit_code_name(int code) {
+  switch (code) {
+    case kExitOk: return "ok";
+    case kExitInternal: return "internal_error";
+    case kExitUsage: return "usage";
+    case kExitReadError: return "read_write_error";
+    case kExitInvalidInput: return "invalid_input";
+    case kExitNotImplemented: return "not_implemented";
+    default: return "error";
+  }
+}
+
 }  // namespace anitet::cli

@@ -5,9 +5,14 @@
 #include <filesystem>
 #include <iostream>
 #include <new>
+#include <sstream>
+#include <streambuf>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
@@ -264,9 +269,85 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
+namespace {
+
+// Copies what passes through to another buffer, and keeps a copy (stderr) or a count (stdout).
+class TeeBuffer final : public std::streambuf {
+ public:
+  TeeBuffer(std::streambuf* to, bool keep) : to_(to), keep_(keep) {}
+  const std::string& text() const { return text_; }
+  size_t count() const { return count_; }
+
+ protected:
+  int overflow(int c) override {
+    if (c == traits_type::eof()) return traits_type::not_eof(c);
+    const char ch = traits_type::to_char_type(c);
+    return xsputn(&ch, 1) == 1 ? c : traits_type::eof();
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    if (keep_) text_.append(s, size_t(n));
+    count_ += size_t(n);
+    return to_->sputn(s, n);
+  }
+  int sync() override { return to_->pubsync(); }
+
+ private:
+  std::streambuf* to_;
+  bool keep_;
+  std::string text_;
+  size_t count_ = 0;
+};
+
+// With --json, a failing command prints a JSON object too, never nothing: every message a
+// command writes on stderr is kept, and when it ends with an exit code other than 0 without
+// having printed anything on stdout, {"ok": false, "error": {...}} goes there. One mechanism for
+// every command and every failure path, including the option parser's.
+class JsonFailureGuard {
+ public:
+  explicit JsonFailureGuard(bool on) : on_(on), err_(std::cerr.rdbuf(), true), out_(std::cout.rdbuf(), false) {
+    if (!on_) return;
+    old_err_ = std::cerr.rdbuf(&err_);
+    old_out_ = std::cout.rdbuf(&out_);
+  }
+  ~JsonFailureGuard() {
+    if (!on_) return;
+    std::cerr.rdbuf(old_err_);
+    std::cout.rdbuf(old_out_);
+  }
+  void finish(int code) {
+    if (!on_ || code == anitet::cli::kExitOk || out_.count() > 0) return;
+    std::vector<std::string> lines;
+    std::istringstream text(err_.text());
+    for (std::string line; std::getline(text, line);)
+      if (!line.empty()) lines.push_back(line);
+    const nlohmann::json error = {{"exit_code", code},
+                                  {"kind", anitet::cli::exit_code_name(code)},
+                                  {"message", lines.empty() ? std::string(anitet::cli::exit_code_name(code)) : lines.front()},
+                                  {"messages", lines}};
+    std::cout << nlohmann::json({{"ok", false}, {"error", error}}).dump(1) << "\n";
+    std::cout.flush();
+  }
+
+ private:
+  bool on_;
+  TeeBuffer err_, out_;
+  std::streambuf* old_err_ = nullptr;
+  std::streambuf* old_out_ = nullptr;
+};
+
+bool asks_for_json(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string_view(argv[i]) == "--json") return true;
+  return false;
+}
+
+}  // namespace
+
 int anitet::cli::cli_main(int argc, char** argv) {
+  JsonFailureGuard guard(asks_for_json(argc, argv));
+  int code = kExitInternal;
   try {
-    return run(argc, argv);
+    code = run(argc, argv);
   } catch (const std::bad_alloc&) {
     std::cerr << "anitet: out of memory\n";
   } catch (const std::exception& e) {
@@ -274,5 +355,6 @@ int anitet::cli::cli_main(int argc, char** argv) {
   } catch (...) {
     std::cerr << "anitet: internal error\n";
   }
-  return anitet::cli::kExitInternal;
+  guard.finish(code);
+  return code;
 }
