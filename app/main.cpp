@@ -20,6 +20,46 @@
 
 namespace {
 
+// Options that would do nothing in the combination given are refused, never ignored: each rule
+// names an option that was given and what it needs.
+int check_mesh_option_combinations(const CLI::App& cmd, const anitet::cli::MeshArgs& a) {
+  using anitet::cli::kExitOk;
+  using anitet::cli::kExitUsage;
+  auto given = [&](const char* name) { return cmd.count(name) > 0; };
+  struct Rule {
+    const char* option;
+    bool applies;
+    const char* needs;
+  };
+  const bool bl = !a.bl_patches.empty(), layers_only = a.stop_after == "layers";
+  const bool no_stage3 = a.no_refine && a.no_optimize;
+  const Rule rules[] = {
+      {"--bl-first-height", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-yplus", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-growth", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-layers", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-reynolds", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
+      {"--bl-ref-length", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
+      {"--background", a.metric.metric.empty(), "a .sol --metric (it is the mesh the .sol's values are at)"},
+      {"--origin", !a.metric.geodetic, "--geodetic"},
+      {"--geo-frame", !a.metric.geodetic, "--geodetic"},
+      {"--geodetic-output", !a.metric.geodetic, "--geodetic"},
+      {"--size", no_stage3 || layers_only, "refinement or optimization (it scales their sizing field)"},
+      {"--anisotropic-cycles", a.no_refine || a.no_optimize || layers_only, "both refinement and optimization"},
+      {"--no-refine", layers_only, "the whole pipeline (--stop-after layers stops before refinement)"},
+      {"--no-optimize", layers_only, "the whole pipeline (--stop-after layers stops before optimization)"},
+      {"--recovery", layers_only, "stage 2 (--stop-after layers stops before it)"},
+      {"--attempts-seconds", layers_only, "stage 2 (--stop-after layers stops before it)"},
+  };
+  for (const Rule& r : rules) {
+    if (r.applies && given(r.option)) {
+      std::cerr << "anitet mesh: " << r.option << " would do nothing here: it needs " << r.needs << "\n";
+      return kExitUsage;
+    }
+  }
+  return kExitOk;
+}
+
 int run(int argc, char** argv) {
   using namespace anitet::cli;
   CLI::App app{"anitet: boundary-constrained tetrahedral mesh generator"};
@@ -228,6 +268,8 @@ int run(int argc, char** argv) {
     return kExitUsage;
   }
 
+  if (mesh_cmd->parsed())
+    if (const int code = check_mesh_option_combinations(*mesh_cmd, mesh); code != kExitOk) return code;
   if (mesh_cmd->parsed() && mesh.bl_yplus > 0.0) {
     anitet::Result<double> h0 = anitet::first_height_from_yplus(mesh.bl_yplus, mesh.bl_reynolds, mesh.bl_ref_length);
     if (!h0.ok()) {
