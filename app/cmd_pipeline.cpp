@@ -91,6 +91,7 @@ std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r)
                                       " collapses; " + fixed(100.0 * r.refine.length_in_range, "%.1f") +
                                       "% of edges in [1/sqrt2, sqrt2]");
   rows.emplace_back("optimization", optimization_counts(r.optimize));
+  for (const Notice& n : r.notices) rows.emplace_back("notice", n.message);
   return rows;
 }
 
@@ -302,7 +303,7 @@ int run_mesh_pipeline(MeshArgs& args) {
                                    {"recovery", r.recovery.seconds_recovery},
                                    {"carving", r.recovery.seconds_carve}}}}},
         {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
-        {"refine", {{"passes", r.refine.passes}, {"splits", r.refine.splits}, {"parallel_splits", r.refine.parallel_splits}, {"collapses", r.refine.collapses},
+        {"refine", {{"passes", r.refine.passes}, {"stopped_at_pass_cap", r.refine.stopped_at_pass_cap}, {"metric_not_spd", r.refine.metric_not_spd}, {"splits", r.refine.splits}, {"parallel_splits", r.refine.parallel_splits}, {"collapses", r.refine.collapses},
                     {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range},
                     {"anisotropic_cycles", r.anisotropic_cycles},
                     {"seconds", {{"edge_lists", r.refine.seconds_edges}, {"split_choice", r.refine.seconds_choice},
@@ -327,6 +328,8 @@ int run_mesh_pipeline(MeshArgs& args) {
                                    {"flips", r.optimize.seconds_flips}, {"slivers", r.optimize.seconds_slivers},
                                    {"certify", r.optimize.seconds_certify}}}}},
         {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
+    out["notices"] = nlohmann::json::array();
+    for (const Notice& n : r.notices) out["notices"].push_back({{"kind", n.kind}, {"message", n.message}});
     out["ok"] = not_written.empty();
     out["not_written"] = not_written;
     std::cout << out.dump(1) << "\n";
@@ -336,9 +339,7 @@ int run_mesh_pipeline(MeshArgs& args) {
               << (r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0) << " tets/s)\n";
     for (const StageReport& s : r.stages)
       std::cout << "  stage " << s.name << ": " << s.seconds << " s, " << s.tets << " tets\n";
-    if (r.layers_retries > 0)
-      std::cout << "  stage 2 could not recover S1 with the requested layers; stages 1-2 retried "
-                << r.layers_retries << " time(s), " << r.layers_used << " layer(s) worked\n";
+    for (const Notice& n : r.notices) std::cout << "  notice: " << n.message << "\n";
     if (bl.layers > 0) {
       std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
                 << bl.tets << " tets, " << bl.vertices << " vertices kept fixed; " << bl.full_columns

@@ -129,6 +129,27 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
       r.max_displacement = std::max(r.max_displacement, distance(mesh.point(v), &t1_xyz[3 * size_t(v)]));
 }
 
+// What the run could not do as asked, for the report (also counted in the stats).
+std::vector<Notice> shortfalls(const MesherResult& r, const MesherOptions& o) {
+  std::vector<Notice> out;
+  if (r.layers_retries > 0)
+    out.push_back({"front_layers_changed", "stage 2 could not recover S1 with " + std::to_string(o.layers.layers) +
+                                               " front layer(s); after " + std::to_string(r.layers_retries) +
+                                               " retries, " + std::to_string(r.layers_used) + " front layer(s) were used"});
+  if (r.refine.stopped_at_pass_cap)
+    out.push_back({"refinement_pass_cap", "refinement stopped at its cap of " + std::to_string(o.refine.max_passes) +
+                                              " passes before the edge lengths settled"});
+  if (r.refine.metric_not_spd > 0)
+    out.push_back({"metric_not_spd", std::to_string(r.refine.metric_not_spd) +
+                                         " vertices had a metric that is not SPD to rounding; it was measured as "
+                                         "the Euclidean metric there"});
+  if (r.optimize.flat_left > 0)
+    out.push_back({"flat_tets_left", std::to_string(r.optimize.flat_left) +
+                                         " tets are left flat to double rounding (positive in exact arithmetic; a "
+                                         "volume computed in doubles may find them flat or inverted)"});
+  return out;
+}
+
 }  // namespace
 
 Result<MesherResult> Mesher::run(const SurfaceMesh& surface) const {
@@ -445,6 +466,7 @@ Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
   result.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/true, surface.tri, surface.patch, &vertex_map);
   result.input_vertex.assign(vertex_map.begin(), vertex_map.begin() + std::ptrdiff_t(surface.num_vertices()));
   result.stages.push_back({"output", since(t), result.mesh.num_tets()});
+  result.notices = shortfalls(result, options_);
   if (Status st = progress("done", 1.0); !st.ok()) return st;
   result.seconds = since(start);
   return result;
@@ -460,6 +482,8 @@ Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const Ref
     if (!r.ok()) return Status(r.status().code(), "stage 3b (refinement, cycle " + std::to_string(c + 2) + "): " + r.status().message());
     order_for_locality(mesh, kept_vertices);
     refine.passes += r->passes;
+    refine.stopped_at_pass_cap = refine.stopped_at_pass_cap || r->stopped_at_pass_cap;
+    refine.metric_not_spd = std::max(refine.metric_not_spd, r->metric_not_spd);
     refine.splits += r->splits;
     refine.split_rejected += r->split_rejected;
     refine.parallel_splits += r->parallel_splits;

@@ -104,6 +104,14 @@ struct BoundaryLayerReport {
   double max_displacement = 0.0;  // largest move of a BL vertex after stage 1 (0: kept)
 };
 
+// Something the run did otherwise, or less, than asked (the front-layer count changed by the
+// retries, refinement stopped at its pass cap, tets left flat to rounding, a metric value that is
+// not SPD measured as Euclidean): a stable kind and a sentence for people.
+struct Notice {
+  std::string kind;
+  std::string message;
+};
+
 struct MesherResult {
   // Vertices: the input's first, in input order (but those of no input triangle, which no tet
   // uses); tets positive; regions per body; boundary triangles: the input's, with their patch
@@ -124,6 +132,7 @@ struct MesherResult {
   // With an anisotropic field (optimize.anisotropic): radius ratios measured in the field's
   // metric (summarize_metric_quality); tets == 0 otherwise.
   QualitySummary metric_quality;
+  std::vector<Notice> notices;  // what was done otherwise than asked (empty: everything as asked)
   double seconds = 0.0;
 };
 

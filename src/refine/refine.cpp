@@ -1020,8 +1020,14 @@ Result<RefineStats> Refiner::run() {
                     [&](const tbb::blocked_range<uint32_t>& r) {
                       for (uint32_t v = r.begin(); v < r.end(); ++v) update_metric(v);
                     });
-  for (uint32_t v = 0; v < mesh_.num_vertices(); ++v)
-    anisotropic_ |= !meshops::MetricMap::of(&metrics_[6 * size_t(v)]).identity;
+  for (uint32_t v = 0; v < mesh_.num_vertices(); ++v) {
+    const double* m = &metrics_[6 * size_t(v)];
+    const bool identity = meshops::MetricMap::of(m).identity;
+    anisotropic_ |= !identity;
+    // A tensor that is not SPD to rounding (its Cholesky fails) is measured as the Euclidean
+    // metric by MetricMap: the count is reported, not hidden.
+    stats_.metric_not_spd += identity && !metric_is_isotropic(m);
+  }
   protected_facets_ = count_protected_facets(mesh_);
   // (Without collapse_to_s_edge_length the list stays empty: every vertex reads 0.)
   if (options_.collapse_to_s_edge_length) measure_s_edges();
@@ -1074,6 +1080,7 @@ Result<RefineStats> Refiner::run() {
     stats_.collapses += collapses;
     stats_.passes = pass + 1;
     if (double(splits + collapses) < options_.stop_fraction * double(edge_count)) break;
+    stats_.stopped_at_pass_cap = pass + 1 == options_.max_passes;
   }
   const auto t = Clock::now();
   refine_detail::collect_edges(mesh_, metrics_, edges, edge_scratch_);

@@ -103,6 +103,11 @@ struct RefineStats {
   size_t collapses = 0;
   size_t collapse_rejected = 0;
   size_t metric_flips = 0;  // anisotropic metrics only: 2-3 / 3-2 flips raising the metric shape
+  // The passes ran out (max_passes) before fewer than stop_fraction of the edges changed: the
+  // lengths are less even than asked.
+  bool stopped_at_pass_cap = false;
+  // Vertices whose metric was not SPD to rounding (an extreme anisotropy), measured as Euclidean.
+  size_t metric_not_spd = 0;
   size_t vertices_before = 0, vertices_after = 0;  // live vertices
   size_t tets_before = 0, tets_after = 0;
   // Normalized edge lengths after the last pass.

@@ -65,6 +65,25 @@ TEST(Pipeline, CoarseCube) {
   }
 }
 
+// What the run did otherwise than asked is told: refinement stopped at its pass cap (one pass
+// here) is a notice, and a run that did everything as asked has none.
+TEST(Pipeline, NoticesTellWhatWasLessThanAsked) {
+  const SurfaceMesh s = test::icosphere(3);
+  Result<MesherResult> full = Mesher().run(s);
+  ASSERT_TRUE(full.ok()) << full.status().message();
+  EXPECT_FALSE(full->refine.stopped_at_pass_cap);
+  for (const Notice& n : full->notices) EXPECT_NE(n.kind, "refinement_pass_cap") << n.message;
+  MesherOptions capped;
+  capped.refine.max_passes = 1;
+  capped.anisotropic_cycles = 0;
+  Result<MesherResult> r = Mesher(capped).run(s);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_TRUE(r->refine.stopped_at_pass_cap);
+  bool told = false;
+  for (const Notice& n : r->notices) told = told || (n.kind == "refinement_pass_cap" && n.message.find("cap of 1 passes") != std::string::npos);
+  EXPECT_TRUE(told);
+}
+
 TEST(Pipeline, GridCubeAndSphere) {
   for (const auto& [name, s] : {std::pair{std::string("grid cube"), test::grid_cube(4)},
                                 std::pair{std::string("icosphere"), test::icosphere(2)}}) {
