@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/bvh.hpp"
+#include "core/exact_scaling.hpp"
 #include "core/sizing.hpp"
 #include "metric/boundary_layer.hpp"
 #include "metric/metric_field.hpp"
@@ -163,42 +164,53 @@ Result<MesherResult> Mesher::run(const SurfaceMesh& surface) const {
 
 namespace {
 
-// The coordinate range the pipeline is measured to mesh: stage 1's floating-point tests overflow
-// on a cube of half-side 1e100 and underflow on one of 1e-100 (both mesh at 1e30 and 1e-30).
-// Outside it the Mesher says so instead of failing in stage 1 with a message about a vertex.
-constexpr double kMaxCoordinate = 1e30;
-constexpr double kMinExtent = 1e-30;
-
-Status check_coordinate_range(const SurfaceMesh& s) {
-  if (s.num_vertices() == 0) return Status::success();
-  const Box3 b = bounding_box(s.xyz.data(), s.num_vertices());
-  double largest = 0, extent = 0;
-  for (int d = 0; d < 3; ++d) {
-    largest = std::max({largest, std::fabs(b.lo[d]), std::fabs(b.hi[d])});
-    extent = std::max(extent, b.hi[d] - b.lo[d]);
+// A field given in the caller's coordinates, asked at points scaled by 2^k: lengths scale with
+// the points, so the metric (1/length^2) by 2^-2k. Exact.
+class PowerOfTwoScaledField final : public SizingField {
+ public:
+  PowerOfTwoScaledField(const SizingField& base, int k) : base_(base), k_(k) {}
+  void metric(const double p[3], double m[6]) const override {
+    const double q[3] = {std::ldexp(p[0], -k_), std::ldexp(p[1], -k_), std::ldexp(p[2], -k_)};
+    base_.metric(q, m);
+    for (int i = 0; i < 6; ++i) m[i] = std::ldexp(m[i], -2 * k_);
   }
-  // "meshing a surface <what> %g <unit> is not implemented (this one <is> %g; ... <flow>)".
-  auto refuse = [](const char* what, double limit, const char* unit, const char* is, double value,
-                   const char* flow) {
-    char msg[320];
-    std::snprintf(msg, sizeof msg,
-                  "meshing a surface %s %g %s is not implemented (this one %s %g; stage 1's floating-point "
-                  "tests would %s): scale it by a power of two, which is exact, and the mesh back",
-                  what, limit, unit, is, value, flow);
-    return Status(Error::NotImplemented, msg);
-  };
-  if (largest > kMaxCoordinate)
-    return refuse("with coordinates beyond", kMaxCoordinate, "in magnitude", "reaches", largest, "overflow");
-  if (extent < kMinExtent)
-    return refuse("whose bounding box is smaller than", kMinExtent, "across", "is", extent, "underflow");
-  return Status::success();
-}
+  bool isotropic() const override { return base_.isotropic(); }
+
+ private:
+  const SizingField& base_;
+  int k_;
+};
 
 }  // namespace
 
 Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
+  Result<int> scaling = exact_power_of_two_scaling({{surface.xyz.data(), surface.num_vertices()}});
+  if (!scaling.ok()) return Status(scaling.status().code(), "meshing this surface is not implemented: " + scaling.status().message());
+  const int k = scaling.value();
+  if (k == 0) return run_in_range(surface);
+  // Meshed scaled by 2^k, then scaled back: the same mesh as the scaled surface gets, exactly.
+  SurfaceMesh scaled = surface;
+  for (double& x : scaled.xyz) x = std::ldexp(x, k);
+  MesherOptions options = options_;
+  std::optional<PowerOfTwoScaledField> field;
+  if (options_.sizing) options.sizing = &field.emplace(*options_.sizing, k);
+  BoundaryLayerOptions& bl = options.layers.boundary_layer;
+  bl.first_height = std::ldexp(bl.first_height, k);
+  bl.total_thickness = std::ldexp(bl.total_thickness, k);
+  Result<MesherResult> run = Mesher(std::move(options)).run_in_range(scaled);
+  if (!run.ok()) return run;
+  MesherResult& r = run.value();
+  for (double& x : r.mesh.xyz) x = std::ldexp(x, -k);
+  BoundaryLayerReport& report = r.boundary_layer;
+  for (double* x : {&report.first_height_min, &report.first_height_mean, &report.first_height_max, &report.max_displacement})
+    *x = std::ldexp(*x, -k);
+  r.notices.push_back({"scaled", "the surface was meshed scaled by 2^" + std::to_string(k) +
+                                     " (exact) to bring its coordinates into the range meshed, and scaled back"});
+  return run;
+}
+
+Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
   const auto start = Clock::now();
-  if (Status st = check_coordinate_range(surface); !st.ok()) return st;
   // The default grid's OpenVDB module opens during stage 1 (see metric::VdbModulePreload; at
   // once when the caller opened it already).
   std::optional<metric::VdbModulePreload> preload;

@@ -154,10 +154,15 @@ class Mesher {
 
   // Validates (and safely repairs a copy of) the surface, then meshes it.
   Result<MesherResult> run(const SurfaceMesh& surface) const;
-  // Meshes a surface that validate_surface() has already accepted (and repaired).
+  // Meshes a surface that validate_surface() has already accepted (and repaired). A surface
+  // whose coordinates or extent lie outside the range the stages are measured to handle
+  // (|x| <= 1e30, extent >= 1e-30) is meshed scaled by a power of two, which is exact and keeps
+  // every predicate's sign, and the mesh scaled back (a notice says so); one that no such scaling
+  // brings into range is refused (Error::NotImplemented).
   Result<MesherResult> run_validated(const SurfaceMesh& surface) const;
 
  private:
+  Result<MesherResult> run_in_range(const SurfaceMesh& surface) const;
   MesherOptions options_;
 };
 

@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include "core/exact_scaling.hpp"
 #include "core/tet_faces.hpp"
 #include "predicates/predicates.hpp"
 #include "quality/parallel_for.hpp"
@@ -185,12 +186,42 @@ Result<QualityReport> compute_quality_report(const VolumeMesh& mesh,
   return quality_detail::compute_quality_report_keep(mesh, input_surface, options, data, boundary);
 }
 
+namespace {
+
+// The report of a mesh (and surface) whose coordinates lie outside the range the measures are
+// computed in (exact_scaling.hpp): measured scaled by 2^k (every shape measure and exact test
+// the same), the volumes and the matching tolerance scaled back.
+Result<QualityReport> report_scaled(const VolumeMesh& mesh, const SurfaceMesh* surface, const QualityOptions& options,
+                                    quality_detail::TetData& data, std::vector<uint32_t>& boundary, int k) {
+  VolumeMesh m = mesh;
+  for (double& x : m.xyz) x = std::ldexp(x, k);
+  SurfaceMesh s;
+  if (surface) {
+    s = *surface;
+    for (double& x : s.xyz) x = std::ldexp(x, k);
+  }
+  Result<QualityReport> r = quality_detail::compute_quality_report_keep(m, surface ? &s : nullptr, options, data, boundary);
+  if (!r.ok()) return r;
+  r->volume = std::ldexp(r->volume, -3 * k);
+  r->surface.surface_volume = std::ldexp(r->surface.surface_volume, -3 * k);
+  r->surface.tolerance_abs = std::ldexp(r->surface.tolerance_abs, -k);
+  for (double& v : data.volume) v = std::ldexp(v, -3 * k);
+  return r;
+}
+
+}  // namespace
+
 Result<QualityReport> quality_detail::compute_quality_report_keep(const VolumeMesh& mesh,
                                                                   const SurfaceMesh* input_surface,
                                                                   const QualityOptions& options,
                                                                   TetData& data,
                                                                   std::vector<uint32_t>& boundary) {
   const auto clock_start = std::chrono::steady_clock::now();
+  // (Non-finite coordinates fit no scaling: check_input reports them below.)
+  const Result<int> k = exact_power_of_two_scaling(
+      {{mesh.xyz.data(), mesh.num_vertices()},
+       {input_surface ? input_surface->xyz.data() : nullptr, input_surface ? input_surface->num_vertices() : 0}});
+  if (k.ok() && k.value() != 0) return report_scaled(mesh, input_surface, options, data, boundary, k.value());
   QualityReport r;
   std::vector<uint8_t> used;
   if (Status s = check_input(mesh, used); !s.ok()) return s;

@@ -550,17 +550,33 @@ TEST(HostileCoordinates, HugeCoordinatesMesherNeverLies) {
   for (double c : r->mesh.xyz) EXPECT_TRUE(std::isfinite(c));
 }
 
-// A cube of half-side 1e100 (also 1e150, 1e200, 1e300) passes validation, but stage 1's
-// floating-point visibility test overflows there: the Mesher refuses it as not implemented,
-// naming the coordinate range, before stage 1 (which failed with "layer 1: vertex 0 ...: no part
-// of its front star is visible").
-TEST(HostileCoordinates, LargeCoordinatesAreRefusedByRange) {
+// A cube of half-side 1e100 (also 1e300) passes validation, but stage 1's floating-point tests
+// overflow there: the Mesher meshes it scaled by a power of two (exact) and scales the mesh back,
+// so it is the mesh of the scaled cube, scaled back bit for bit, and a notice says so.
+TEST(HostileCoordinates, LargeCoordinatesAreMeshedScaledByAPowerOfTwo) {
   for (double h : {1e100, 1e300}) {
     Result<MesherResult> r = Mesher(fast_options()).run(cube(-h, h));
-    ASSERT_FALSE(r.ok());
-    EXPECT_EQ(r.status().code(), Error::NotImplemented);
-    EXPECT_NE(r.status().message().find("beyond 1e+30 in magnitude"), std::string::npos) << r.status().message();
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    const int k = -std::ilogb(2 * h);
+    Result<MesherResult> scaled = Mesher(fast_options()).run(cube(-std::ldexp(h, k), std::ldexp(h, k)));
+    ASSERT_TRUE(scaled.ok()) << scaled.status().message();
+    ASSERT_EQ(r->mesh.tet, scaled->mesh.tet);
+    ASSERT_EQ(r->mesh.xyz.size(), scaled->mesh.xyz.size());
+    for (size_t i = 0; i < r->mesh.xyz.size(); ++i) ASSERT_EQ(r->mesh.xyz[i], std::ldexp(scaled->mesh.xyz[i], -k));
+    ASSERT_FALSE(r->notices.empty());
+    EXPECT_EQ(r->notices.back().kind, "scaled");
   }
+}
+
+// What no power of two brings into range exactly is refused, saying why: a coordinate that would
+// lose bits below the smallest normal double when a box of extent 2e300 is scaled to about 1.
+TEST(HostileCoordinates, CoordinatesNoExactScalingFitsAreRefused) {
+  SurfaceMesh m = cube(-1e300, 1e300);
+  m.xyz[0] = 4e-310;
+  Result<MesherResult> r = Mesher(fast_options()).run_validated(m);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), Error::NotImplemented);
+  EXPECT_NE(r.status().message().find("no exact scaling by a power of two"), std::string::npos) << r.status().message();
 }
 
 // The largest the range allows: a cube of half-side 1e30 meshes.
@@ -579,13 +595,12 @@ TEST(HostileCoordinates, SmallCoordinatesMesh) {
 }
 
 // A cube of half-side 1e-100 passes validation (exact predicates), but stage 1's floating-point
-// area test underflows there ("triangle 0 is degenerate" before): the Mesher refuses it as not
-// implemented, naming the size.
-TEST(HostileCoordinates, TinyCoordinatesAreRefusedByRange) {
+// area test underflows there: meshed scaled by a power of two, like the large ones.
+TEST(HostileCoordinates, TinyCoordinatesAreMeshedScaled) {
   Result<MesherResult> r = Mesher(fast_options()).run(cube(-1e-100, 1e-100));
-  ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().code(), Error::NotImplemented);
-  EXPECT_NE(r.status().message().find("smaller than 1e-30 across"), std::string::npos) << r.status().message();
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_GT(r->mesh.num_tets(), 0u);
+  for (double c : r->mesh.xyz) EXPECT_LE(std::fabs(c), 1e-100);
 }
 
 TEST(HostileCoordinates, TinyCoordinatesValidate) {
