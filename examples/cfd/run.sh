@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The CFD example of docs/cfd-guide.md in one command: installs and builds what is missing, puts
-# a closed body (default: the shared airplane.obj) in a farfield cube, meshes it with a boundary
-# layer whose first height comes from a target y+, writes CGNS, SU2 and Medit files with the
-# patches named wall and farfield, and checks them (anitet's quality report, cgnscheck when
+# The CFD example of docs/boundary-layers.md in one command: installs and builds what is missing,
+# puts a closed body (default: the shared airplane.obj) in a farfield cube, meshes it with a
+# boundary layer whose first height comes from a target y+, writes CGNS, SU2 and Medit files with
+# the patches named wall and farfield, and checks them (anitet's quality report, cgnscheck when
 # installed, the SU2 markers).
 #
 #   examples/cfd/run.sh [BODY.obj [OUTDIR]]
