@@ -187,4 +187,16 @@ int run_check_surface(const CheckSurfaceArgs& args) {
   return code;
 }
 
+
+CLI::App* add_check_surface_command(CLI::App& app, CheckSurfaceArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "check-surface", "Read and validate a triangulated surface; report problems and safe repairs");
+  cmd->add_option("IN", args.input, "Surface file (.off .obj .stl .ply .mesh .msh, or .su2: its boundary markers)")->required();
+  cmd->add_option("-o,--output", args.output,
+                        "Write the surface after the safe repairs (merged vertices, reoriented triangles and "
+                        "shells) here when it is valid: .off, .obj, .stl (float: lossy) or .mesh (keeps patch labels)");
+  cmd->add_flag("--json", args.json, "Print the report as JSON");
+  return cmd;
+}
+
 }  // namespace anitet::cli

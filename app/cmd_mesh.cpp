@@ -1,179 +1,577 @@
+// `anitet mesh IN -o OUT`: its options, and the whole pipeline (validate, layers with an optional boundary layer,
+// recovery, coupling, refinement, optimization) with the sizing field of the metric options
+// (metric_options.hpp), then the mesh written and its quality report printed (the same as
+// `anitet quality OUT --surface IN`, measured in the local frame with --geodetic).
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
-#include <set>
+#include <memory>
+#include <optional>
+#include <system_error>
+#include <thread>
+
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "io/file_bytes.hpp"
 #include "io/volume_io.hpp"
-#include "optimize/optimize.hpp"
-#include "recovery/recovery.hpp"
+#include "metric/metric_field.hpp"
+#include "metric_options.hpp"
+#include "pipeline/mesher.hpp"
+#include "quality/html_report.hpp"
+#include "quality/quality_report.hpp"
 #include "surface_check.hpp"
 
 namespace anitet::cli {
 
-RecoveryOptions recovery_options(const MeshArgs& args) {
-  RecoveryOptions o;
-  o.split_constraints = args.recovery != "fuzzy";
-  o.fuzzy_faces = args.recovery != "split";
-  return o;
+namespace {
+
+// A one-line progress bar on stderr: stage name, fraction, elapsed time.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+  bool update(const std::string& stage, double fraction) {
+    if (!enabled_) return true;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const int width = 30, filled = static_cast<int>(fraction * width + 0.5);
+    std::fprintf(stderr, "\r[%-*s] %3d%% %-10s %7.2f s", width, std::string(size_t(filled), '#').c_str(),
+                 static_cast<int>(fraction * 100 + 0.5), stage.c_str(), elapsed);
+    if (fraction >= 1.0) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+    return true;
+  }
+
+ private:
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// The optimizer's counts, as both the text summary and the HTML report give them.
+std::string optimization_counts(const OptimizeStats& o) {
+  return std::to_string(o.moves) + " CVT moves, " + std::to_string(o.flips23) + " 2-3 flips, " +
+         std::to_string(o.edge_removals) + " edge removals, " + std::to_string(o.perturbations) +
+         " sliver perturbations, " + std::to_string(o.collapses) + " sliver collapses, " +
+         std::to_string(o.flat_found - o.flat_left) + " of " + std::to_string(o.flat_found) +
+         " tets flat to rounding opened";
+}
+
+// The run's figures for the HTML report's "Meshing run" table.
+std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r) {
+  auto fixed = [](double x, const char* format) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, format, x);
+    return std::string(buf);
+  };
+  std::vector<std::pair<std::string, std::string>> rows;
+  rows.emplace_back("total time", fixed(r.seconds, "%.3f s") + " (" +
+                                      fixed(r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0, "%.0f") +
+                                      " tets/s)");
+  for (const StageReport& st : r.stages)
+    rows.emplace_back("stage " + st.name, fixed(st.seconds, "%.3f s") + ", " + std::to_string(st.tets) + " tets");
+  rows.emplace_back("advancing-front layers", std::to_string(r.layers_used) +
+                                          (r.layers_retries ? " (after " + std::to_string(r.layers_retries) + " retries)" : ""));
+  rows.emplace_back("stage 2 Steiner points on S1", std::to_string(r.recovery.steiner_on_edges) + " on edges, " +
+                                                        std::to_string(r.recovery.steiner_on_faces) + " in faces (" +
+                                                        recovery_strategy_name(r.recovery.strategy) + ")");
+  rows.emplace_back("stage 2 time", "Delaunay " + fixed(r.recovery.seconds_delaunay, "%.3f s") + ", recovery " +
+                                        fixed(r.recovery.seconds_recovery, "%.3f s") + ", carving " +
+                                        fixed(r.recovery.seconds_carve, "%.3f s"));
+  if (r.boundary_layer.layers > 0)
+    rows.emplace_back("boundary layer", std::to_string(r.boundary_layer.layers) + " layers on " +
+                                            std::to_string(r.boundary_layer.wall_vertices) + " wall vertices, " +
+                                            std::to_string(r.boundary_layer.tets) + " tets; first height " +
+                                            fixed(r.boundary_layer.first_height_min, "%.4g") + " .. " +
+                                            fixed(r.boundary_layer.first_height_max, "%.4g"));
+  rows.emplace_back("refinement", std::to_string(r.refine.splits) + " splits, " + std::to_string(r.refine.collapses) +
+                                      " collapses; " + fixed(100.0 * r.refine.length_in_range, "%.1f") +
+                                      "% of edges in [1/sqrt2, sqrt2]");
+  rows.emplace_back("optimization", optimization_counts(r.optimize));
+  for (const Notice& n : r.notices) rows.emplace_back("notice", n.message);
+  return rows;
+}
+
+// The exit code of a library error: bad options (InvalidArgument) are usage errors, missing
+// or unreadable files read errors.
+int exit_code_of(Error e) {
+  switch (e) {
+    case Error::InvalidArgument: return kExitUsage;
+    case Error::NotImplemented: return kExitNotImplemented;
+    case Error::FileNotFound:
+    case Error::Parse:
+    case Error::UnsupportedFormat: return kExitReadError;
+    default: return kExitInternal;
+  }
+}
+
+}  // namespace
+
+int run_mesh_pipeline(MeshArgs& args) {
+  const std::string cmd = "anitet mesh";
+  if (const int code = check_output_paths(args); code != kExitOk) return code;
+  CheckedSurface checked;
+  if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
+  // The OpenVDB module (the sizing field's) opens on another core from here (60-90 ms of
+  // relocations). Not before the checks: their first TBB calls initialize TBB, which opens
+  // libraries too and would wait for the loader's lock.
+  std::optional<metric::VdbModulePreload> preload;
+  if (!(args.no_refine && args.no_optimize) || wants_sizing_field(args.metric)) preload.emplace();
+  if (const int code = check_patch_names(args, checked); code != kExitOk) return code;
+
+  // --geodetic: the surface to a local frame in metres (validated again there: the checks are
+  // geometric), the mesh back to longitude, latitude, height at the end with --geodetic-output.
+  const std::vector<double> input_xyz = args.metric.geodetic_output ? checked.surface.xyz : std::vector<double>();
+  Result<std::optional<geo::GeoFrame>> frame = prepare_geodetic(args.metric, checked.surface);
+  if (!frame.ok()) {
+    std::cerr << cmd << ": --geodetic: '" << args.input << "': " << frame.status().message() << "\n";
+    return exit_code_of(frame.status().code());
+  }
+  if (frame.value()) {
+    checked.report = validate_surface(checked.surface);
+    if (!checked.report.ok()) {
+      print_invalid_surface("mesh", args.input + " (in the local frame)", checked.report);
+      return kExitInvalidInput;
+    }
+  }
+
+  MesherOptions options;
+  options.layers.layers = args.layers;
+  options.attempts_seconds = args.attempts_seconds;
+  options.recovery = recovery_options(args);
+  options.layers.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
+  options.layers.push_tasks_min_vertices = args.push_tasks_min_vertices;
+  if (!args.bl_patches.empty()) {
+    if (!(args.bl_first_height > 0.0)) {
+      std::cerr << cmd << ": --bl-patches needs --bl-first-height (or --bl-yplus)\n";
+      return kExitUsage;
+    }
+    BoundaryLayerOptions& bl = options.layers.boundary_layer;
+    bl.wall_patches.assign(args.bl_patches.begin(), args.bl_patches.end());
+    bl.first_height = args.bl_first_height;
+    bl.growth = args.bl_growth;
+    bl.layers = args.bl_layers;
+  }
+  if (args.bl_sizing && (args.bl_patches.empty() || !(args.bl_growth > 1.0))) {
+    std::cerr << cmd << ": --bl-sizing needs --bl-patches and --bl-growth above 1\n";
+    return kExitUsage;
+  }
+  options.boundary_layer_sizing = args.bl_sizing;
+  options.refine.size_scale = args.size;
+  options.run_refine = !args.no_refine;
+  options.run_optimize = !args.no_optimize;
+  options.anisotropic_cycles = args.anisotropic_cycles;
+
+  // The sizing field: the user's (--metric, bounds, gradation) or, when only its output is asked
+  // for, the default grid built here; else the Mesher builds the default grid itself.
+  std::unique_ptr<SizingField> field;
+  double field_seconds = 0.0;  // a field built here, before the pipeline: counted as its sizing stage
+  if (wants_sizing_field(args.metric)) {
+    const auto t0 = std::chrono::steady_clock::now();
+    Result<std::unique_ptr<SizingField>> built = build_sizing_field(
+        args.metric, checked.surface, frame.value() ? &*frame.value() : nullptr, options.surface_sizing);
+    if (!built.ok()) {
+      std::cerr << cmd << ": sizing field: " << built.status().message() << " ["
+                << error_name(built.status().code()) << "]\n";
+      return exit_code_of(built.status().code());
+    }
+    field = std::move(built).value();
+    options.sizing = field.get();
+    field_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  const DistributedRun* distributed = distributed_run();
+  if (distributed) {
+    if (!args.bl_patches.empty()) {
+      std::cerr << cmd << ": boundary layers are not implemented with MPI yet: run `anitet mesh`\n";
+      return kExitNotImplemented;
+    }
+    if (args.no_refine || args.no_optimize) {
+      std::cerr << cmd << ": with MPI, refinement and optimization both run (they are what the ranks share)\n";
+      return kExitUsage;
+    }
+    options.stage3 = [distributed, &options](TetMesh& mesh, const SizingField& f, RefineStats& refine,
+                                             OptimizeStats& optimize) {
+      return distributed->stage3(mesh, f, options.refine, options.optimize, refine, optimize);
+    };
+  }
+  ProgressBar bar(!args.quiet && !args.json && isatty(STDERR_FILENO) && (!distributed || distributed->rank == 0));
+  options.progress = [&bar](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
+  Result<MesherResult> run = Mesher(options).run_validated(checked.surface);
+  if (!run.ok()) {
+    std::cerr << cmd << ": meshing '" << args.input << "' failed: " << run.status().message() << " ["
+              << error_name(run.status().code()) << "]\n";
+    const Error e = run.status().code();  // bad options (e.g. a wall patch no triangle has): usage
+    return e == Error::NotImplemented ? kExitNotImplemented : e == Error::InvalidArgument ? kExitUsage : kExitInternal;
+  }
+  MesherResult& r = run.value();
+  if (distributed && distributed->rank != 0) return kExitOk;  // rank 0 writes and reports
+  // The field built above is the pipeline's sizing stage, given to it ready: its time counts.
+  if (field_seconds > 0.0) {
+    for (StageReport& st : r.stages)
+      if (st.name == "sizing") st.seconds += field_seconds;
+    r.seconds += field_seconds;
+  }
+  // The mesh is written as it was measured unless --geodetic-output converts it after the
+  // report: then the file is written while the report is measured (both only read the mesh;
+  // armadillo: the writer's 0.45 s behind the report's 0.8 s).
+  bool write_now = !args.metric.geodetic_output;
+  int write_code = kExitOk;
+  std::thread writer;
+  if (write_now) {
+    try {
+      writer = std::thread([&] { write_code = write_outputs(args, r.mesh); });
+    } catch (const std::system_error&) {
+      write_now = false;  // no thread to be had: written after the report, as with --geodetic-output
+    }
+  }
+  struct JoinWriter {
+    std::thread& t;
+    ~JoinWriter() {
+      if (t.joinable()) t.join();
+    }
+  } join_writer{writer};
+  // Measured in the local frame, against the surface that was meshed (with --report, by the
+  // HTML report, which gives the same report).
+  std::vector<std::string> not_written;  // the report or metric files that could not be written
+  Result<QualityReport> quality = Status(Error::Internal, "not measured");
+  if (args.report_html.empty()) {
+    quality = compute_quality_report(r.mesh, &checked.surface);
+  } else {
+    HtmlReportOptions html_options;
+    html_options.title = "anitet mesh: " + std::filesystem::path(args.input).filename().string();
+    html_options.mesh_name = args.output;
+    html_options.surface_name = args.input;
+    for (size_t k = 0; k < 3 && k < args.report_cut.size(); ++k) html_options.cut[k] = args.report_cut[k];
+    html_options.run_rows = run_rows(r);
+    Result<HtmlReport> html = quality_report_html(r.mesh, &checked.surface, QualityOptions(), html_options);
+    if (html.ok()) {
+      if (Status st = write_file_bytes(args.report_html, html.value().html); !st.ok()) {
+        std::cerr << cmd << ": cannot write report '" << args.report_html << "': " << st.message() << "\n";
+        not_written.push_back(args.report_html);
+      }
+      quality = std::move(html).value().report;
+    } else {
+      quality = html.status();
+    }
+  }
+  if (!quality.ok()) {
+    std::cerr << cmd << ": cannot measure the mesh: " << quality.status().message() << "\n";
+    return kExitInternal;
+  }
+  if (field) {
+    if (Status st = write_metric_outputs(args.metric, *field, checked.surface, r.mesh); !st.ok()) {
+      std::cerr << cmd << ": cannot write the sizing field: " << st.message() << "\n";
+      for (const std::string& path : {args.metric.write_metric, args.metric.write_sizing})
+        if (!path.empty()) not_written.push_back(path);
+    }
+  }
+  if (Status st = restore_geodetic(args.metric, frame.value(), r.mesh); !st.ok()) {
+    std::cerr << cmd << ": --geodetic-output: " << st.message() << "\n";
+    return kExitInternal;
+  }
+  // The input's vertices come first, in input order: written back exactly as read (the round
+  // trip through the local frame is exact only to ~1e-9 m), so the output keeps the input
+  // surface bit for bit.
+  for (size_t v = 0; v < r.input_vertex.size() && 3 * v + 2 < input_xyz.size(); ++v)
+    if (r.input_vertex[v] != TetMesh::kNone) std::copy_n(&input_xyz[3 * v], 3, &r.mesh.xyz[3 * size_t(r.input_vertex[v])]);
+  if (writer.joinable()) writer.join();
+  if (!write_now) write_code = write_outputs(args, r.mesh);
+  if (write_code != kExitOk) return write_code;
+  if (!not_written.empty()) {
+    // The meshes are complete; say so, and which files are not, before the run's report.
+    std::string list;
+    for (const std::string& p : not_written) list += (list.empty() ? "'" : ", '") + p + "'";
+    std::cerr << cmd << ": the mesh files are written and complete; not written: " << list << "\n";
+  }
+  const BoundaryLayerReport& bl = r.boundary_layer;
+  if (args.json) {
+    nlohmann::json stages = nlohmann::json::array();
+    for (const StageReport& s : r.stages) stages.push_back({{"stage", s.name}, {"seconds", s.seconds}, {"tets", s.tets}});
+    nlohmann::json out = {
+        {"input", args.input}, {"output", args.output}, {"also_write", args.also_write}, {"report", args.report_html}, {"seconds", r.seconds}, {"stages", stages},
+        {"tets_per_second", r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0},
+        {"layers", {{"layers_used", r.layers_used}, {"retries", r.layers_retries}}},
+        {"recovery", {{"steiner_on_s1_edges", r.recovery.steiner_on_edges},
+                      {"steiner_on_s1_faces", r.recovery.steiner_on_faces},
+                      {"strategy", r.recovery.strategy},
+                      {"strategy_name", recovery_strategy_name(r.recovery.strategy)},
+                      {"seconds", {{"delaunay", r.recovery.seconds_delaunay},
+                                   {"recovery", r.recovery.seconds_recovery},
+                                   {"carving", r.recovery.seconds_carve}}}}},
+        {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
+        {"refine", {{"passes", r.refine.passes}, {"stopped_at_pass_cap", r.refine.stopped_at_pass_cap}, {"metric_not_spd", r.refine.metric_not_spd}, {"splits", r.refine.splits}, {"parallel_splits", r.refine.parallel_splits}, {"collapses", r.refine.collapses},
+                    {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range},
+                    {"anisotropic_cycles", r.anisotropic_cycles},
+                    {"seconds", {{"edge_lists", r.refine.seconds_edges}, {"split_choice", r.refine.seconds_choice},
+                                 {"insertion", r.refine.seconds_insertion}, {"collapses", r.refine.seconds_collapses},
+                                 {"metric_flips", r.refine.seconds_flips}}}}},
+        {"metric_quality", {{"tets", r.metric_quality.tets}, {"radius_ratio_mean", r.metric_quality.mean},
+                            {"radius_ratio_min", r.metric_quality.min}, {"below_0.1", r.metric_quality.below_01},
+                            {"below_0.4", r.metric_quality.below_04}}},
+        {"boundary_layer", {{"layers", bl.layers}, {"first_height", args.bl_first_height}, {"yplus", args.bl_yplus}, {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
+                            {"vertices", bl.vertices}, {"full_columns", bl.full_columns}, {"columns_reaching", bl.columns_reaching},
+                            {"nominal_columns", bl.nominal_columns}, {"reduced_vertices", bl.reduced_vertices},
+                            {"reduced_share", r.layers.bl_reduced_share},
+                            {"first_height_min", bl.first_height_min}, {"first_height_mean", bl.first_height_mean},
+                            {"first_height_max", bl.first_height_max}, {"max_height_error", bl.max_height_error},
+                            {"growth_mean", bl.growth_mean}, {"max_displacement", bl.max_displacement},
+                            {"stage1_seconds", r.layers.bl_seconds}}},
+        {"optimize", {{"moves", r.optimize.moves}, {"flips23", r.optimize.flips23},
+                      {"edge_removals", r.optimize.edge_removals}, {"perturbations", r.optimize.perturbations},
+                      {"collapses", r.optimize.collapses},
+                      {"flat_found", r.optimize.flat_found}, {"flat_left", r.optimize.flat_left},
+                      {"seconds", {{"setup", r.optimize.seconds_setup}, {"cvt", r.optimize.seconds_cvt},
+                                   {"flips", r.optimize.seconds_flips}, {"slivers", r.optimize.seconds_slivers},
+                                   {"certify", r.optimize.seconds_certify}}}}},
+        {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
+    out["notices"] = nlohmann::json::array();
+    for (const Notice& n : r.notices) out["notices"].push_back({{"kind", n.kind}, {"message", n.message}});
+    out["ok"] = not_written.empty();
+    out["not_written"] = not_written;
+    std::cout << out.dump(1) << "\n";
+  } else if (!args.quiet) {
+    std::cout << "anitet mesh: " << args.input << " -> " << args.output << ": " << r.mesh.num_vertices()
+              << " vertices, " << r.mesh.num_tets() << " tets in " << r.seconds << " s ("
+              << (r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0) << " tets/s)\n";
+    for (const StageReport& s : r.stages)
+      std::cout << "  stage " << s.name << ": " << s.seconds << " s, " << s.tets << " tets\n";
+    for (const Notice& n : r.notices) std::cout << "  notice: " << n.message << "\n";
+    if (bl.layers > 0) {
+      std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
+                << bl.tets << " tets, " << bl.vertices << " vertices kept fixed; " << bl.full_columns
+                << " full columns, " << bl.nominal_columns << " within 10% of h0 r^i (max error "
+                << bl.max_height_error << "); reduced vertices " << bl.reduced_vertices << " ("
+                << 100.0 * r.layers.bl_reduced_share << "%); first height min " << bl.first_height_min
+                << " mean " << bl.first_height_mean << " max " << bl.first_height_max << "; growth "
+                << bl.growth_mean << "; BL vertices moved after stage 1 by at most " << bl.max_displacement
+                << "; " << r.layers.bl_seconds << " s\n";
+      std::cout << "  boundary layer: wall vertices by layers reached:";
+      for (size_t i = 0; i < bl.columns_reaching.size(); ++i)
+        if (bl.columns_reaching[i] > 0) std::cout << " " << i << ": " << bl.columns_reaching[i];
+      std::cout << "\n";
+    }
+    std::cout << "  stage 2 Steiner points on S1: " << r.recovery.steiner_on_edges << " on edges, "
+              << r.recovery.steiner_on_faces << " in faces (" << recovery_strategy_name(r.recovery.strategy)
+              << "); coupling split " << r.couple.edge_split_tets
+              << " T1 tets and re-coned " << r.couple.faces_reconed << " S1 faces\n"
+              << "  stage 2 time: Delaunay " << r.recovery.seconds_delaunay << " s, recovery "
+              << r.recovery.seconds_recovery << " s, carving " << r.recovery.seconds_carve << " s\n"
+              << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits (" << r.refine.parallel_splits << " by the slab tasks), "
+              << r.refine.collapses << " collapses (" << r.refine.split_rejected << " splits put off, "
+              << r.refine.collapse_rejected << " collapses refused); normalized edge length mean " << r.refine.length_mean
+              << ", " << 100.0 * r.refine.length_in_range << "% in [1/sqrt2, sqrt2]"
+              << (r.anisotropic_cycles > 0 ? " (anisotropic metric: refinement and optimization ran " +
+                                                  std::to_string(1 + r.anisotropic_cycles) + " times)"
+                                            : std::string())
+              << "\n"
+              << "  refinement time: edge lists " << r.refine.seconds_edges << " s, split choice "
+              << r.refine.seconds_choice << " s, insertion " << r.refine.seconds_insertion << " s, collapses "
+              << r.refine.seconds_collapses << " s"
+              << (r.refine.seconds_flips > 0.0 ? ", metric flips " + std::to_string(r.refine.seconds_flips) + " s"
+                                               : std::string())
+              << "\n"
+              << "  optimization: " << optimization_counts(r.optimize) << "; radius ratio min " << r.optimize.before.min << " -> "
+              << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
+              << "\n"
+              << "  optimization time: summaries and metrics " << r.optimize.seconds_setup << " s, CVT "
+              << r.optimize.seconds_cvt << " s, flips " << r.optimize.seconds_flips << " s, slivers "
+              << r.optimize.seconds_slivers << " s, certification " << r.optimize.seconds_certify << " s\n";
+    if (r.metric_quality.tets > 0) {
+      const QualitySummary& mq = r.metric_quality;
+      std::cout << "  in the metric (anisotropic field; the report below is Euclidean): radius ratio mean "
+                << mq.mean << " min " << mq.min << ", below 0.1: " << mq.below_01 << " ("
+                << 100.0 * double(mq.below_01) / double(mq.tets) << "%), below 0.4: " << mq.below_04 << " ("
+                << 100.0 * double(mq.below_04) / double(mq.tets) << "%)\n";
+    }
+    std::cout << quality_report_text(quality.value());
+    if (!args.report_html.empty() && not_written.empty()) std::cout << "html report: " << args.report_html << "\n";
+  }
+  return not_written.empty() ? kExitOk : kExitReadError;
 }
 
 namespace {
 
-std::string join_paths(const std::vector<std::string>& paths) {
-  std::string out;
-  for (const std::string& p : paths) out += (out.empty() ? "'" : ", '") + p + "'";
-  return out;
-}
-
-// `anitet recover`: the conforming Delaunay tetrahedralization of the surface (stage 2 alone);
-// the boundary triangles written are the recovered surface S2 with the input's patch labels.
-int run_recover(const MeshArgs& args, const CheckedSurface& checked) {
-  Result<RecoveryOutput> r = recover_boundary(checked.surface, recovery_options(args));
-  if (!r.ok()) {
-    std::cerr << "anitet recover: '" << args.input << "': " << r.status().message() << "\n";
-    return kExitInternal;
-  }
-  RecoveryOutput& out = r.value();
-  // Tets flat to rounding are valid for the exact predicates, but a solver or checker computing
-  // volumes in doubles may find them inverted: flips remove them (no vertex of S can move).
-  const FlatTetFlips flat = flip_flat_tets(out.mesh);
-  const VolumeMesh vm = out.mesh.to_volume_mesh(/*drop_unused_vertices=*/true, out.s2_tri, out.s2_patch);
-  if (const int code = write_outputs(args, vm); code != kExitOk) return code;
-  if (!args.quiet) {
-    const RecoveryStats& st = out.stats;
-    std::cout << "anitet recover: wrote '" << args.output << "': " << vm.num_vertices() << " vertices, "
-              << vm.num_tets() << " tets, " << vm.num_boundary_triangles() << " boundary triangles, "
-              << st.regions << " regions\n"
-              << "  steiner points: " << st.steiner_on_edges + st.steiner_on_faces << " ("
-              << st.steiner_on_edges << " on edges, " << st.steiner_on_faces << " on faces; "
-              << st.walk_splits << " placed by a walk, " << st.edge_crossing_splits << " of them where it crosses a mesh edge), " << st.flips << " flips, " << st.passes << " passes, "
-              << st.blocked_insertions << " insertions refused (" << st.early_refusals
-              << " before their cavity grew), strategy: " << recovery_strategy_name(st.strategy)
-              << "\n"
-              << "  tets flat to rounding: " << flat.found << " found, " << flat.flips << " flips, " << flat.left
-              << " left\n"
-              << "  time: " << st.seconds_total << " s (delaunay " << st.seconds_delaunay
-              << " s, recovery " << st.seconds_recovery << " s, carving " << st.seconds_carve << " s)\n";
+// Options that would do nothing in the combination given are refused, never ignored: each rule
+// names an option that was given and what it needs.
+int check_mesh_option_combinations(const CLI::App& cmd, const MeshArgs& a) {
+  auto given = [&](const char* name) { return cmd.count(name) > 0; };
+  struct Rule {
+    const char* option;
+    bool applies;
+    const char* needs;
+  };
+  const bool bl = !a.bl_patches.empty(), layers_only = a.stop_after == "layers";
+  const bool no_stage3 = a.no_refine && a.no_optimize;
+  const Rule rules[] = {
+      {"--bl-first-height", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-yplus", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-growth", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-layers", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-reynolds", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
+      {"--bl-ref-length", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
+      {"--background", a.metric.metric.empty(), "a .sol --metric (it is the mesh the .sol's values are at)"},
+      {"--origin", !a.metric.geodetic, "--geodetic"},
+      {"--geo-frame", !a.metric.geodetic, "--geodetic"},
+      {"--geodetic-output", !a.metric.geodetic, "--geodetic"},
+      {"--size", no_stage3 || layers_only, "refinement or optimization (it scales their sizing field)"},
+      {"--anisotropic-cycles", a.no_refine || a.no_optimize || layers_only, "both refinement and optimization"},
+      {"--no-refine", layers_only, "the whole pipeline (--stop-after layers stops before refinement)"},
+      {"--no-optimize", layers_only, "the whole pipeline (--stop-after layers stops before optimization)"},
+      {"--recovery", layers_only, "stage 2 (--stop-after layers stops before it)"},
+      {"--attempts-seconds", layers_only, "stage 2 (--stop-after layers stops before it)"},
+  };
+  for (const Rule& r : rules) {
+    if (r.applies && given(r.option)) {
+      std::cerr << "anitet mesh: " << r.option << " would do nothing here: it needs " << r.needs << "\n";
+      return kExitUsage;
+    }
   }
   return kExitOk;
 }
 
 }  // namespace
 
-int check_output_file(const std::string& command, const std::string& path, bool directory) {
-  if (Status s = check_can_create(path, directory); !s.ok()) {
-    std::cerr << "anitet " << command << ": " << s.message() << " (checked before any work)\n";
-    return kExitReadError;
-  }
-  return kExitOk;
+CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
+  args.command = "mesh";
+  CLI::App* cmd = app.add_subcommand(
+      "mesh", "Mesh the volume inside a closed surface, keeping it exactly: layers, Delaunay "
+              "with boundary recovery, coupling, metric refinement/coarsening, CVT and sliver removal");
+  add_mesh_io_options(cmd, args);
+  CLI::Option* mesh_report = cmd->add_option(
+      "--report", args.report_html,
+      "Also write the HTML quality report of the mesh here (summary with the stage timers, histograms, cut views)");
+  cmd->add_option("--cut", args.report_cut, "Cut planes of the HTML report: x,y,z as fractions of the bounding box")
+      ->expected(3)
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0))
+      ->needs(mesh_report);
+  cmd->add_option("--stop-after", args.stop_after,
+                       "Stop after a stage and write its result: 'layers' writes T1 (stage 1) to the "
+                       "output, with S1 as one more patch, and S1 to OUTSTEM.front.off")
+      ->check(CLI::IsMember({"layers"}));
+  cmd->add_option("--layers", args.layers, "Number of advancing-front layers (stage 1)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 50));
+  cmd->add_option("--attempts-seconds", args.attempts_seconds,
+                       "Wall time for stages 1-2 and the coupling, run again with other layer counts and "
+                       "recovery strategies when S1 is not recovered; no new attempt starts after it (0: no limit)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--layer-scheme", args.layer_scheme,
+                       "Stage 1 scheme: push (prism layers, each front vertex pushed off in turn) or "
+                       "faces (the paper's: a tet on every face, then vertex pushes)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"push", "faces"}));
+  cmd->add_option("--push-tasks-min-vertices", args.push_tasks_min_vertices,
+                       "Stage 1 pushes a layer on two tasks, one per side of a plane, when it has at least "
+                       "this many front vertices (the same mesh on one core as on two); 0: every push one by "
+                       "one, in vertex order")
+      ->capture_default_str();
+  const char* bl_group = "Boundary layer";
+  cmd->add_option("--bl-patches", args.bl_patches,
+                       "The input's patch labels (comma-separated) that are walls, each a whole shell: "
+                       "n thin prism layers grow there first, then the ordinary --layers on the whole "
+                       "front. BL tets keep their heights through the pipeline (frozen for refinement "
+                       "and optimization) and get region bodies + body (1 for one body)")
+      ->delimiter(',')
+      ->group(bl_group);
+  CLI::Option* first_height_opt =
+      cmd->add_option("--bl-first-height", args.bl_first_height,
+                           "First layer height h0 (length units; needed with --bl-patches unless --bl-yplus gives it)")
+          ->check(CLI::PositiveNumber)
+          ->group(bl_group);
+  CLI::Option* reynolds_opt =
+      cmd->add_option("--bl-reynolds", args.bl_reynolds, "Reynolds number Re = U L / nu, for --bl-yplus")
+          ->check(CLI::PositiveNumber)
+          ->group(bl_group);
+  CLI::Option* ref_length_opt =
+      cmd->add_option("--bl-ref-length", args.bl_ref_length,
+                           "Reference length L of --bl-reynolds (length units), for --bl-yplus")
+          ->check(CLI::PositiveNumber)
+          ->group(bl_group);
+  cmd->add_option("--bl-yplus", args.bl_yplus,
+                       "Target y+ of the first layer: h0 from the flat-plate estimate Cf = 0.026 Re^(-1/7), "
+                       "h0 = y+ L / (Re sqrt(Cf/2)); needs --bl-reynolds and --bl-ref-length, excludes "
+                       "--bl-first-height; the h0 used is printed")
+      ->check(CLI::PositiveNumber)
+      ->needs(reynolds_opt)
+      ->needs(ref_length_opt)
+      ->excludes(first_height_opt)
+      ->group(bl_group);
+  cmd->add_option("--bl-growth", args.bl_growth, "Growth ratio r: layer i has height h0 r^i")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 10.0))
+      ->group(bl_group);
+  cmd->add_option("--bl-layers", args.bl_layers, "Number of boundary layers n")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000))
+      ->group(bl_group);
+  cmd->add_flag("--bl-sizing", args.bl_sizing,
+                     "Refine the interior to continue the boundary layer's heights: the sizing field is "
+                     "intersected with a metric of normal size h0 + (r - 1) d at distance d from the walls, "
+                     "so the tets on the BL's top are about as thin as its last layer instead of jumping to "
+                     "the surface's sizes. Anisotropic near the walls: refinement is slower. Needs "
+                     "--bl-patches and --bl-growth above 1")
+      ->group(bl_group);
+  cmd->add_option("--size", args.size,
+                       "Scale every target edge length of the sizing field (--metric's, or the paper's "
+                       "grid from the surface's triangle sizes), after --hmin/--hmax/--hgrad: 0.5 = "
+                       "twice as fine, 2 = twice as coarse")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->group("Sizing");
+  add_metric_options(*cmd, args.metric);
+  cmd->add_flag("--no-refine", args.no_refine, "Skip refinement/coarsening by metric edge length");
+  cmd->add_flag("--no-optimize", args.no_optimize, "Skip CVT smoothing, flips and sliver removal");
+  cmd
+      ->add_option("--anisotropic-cycles", args.anisotropic_cycles,
+                   "With an anisotropic metric (--metric tensors, --bl-sizing): more rounds of refinement then "
+                   "optimization after the first, which even the metric lengths and shapes further")
+      ->check(CLI::Range(0, 10))
+      ->capture_default_str();
+  cmd->add_flag("--json", args.json, "Print the report as JSON");
+  return cmd;
 }
 
-int check_output_paths(const MeshArgs& args) {
-  for (const std::string& path : output_paths(args)) {
-    if (Status s = check_writable_volume_path(path); !s.ok()) {
-      std::cerr << "anitet " << args.command << ": cannot write '" << path << "': " << s.message() << "\n";
-      return s.code() == Error::NotImplemented ? kExitNotImplemented : kExitUsage;
-    }
-  }
-  for (const std::string& path : output_paths(args)) {
-    const bool directory = volume_format_from_path(path).value() == VolumeFormat::OpenFoam;
-    if (const int code = check_output_file(args.command, path, directory); code != kExitOk) return code;
-  }
-  std::vector<std::string> others = {args.report_html, args.metric.write_metric, args.metric.write_sizing};
-  if (args.stop_after == "layers") others.push_back(front_path(args.output));
-  for (const std::string& path : others)
-    if (!path.empty())
-      if (const int code = check_output_file(args.command, path, false); code != kExitOk) return code;
-  return kExitOk;
-}
-
-std::string front_path(const std::string& output) {
-  const size_t slash = output.find_last_of('/');
-  const size_t dot = output.find_last_of('.');
-  const std::string stem = (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-                               ? output
-                               : output.substr(0, dot);
-  return stem + ".front.off";
-}
-
-std::vector<std::string> output_paths(const MeshArgs& args) {
-  std::vector<std::string> paths{args.output};
-  paths.insert(paths.end(), args.also_write.begin(), args.also_write.end());
-  return paths;
-}
-
-int write_outputs(const MeshArgs& args, const VolumeMesh& mesh) {
-  // Every output is attempted, so that one full disk or bad directory costs only its own file;
-  // then the user is told plainly which files are complete.
-  std::vector<std::string> written;
-  int code = kExitOk;
-  for (const std::string& path : output_paths(args)) {
-    const Status s = write_volume_mesh(mesh, path, args.patch_names);
-    if (s.ok()) {
-      written.push_back(path);
-      continue;
-    }
-    // The writers' own check of a mesh anitet made failing is a bug of anitet's, not the user's.
-    const bool internal = s.code() == Error::InvalidMesh || s.code() == Error::BadIndex || s.code() == Error::InvalidArgument;
-    std::cerr << "anitet " << args.command << ": " << (internal ? "internal error: " : "") << "cannot write '" << path
-              << "': " << s.message() << "\n";
-    if (code == kExitOk || internal) code = internal ? kExitInternal : kExitReadError;
-  }
-  if (code != kExitOk) {
-    std::cerr << "anitet " << args.command << ": "
-              << (written.empty() ? std::string("no output was written")
-                                  : "written and complete: " + join_paths(written) + "; the others were not written")
-              << "\n";
-  }
-  return code;
-}
-
-int check_patch_names(MeshArgs& args, const CheckedSurface& input, const std::vector<int32_t>& extra_labels) {
-  const std::string cmd = "anitet " + args.command;
-  // The file's own names (SU2 markers) first; --patch-names renames on top of them.
-  args.patch_names = input.names;
-  if (args.patch_names_spec.empty()) return kExitOk;
-  Result<PatchNames> names = parse_patch_names(args.patch_names_spec);
-  if (!names.ok()) {
-    std::cerr << cmd << ": --patch-names: " << names.status().message() << "\n";
-    return kExitUsage;
-  }
-  std::set<int32_t> labels(input.surface.patch.begin(), input.surface.patch.end());
-  labels.insert(extra_labels.begin(), extra_labels.end());
-  for (const auto& [label, name] : names.value()) {
-    if (!labels.count(label)) {
-      std::cerr << cmd << ": --patch-names: no triangle of '" << args.input << "' has the patch label " << label
-                << " (named '" << name << "')\n";
+int run_mesh(const CLI::App& cmd, MeshArgs& args) {
+  if (const int code = check_mesh_option_combinations(cmd, args); code != kExitOk) return code;
+  if (args.bl_yplus > 0.0) {
+    Result<double> h0 = first_height_from_yplus(args.bl_yplus, args.bl_reynolds, args.bl_ref_length);
+    if (!h0.ok()) {
+      std::cerr << "anitet mesh: --bl-yplus: " << h0.status().message() << "\n";
       return kExitUsage;
     }
-    args.patch_names[label] = name;
+    args.bl_first_height = h0.value();
+    if (!args.quiet && !args.json)
+      std::cout << "anitet mesh: --bl-yplus " << args.bl_yplus << " at Re " << args.bl_reynolds << ", L "
+                << args.bl_ref_length << ": first height h0 = " << args.bl_first_height
+                << " (flat plate: Cf = 0.026 Re^(-1/7), h0 = y+ L / (Re sqrt(Cf/2)))\n";
   }
-  // No two labels with one name once the file's names and the given ones are merged.
-  if (Result<std::vector<NamedPatch>> named = named_patches(std::vector<int32_t>(labels.begin(), labels.end()), args.patch_names);
-      !named.ok()) {
-    std::cerr << cmd << ": --patch-names: " << named.status().message() << "\n";
+  if (args.stop_after == "layers" &&
+      (wants_sizing_field(args.metric) || args.metric.geodetic || !args.metric.background.empty())) {
+    std::cerr << "anitet mesh: the sizing and geographic options (--metric, --background, --hmin, "
+                 "--hmax, --hgrad, --write-metric, --write-sizing, --geodetic) apply to the whole "
+                 "pipeline, not to --stop-after layers\n";
     return kExitUsage;
   }
-  return kExitOk;
+  if (args.stop_after == "layers" && !args.report_html.empty()) {
+    std::cerr << "anitet mesh: --report applies to the whole pipeline; for stage 1 alone, run "
+                 "`anitet report OUT` on its output\n";
+    return kExitUsage;
+  }
+  return args.stop_after == "layers" ? run_mesh_layers(args) : run_mesh_pipeline(args);
 }
 
-int run_mesh(MeshArgs& args) {
-  // A bad output name is a usage error, found before any work.
-  if (const int code = check_output_paths(args); code != kExitOk) return code;
-  CheckedSurface checked;
-  if (const int code = load_and_validate(args.command, args.input, checked); code != kExitOk) return code;
-  if (const int code = check_patch_names(args, checked); code != kExitOk) return code;
-  if (!args.quiet) {
-    std::cout << "anitet " << args.command << ": '" << args.input << "' is a valid surface ("
-              << checked.surface.num_vertices() << " vertices, " << checked.surface.num_triangles()
-              << " triangles, " << checked.report.shells.size() << " shells)\n";
-    for (const Repair& rep : checked.report.repairs) std::cout << "  repaired: " << rep.message << "\n";
-  }
-  if (args.command == "recover") return run_recover(args, checked);
-  std::cerr << "anitet " << args.command << ": not implemented yet; '" << args.output
-            << "' was not written\n";
-  return kExitNotImplemented;
-}
+namespace {
+const DistributedRun* g_distributed = nullptr;
+}  // namespace
+
+void set_distributed_run(const DistributedRun* run) { g_distributed = run; }
+const DistributedRun* distributed_run() { return g_distributed; }
 
 }  // namespace anitet::cli

@@ -116,4 +116,67 @@ int run_quality(const QualityArgs& args) {
   return kExitOk;
 }
 
+
+int run_report(QualityArgs& args) {
+  if (args.report_html.empty()) {  // default: MESH with .html
+    const std::filesystem::path p(args.mesh);
+    args.report_html = (p.parent_path() / p.stem()).string() + ".html";
+  }
+  return run_quality(args);
+}
+
+CLI::App* add_quality_command(CLI::App& app, QualityArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "quality", "Quality report of a tetrahedral mesh, optionally against its input surface");
+  cmd->add_option("MESH", args.mesh, "Mesh file (.mesh .msh .vtu, TetGen .node/.ele)")->required();
+  cmd->add_option("--surface", args.surface,
+                          "Input surface: check that the mesh keeps it (boundary constrained)");
+  cmd->add_flag("--json", args.json, "Print the report as JSON");
+  cmd->add_option("--hist", args.hist_csv, "Write the radius-ratio histogram as CSV here");
+  cmd->add_option("--tol", args.tolerance,
+                          "Relative tolerance for matching mesh vertices to input vertices "
+                          "written with fewer digits (exact matches come first)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--strict", args.strict,
+                        "Exit 4 when the mesh is invalid or does not keep the surface");
+  CLI::Option* report_opt = cmd->add_option(
+      "--report", args.report_html, "Write a self-contained HTML report here (summary, histograms, cut views)");
+  cmd->add_option("--cut", args.cut,
+                          "Cut planes of the HTML report: x,y,z as fractions of the bounding box")
+      ->expected(3)
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0))
+      ->needs(report_opt);
+  cmd->add_option("--cut-max", args.cut_max,
+                          "Cross-sections drawn per cut view at most (the ones nearest the centre)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->needs(report_opt);
+  cmd->add_option("--metric", args.metric_sol,
+                          "Per-vertex Medit .sol of MESH (sizes or tensors, as `mesh --write-metric` "
+                          "writes): the report's edge lengths are measured in it")
+      ->needs(report_opt);
+  return cmd;
+}
+
+CLI::App* add_report_command(CLI::App& app, QualityArgs& args) {
+    CLI::App* cmd = app.add_subcommand(
+      "report", "Write the self-contained HTML quality report of a mesh (histograms, cut views) and print the text report");
+  cmd->add_option("MESH", args.mesh, "Mesh file (.mesh .msh .vtu, TetGen .node/.ele)")->required();
+  cmd->add_option("--surface", args.surface, "Input surface: check that the mesh keeps it");
+  cmd->add_option("-o,--output", args.report_html, "The HTML page (default: MESH with .html)");
+  cmd->add_option("--cut", args.cut, "Cut planes: x,y,z as fractions of the bounding box")
+      ->expected(3)
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--cut-max", args.cut_max, "Cross-sections drawn per cut view at most")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--metric", args.metric_sol, "Per-vertex Medit .sol of MESH: edge lengths in it");
+  return cmd;
+}
+
 }  // namespace anitet::cli

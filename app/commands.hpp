@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "core/sizing.hpp"
 #include "core/surface_mesh.hpp"
 #include "core/tet_mesh.hpp"
@@ -23,6 +25,10 @@ namespace anitet::cli {
 // The whole tool: parses the arguments, runs a subcommand, returns the exit code; never throws.
 int cli_main(int argc, char** argv);
 
+// Each command registers its subcommand and options on `app` (filling `args`, which must outlive
+// the parse) in the file that runs it: cmd_check_surface.cpp, cmd_quality.cpp (quality and
+// report), cmd_mesh.cpp, cmd_recover.cpp; the options mesh and recover share are outputs.cpp's.
+
 // Set by the MPI driver (mpi/main_mpi.cpp) before cli_main: `anitet mesh` then runs stages 3b/3c
 // through `stage3` (one part per rank), and only rank 0 writes the mesh and prints the report.
 struct DistributedRun {
@@ -39,6 +45,7 @@ struct CheckSurfaceArgs {
   std::string output;  // -o: the repaired surface (.off .obj .stl .mesh); empty: none
   bool json = false;
 };
+CLI::App* add_check_surface_command(CLI::App& app, CheckSurfaceArgs& args);
 int run_check_surface(const CheckSurfaceArgs& args);
 
 struct QualityArgs {
@@ -53,10 +60,13 @@ struct QualityArgs {
   size_t cut_max = 25000;             // cross-sections drawn per cut view at most
   std::string metric_sol;             // per-vertex .sol of MESH: edge lengths of the report in it
 };
+CLI::App* add_quality_command(CLI::App& app, QualityArgs& args);
+CLI::App* add_report_command(CLI::App& app, QualityArgs& args);
 int run_quality(const QualityArgs& args);
+// `report`: run_quality with the HTML page at MESH with .html unless -o names it.
+int run_report(QualityArgs& args);
 
-// `mesh` and `recover`: read and validate the input surface, then (for now) stop with
-// "not implemented yet". The options are the ones the later stages will take.
+// `mesh` and `recover` (recover uses the input, output and recovery options only).
 struct MeshArgs {
   std::string command;  // "mesh" or "recover", for messages
   std::string input;
@@ -88,7 +98,15 @@ struct MeshArgs {
   std::string patch_names_spec;         // --patch-names "1=wall,2=farfield"
   PatchNames patch_names;               // parsed by check_output_options
 };
-int run_mesh(MeshArgs& args);
+CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args);
+CLI::App* add_recover_command(CLI::App& app, MeshArgs& args);
+// -o, --also-write, -q, --recovery, --patch-names: registered on both.
+void add_mesh_io_options(CLI::App* cmd, MeshArgs& args);
+// `mesh`: the options that need the parse (combinations, --bl-yplus), then the pipeline or
+// --stop-after layers.
+int run_mesh(const CLI::App& cmd, MeshArgs& args);
+// `recover`: read, validate, stage 2 alone, write.
+int run_recover(MeshArgs& args);
 // The recovery options --recovery asks for.
 RecoveryOptions recovery_options(const MeshArgs& args);
 // Before any work: every file the command will write (-o, --also-write, --report,
@@ -111,7 +129,7 @@ int write_outputs(const MeshArgs& args, const VolumeMesh& mesh);
 // `extra_labels`, e.g. the S1 patch of --stop-after layers); no two labels may share a name.
 // Returns kExitOk, or kExitUsage after printing the reason.
 int check_patch_names(MeshArgs& args, const CheckedSurface& input, const std::vector<int32_t>& extra_labels = {});
-// `mesh`: the whole pipeline (cmd_pipeline.cpp).
+// `mesh`: the whole pipeline (cmd_mesh.cpp).
 int run_mesh_pipeline(MeshArgs& args);
 // `mesh --stop-after layers`: stage 1 alone (cmd_layers.cpp).
 int run_mesh_layers(MeshArgs& args);
