@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "cli_util.hpp"
 #include "exit_codes.hpp"
 #include "io/file_bytes.hpp"
 #include "io/volume_io.hpp"
@@ -448,7 +449,7 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
       ->expected(3)
       ->delimiter(',')
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(in_range(0.0, 1.0))
       ->needs(mesh_report);
   cmd->add_option("--stop-after", args.stop_after,
                        "Stop after a stage and write its result: 'layers' writes T1 (stage 1) to the "
@@ -456,12 +457,12 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
       ->check(CLI::IsMember({"layers"}));
   cmd->add_option("--layers", args.layers, "Number of advancing-front layers (stage 1)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 50));
+      ->check(in_range(1, 50));
   cmd->add_option("--attempts-seconds", args.attempts_seconds,
                        "Wall time for stages 1-2 and the coupling, run again with other layer counts and "
                        "recovery strategies when S1 is not recovered; no new attempt starts after it (0: no limit)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   cmd->add_option("--layer-scheme", args.layer_scheme,
                        "Stage 1 scheme: push (prism layers, each front vertex pushed off in turn) or "
                        "faces (the paper's: a tet on every face, then vertex pushes)")
@@ -483,33 +484,33 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
   CLI::Option* first_height_opt =
       cmd->add_option("--bl-first-height", args.bl_first_height,
                            "First layer height h0 (length units; needed with --bl-patches unless --bl-yplus gives it)")
-          ->check(CLI::PositiveNumber)
+          ->check(positive())
           ->group(bl_group);
   CLI::Option* reynolds_opt =
       cmd->add_option("--bl-reynolds", args.bl_reynolds, "Reynolds number Re = U L / nu, for --bl-yplus")
-          ->check(CLI::PositiveNumber)
+          ->check(positive())
           ->group(bl_group);
   CLI::Option* ref_length_opt =
       cmd->add_option("--bl-ref-length", args.bl_ref_length,
                            "Reference length L of --bl-reynolds (length units), for --bl-yplus")
-          ->check(CLI::PositiveNumber)
+          ->check(positive())
           ->group(bl_group);
   cmd->add_option("--bl-yplus", args.bl_yplus,
                        "Target y+ of the first layer: h0 from the flat-plate estimate Cf = 0.026 Re^(-1/7), "
                        "h0 = y+ L / (Re sqrt(Cf/2)); needs --bl-reynolds and --bl-ref-length, excludes "
                        "--bl-first-height; the h0 used is printed")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->needs(reynolds_opt)
       ->needs(ref_length_opt)
       ->excludes(first_height_opt)
       ->group(bl_group);
   cmd->add_option("--bl-growth", args.bl_growth, "Growth ratio r: layer i has height h0 r^i")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 10.0))
+      ->check(in_range(1.0, 10.0))
       ->group(bl_group);
   cmd->add_option("--bl-layers", args.bl_layers, "Number of boundary layers n")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1000))
+      ->check(in_range(1, 1000))
       ->group(bl_group);
   cmd->add_flag("--bl-sizing", args.bl_sizing,
                      "Refine the interior to continue the boundary layer's heights: the sizing field is "
@@ -523,7 +524,7 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
                        "grid from the surface's triangle sizes), after --hmin/--hmax/--hgrad: 0.5 = "
                        "twice as fine, 2 = twice as coarse")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->group("Sizing");
   add_metric_options(*cmd, args.metric);
   cmd->add_flag("--no-refine", args.no_refine, "Skip refinement/coarsening by metric edge length");
@@ -532,7 +533,7 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
       ->add_option("--anisotropic-cycles", args.anisotropic_cycles,
                    "With an anisotropic metric (--metric tensors, --bl-sizing): more rounds of refinement then "
                    "optimization after the first, which even the metric lengths and shapes further")
-      ->check(CLI::Range(0, 10))
+      ->check(in_range(0, 10))
       ->capture_default_str();
   cmd->add_flag("--json", args.json, "Print the report as JSON");
   return cmd;

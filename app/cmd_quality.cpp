@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "cli_util.hpp"
 #include "exit_codes.hpp"
 #include "io/surface_io.hpp"
 #include "io/volume_io.hpp"
@@ -137,7 +138,7 @@ CLI::App* add_quality_command(CLI::App& app, QualityArgs& args) {
                           "Relative tolerance for matching mesh vertices to input vertices "
                           "written with fewer digits (exact matches come first)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   cmd->add_flag("--strict", args.strict,
                         "Exit 4 when the mesh is invalid or does not keep the surface");
   CLI::Option* report_opt = cmd->add_option(
@@ -147,12 +148,12 @@ CLI::App* add_quality_command(CLI::App& app, QualityArgs& args) {
       ->expected(3)
       ->delimiter(',')
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(in_range(0.0, 1.0))
       ->needs(report_opt);
   cmd->add_option("--cut-max", args.cut_max,
                           "Cross-sections drawn per cut view at most (the ones nearest the centre)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->needs(report_opt);
   cmd->add_option("--metric", args.metric_sol,
                           "Per-vertex Medit .sol of MESH (sizes or tensors, as `mesh --write-metric` "
@@ -171,10 +172,10 @@ CLI::App* add_report_command(CLI::App& app, QualityArgs& args) {
       ->expected(3)
       ->delimiter(',')
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(in_range(0.0, 1.0));
   cmd->add_option("--cut-max", args.cut_max, "Cross-sections drawn per cut view at most")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--metric", args.metric_sol, "Per-vertex Medit .sol of MESH: edge lengths in it");
   return cmd;
 }

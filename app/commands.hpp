@@ -97,6 +97,7 @@ struct MeshArgs {
   std::string recovery = "all";         // stage 2 strategies: all (split, then fuzzy), split, fuzzy
   std::string patch_names_spec;         // --patch-names "1=wall,2=farfield"
   PatchNames patch_names;               // parsed by check_output_options
+  int threads = 0;                      // --threads (0: all cores)
 };
 CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args);
 CLI::App* add_recover_command(CLI::App& app, MeshArgs& args);

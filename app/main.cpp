@@ -13,20 +13,49 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <tbb/task_arena.h>
 
+#include "cli_util.hpp"
 #include "commands.hpp"
 #include "exit_codes.hpp"
 
 namespace {
 
+const char* kExitCodes =
+    "Exit codes:\n"
+    "  0  success\n"
+    "  1  internal error (a bug: please report it with the input)\n"
+    "  2  usage: a bad option or value, a missing argument, an output format that cannot be written\n"
+    "  3  read/write error: a file cannot be opened, read or written\n"
+    "  4  invalid input: read but not valid (a malformed file, an open or self-intersecting surface,\n"
+    "     ...); also quality --strict on an invalid mesh\n"
+    "  5  not implemented in this build or version (.cgns/.exo without their library)";
+
+// An option the parser did not know: say which, and the nearest the command has.
+int unknown_option(const CLI::App& app, const CLI::App* cmd, int argc, char** argv, const CLI::ParseError& e) {
+  for (int i = 1; cmd && i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) continue;
+    const std::string name = arg.substr(0, arg.find('='));
+    bool known = false;
+    for (const CLI::Option* opt : cmd->get_options()) known = known || opt->check_lname(name.substr(2));
+    if (!known) {
+      std::cerr << "anitet " << cmd->get_name() << ": unknown option " << name << anitet::cli::suggest_option(*cmd, name)
+                << "\nRun 'anitet " << cmd->get_name() << " --help' for the options.\n";
+      return anitet::cli::kExitUsage;
+    }
+  }
+  app.exit(e);  // CLI11's own message and hint on stderr
+  return anitet::cli::kExitUsage;
+}
+
 int run(int argc, char** argv) {
   using namespace anitet::cli;
-  CLI::App app{"anitet: boundary-constrained tetrahedral mesh generator"};
+  CLI::App app{"anitet: tetrahedral meshes that keep the input surface exactly, for CFD and FEM solvers"};
+  app.formatter(wrapping_formatter());
   app.set_version_flag("--version", std::string("anitet ") + ANITET_VERSION);
   app.require_subcommand(1);
-  app.footer(
-      "Exit codes: 0 success, 1 internal error, 2 usage, 3 read/write error, 4 invalid input,\n"
-      "5 not implemented yet.");
+  app.footer(std::string("Run 'anitet COMMAND --help' for a command's options and examples.\n\n") + kExitCodes);
   CheckSurfaceArgs check;
   QualityArgs quality, report;
   MeshArgs mesh, recover;
@@ -35,6 +64,14 @@ int run(int argc, char** argv) {
   CLI::App* report_cmd = add_report_command(app, report);
   CLI::App* mesh_cmd = add_mesh_command(app, mesh);
   CLI::App* recover_cmd = add_recover_command(app, recover);
+  // Every command: --threads, and the exit codes under its options.
+  int threads = 0;
+  for (CLI::App* cmd : {check_cmd, quality_cmd, report_cmd, mesh_cmd, recover_cmd}) {
+    cmd->add_option("--threads", threads, "Threads to use (0: all cores); the mesh is the same on any number")
+        ->check(in_range(0, 4096))
+        ->group("General");
+    cmd->footer(cmd->get_footer() + (cmd->get_footer().empty() ? "" : "\n\n") + kExitCodes);
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -43,17 +80,28 @@ int run(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const CLI::ExtrasError& e) {
+    const CLI::App* cmd = nullptr;
+    for (CLI::App* c : {check_cmd, quality_cmd, report_cmd, mesh_cmd, recover_cmd})
+      if (argc > 1 && c->get_name() == argv[1]) cmd = c;
+    return unknown_option(app, cmd, argc, argv, e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);  // prints the message and a hint on stderr
     return kExitUsage;
   }
-  if (check_cmd->parsed()) return run_check_surface(check);
-  if (quality_cmd->parsed()) return run_quality(quality);
-  if (report_cmd->parsed()) return run_report(report);
-  if (mesh_cmd->parsed()) return run_mesh(*mesh_cmd, mesh);
-  if (recover_cmd->parsed()) return run_recover(recover);
-  std::cerr << app.help();
-  return kExitUsage;
+  mesh.threads = recover.threads = threads;
+  // Every stage of every command runs in one task arena of that size (the TBB work; the few
+  // threads of anitet's own take the count into account too).
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  return arena.execute([&] {
+    if (check_cmd->parsed()) return run_check_surface(check);
+    if (quality_cmd->parsed()) return run_quality(quality);
+    if (report_cmd->parsed()) return run_report(report);
+    if (mesh_cmd->parsed()) return run_mesh(*mesh_cmd, mesh);
+    if (recover_cmd->parsed()) return run_recover(recover);
+    std::cerr << app.help();
+    return kExitUsage;
+  });
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include "metric_options.hpp"
+#include "cli_util.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -112,10 +113,10 @@ void add_metric_options(CLI::App& cmd, MetricCliOptions& o) {
       ->check(CLI::ExistingFile);
   cmd.add_option("--hmin", o.hmin, "Smallest edge size (0: no bound)")
       ->group(group)
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   cmd.add_option("--hmax", o.hmax, "Largest edge size (0: no bound)")
       ->group(group)
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   cmd.add_option("--hgrad", o.hgrad,
                  "Gradation: largest size ratio between neighbours per unit metric length, "
                  "applied to the whole tensor (> 1; 0: none)")
