@@ -1,6 +1,7 @@
 // Medit .mesh (ASCII): keyword sections "Vertices n / x y z ref", "Triangles n / a b c ref",
 // "Quadrilaterals n / a b c d ref", "Tetrahedra n / a b c d ref" (1-based), "Dimension 3",
-// '#' comments, "End". Other sections are skipped. Also the .sol writer.
+// '#' comments, "End". Other sections are skipped. Also the .sol (SolAtVertices) reader and
+// writer.
 #include <cstdlib>
 #include <functional>
 #include <string>
@@ -10,6 +11,7 @@
 #include "io/file_bytes.hpp"
 #include "io/number_text.hpp"
 #include "io/parallel_text.hpp"
+#include "io/sol_io.hpp"
 #include "io/reader_util.hpp"
 #include "io/surface_io.hpp"
 #include "io/text_scanner.hpp"
@@ -83,7 +85,7 @@ Status check_indices(const std::string& name, const char* what, int n,
 Status parse_medit(std::string_view data, const std::string& name, MeditContent& out) {
   if (data.size() >= 4 && data.substr(0, 4).find('\0') != std::string_view::npos) {
     return Status(Error::UnsupportedFormat,
-                  name + ": binary Medit files (.meshb) are not supported");
+                  name + ": binary bytes in an ASCII Medit file (a binary Medit file is a .meshb)");
   }
   TextScanner in(data, name);
   bool have_vertices = false;
@@ -305,25 +307,104 @@ Status write_medit_volume(const VolumeMesh& mesh, const std::string& path, const
   });
 }
 
-Result<std::string> to_sol(const VolumeMesh& mesh) {
-  size_t nv = mesh.num_vertices();
-  size_t per_vertex = nv == 0 ? 0 : mesh.vertex_metric.size() / nv;
-  if (nv == 0 || (per_vertex != 1 && per_vertex != 6) ||
-      per_vertex * nv != mesh.vertex_metric.size()) {
-    return Status(Error::InvalidArgument,
-                  "a .sol needs 1 or 6 metric values per vertex; the mesh has " +
-                      std::to_string(mesh.vertex_metric.size()) + " values for " +
-                      std::to_string(nv) + " vertices");
+namespace {
+
+// "k t1 .. tk": the fields of a SolAtVertices block.
+Status read_field_kinds(TextScanner& in, std::vector<FieldKind>& kinds) {
+  uint64_t count = 0;
+  if (!in.read_count(in.remaining(), count) || count == 0) return in.expected("the number of fields (at least 1)");
+  for (uint64_t i = 0; i < count; ++i) {
+    int64_t type = 0;
+    if (!in.read_int(type)) return in.expected("the type of field " + std::to_string(i + 1));
+    if (type == 4) {
+      return in.error(Error::UnsupportedFormat, "field " + std::to_string(i + 1) + " is a full matrix (type 4): "
+                                                "anitet reads scalars (1), vectors (2) and symmetric tensors (3)");
+    }
+    if (type < 1 || type > 4) {
+      return in.error(Error::Parse, "field " + std::to_string(i + 1) + " has type " + std::to_string(type) +
+                                        " (expected 1 scalar, 2 vector, 3 symmetric tensor)");
+    }
+    kinds.push_back(FieldKind(type));
   }
+  return Status::success();
+}
+
+Status read_sol_at_vertices(TextScanner& in, VertexFields& out) {
+  uint64_t count = 0;
+  if (!in.read_count(kMaxVertices, count)) return in.expected("the number of vertices");
+  if (Status s = read_field_kinds(in, out.kinds); !s.ok()) return s;
+  const size_t record = out.record_size();
+  // Each value takes at least 2 bytes.
+  if (!fits(count, 2 * record, in.remaining() + 1)) {
+    return in.error(Error::Parse, std::to_string(count) + " vertices of " + std::to_string(record) +
+                                      " values do not fit in the file");
+  }
+  out.values.resize(count * record);
+  for (size_t i = 0; i < out.values.size(); ++i) {
+    if (!in.read_double(out.values[i])) {
+      return in.expected("value " + std::to_string(i % record + 1) + " of vertex " + std::to_string(i / record + 1));
+    }
+  }
+  return Status::success();
+}
+
+Result<VertexFields> parse_medit_sol(std::string_view data, const std::string& name) {
+  if (data.size() >= 4 && data.substr(0, 4).find('\0') != std::string_view::npos) {
+    return Status(Error::UnsupportedFormat, name + ": binary bytes in an ASCII .sol (a binary file is a .solb)");
+  }
+  TextScanner in(data, name);
+  VertexFields out;
+  bool have_field = false;
+  for (;;) {
+    std::string_view key = in.next_token();
+    if (key.empty() || iequals(key, "End")) break;
+    if (iequals(key, "MeshVersionFormatted")) {
+      int64_t version = 0;
+      if (!in.read_int(version)) return in.expected("the mesh version");
+    } else if (iequals(key, "Dimension")) {
+      int64_t dim = 0;
+      if (!in.read_int(dim)) return in.expected("the dimension");
+      if (dim != 3) return in.error(Error::UnsupportedFormat, "only Dimension 3 is supported");
+    } else if (iequals(key, "SolAtVertices")) {
+      if (have_field) return in.error(Error::Parse, "a second SolAtVertices section");
+      have_field = true;
+      if (Status s = read_sol_at_vertices(in, out); !s.ok()) return s;
+    } else if (starts_number(key)) {
+      return in.error(Error::Parse, "expected a keyword, found '" + quote_token(key) + "'");
+    } else {
+      while (starts_number(in.peek_token())) in.next_token();  // a section anitet does not read
+    }
+  }
+  if (!have_field) return Status(Error::EmptyInput, name + ": no SolAtVertices");
+  return out;
+}
+
+}  // namespace
+
+Result<VertexFields> read_medit_sol(std::string_view data, const std::string& name) {
+  return catch_bad_alloc(name, [&] { return parse_medit_sol(data, name); });
+}
+
+Result<std::string> to_sol(const VertexFields& fields) {
+  const size_t record = fields.record_size();
+  if (record == 0 || fields.values.size() % record != 0) {
+    return Status(Error::InvalidArgument, "vertex fields: " + std::to_string(fields.values.size()) +
+                                              " values are not a whole number of records of " + std::to_string(record));
+  }
+  const size_t nv = fields.values.size() / record;
   std::string out = kMeditHeader;
   out += "\nSolAtVertices\n";
   append_line(out, nv);
-  out += per_vertex == 1 ? "1 1\n" : "1 3\n";  // one field: scalar (1) or symmetric tensor (3)
+  append_int(out, int64_t(fields.kinds.size()));
+  for (const FieldKind k : fields.kinds) {
+    out += ' ';
+    append_int(out, int64_t(k));
+  }
+  out += '\n';
   for (size_t v = 0; v < nv; ++v) {
-    const double* m = &mesh.vertex_metric[per_vertex * v];
-    for (size_t k = 0; k < per_vertex; ++k) {
+    for (size_t k = 0; k < record; ++k) {
       if (k) out += ' ';
-      append_double(out, m[k]);
+      append_double(out, fields.values[record * v + k]);
     }
     out += '\n';
   }

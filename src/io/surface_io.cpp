@@ -7,6 +7,7 @@
 #include "io/file_bytes.hpp"
 #include "io/mesh_faces.hpp"
 #include "io/volume_io.hpp"
+#include "io/gmf_format.hpp"
 
 namespace anitet {
 
@@ -17,13 +18,14 @@ Result<SurfaceFormat> surface_format_from_path(const std::string& path) {
   if (ext == "stl") return SurfaceFormat::Stl;
   if (ext == "ply") return SurfaceFormat::Ply;
   if (ext == "mesh") return SurfaceFormat::Medit;
+  if (ext == "meshb") return SurfaceFormat::MeditBinary;
   if (ext == "msh") return SurfaceFormat::Gmsh;
   if (ext == "su2") return SurfaceFormat::Su2;
   if (ext == "vtu") return SurfaceFormat::Vtu;
   if (ext == "node" || ext == "ele") return SurfaceFormat::TetGen;
   return Status(Error::UnsupportedFormat, path + ": unknown surface format '." + ext +
-                                              "' (expected .off, .obj, .stl, .ply, .mesh, .msh, .su2, .vtu, "
-                                              ".node or .ele)");
+                                              "' (expected .off, .obj, .stl, .ply, .mesh, .meshb, .msh, .su2, "
+                                              ".vtu, .node or .ele)");
 }
 
 Result<SurfaceMesh> surface_of_volume(const VolumeMesh& mesh) {
@@ -96,6 +98,9 @@ Result<SurfaceMesh> read_surface(std::string_view data, SurfaceFormat format, co
       if (!found.ok()) return found.status();
       return with_names(std::move(s).value(), found.value(), name, names);
     }
+    case SurfaceFormat::MeditBinary:
+      return surface_or_volume_boundary(read_meshb_surface(data, name),
+                                        [&] { return read_meshb_volume(data, name); });
     case SurfaceFormat::Su2:
       return read_su2_surface(data, name, names);
     case SurfaceFormat::Vtu: {
@@ -126,7 +131,7 @@ Status write_surface(const SurfaceMesh& mesh, const std::string& path) {
   const std::string ext = lower_extension(path);
   Result<std::string> bytes =
       Status(Error::UnsupportedFormat, path + ": cannot write surface format '." + ext +
-                                           "' (expected .off, .obj, .stl or .mesh)");
+                                           "' (expected .off, .obj, .stl, .mesh or .meshb)");
   if (ext == "off") {
     bytes = to_off(mesh);
   } else if (ext == "obj") {
@@ -135,6 +140,8 @@ Status write_surface(const SurfaceMesh& mesh, const std::string& path) {
     bytes = to_stl_binary(mesh);
   } else if (ext == "mesh") {
     bytes = to_medit(mesh);
+  } else if (ext == "meshb") {
+    bytes = to_meshb(mesh);
   }
   if (!bytes.ok()) return bytes.status();
   return write_file_bytes(path, bytes.value());

@@ -18,9 +18,9 @@
 
 namespace anitet {
 
-enum class SurfaceFormat { Off, Obj, Stl, Ply, Medit, Gmsh, Su2, Vtu, TetGen };
+enum class SurfaceFormat { Off, Obj, Stl, Ply, Medit, MeditBinary, Gmsh, Su2, Vtu, TetGen };
 
-// From the extension, case-insensitive: .off .obj .stl .ply .mesh .msh .su2 .vtu .node/.ele.
+// From the extension, case-insensitive: .off .obj .stl .ply .mesh .meshb .msh .su2 .vtu .node/.ele.
 Result<SurfaceFormat> surface_format_from_path(const std::string& path);
 
 // Reads a file, choosing the format from its extension. `names`, when given, receives the patch
@@ -51,6 +51,7 @@ Result<SurfaceMesh> read_ply(std::string_view data, const std::string& name);
 // Medit .mesh (ASCII): Vertices and Triangles (refs become patches; Quadrilaterals are split).
 // anitet's writer puts the patch names in comment lines "# patch LABEL NAME".
 Result<SurfaceMesh> read_medit_surface(std::string_view data, const std::string& name);
+// (Binary Medit .meshb: read_meshb_surface in gmf_format.hpp, the same content.)
 // The names in those comments (any label; unchecked lines are comments only).
 PatchNames medit_patch_names(std::string_view data);
 // Gmsh .msh 4.1 (ASCII or binary) or 2.2 (ASCII): triangles (type 2); patch = the first physical
@@ -66,7 +67,7 @@ Result<PatchNames> gmsh_surface_names(std::string_view data, const std::string& 
 // skipped; 2D and multi-zone files are UnsupportedFormat.
 Result<SurfaceMesh> read_su2_surface(std::string_view data, const std::string& name, PatchNames* names = nullptr);
 
-// Writes a file, choosing the format from its extension: .off .obj .stl (binary) .mesh.
+// Writes a file, choosing the format from its extension: .off .obj .stl (binary) .mesh .meshb.
 Status write_surface(const SurfaceMesh& mesh, const std::string& path);
 
 // The file contents. OBJ writes a group `patch<label>` for each patch run when some label is not 0.

@@ -3,6 +3,7 @@
 
 #include "core/tet_faces.hpp"
 #include "io/file_bytes.hpp"
+#include "io/gmf_format.hpp"
 
 namespace anitet {
 
@@ -33,6 +34,7 @@ Result<VolumeFormat> volume_format_from_path(const std::string& path) {
   if (last_component(path) == "polyMesh") return VolumeFormat::OpenFoam;
   const std::string ext = lower_extension(path);
   if (ext == "mesh") return VolumeFormat::Medit;
+  if (ext == "meshb") return VolumeFormat::MeditBinary;
   if (ext == "msh") return VolumeFormat::Gmsh;
   if (ext == "node" || ext == "ele") return VolumeFormat::TetGen;
   if (ext == "vtu") return VolumeFormat::Vtu;
@@ -40,8 +42,8 @@ Result<VolumeFormat> volume_format_from_path(const std::string& path) {
   if (ext == "cgns") return VolumeFormat::Cgns;
   if (ext == "exo" || ext == "e") return VolumeFormat::Exodus;
   return Status(Error::UnsupportedFormat, path + ": unknown volume mesh format '." + ext +
-                                              "' (expected .mesh, .msh, .node, .ele, .vtu, .su2, .cgns, "
-                                              ".exo, .e or a .../polyMesh directory)");
+                                              "' (expected .mesh, .meshb, .msh, .node, .ele, .vtu, .su2, "
+                                              ".cgns, .exo, .e or a .../polyMesh directory)");
 }
 
 Status check_writable_volume_path(const std::string& path) {
@@ -50,7 +52,7 @@ Status check_writable_volume_path(const std::string& path) {
   switch (format.value()) {
     case VolumeFormat::TetGen:
       return Status(Error::UnsupportedFormat, path + ": TetGen .node/.ele is read only; output formats are "
-                                                 ".mesh, .msh, .vtu, .su2, .cgns, .exo/.e and .../polyMesh");
+                                                 ".mesh, .meshb, .msh, .vtu, .su2, .cgns, .exo/.e and .../polyMesh");
     case VolumeFormat::Cgns:
       if (!cgns_available()) {
         return Status(Error::NotImplemented, path + ": anitet was not built with CGNS (libcgns-dev)");
@@ -93,6 +95,8 @@ Result<VolumeMesh> read_volume_mesh(const std::string& path) {
   switch (format.value()) {
     case VolumeFormat::Medit:
       return read_medit_volume(bytes.value(), path);
+    case VolumeFormat::MeditBinary:
+      return read_meshb_volume(bytes.value(), path);
     case VolumeFormat::Gmsh:
       return read_gmsh_volume(bytes.value(), path);
     case VolumeFormat::Vtu:
@@ -113,8 +117,8 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
   Result<VolumeFormat> format = volume_format_from_path(path);
   if (!format.ok()) {
     return Status(Error::UnsupportedFormat, path + ": cannot write volume mesh format '." + lower_extension(path) +
-                                                "' (expected .mesh, .msh, .vtu, .su2, .cgns, .exo, .e or a "
-                                                ".../polyMesh directory)");
+                                                "' (expected .mesh, .meshb, .msh, .vtu, .su2, .cgns, .exo, .e "
+                                                "or a .../polyMesh directory)");
   }
   if (format.value() == VolumeFormat::TetGen) return check_writable_volume_path(path);
   // Nothing wrong is written: the boundary elements are checked against the tets first.
@@ -127,11 +131,12 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
   switch (format.value()) {
     case VolumeFormat::Medit: return write_medit_volume(mesh, path, patch_names);
     case VolumeFormat::Gmsh: bytes = to_gmsh(mesh, patch_names); break;
+    case VolumeFormat::MeditBinary:
     case VolumeFormat::Vtu:
       if (Result<std::vector<NamedPatch>> named = named_patches(mesh.bnd_patch, patch_names); !named.ok()) {
-        return named.status();  // VTU has no names, but a wrong name is still an error
+        return named.status();  // VTU and .meshb have no names, but a wrong name is still an error
       }
-      bytes = to_vtu(mesh, tet_scalars);
+      bytes = format.value() == VolumeFormat::Vtu ? to_vtu(mesh, tet_scalars) : to_meshb(mesh);
       break;
     case VolumeFormat::Su2: bytes = to_su2(mesh, patch_names); break;
     case VolumeFormat::OpenFoam: return write_openfoam(mesh, path, patch_names);
@@ -139,12 +144,6 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
     case VolumeFormat::Exodus: return write_exodus(mesh, path, patch_names);
     case VolumeFormat::TetGen: break;  // refused above
   }
-  if (!bytes.ok()) return bytes.status();
-  return write_file_bytes(path, bytes.value());
-}
-
-Status write_sol(const VolumeMesh& mesh, const std::string& path) {
-  Result<std::string> bytes = to_sol(mesh);
   if (!bytes.ok()) return bytes.status();
   return write_file_bytes(path, bytes.value());
 }

@@ -14,9 +14,9 @@
 
 namespace anitet {
 
-enum class VolumeFormat { Medit, Gmsh, TetGen, Vtu, Su2, OpenFoam, Cgns, Exodus };
+enum class VolumeFormat { Medit, MeditBinary, Gmsh, TetGen, Vtu, Su2, OpenFoam, Cgns, Exodus };
 
-// From the extension, case-insensitive: .mesh .msh .node/.ele .vtu .su2 .cgns .exo/.e; a path
+// From the extension, case-insensitive: .mesh .meshb .msh .node/.ele .vtu .su2 .cgns .exo/.e; a path
 // whose last component is "polyMesh" (e.g. CASE/constant/polyMesh, a trailing '/' allowed) is an
 // OpenFOAM polyMesh directory. Su2, OpenFoam, Cgns and Exodus are written only.
 Result<VolumeFormat> volume_format_from_path(const std::string& path);
@@ -38,6 +38,7 @@ Result<VolumeMesh> read_volume_mesh(const std::string& path);
 
 // Medit .mesh (ASCII): Vertices, Tetrahedra (ref = region), Triangles (ref = patch).
 Result<VolumeMesh> read_medit_volume(std::string_view data, const std::string& name);
+// (Binary Medit .meshb: read_meshb_volume in gmf_format.hpp.)
 // Gmsh .msh 4.1 (ASCII or binary) or 2.2 (ASCII): tets (type 4) and triangles (type 2). The label
 // is the entity's first physical tag when it has one, else the entity (elementary) tag.
 Result<VolumeMesh> read_gmsh_volume(std::string_view data, const std::string& name);
@@ -56,7 +57,8 @@ struct TetScalar {
 };
 
 // Writes a file chosen by volume_format_from_path, after check_boundary_elements (no file when it
-// fails): .mesh (Medit), .msh (Gmsh 4.1), .vtu (VTK
+// fails): .mesh (Medit), .meshb (binary Medit, GMF version 2, or 3 or 4 when the mesh needs them:
+// see to_gmf_mesh), .msh (Gmsh 4.1), .vtu (VTK
 // XML), .su2, an OpenFOAM polyMesh directory, .cgns, .exo/.e. `tet_scalars` are written by .vtu
 // only. Error::InvalidArgument for inconsistent arrays. The boundary patches are named by
 // `patch_names` (label -> name, see patch_names.hpp; unnamed labels get patch<label>) in every
@@ -67,8 +69,9 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path,
                          const std::vector<TetScalar>& tet_scalars = {});
 Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names,
                          const std::vector<TetScalar>& tet_scalars = {});
-// Writes mesh.vertex_metric as a Medit .sol: SolAtVertices of type 1 (1 value per vertex) or
-// type 3 (6 values per vertex, Medit's order xx xy yy xz yz zz, the same as VolumeMesh's).
+// Writes mesh.vertex_metric as a Medit .sol (sol_io.hpp), or a binary .solb when the path ends
+// in .solb (GMF version chosen as in to_gmf_mesh): SolAtVertices of type 1 (1 value per vertex)
+// or type 3 (6 values per vertex, Medit's order xx xy yy xz yz zz, the same as VolumeMesh's).
 Status write_sol(const VolumeMesh& mesh, const std::string& path);
 
 // The file contents.
