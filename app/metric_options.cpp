@@ -103,12 +103,12 @@ void add_metric_options(CLI::App& cmd, MetricCliOptions& o) {
   const char* group = "Sizing";
   cmd.add_option("--metric", o.metric,
                  "Sizing field: a .vdb (grid 'size', or the six 'log_metric_xx' .. "
-                 "'log_metric_zz' or 'metric_xx' .. 'metric_zz' grids) or a Medit .sol "
+                 "'log_metric_zz' or 'metric_xx' .. 'metric_zz' grids) or a Medit .sol or .solb "
                  "(with --background). Default: the surface's own sizing grid")
       ->group(group)
       ->check(CLI::ExistingFile);
   cmd.add_option("--background", o.background,
-                 "Background tetrahedral mesh of a .sol --metric (.mesh .msh .vtu .node)")
+                 "Background tetrahedral mesh of a .sol/.solb --metric (.mesh .meshb .msh .vtu .node)")
       ->group(group)
       ->check(CLI::ExistingFile);
   cmd.add_option("--hmin", o.hmin, "Smallest edge size (0: no bound)")
@@ -123,7 +123,7 @@ void add_metric_options(CLI::App& cmd, MetricCliOptions& o) {
       ->group(group);
   cmd.add_option("--write-metric", o.write_metric,
                  "Write the sizing field (before --size) at the output mesh's vertices as a "
-                 "Medit .sol (sizes when isotropic, else tensors)")
+                 "Medit .sol, or binary .solb by its extension (sizes when isotropic, else tensors)")
       ->group(group);
   cmd.add_option("--write-sizing", o.write_sizing,
                  "Write the sizing field (before --size) as OpenVDB grids (.vdb), for any "
@@ -183,7 +183,7 @@ Result<std::unique_ptr<SizingField>> build_sizing_field(const MetricCliOptions& 
   auto out = std::make_unique<OwningField>();
   if (o.metric.empty()) {
     if (!o.background.empty())
-      return Status(Error::InvalidArgument, "--background needs a .sol --metric");
+      return Status(Error::InvalidArgument, "--background needs a .sol or .solb --metric");
     // Bounded and graded on the dense lattice, before the sparse storage prunes it.
     const metric::SurfaceSizingOptions& so = default_sizing;
     Result<metric::Lattice> lat = metric::surface_sizing(surface, so);
@@ -199,7 +199,7 @@ Result<std::unique_ptr<SizingField>> build_sizing_field(const MetricCliOptions& 
     out->keep(std::move(f.value()));
   } else if (ends_with(o.metric, ".vdb")) {
     if (!o.background.empty())
-      return Status(Error::InvalidArgument, "--background is for a .sol --metric, not a .vdb");
+      return Status(Error::InvalidArgument, "--background is for a .sol or .solb --metric, not a .vdb");
     Result<metric::MetricField> f = metric::read_metric_vdb(o.metric);
     if (!f.ok()) return f.status();
     if (bound || o.hgrad > 0.0) {
@@ -207,9 +207,9 @@ Result<std::unique_ptr<SizingField>> build_sizing_field(const MetricCliOptions& 
       if (!f.ok()) return f.status();
     }
     out->keep(std::move(f.value()));
-  } else if (ends_with(o.metric, ".sol")) {
+  } else if (ends_with(o.metric, ".sol") || ends_with(o.metric, ".solb")) {
     if (o.background.empty())
-      return Status(Error::InvalidArgument, "a .sol --metric needs --background MESH");
+      return Status(Error::InvalidArgument, "a .sol or .solb --metric needs --background MESH");
     Result<metric::SolField> sol = metric::read_sol(o.metric);
     if (!sol.ok()) return sol.status();
     Result<VolumeMesh> bg = read_volume_mesh(o.background);
@@ -231,7 +231,7 @@ Result<std::unique_ptr<SizingField>> build_sizing_field(const MetricCliOptions& 
     }
   } else {
     return Status(Error::UnsupportedFormat,
-                  "--metric '" + o.metric + "': expected a .vdb or a .sol file");
+                  "--metric '" + o.metric + "': expected a .vdb, .sol or .solb file");
   }
   return std::unique_ptr<SizingField>(std::move(out));
 }

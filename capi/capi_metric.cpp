@@ -35,7 +35,8 @@ anitet_metric* new_field_metric(std::shared_ptr<const anitet::SizingField> field
   return metric.release();
 }
 
-// A .sol on the background mesh at background_path: both read, then the interpolating field.
+// A .sol or .solb on the background mesh at background_path: both read, then the interpolating
+// field.
 int read_sol_metric(const char* fn, const std::string& path, const std::string& background_path,
                     anitet_metric** out) {
   anitet::Result<anitet::metric::SolField> sol = anitet::metric::read_sol(path);
@@ -110,16 +111,16 @@ int anitet_metric_read(const char* path, const char* background_mesh_path, anite
           std::make_shared<const anitet::metric::MetricField>(std::move(field.value())));
       return ok();
     }
-    if (ext == ".sol") {
+    if (ext == ".sol" || ext == ".solb") {
       if (background_mesh_path == nullptr) {
         return set_error(ANITET_ERR_INVALID_ARGUMENT,
-                         std::string(fn) + ": " + file +
-                             ": a .sol needs its background mesh (background_mesh_path is NULL)");
+                         std::string(fn) + ": " + file + ": a " + ext +
+                             " needs its background mesh (background_mesh_path is NULL)");
       }
       return read_sol_metric(fn, file, std::string(background_mesh_path), out);
     }
     return set_error(ANITET_ERR_UNSUPPORTED_FORMAT,
-                     std::string(fn) + ": " + file + ": expected a .vdb or a .sol file");
+                     std::string(fn) + ": " + file + ": expected a .vdb, .sol or .solb file");
   });
 }
 

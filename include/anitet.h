@@ -176,7 +176,7 @@ ANITET_API const char* anitet_error_name(int32_t code);
 ANITET_API int anitet_surface_create(const double* xyz, int64_t num_points, const int32_t* tri,
                                      int64_t num_triangles, const int32_t* patch,
                                      int32_t index_base, anitet_surface** out);
-/** A surface from a file (.off .obj .stl .ply .mesh .msh by extension).
+/** A surface from a file (.off .obj .stl .ply .mesh .meshb .msh by extension).
  * Errors: INVALID_ARGUMENT, FILE_NOT_FOUND, PARSE, UNSUPPORTED_FORMAT, EMPTY_INPUT, BAD_INDEX. */
 ANITET_API int anitet_surface_read(const char* path, anitet_surface** out);
 /** Frees a surface; NULL is accepted. */
@@ -228,9 +228,10 @@ ANITET_API int anitet_metric_create_analytic(anitet_metric_fn callback, void* us
  *    "metric_zz" (M itself), tried in that order; float or double grids, one uniform linear
  *    transform shared by all. Tensors are interpolated in log space (log-Euclidean, always
  *    positive definite). Points outside the grids' active box take the value at the box's edge.
- *  - ".sol": an ASCII Medit .sol (MeshVersionFormatted 1 or 2, Dimension 3, one SolAtVertices
- *    field of type 1, a size per vertex, or type 3, the tensor xx xy yy xz yz zz per vertex) on
- *    the tetrahedral mesh at background_mesh_path (.mesh .msh .node/.ele .vtu, as
+ *  - ".sol" or ".solb": an ASCII Medit .sol (MeshVersionFormatted 1 or 2, Dimension 3) or a
+ *    binary GMF .solb (libMeshb versions 1 to 4, either byte order), with one SolAtVertices
+ *    field of type 1, a size per vertex, or type 3, the tensor xx xy yy xz yz zz per vertex, on
+ *    the tetrahedral mesh at background_mesh_path (.mesh .meshb .msh .node/.ele .vtu, as
  *    anitet_mesh_read), one value set per vertex of it, in its vertex order. Inside a tet sizes
  *    are interpolated linearly (barycentric), tensors in log space; points outside the mesh take
  *    the value of the nearest tet (clamped barycentric weights).
@@ -306,16 +307,17 @@ ANITET_API int anitet_mesh_create(const double* xyz, int64_t num_points, const i
                                   const int32_t* bnd_tri, int64_t num_boundary_triangles,
                                   const int32_t* bnd_patch, int32_t index_base,
                                   anitet_mesh** out);
-/** A mesh from a file (.mesh .msh .node/.ele .vtu by extension). */
+/** A mesh from a file (.mesh .meshb .msh .node/.ele .vtu by extension). */
 ANITET_API int anitet_mesh_read(const char* path, anitet_mesh** out);
 /** Frees a mesh; NULL is accepted. */
 ANITET_API void anitet_mesh_destroy(anitet_mesh* mesh);
-/** Writes by extension: .mesh (Medit), .msh (Gmsh 4.1), .vtu, or for solvers .su2, .cgns,
- *  .exo/.e (Exodus II) and a path ending in polyMesh (an OpenFOAM polyMesh directory); the
- *  boundary patches are named patch<label> (the ABI cannot name them yet). NOT_IMPLEMENTED for
- *  .cgns or .exo when the library was built without CGNS or Exodus II. */
+/** Writes by extension: .mesh (Medit), .meshb (binary Medit, GMF), .msh (Gmsh 4.1), .vtu, or
+ *  for solvers .su2, .cgns, .exo/.e (Exodus II) and a path ending in polyMesh (an OpenFOAM
+ *  polyMesh directory); the boundary patches are named patch<label> (the ABI cannot name them
+ *  yet). NOT_IMPLEMENTED for .cgns or .exo when the library was built without CGNS or Exodus II. */
 ANITET_API int anitet_mesh_write(const anitet_mesh* mesh, const char* path);
-/** Writes the per-vertex metric as a Medit .sol. INVALID_ARGUMENT when the mesh has none. */
+/** Writes the per-vertex metric as a Medit .sol (a binary GMF .solb when the path ends in .solb).
+ *  INVALID_ARGUMENT when the mesh has none. */
 ANITET_API int anitet_mesh_write_metric(const anitet_mesh* mesh, const char* path);
 
 /** Counts; any output pointer may be NULL. */

@@ -1,115 +1,46 @@
 #include "sol_field.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
+#include <utility>
 
+#include "io/file_bytes.hpp"
+#include "io/gmf_format.hpp"
+#include "io/sol_io.hpp"
 #include "spd.hpp"
 
 namespace anitet {
 namespace metric {
 namespace {
 
-// Whitespace-separated tokens with their line numbers; '#' starts a comment.
-class Tokens {
- public:
-  explicit Tokens(std::string_view data) : data_(data) {}
-  bool next(std::string_view& tok) {
-    for (;;) {
-      while (pos_ < data_.size() && std::isspace(static_cast<unsigned char>(data_[pos_]))) {
-        if (data_[pos_] == '\n') ++line_;
-        ++pos_;
-      }
-      if (pos_ < data_.size() && data_[pos_] == '#') {
-        while (pos_ < data_.size() && data_[pos_] != '\n') ++pos_;
-        continue;
-      }
-      break;
-    }
-    if (pos_ >= data_.size()) return false;
-    const size_t start = pos_;
-    while (pos_ < data_.size() && !std::isspace(static_cast<unsigned char>(data_[pos_]))) ++pos_;
-    tok = data_.substr(start, pos_ - start);
-    return true;
+// A metric is one field: sizes (scalar) or tensors.
+Result<SolField> metric_sol(Result<VertexFields> read, const std::string& name) {
+  if (!read.ok()) return read.status();
+  const VertexFields& f = read.value();
+  if (f.kinds.size() != 1 || f.kinds[0] == FieldKind::Vector) {
+    std::string kinds;
+    for (const FieldKind k : f.kinds) kinds += (kinds.empty() ? "" : ", ") + std::string(field_kind_name(k));
+    return Status(Error::UnsupportedFormat, name + ": a metric is one field of sizes (type 1) or symmetric tensors "
+                                                   "(type 3); this file has " + kinds);
   }
-  size_t line() const { return line_; }
-
- private:
-  std::string_view data_;
-  size_t pos_ = 0, line_ = 1;
-};
-
-bool to_double(std::string_view s, double& v) {
-  std::string t(s);
-  char* end = nullptr;
-  v = std::strtod(t.c_str(), &end);
-  return end && *end == '\0' && !t.empty();
-}
-
-bool to_int(std::string_view s, long long& v) {
-  std::string t(s);
-  char* end = nullptr;
-  v = std::strtoll(t.c_str(), &end, 10);
-  return end && *end == '\0' && !t.empty();
+  SolField out;
+  out.components = field_components(f.kinds[0]);
+  out.values = std::move(read.value().values);
+  return out;
 }
 
 }  // namespace
 
 Result<SolField> parse_sol(std::string_view data, const std::string& name) {
-  Tokens tk(data);
-  auto fail = [&](const std::string& what) {
-    return Status(Error::Parse, name + ":" + std::to_string(tk.line()) + ": " + what);
-  };
-  SolField out;
-  std::string_view tok;
-  bool have_field = false;
-  while (tk.next(tok)) {
-    long long n = 0;
-    if (tok == "MeshVersionFormatted" || tok == "Dimension") {
-      const bool dim = tok == "Dimension";
-      if (!tk.next(tok) || !to_int(tok, n)) return fail("expected an integer");
-      if (dim && n != 3) return Status(Error::UnsupportedFormat, name + ": only Dimension 3");
-    } else if (tok == "SolAtVertices") {
-      if (have_field) return Status(Error::UnsupportedFormat, name + ": several SolAtVertices");
-      long long nv = 0, nfields = 0, type = 0;
-      if (!tk.next(tok) || !to_int(tok, nv) || nv < 0) return fail("expected the vertex count");
-      if (!tk.next(tok) || !to_int(tok, nfields)) return fail("expected the field count");
-      if (nfields != 1)
-        return Status(Error::UnsupportedFormat, name + ": only one field per vertex is read");
-      if (!tk.next(tok) || !to_int(tok, type)) return fail("expected the field type");
-      if (type != 1 && type != 3)
-        return Status(Error::UnsupportedFormat,
-                      name + ": field type " + std::to_string(type) + " (1 scalar, 3 tensor read)");
-      out.components = type == 1 ? 1 : 6;
-      if (size_t(nv) > data.size()) return fail("vertex count larger than the file");
-      out.values.resize(size_t(nv) * size_t(out.components));
-      for (double& v : out.values) {
-        if (!tk.next(tok)) return fail("truncated: expected " + std::to_string(nv) + " vertices");
-        if (!to_double(tok, v)) return fail("expected a number, got '" + std::string(tok) + "'");
-      }
-      have_field = true;
-    } else if (tok == "End") {
-      break;
-    } else {
-      return Status(Error::UnsupportedFormat,
-                    name + ":" + std::to_string(tk.line()) + ": unknown keyword '" +
-                        std::string(tok) + "'");
-    }
-  }
-  if (!have_field) return Status(Error::EmptyInput, name + ": no SolAtVertices");
-  return out;
+  return metric_sol(read_medit_sol(data, name), name);
 }
 
 Result<SolField> read_sol(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status(Error::FileNotFound, "cannot open " + path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  const std::string data = ss.str();
-  return parse_sol(data, path);
+  Result<std::string> bytes = read_file_bytes(path);
+  if (!bytes.ok()) return bytes.status();
+  if (lower_extension(path) == "solb") return metric_sol(read_solb(bytes.value(), path), path);
+  return parse_sol(bytes.value(), path);
 }
 
 void sample_at_vertices(const SizingField& field, VolumeMesh& mesh, bool as_size) {

@@ -20,9 +20,10 @@ struct SolField {
   size_t num_vertices() const { return components ? values.size() / size_t(components) : 0; }
 };
 
-// ASCII Medit .sol (MeshVersionFormatted 1 or 2, Dimension 3, one SolAtVertices field of type 1
-// or 3; '#' comments). Error::Parse naming the line for malformed or truncated input,
-// Error::UnsupportedFormat for other fields (vectors, several fields, 2D).
+// A metric as a Medit .sol (ASCII, read_medit_sol) or, for a path ending in .solb, a binary GMF
+// .solb (read_solb): one SolAtVertices field of type 1 or 3. Error::Parse naming the line or
+// byte offset for malformed or truncated input, Error::UnsupportedFormat for other fields
+// (vectors, several fields, 2D).
 Result<SolField> parse_sol(std::string_view data, const std::string& name);
 Result<SolField> read_sol(const std::string& path);
 
