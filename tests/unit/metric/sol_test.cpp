@@ -14,39 +14,6 @@ namespace anitet {
 namespace metric {
 namespace {
 
-// n^3 unit cubes on [0, n]^3, each cut into the 6 tets of Kuhn's subdivision (positive).
-VolumeMesh cube_mesh(int n) {
-  VolumeMesh m;
-  const int v = n + 1;
-  for (int k = 0; k < v; ++k)
-    for (int j = 0; j < v; ++j)
-      for (int i = 0; i < v; ++i) {
-        m.xyz.push_back(i);
-        m.xyz.push_back(j);
-        m.xyz.push_back(k);
-      }
-  auto id = [v](int i, int j, int k) { return uint32_t((k * v + j) * v + i); };
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& p : perms) {
-          int c[3] = {i, j, k};
-          uint32_t t[4];
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[p[s]];
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          // Odd permutations come out negative: swap two vertices.
-          const bool odd = (p[0] == 0 && p[1] == 2) || (p[0] == 1 && p[1] == 0) || (p[0] == 2 && p[1] == 1);
-          if (odd) std::swap(t[2], t[3]);
-          m.tet.insert(m.tet.end(), t, t + 4);
-          m.region.push_back(0);
-        }
-  return m;
-}
-
 std::string temp_path(const std::string& name) {
   return std::string(::testing::TempDir()) + "anitet_metric_" + name;
 }
@@ -76,7 +43,7 @@ TEST(Sol, ReportsBadInput) {
 }
 
 TEST(Sol, ScalarRoundTripAndLinearInterpolation) {
-  VolumeMesh mesh = cube_mesh(4);
+  VolumeMesh mesh = test::cube_mesh(4);
   auto h = [](const double* p) { return 0.5 + 0.1 * p[0] + 0.05 * p[1] - 0.02 * p[2]; };
   for (size_t v = 0; v < mesh.num_vertices(); ++v) mesh.vertex_metric.push_back(h(mesh.point(v)));
   const std::string path = temp_path("scalar.sol");
@@ -108,7 +75,7 @@ TEST(Sol, ScalarRoundTripAndLinearInterpolation) {
 }
 
 TEST(Sol, TensorRoundTrip) {
-  VolumeMesh mesh = cube_mesh(3);
+  VolumeMesh mesh = test::cube_mesh(3);
   std::mt19937_64 rng(21);
   for (size_t v = 0; v < mesh.num_vertices(); ++v) {
     double m[6];
@@ -142,7 +109,7 @@ TEST(Sol, TensorRoundTrip) {
 TEST(Sol, SampledFieldRoundTrips) {
   // A MetricField-like analytic field sampled at the vertices, written, read back and
   // interpolated at the vertices again.
-  VolumeMesh mesh = cube_mesh(2);
+  VolumeMesh mesh = test::cube_mesh(2);
   struct Stretched final : SizingField {
     void metric(const double p[3], double m[6]) const override {
       const double hx = 0.1 + 0.05 * p[0], hy = 0.2, hz = 0.3 + 0.01 * p[2];
@@ -172,7 +139,7 @@ TEST(Sol, SampledFieldRoundTrips) {
 }
 
 TEST(Sol, RejectsMismatchedField) {
-  VolumeMesh mesh = cube_mesh(1);
+  VolumeMesh mesh = test::cube_mesh(1);
   SolField s;
   s.components = 1;
   s.values.assign(3, 1.0);

@@ -2,8 +2,11 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <utility>
 
+#include "core/volume_mesh.hpp"
 #include "metric/spd.hpp"
 
 namespace anitet {
@@ -46,6 +49,39 @@ inline double max_rel_diff(const double a[6], const double b[6]) {
   double d[6];
   for (int i = 0; i < 6; ++i) d[i] = a[i] - b[i];
   return frob(d) / frob(b);
+}
+
+// n^3 unit cubes on [0, n]^3, each cut into the 6 tets of Kuhn's subdivision (positive).
+inline VolumeMesh cube_mesh(int n) {
+  VolumeMesh m;
+  const int v = n + 1;
+  for (int k = 0; k < v; ++k)
+    for (int j = 0; j < v; ++j)
+      for (int i = 0; i < v; ++i) {
+        m.xyz.push_back(i);
+        m.xyz.push_back(j);
+        m.xyz.push_back(k);
+      }
+  auto id = [v](int i, int j, int k) { return uint32_t((k * v + j) * v + i); };
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& p : perms) {
+          int c[3] = {i, j, k};
+          uint32_t t[4];
+          t[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[p[s]];
+            t[s + 1] = id(c[0], c[1], c[2]);
+          }
+          // Odd permutations come out negative: swap two vertices.
+          const bool odd = (p[0] == 0 && p[1] == 2) || (p[0] == 1 && p[1] == 0) || (p[0] == 2 && p[1] == 1);
+          if (odd) std::swap(t[2], t[3]);
+          m.tet.insert(m.tet.end(), t, t + 4);
+          m.region.push_back(0);
+        }
+  return m;
 }
 
 }  // namespace test
