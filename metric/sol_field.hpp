@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/sizing.hpp"
 #include "core/status.hpp"
 #include "core/volume_mesh.hpp"
+#include "tet_locator.hpp"
 
 namespace anitet {
 namespace metric {
@@ -27,36 +29,30 @@ struct SolField {
 Result<SolField> parse_sol(std::string_view data, const std::string& name);
 Result<SolField> read_sol(const std::string& path);
 
-// The field of a .sol on its background mesh: inside a tet, barycentric interpolation of h
-// (isotropic: linear fields are exact) or of log(M) (tensors, log-Euclidean). Points outside the
-// mesh take the value of the nearest tet found near them (barycentrics clamped), or of the nearest
-// vertex. Point location: a uniform bucket grid of tet bounding boxes. Immutable, thread-safe.
 // Samples a field at the mesh's vertices into mesh.vertex_metric (6 values per vertex, or the
 // size 1/sqrt(m_xx) per vertex when `as_size`, for isotropic fields), ready for write_sol.
 void sample_at_vertices(const SizingField& field, VolumeMesh& mesh, bool as_size = false);
 
+// The field of a .sol on its background mesh: inside a tet, barycentric interpolation of h
+// (isotropic: linear fields are exact) or of log(M) (tensors, log-Euclidean). Points outside the
+// mesh take the value at the closest point of its boundary. Point location: TetLocator.
+// Immutable, thread-safe.
 class BackgroundMeshField final : public SizingField {
  public:
   // Error::InvalidArgument unless there is one value set per mesh vertex, sizes > 0 and metrics
-  // SPD; Error::EmptyInput without tets.
+  // SPD; the errors of TetLocator::create (Error::EmptyInput without tets, Error::BadIndex,
+  // Error::InvalidMesh for a face of three tets).
   static Result<BackgroundMeshField> create(const VolumeMesh& mesh, const SolField& field);
 
   void metric(const double p[3], double m[6]) const override;
   int components() const { return components_; }
 
  private:
-  BackgroundMeshField() = default;
-  // The tet containing p (or the best candidate) and p's barycentric weights in it; -1 if none.
-  int64_t locate(const double p[3], double w[4]) const;
+  explicit BackgroundMeshField(TetLocator locator) : locator_(std::move(locator)) {}
 
+  TetLocator locator_;
   int components_ = 1;
-  std::vector<double> xyz_;
-  std::vector<uint32_t> tet_;
   std::vector<double> value_;  // h, or log(M) (6 per vertex)
-  double lo_[3] = {0, 0, 0}, cell_ = 1.0;
-  int dims_[3] = {1, 1, 1};
-  std::vector<uint32_t> cell_start_;  // CSR: tets overlapping each cell
-  std::vector<uint32_t> cell_tets_;
 };
 
 }  // namespace metric
