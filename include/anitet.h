@@ -234,7 +234,7 @@ ANITET_API int anitet_metric_create_analytic(anitet_metric_fn callback, void* us
  *    the tetrahedral mesh at background_mesh_path (.mesh .meshb .msh .node/.ele .vtu, as
  *    anitet_mesh_read), one value set per vertex of it, in its vertex order. Inside a tet sizes
  *    are interpolated linearly (barycentric), tensors in log space; points outside the mesh take
- *    the value of the nearest tet (clamped barycentric weights).
+ *    the value at the closest point of its boundary.
  *
  * Units: sizes are edge lengths in the coordinates' unit; a tensor M measures a vector e as
  * sqrt(e^T M e), so M = I/h^2 for the size h (unit: 1/length^2). The file is read and closed by
@@ -245,7 +245,8 @@ ANITET_API int anitet_metric_create_analytic(anitet_metric_fn callback, void* us
  * <= 0 or a tensor that is not positive definite), FILE_NOT_FOUND (path or background missing or
  * unreadable), PARSE (not a .vdb, malformed .sol or mesh), UNSUPPORTED_FORMAT (another
  * extension; a .sol field of another type; a .vdb without the grids above or with a non-uniform
- * transform), EMPTY_INPUT (a background without tets, a .sol without a field), BAD_INDEX. */
+ * transform), EMPTY_INPUT (a background without tets, a .sol without a field), BAD_INDEX,
+ * INVALID_MESH (a background face shared by more than two tets). */
 ANITET_API int anitet_metric_read(const char* path, const char* background_mesh_path,
                                   anitet_metric** out);
 /** A metric given by values at the points of a background tetrahedral mesh: `components` values
@@ -258,7 +259,8 @@ ANITET_API int anitet_metric_read(const char* path, const char* background_mesh_
  * destroyed or changed after the call. The background's own per-vertex metric is not used.
  * Errors: INVALID_ARGUMENT (NULL background, values or out; components not 1 or 6; num_values
  * not components times the number of points; a value not finite, a size <= 0, a tensor that is
- * not positive definite: the message names the 0-based point), EMPTY_INPUT (no tet). */
+ * not positive definite: the message names the 0-based point), EMPTY_INPUT (no tet),
+ * INVALID_MESH (a face shared by more than two tets). */
 ANITET_API int anitet_metric_create_from_points(const anitet_mesh* background,
                                                 const double* values, int64_t num_values,
                                                 int32_t components, anitet_metric** out);
