@@ -291,7 +291,7 @@ class Surface(_Handle):
 
     @classmethod
     def read(cls, path):
-        """A surface from a file (.off .obj .stl .ply .mesh .msh)."""
+        """A surface from a file (.off .obj .stl .ply .mesh .meshb .msh)."""
         return _create(cls, lib.anitet_surface_read, _path(path))
 
     def counts(self):
@@ -380,8 +380,9 @@ class Metric(_Handle):
     @classmethod
     def read(cls, path, background_mesh_path=None):
         """A metric from a file, by extension: an OpenVDB .vdb (grid "size", or the six
-        "log_metric_*" or "metric_*" grids; no background), or a Medit .sol (a size or a tensor
-        per vertex) on the tetrahedral mesh at background_mesh_path (.mesh .msh .vtu .node)."""
+        "log_metric_*" or "metric_*" grids; no background), or a Medit .sol or .solb (a size or a
+        tensor per vertex) on the tetrahedral mesh at background_mesh_path (.mesh .meshb .msh .vtu
+        .node)."""
         bg = _path(background_mesh_path) if background_mesh_path is not None else None
         return _create(cls, lib.anitet_metric_read, _path(path), bg)
 
@@ -461,7 +462,7 @@ class Mesh(_Handle):
 
     @classmethod
     def read(cls, path):
-        """A mesh from a file (.mesh .msh .node/.ele .vtu)."""
+        """A mesh from a file (.mesh .meshb .msh .node/.ele .vtu)."""
         return _create(cls, lib.anitet_mesh_read, _path(path))
 
     def write(self, path):
@@ -469,7 +470,7 @@ class Mesh(_Handle):
         _check(lib.anitet_mesh_write(self, _path(path)))
 
     def write_metric(self, path):
-        """Writes the per-vertex metric as a Medit .sol."""
+        """Writes the per-vertex metric as a Medit .sol (binary .solb by its extension)."""
         _check(lib.anitet_mesh_write_metric(self, _path(path)))
 
     def counts(self):
