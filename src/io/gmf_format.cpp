@@ -396,16 +396,17 @@ uint64_t file_size(const std::vector<Block>& blocks, int version, size_t sol_fie
 }
 
 // The version to write: `asked`, checked, or the smallest of 2, 3, 4 that holds the data.
-Result<int> choose_version(int asked, uint64_t size_v2, uint64_t largest_count) {
+// size(v): the file's size in version v.
+template <class Size>
+Result<int> choose_version(int asked, Size&& size, uint64_t largest_count) {
   if (asked < 0 || asked > 4) {
     return Status(Error::InvalidArgument, "GMF version " + std::to_string(asked) + " (expected 1 to 4, or 0: automatic)");
   }
   const bool counts32 = largest_count <= kInt32Max;
-  // (A version 1 file is never larger than the same in version 2.)
-  if (asked == 0) return size_v2 <= kInt32Max && counts32 ? 2 : counts32 ? 3 : 4;
-  if (asked <= 2 && size_v2 > kInt32Max) {
+  if (asked == 0) return size(2) <= kInt32Max && counts32 ? 2 : counts32 ? 3 : 4;
+  if (asked <= 2 && size(asked) > kInt32Max) {
     return Status(Error::InvalidArgument, "a GMF version " + std::to_string(asked) + " file is limited to 2 GiB (this one needs " +
-                                              std::to_string(size_v2) + " bytes): use version 3 or 4");
+                                              std::to_string(size(asked)) + " bytes): use version 3 or 4");
   }
   if (asked <= 3 && !counts32) {
     return Status(Error::InvalidArgument, "GMF version " + std::to_string(asked) + " counts and indices are 32-bit (this data has " +
@@ -491,7 +492,7 @@ Result<std::string> write_mesh(std::vector<Block> blocks, size_t num_vertices, i
   blocks.erase(std::remove_if(blocks.begin(), blocks.end(), [](const Block& b) { return b.count == 0; }), blocks.end());
   uint64_t largest = num_vertices;
   for (const Block& b : blocks) largest = std::max<uint64_t>(largest, b.count);
-  Result<int> v = choose_version(version, file_size(blocks, 2), largest);
+  Result<int> v = choose_version(version, [&](int w) { return file_size(blocks, w); }, largest);
   if (!v.ok()) return v.status();
   Writer w(v.value(), file_size(blocks, v.value()));
   write_dimension(w);
@@ -611,7 +612,7 @@ Result<std::string> to_solb(const VertexFields& fields, int version) {
                                               " values are not a whole number of records of " + std::to_string(record));
   }
   const size_t n = fields.values.size() / record, nf = fields.kinds.size();
-  Result<int> v = choose_version(version, file_size({}, 2, nf, record, n), n);
+  Result<int> v = choose_version(version, [&](int w) { return file_size({}, w, nf, record, n); }, n);
   if (!v.ok()) return v.status();
   Writer w(v.value(), file_size({}, v.value(), nf, record, n));
   write_dimension(w);
