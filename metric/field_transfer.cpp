@@ -92,7 +92,10 @@ Result<VertexFields> interpolate_fields(const TetLocator& old_mesh, const Vertex
                                         TransferReport* report) {
   const size_t record = fields.record_size();
   if (Status s = check_fields(fields, old_mesh.num_vertices()); !s.ok()) return s;
-  if (where.weight.size() != 4 * where.tet.size()) return Status(Error::InvalidArgument, "inconsistent point locations");
+  const bool tets_ok = std::all_of(where.tet.begin(), where.tet.end(), [&](uint32_t t) { return t < old_mesh.num_tets(); });
+  if (where.weight.size() != 4 * where.tet.size() || !tets_ok) {
+    return Status(Error::InvalidArgument, "point locations of another mesh, or inconsistent");
+  }
   // Tensor fields interpolated in log space: their logs at the old vertices.
   const size_t nf = fields.kinds.size();
   std::vector<std::vector<double>> logs(nf);
