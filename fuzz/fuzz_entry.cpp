@@ -9,6 +9,7 @@
 #include <string>
 
 #include "anitet.h"
+#include "io/gmf_format.hpp"
 #include "io/surface_io.hpp"
 #include "io/volume_io.hpp"
 #include "metric/sol_field.hpp"
@@ -98,8 +99,8 @@ void tetgen(const uint8_t* data, size_t size) {
 void sol(const uint8_t* data, size_t size) {
   const Result<metric::SolField> read = metric::parse_sol(text(data, size), kName);
   if (!read.ok()) {
-    // EmptyInput: no SolAtVertices (sol_field.cpp).
-    if (!one_of(read.status().code(), {Error::Parse, Error::UnsupportedFormat, Error::EmptyInput}) ||
+    // EmptyInput: no SolAtVertices (sol_io.hpp); OutOfMemory: catch_bad_alloc (reader_util.hpp).
+    if (!one_of(read.status().code(), {Error::Parse, Error::UnsupportedFormat, Error::EmptyInput, Error::OutOfMemory}) ||
         read.status().message().find(kName) == std::string::npos) {
       broken("sol", std::string(error_name(read.status().code())) + ": " + read.status().message());
     }
@@ -108,6 +109,39 @@ void sol(const uint8_t* data, size_t size) {
   const metric::SolField& f = read.value();
   if (f.components != 1 && f.components != 6) broken("sol", "components " + std::to_string(f.components));
   if (f.values.size() % size_t(f.components) != 0) broken("sol", "values not a multiple of components");
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+// Binary Medit (.meshb and .solb share the format): the volume, surface and solution readers on
+// each input; what reads is written again in the version read and must read back the same.
+void gmf(const uint8_t* data, size_t size) {
+  const std::string_view bytes = text(data, size);
+  check_volume("gmf", read_meshb_volume(bytes, kName));
+  check_surface("gmf", read_meshb_surface(bytes, kName));
+  GmfFileInfo info;
+  const Result<GmfMesh> mesh = read_gmf_mesh(bytes, kName, &info);
+  if (!mesh.ok()) {
+    check_read_error("gmf", mesh.status());
+  } else {
+    const Result<std::string> again = to_gmf_mesh(mesh.value(), info.version);
+    if (!again.ok()) broken("gmf", "a mesh read cannot be written: " + again.status().message());
+    const Result<GmfMesh> back = read_gmf_mesh(again.value(), kName);
+    if (!back.ok() || back->tet != mesh->tet || back->tri != mesh->tri || back->tet_ref != mesh->tet_ref ||
+        !same_bits(back->xyz, mesh->xyz)) {
+      broken("gmf", "a mesh written again does not read back the same");
+    }
+  }
+  const Result<VertexFields> sol = read_solb(bytes, kName, &info);
+  if (!sol.ok()) return check_read_error("gmf", sol.status());
+  if (sol->record_size() == 0 || sol->values.size() % sol->record_size() != 0) broken("gmf", "fields of no whole records");
+  const Result<std::string> again = to_solb(sol.value(), info.version);
+  const Result<VertexFields> back = again.ok() ? read_solb(again.value(), kName) : again.status();
+  if (!back.ok() || back->kinds != sol->kinds || !same_bits(back->values, sol->values)) {
+    broken("gmf", "fields written again do not read back the same");
+  }
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -305,6 +339,7 @@ const std::vector<Target>& targets() {
       {"tetgen", tetgen},
       {"vtu", [](const uint8_t* d, size_t n) { check_volume("vtu", read_vtu(text(d, n), kName)); }},
       {"sol", sol},
+      {"gmf", gmf},
       {"capi_surface", capi_surface},
   };
   return all;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A short fuzz run (issue 11): builds the libFuzzer targets of fuzz/ with clang in BUILD_DIR
-# (default build-fuzz/), then runs each target for SECONDS (default 16: about 3 minutes for the 11
+# (default build-fuzz/), then runs each target for SECONDS (default 16: about 3 minutes for the 12
 # targets) over its committed seed corpus fuzz/corpus/<target>. New interesting inputs go to
 # BUILD_DIR/corpus/<target> (not committed), crashing inputs to BUILD_DIR/crashes/<target>/.
 # Exits non-zero when a target crashed, broke a reader's contract, leaked, timed out or ran out
