@@ -419,7 +419,7 @@ Result<int> choose_version(int asked, Size&& size, uint64_t largest_count) {
 // the next as libMeshb does (a keyword's position is written when the next one starts).
 class Writer {
  public:
-  Writer(int version, uint64_t size) : version_(version), words_(version) {
+  Writer(int version, uint64_t size) : words_(version) {
     out_.resize(size_t(size));
     put32(1);
     put32(version);
@@ -446,7 +446,6 @@ class Writer {
     out_.resize(at_);  // (exactly the computed size)
     return std::move(out_);
   }
-  int version() const { return version_; }
 
  private:
   void put(size_t size, int64_t v) {
@@ -462,7 +461,6 @@ class Writer {
     }
   }
 
-  int version_;
   Words words_;
   std::string out_;
   size_t at_ = 0;
