@@ -11,10 +11,10 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <system_error>
-#include <thread>
 
 #include <nlohmann/json.hpp>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "commands.hpp"
 #include "cli_util.hpp"
@@ -120,7 +120,9 @@ int run_mesh_pipeline(MeshArgs& args) {
   // relocations). Not before the checks: their first TBB calls initialize TBB, which opens
   // libraries too and would wait for the loader's lock.
   std::optional<metric::VdbModulePreload> preload;
-  if (!(args.no_refine && args.no_optimize) || wants_sizing_field(args.metric)) preload.emplace();
+  if ((!(args.no_refine && args.no_optimize) || wants_sizing_field(args.metric)) &&
+      tbb::this_task_arena::max_concurrency() > 1)
+    preload.emplace();
   if (const int code = check_patch_names(args, checked); code != kExitOk) return code;
 
   // --geodetic: the surface to a local frame in metres (validated again there: the checks are
@@ -140,6 +142,7 @@ int run_mesh_pipeline(MeshArgs& args) {
   }
 
   MesherOptions options;
+  options.num_threads = args.threads;
   options.layers.layers = args.layers;
   options.attempts_seconds = args.attempts_seconds;
   options.recovery = recovery_options(args);
@@ -219,28 +222,23 @@ int run_mesh_pipeline(MeshArgs& args) {
   // The mesh is written as it was measured unless --geodetic-output converts it after the
   // report: then the file is written while the report is measured (both only read the mesh;
   // armadillo: the writer's 0.45 s behind the report's 0.8 s).
-  bool write_now = !args.metric.geodetic_output;
+  // The writer is a task of the run's arena (--threads bounds it; on one thread it runs at the
+  // wait, after the report); the report is measured isolated, so that its parallel loops' waits
+  // do not take the writer up and run it nested.
+  const bool write_now = !args.metric.geodetic_output;
   int write_code = kExitOk;
-  std::thread writer;
-  if (write_now) {
-    try {
-      writer = std::thread([&] { write_code = write_outputs(args, r.mesh); });
-    } catch (const std::system_error&) {
-      write_now = false;  // no thread to be had: written after the report, as with --geodetic-output
-    }
-  }
-  struct JoinWriter {
-    std::thread& t;
-    ~JoinWriter() {
-      if (t.joinable()) t.join();
-    }
-  } join_writer{writer};
+  tbb::task_group writer;
+  if (write_now) writer.run([&] { write_code = write_outputs(args, r.mesh); });
+  struct WaitWriter {
+    tbb::task_group& group;
+    ~WaitWriter() { group.wait(); }
+  } wait_writer{writer};
   // Measured in the local frame, against the surface that was meshed (with --report, by the
   // HTML report, which gives the same report).
   std::vector<std::string> not_written;  // the report or metric files that could not be written
   Result<QualityReport> quality = Status(Error::Internal, "not measured");
   if (args.report_html.empty()) {
-    quality = compute_quality_report(r.mesh, &checked.surface);
+    quality = tbb::this_task_arena::isolate([&] { return compute_quality_report(r.mesh, &checked.surface); });
   } else {
     HtmlReportOptions html_options;
     html_options.title = "anitet mesh: " + std::filesystem::path(args.input).filename().string();
@@ -248,7 +246,8 @@ int run_mesh_pipeline(MeshArgs& args) {
     html_options.surface_name = args.input;
     for (size_t k = 0; k < 3 && k < args.report_cut.size(); ++k) html_options.cut[k] = args.report_cut[k];
     html_options.run_rows = run_rows(r);
-    Result<HtmlReport> html = quality_report_html(r.mesh, &checked.surface, QualityOptions(), html_options);
+    Result<HtmlReport> html = tbb::this_task_arena::isolate(
+        [&] { return quality_report_html(r.mesh, &checked.surface, QualityOptions(), html_options); });
     if (html.ok()) {
       if (Status st = write_file_bytes(args.report_html, html.value().html); !st.ok()) {
         std::cerr << cmd << ": cannot write report '" << args.report_html << "': " << st.message() << "\n";
@@ -279,7 +278,7 @@ int run_mesh_pipeline(MeshArgs& args) {
   // surface bit for bit.
   for (size_t v = 0; v < r.input_vertex.size() && 3 * v + 2 < input_xyz.size(); ++v)
     if (r.input_vertex[v] != TetMesh::kNone) std::copy_n(&input_xyz[3 * v], 3, &r.mesh.xyz[3 * size_t(r.input_vertex[v])]);
-  if (writer.joinable()) writer.join();
+  writer.wait();
   if (!write_now) write_code = write_outputs(args, r.mesh);
   if (write_code != kExitOk) return write_code;
   if (!not_written.empty()) {

@@ -42,6 +42,7 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
   out.validation.merge_duplicate_vertices = o.merge_duplicate_vertices != 0;
   out.validation.orient_shells = o.orient_shells != 0;
   out.validation.check_self_intersections = o.check_self_intersections != 0;
+  out.num_threads = o.num_threads;  // every stage in one arena of that size
   out.validation.num_threads = o.num_threads;
   out.refine.num_threads = o.num_threads;
   out.optimize.num_threads = o.num_threads;

@@ -10,8 +10,9 @@
 #include <cstring>
 #include <memory>
 #include <new>
-#include <system_error>
 #include <vector>
+
+#include <tbb/task_group.h>
 
 #include "io/lazy_library.hpp"
 #include "spd.hpp"
@@ -105,26 +106,26 @@ namespace {
 std::atomic<bool> preload_started{false};
 }  // namespace
 
+struct VdbModulePreload::Task {
+  tbb::task_group group;
+};
+
 VdbModulePreload::VdbModulePreload() {
-  // One opening thread per process: a second one, asked for while the first holds the loader's
-  // lock (the CLI's preload, then the Mesher's), waits for that lock to be created at all (a new
-  // thread's TLS is set up under it): airplane's main thread stalled 30-50 ms at stage 1's start.
+  // One opening per process: a second one, asked for while the first holds the loader's lock
+  // (the CLI's preload, then the Mesher's), would wait for that lock.
   if (preload_started.exchange(true)) return;
-  try {
-    thread_ = std::thread([] {
-      try {
-        load();
-      } catch (const std::bad_alloc&) {
-        // The first field built tries again and reports it.
-      }
-    });
-  } catch (const std::system_error&) {
-    // Opened by the first field instead.
-  }
+  task_ = std::make_unique<Task>();
+  task_->group.run([] {
+    try {
+      load();
+    } catch (const std::bad_alloc&) {
+      // The first field built tries again and reports it.
+    }
+  });
 }
 
 VdbModulePreload::~VdbModulePreload() {
-  if (thread_.joinable()) thread_.join();
+  if (task_) task_->group.wait();
 }
 
 // ---- Sampler -----------------------------------------------------------------------------------

@@ -31,7 +31,6 @@
 #include <functional>
 #include <memory>
 #include <string>
-#include <thread>
 
 #include "core/sizing.hpp"
 #include "core/status.hpp"
@@ -40,12 +39,14 @@
 namespace anitet {
 namespace metric {
 
-// Opens the module on a thread of its own (60-90 ms of relocations on one core), so that a field
-// built later finds it open. Meanwhile the loader's lock is held: a thread's first use of a
-// thread_local with a destructor (glibc's __cxa_thread_atexit_impl) waits for it, which is why
-// the pipeline starts this before stage 1 rather than beside stage 2. Building a field while it
-// runs waits for it; the destructor joins it. Nothing happens when no thread can be had, nor
-// for any preload after a process's first (the module is open or opening then).
+// Opens the module as a task of the caller's TBB arena (60-90 ms of relocations on one core:
+// another thread of the arena takes it up), so that a field built later finds it open and the
+// arena's size bounds the threads that work. Meanwhile the loader's lock is held: a thread's
+// first use of a thread_local with a destructor (glibc's __cxa_thread_atexit_impl) waits for it,
+// which is why the pipeline starts this before stage 1 rather than beside stage 2. Building a
+// field while it runs waits for it; the destructor waits for the task. Nothing happens for any
+// preload after a process's first (the module is open or opening then); callers on one thread
+// have nothing to overlap and need none.
 class VdbModulePreload {
  public:
   VdbModulePreload();
@@ -54,7 +55,8 @@ class VdbModulePreload {
   VdbModulePreload& operator=(const VdbModulePreload&) = delete;
 
  private:
-  std::thread thread_;
+  struct Task;
+  std::unique_ptr<Task> task_;
 };
 
 class MetricField final : public SizingField {

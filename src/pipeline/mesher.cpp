@@ -8,7 +8,9 @@
 #include <new>
 #include <optional>
 #include <system_error>
-#include <thread>
+
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "core/bvh.hpp"
 #include "core/exact_scaling.hpp"
@@ -153,7 +155,24 @@ std::vector<Notice> shortfalls(const MesherResult& r, const MesherOptions& o) {
 
 }  // namespace
 
+namespace {
+
+// Runs f in a task arena of `threads` (0: as the caller runs), unless the caller's arena has that
+// size already.
+template <class F>
+auto in_arena(int threads, F&& f) {
+  if (threads <= 0 || tbb::this_task_arena::max_concurrency() == threads) return f();
+  tbb::task_arena arena(threads);
+  return arena.execute(f);
+}
+
+}  // namespace
+
 Result<MesherResult> Mesher::run(const SurfaceMesh& surface) const {
+  return in_arena(options_.num_threads, [&] { return run_in_arena(surface); });
+}
+
+Result<MesherResult> Mesher::run_in_arena(const SurfaceMesh& surface) const {
   SurfaceMesh repaired = surface;
   if (options_.progress && !options_.progress("validate", 0.0))
     return Status(Error::Cancelled, "cancelled before validation");
@@ -184,6 +203,10 @@ class PowerOfTwoScaledField final : public SizingField {
 }  // namespace
 
 Result<MesherResult> Mesher::run_validated(const SurfaceMesh& surface) const {
+  return in_arena(options_.num_threads, [&] { return run_scaled(surface); });
+}
+
+Result<MesherResult> Mesher::run_scaled(const SurfaceMesh& surface) const {
   Result<int> scaling = exact_power_of_two_scaling({{surface.xyz.data(), surface.num_vertices()}});
   if (!scaling.ok()) return Status(scaling.status().code(), "meshing this surface is not implemented: " + scaling.status().message());
   const int k = scaling.value();
@@ -214,7 +237,8 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
   // The default grid's OpenVDB module opens during stage 1 (see metric::VdbModulePreload; at
   // once when the caller opened it already).
   std::optional<metric::VdbModulePreload> preload;
-  if ((options_.run_refine || options_.run_optimize) && !options_.sizing) preload.emplace();
+  if ((options_.run_refine || options_.run_optimize) && !options_.sizing && tbb::this_task_arena::max_concurrency() > 1)
+    preload.emplace();
   auto progress = [&](const char* stage, double fraction) -> Status {
     if (options_.progress && !options_.progress(stage, fraction))
       return Status(Error::Cancelled, std::string("cancelled at stage '") + stage + "'");
@@ -231,12 +255,13 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
   if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
   // The default sizing grid needs the surface only: it is built on another core while stage 2
   // runs on one (armadillo: 0.4 s). Not during stage 1, whose plans and improvement passes use
-  // both cores. On a thread of its own rather than as a TBB task, so that no TBB wait inside
-  // stage 2's parallel loops can take the task up and run it nested there (stage 2 would then wait
-  // for the grid). When no thread can be had, it is built at the wait.
+  // both cores. A task of the run's own arena (so that --threads / num_threads bounds it too),
+  // and stages 1-2 and the coupling run isolated (`isolated` below): no TBB wait inside their
+  // parallel loops takes the grid task up and runs it nested there (they would then wait for the
+  // grid). On one thread the task runs at the wait.
   std::optional<Result<metric::MetricField>> default_grid;
   auto build_grid = [&] {
-    // An exception must not leave the thread (std::terminate) nor the wait's destructor.
+    // An exception must not leave the task (the group's wait would rethrow it).
     try {
       default_grid.emplace(metric::surface_sizing_field(surface, options_.surface_sizing));
     } catch (const std::bad_alloc&) {
@@ -245,27 +270,28 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
       default_grid.emplace(Status(Error::Internal, std::string("building it threw: ") + e.what()));
     }
   };
-  std::thread grid_thread;
-  struct JoinGrid {
-    std::thread& thread;
-    ~JoinGrid() {
-      if (thread.joinable()) thread.join();
+  tbb::task_group grid_group;
+  struct CancelGrid {  // a run that ends early drops a grid not started yet
+    tbb::task_group& group;
+    bool waited = false;
+    ~CancelGrid() {
+      if (waited) return;
+      group.cancel();
+      group.wait();
     }
-  } join_grid{grid_thread};
+  } cancel_grid{grid_group};
   bool grid_started = false;
   auto start_grid = [&] {
     if (grid_started || !(options_.run_refine || options_.run_optimize) || options_.sizing) return;
     grid_started = true;
-    try {
-      grid_thread = std::thread(build_grid);
-    } catch (const std::system_error&) {
-      // Built by wait_for_grid.
-    }
+    grid_group.run(build_grid);
   };
   auto wait_for_grid = [&] {
-    if (grid_thread.joinable()) grid_thread.join();
+    grid_group.wait();
+    cancel_grid.waited = true;
     if (!default_grid) build_grid();
   };
+  auto isolated = [](auto&& f) { return tbb::this_task_arena::isolate(f); };
   // Stages 1 and 2. When stage 2 cannot recover S1, stage 1 is run again with another number of
   // layers (fewer first, down to 1, then more, up to 3): S1 changes shape and its recovery may then
   // succeed (bimba_low: not with 2 layers, yes with 1). The fast split-constraints recovery is
@@ -314,7 +340,7 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
     auto t = Clock::now();
     LayersOptions layer_options = options_.layers;
     layer_options.layers = attempts[attempt].first;
-    Result<LayersOutput> layers = build_layers(surface, sizing, layer_options);
+    Result<LayersOutput> layers = isolated([&] { return build_layers(surface, sizing, layer_options); });
     if (!layers.ok()) return Status(layers.status().code(), "stage 1 (layers): " + layers.status().message());
     result.layers = layers->stats;
     result.layers_retries = attempt;
@@ -341,7 +367,7 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
       const double variants = recovery_options.retry_strategies ? 3.0 : 1.0;
       recovery_options.max_seconds = std::min(recovery_options.max_seconds, left / variants);
     }
-    recovered = recover_boundary(s1, recovery_options);
+    recovered = isolated([&] { return recover_boundary(s1, recovery_options); });
     result.stages.push_back({attempt == 0 ? "recovery" : "recovery (retry)", since(t),
                              recovered.ok() ? recovered->stats.tets : 0});
     if (!recovered.ok()) {
@@ -363,7 +389,7 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
     }
     if (Status st = progress("coupling", kDoneAfterRecovery); !st.ok()) return st;
     t = Clock::now();
-    coupled = couple_meshes(surface, std::move(layers).value(), s1_map, recovered.value());
+    coupled = isolated([&] { return couple_meshes(surface, std::move(layers).value(), s1_map, recovered.value()); });
     result.stages.push_back({attempt == 0 ? "coupling" : "coupling (retry)", since(t),
                              coupled.ok() ? coupled->stats.tets : 0});
     if (coupled.ok()) break;

@@ -46,6 +46,10 @@ struct MesherOptions {
   double attempts_seconds = 240;
   ValidationOptions validation;
   ProgressCallback progress;  // may be empty
+  // Threads for every stage: the whole run executes in one TBB task arena of this size (the
+  // sizing grid built beside stage 2 is a task of it too); 0: the caller's arena (TBB's default:
+  // all cores). The mesh does not depend on it.
+  int num_threads = 0;
   // Stage 3b/3c. The sizing field they follow: `sizing` when given (a user metric; it must
   // outlive the run), else the paper's grid built from the surface (metric::surface_sizing_field
   // with `surface_sizing`). refine.size_scale scales it (2 = twice as coarse).
@@ -162,6 +166,8 @@ class Mesher {
   Result<MesherResult> run_validated(const SurfaceMesh& surface) const;
 
  private:
+  Result<MesherResult> run_in_arena(const SurfaceMesh& surface) const;
+  Result<MesherResult> run_scaled(const SurfaceMesh& surface) const;
   Result<MesherResult> run_in_range(const SurfaceMesh& surface) const;
   MesherOptions options_;
 };
