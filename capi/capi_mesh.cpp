@@ -31,19 +31,6 @@ int convert_indices(const char* function, const char* element, const int32_t* in
   return ANITET_OK;
 }
 
-// Copies `values` (converted by f) into a caller buffer after the length check.
-template <class T, class U, class F>
-int fill(const char* function, const char* argument, const std::vector<T>& values, U* buf,
-         int64_t buf_len, F&& f) {
-  if (values.empty()) return ok();  // nothing to write: a NULL buffer is fine
-  if (buf == nullptr) return null_argument(function, argument);
-  if (buf_len < 0 || uint64_t(buf_len) < values.size()) return too_small(function, argument, buf_len, values.size());
-  std::transform(values.begin(), values.end(), buf, f);
-  return ok();
-}
-
-const auto kSame = [](auto v) { return v; };
-
 anitet::Result<anitet::QualityReport> measure(const anitet_mesh* mesh, const anitet_surface* input) {
   anitet::QualityOptions options;
   return anitet::compute_quality_report(mesh->mesh, input ? &input->mesh : nullptr, options);

@@ -2,11 +2,13 @@
 // entry point goes through, and argument checks that set a message naming the function.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "anitet.h"
 #include "core/status.hpp"
@@ -47,6 +49,19 @@ int null_argument(const char* function, const char* argument);
 int bad_index_base(const char* function, int32_t index_base);
 // ANITET_ERR_BUFFER_TOO_SMALL naming the sizes.
 int too_small(const char* function, const char* argument, int64_t given, uint64_t needed);
+
+// Copies `values` (converted by f) into a caller buffer after the length check.
+template <class T, class U, class F>
+int fill(const char* function, const char* argument, const std::vector<T>& values, U* buf,
+         int64_t buf_len, F&& f) {
+  if (values.empty()) return ok();  // nothing to write: a NULL buffer is fine
+  if (buf == nullptr) return null_argument(function, argument);
+  if (buf_len < 0 || uint64_t(buf_len) < values.size()) return too_small(function, argument, buf_len, values.size());
+  std::transform(values.begin(), values.end(), buf, f);
+  return ok();
+}
+
+const auto kSame = [](auto v) { return v; };
 
 // Copies a string into a caller buffer (NUL included), with the size query rule of the header.
 int copy_text(const char* function, const std::string& text, char* buf, int64_t buf_len,
