@@ -3,11 +3,13 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "anitet.h"
 #include "core/sizing.hpp"
 #include "core/surface_mesh.hpp"
 #include "core/volume_mesh.hpp"
+#include "partition/partition.hpp"
 #include "validate/validate.hpp"
 
 struct anitet_surface {
@@ -28,4 +30,16 @@ struct anitet_metric {
   // Field: a metric/ field read from a file or built on a background mesh (immutable, its
   // metric() may be called from several threads at once).
   std::shared_ptr<const anitet::SizingField> field;
+};
+
+struct anitet_part {
+  anitet::partition::Part part;
+  bool lent = false;  // one of a partition's parts: anitet_part_destroy leaves it alone
+};
+
+struct anitet_partition {
+  std::vector<int32_t> tet_part;
+  anitet::partition::PartitionQuality quality;
+  int32_t ghost_layers = 0;
+  std::vector<anitet_part> parts;
 };

@@ -392,6 +392,250 @@ ANITET_API int anitet_mesh_quality(const anitet_mesh* mesh, const anitet_surface
 ANITET_API int anitet_mesh_quality_json(const anitet_mesh* mesh, const anitet_surface* input,
                                         char* buf, int64_t buf_len, int64_t* needed);
 
+/* ---------------------------------------------------------------------------------------------
+ * Partitions: a mesh in parts for the ranks of a solver (docs/partitions.md has an example).
+ *
+ * anitet_mesh_partition cuts a mesh with METIS (k-way, on the dual graph: tets sharing a face)
+ * and builds every part: what one rank of a finite-volume or finite-element solver holds. A
+ * part is self-contained: its local vertices and tets, their global ids (int64_t, the vertex
+ * and tet numbers of the whole mesh), the owner part of each, its ghost layers, its boundary
+ * triangles, and for each neighbour part the halo lists in an agreed order, so that an exchange
+ * needs no negotiation between the ranks. anitet_mesh_scatter (anitet_mpi.h) sends each MPI
+ * rank its part.
+ *
+ * Orders and definitions (the same in every part, so two ranks agree without talking):
+ *  - A vertex belongs to (is owned by) the lowest-numbered part among the parts of its tets;
+ *    a boundary triangle to the lowest part among the parts of the tets it is a face of.
+ *  - Ghost layer 1 of a part: every tet of another part that shares a vertex with one of its
+ *    own tets; layer k: every tet not yet held that shares a vertex with layer k - 1. Every
+ *    ghost tet is an own tet of the part named as its owner.
+ *  - Local vertices: the part's own vertices first, then the others; each group by ascending
+ *    global id. Local tets: own tets first, then ghost layer 1, 2, ...; each group by ascending
+ *    global id. Local boundary triangles: those that are a face of a local tet, own first, each
+ *    group by ascending global id (the index among the mesh's boundary triangles).
+ *  - Neighbours: the parts this part sends to or receives from, ascending. The four halo lists
+ *    (ANITET_HALO_*) hold local ids grouped by neighbour, each group by ascending global id:
+ *    RECV from q: the local vertices (tets) owned by q; SEND to q: the own vertices (tets) that
+ *    q holds. Part p's SEND list to q and part q's RECV list from p name the same global ids in
+ *    the same order: a halo update sends the values at SEND[q] and writes what q sent into
+ *    RECV[q]; an assembly (a sum over the parts) goes the other way.
+ *  - Part numbers (owners, neighbours, a part's index) are 0-based whatever the index_base: they
+ *    are MPI ranks. Global ids and local ids follow the index_base of the call.
+ *
+ * A mesh in pieces that share no face (two bodies; regions meeting at an edge or a vertex only)
+ * is partitioned as a whole: parts are balanced over all the tets, a part may hold tets of
+ * several pieces and a piece may be split. Ghost layers follow shared vertices, so they cross
+ * where pieces touch at a vertex or an edge and stop at a gap. A vertex in no tet is in no part.
+ * Debian's METIS has 32-bit indices: a mesh whose dual graph has more than 2^31 - 1 adjacency
+ * entries (about 5 * 10^8 tets) gives ANITET_ERR_NOT_IMPLEMENTED.
+ *
+ * Ownership: anitet_mesh_partition returns an anitet_partition the caller frees with
+ * anitet_partition_destroy; its parts (anitet_partition_get_part) are borrowed and live as long
+ * as it does. A part from anitet_part_deserialize or anitet_mesh_scatter is the caller's, freed
+ * with anitet_part_destroy. Threads: a partition and its parts are not changed after they are
+ * made, so every function taking a const pointer below may be called from several threads at
+ * once on the same handle. The METIS call inside anitet_mesh_partition is serialized within the
+ * process (METIS swaps process-wide signal handlers while it runs).
+ * ------------------------------------------------------------------------------------------- */
+typedef struct anitet_partition anitet_partition; /**< a mesh cut into parts (all of them) */
+typedef struct anitet_part anitet_part;           /**< one part: what one rank holds */
+
+/** The newest version of anitet_partition_options this header declares. */
+#define ANITET_PARTITION_OPTIONS_VERSION 1
+
+/** Options of anitet_mesh_partition, a versioned struct: set it with
+ * ANITET_PARTITION_OPTIONS_INIT or anitet_partition_options_init(), then change fields. */
+typedef struct anitet_partition_options {
+  int32_t version;            /**< ANITET_PARTITION_OPTIONS_VERSION */
+  int32_t num_threads;        /**< threads building the parts (METIS's cut is serial); 0: the
+                                   library's default */
+  int32_t ghost_layers;       /**< layers of ghost tets, >= 0 (default 1) */
+  int32_t reserved0;          /**< keep 0 (alignment; may gain a meaning later) */
+  double imbalance;           /**< heaviest part <= (1 + imbalance) * mean part, in (0, 1]
+                                   (default 0.03) */
+  const double* tet_weights;  /**< NULL (every tet weighs 1) or one weight per tet of the mesh,
+                                   finite, >= 0, one > 0; read during the call only. METIS gets
+                                   them rounded to integers relative to the largest (at most
+                                   1000 steps; a positive weight at least 1) */
+  int64_t num_tet_weights;    /**< the length of tet_weights (the mesh's tets), 0 with NULL */
+  /* Version 2 and later append fields here. */
+} anitet_partition_options;
+
+/** Initializer of an anitet_partition_options of version ANITET_PARTITION_OPTIONS_VERSION with
+ * the defaults. */
+#define ANITET_PARTITION_OPTIONS_INIT { ANITET_PARTITION_OPTIONS_VERSION, 0, 1, 0, 0.03, 0, 0 }
+
+/** Fills the fields of `version` (1 .. ANITET_PARTITION_OPTIONS_VERSION) of *options with their
+ * defaults and sets options->version; a struct of an older version is not written past its end.
+ * Errors: INVALID_ARGUMENT (NULL options, unknown version). */
+ANITET_API int anitet_partition_options_init(anitet_partition_options* options, int32_t version);
+
+/** The newest version of anitet_partition_info this header declares. */
+#define ANITET_PARTITION_INFO_VERSION 1
+
+/** The figures of a partition (anitet_partition_get_info), a versioned struct: set its version
+ * with ANITET_PARTITION_INFO_INIT. */
+typedef struct anitet_partition_info {
+  int32_t version;             /**< ANITET_PARTITION_INFO_VERSION (1), set by the caller */
+  int32_t num_parts;           /**< the parts asked for */
+  int32_t ghost_layers;        /**< the ghost layers asked for */
+  int32_t empty_parts;         /**< parts without an own tet (possible only when the parts are
+                                    nearly as many as the tets) */
+  int64_t num_tets;            /**< the mesh's tets */
+  int64_t edge_cut;            /**< faces between tets of different parts (the cut edges of the
+                                    dual graph) */
+  int64_t interface_vertices;  /**< vertices whose tets are in more than one part */
+  double imbalance;            /**< heaviest part's weight / mean part weight - 1 */
+  double total_weight;         /**< the sum of the tets' weights (the tet count without weights) */
+  double max_part_weight;      /**< the heaviest part's weight */
+  /* Version 2 and later append fields here. */
+} anitet_partition_info;
+
+/** Initializer of an anitet_partition_info of version ANITET_PARTITION_INFO_VERSION, all 0. */
+#define ANITET_PARTITION_INFO_INIT { ANITET_PARTITION_INFO_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0 }
+
+/* The halo lists of a part (anitet_part_get_halo). */
+#define ANITET_HALO_VERTEX_SEND 0  /**< per neighbour q: own vertices that q holds */
+#define ANITET_HALO_VERTEX_RECV 1  /**< per neighbour q: local vertices owned by q */
+#define ANITET_HALO_TET_SEND 2     /**< per neighbour q: own tets that q holds as ghosts */
+#define ANITET_HALO_TET_RECV 3     /**< per neighbour q: ghost tets owned by q */
+
+/* Element types of the arrays of anitet_part_get_array. */
+#define ANITET_TYPE_INT32 1   /**< int32_t elements */
+#define ANITET_TYPE_INT64 2   /**< int64_t elements */
+#define ANITET_TYPE_DOUBLE 3  /**< double elements */
+
+/* The arrays of a part that anitet_part_get_array lends (element type; 0-based ids). */
+#define ANITET_PART_POINTS 0                 /**< double, 3 per local vertex */
+#define ANITET_PART_VERTEX_GLOBAL_IDS 1      /**< int64_t per local vertex */
+#define ANITET_PART_VERTEX_OWNERS 2          /**< int32_t per local vertex: its owner part */
+#define ANITET_PART_TETS 3                   /**< int32_t, 4 local vertices per local tet */
+#define ANITET_PART_TET_GLOBAL_IDS 4         /**< int64_t per local tet */
+#define ANITET_PART_TET_OWNERS 5             /**< int32_t per local tet: its owner part */
+#define ANITET_PART_TET_LAYERS 6             /**< int32_t per local tet: 0 own, k ghost layer k */
+#define ANITET_PART_REGIONS 7                /**< int32_t per local tet */
+#define ANITET_PART_BOUNDARY_TRIANGLES 8     /**< int32_t, 3 local vertices per triangle */
+#define ANITET_PART_BOUNDARY_PATCHES 9       /**< int32_t per boundary triangle */
+#define ANITET_PART_BOUNDARY_GLOBAL_IDS 10   /**< int64_t per boundary triangle */
+#define ANITET_PART_NEIGHBOURS 11            /**< int32_t per neighbour part, ascending */
+#define ANITET_PART_VERTEX_SEND_OFFSETS 12   /**< int64_t, neighbours + 1: the vertex send list
+                                                  of neighbour i is at [offsets[i], offsets[i+1]) */
+#define ANITET_PART_VERTEX_SEND 13           /**< int32_t local vertex ids */
+#define ANITET_PART_VERTEX_RECV_OFFSETS 14   /**< int64_t, neighbours + 1 */
+#define ANITET_PART_VERTEX_RECV 15           /**< int32_t local vertex ids */
+#define ANITET_PART_TET_SEND_OFFSETS 16      /**< int64_t, neighbours + 1 */
+#define ANITET_PART_TET_SEND 17              /**< int32_t local tet ids */
+#define ANITET_PART_TET_RECV_OFFSETS 18      /**< int64_t, neighbours + 1 */
+#define ANITET_PART_TET_RECV 19              /**< int32_t local tet ids */
+
+/** Cuts `mesh` into num_parts parts (1 .. the mesh's tets) and builds each part (*out is NULL
+ * after any error). options may be NULL for the defaults. The same mesh and options give the
+ * same partition, whatever num_threads. `mesh` is only read, and may be destroyed afterwards.
+ * Errors: INVALID_ARGUMENT (NULL mesh or out; num_parts < 1 or more than the tets; an options
+ * version outside 1 .. ANITET_PARTITION_OPTIONS_VERSION; ghost_layers < 0, num_threads < 0,
+ * imbalance outside (0, 1], num_tet_weights not the tet count, a weight not finite or < 0, all
+ * weights 0), EMPTY_INPUT (a mesh without tets), BAD_INDEX, INVALID_MESH (a face of more than
+ * two tets), NOT_IMPLEMENTED (a mesh too large for METIS's 32-bit indices, or a part with
+ * 2^31 - 1 local vertices or tets), OUT_OF_MEMORY. */
+ANITET_API int anitet_mesh_partition(const anitet_mesh* mesh, int32_t num_parts,
+                                     const anitet_partition_options* options,
+                                     anitet_partition** out);
+/** Frees a partition and the parts it lends; NULL is accepted. */
+ANITET_API void anitet_partition_destroy(anitet_partition* partition);
+/** The partition's figures into *info; info->version must be 1 .. ANITET_PARTITION_INFO_VERSION
+ * and the fields of that version are filled. Errors: INVALID_ARGUMENT. */
+ANITET_API int anitet_partition_get_info(const anitet_partition* partition,
+                                         anitet_partition_info* info);
+/** Fills parts (parts_len >= the mesh's tets) with the part of each tet of the mesh. */
+ANITET_API int anitet_partition_get_tet_parts(const anitet_partition* partition, int32_t* parts,
+                                              int64_t parts_len);
+/** Lends part `index` (0 .. num_parts - 1) in *part: valid until the partition is destroyed; do
+ * not pass it to anitet_part_destroy (that call ignores it). Errors: INVALID_ARGUMENT. */
+ANITET_API int anitet_partition_get_part(const anitet_partition* partition, int32_t index,
+                                         const anitet_part** part);
+
+/** Frees a part the caller owns (from anitet_part_deserialize or anitet_mesh_scatter); NULL and
+ * parts lent by a partition are accepted and left alone. */
+ANITET_API void anitet_part_destroy(anitet_part* part);
+/** The part's number (0-based: its rank), the number of parts, its neighbours and its ghost
+ * layers; any output pointer may be NULL. */
+ANITET_API int anitet_part_get_index(const anitet_part* part, int32_t* index, int32_t* num_parts,
+                                     int32_t* num_neighbours, int32_t* ghost_layers);
+/** Counts of local vertices, tets and boundary triangles and of the own ones among them (which
+ * come first); any output pointer may be NULL. */
+ANITET_API int anitet_part_get_counts(const anitet_part* part, int64_t* num_vertices,
+                                      int64_t* num_owned_vertices, int64_t* num_tets,
+                                      int64_t* num_owned_tets, int64_t* num_boundary_triangles,
+                                      int64_t* num_owned_boundary_triangles);
+/** Fills xyz (xyz_len >= 3*num_vertices) with the local vertices' coordinates. */
+ANITET_API int anitet_part_get_points(const anitet_part* part, double* xyz, int64_t xyz_len);
+/** Fills tets (tets_len >= 4*num_tets) with local vertex ids counted from index_base, each tet
+ * oriented as in the mesh. */
+ANITET_API int anitet_part_get_tets(const anitet_part* part, int32_t* tets, int64_t tets_len,
+                                    int32_t index_base);
+/** Fills regions (regions_len >= num_tets) with the local tets' region labels. */
+ANITET_API int anitet_part_get_regions(const anitet_part* part, int32_t* regions,
+                                       int64_t regions_len);
+/** Fills ids (ids_len >= num_vertices) with the local vertices' vertex numbers in the whole
+ * mesh, counted from index_base. */
+ANITET_API int anitet_part_get_vertex_global_ids(const anitet_part* part, int64_t* ids,
+                                                 int64_t ids_len, int32_t index_base);
+/** Fills owners (owners_len >= num_vertices) with the owner part of each local vertex. */
+ANITET_API int anitet_part_get_vertex_owners(const anitet_part* part, int32_t* owners,
+                                             int64_t owners_len);
+/** Fills ids (ids_len >= num_tets) with the local tets' tet numbers in the whole mesh, counted
+ * from index_base. */
+ANITET_API int anitet_part_get_tet_global_ids(const anitet_part* part, int64_t* ids,
+                                              int64_t ids_len, int32_t index_base);
+/** Fills owners (owners_len >= num_tets) with the owner part of each local tet. */
+ANITET_API int anitet_part_get_tet_owners(const anitet_part* part, int32_t* owners,
+                                          int64_t owners_len);
+/** Fills layers (layers_len >= num_tets): 0 for an own tet, k for a tet of ghost layer k. */
+ANITET_API int anitet_part_get_tet_layers(const anitet_part* part, int32_t* layers,
+                                          int64_t layers_len);
+/** Fills tri (tri_len >= 3*num_boundary_triangles) with local vertex ids counted from
+ * index_base, each triangle as in the mesh. */
+ANITET_API int anitet_part_get_boundary_triangles(const anitet_part* part, int32_t* tri,
+                                                  int64_t tri_len, int32_t index_base);
+/** Fills patch (patch_len >= num_boundary_triangles) with the triangles' patch labels. */
+ANITET_API int anitet_part_get_boundary_patches(const anitet_part* part, int32_t* patch,
+                                                int64_t patch_len);
+/** Fills ids (ids_len >= num_boundary_triangles) with each triangle's index among the whole
+ * mesh's boundary triangles, counted from index_base. */
+ANITET_API int anitet_part_get_boundary_global_ids(const anitet_part* part, int64_t* ids,
+                                                   int64_t ids_len, int32_t index_base);
+/** Fills neighbours (neighbours_len >= num_neighbours) with the neighbour parts, ascending. */
+ANITET_API int anitet_part_get_neighbours(const anitet_part* part, int32_t* neighbours,
+                                          int64_t neighbours_len);
+/** The number of items of halo list `list` (ANITET_HALO_*) over all neighbours.
+ * Errors: INVALID_ARGUMENT (NULL, unknown list). */
+ANITET_API int anitet_part_get_halo_size(const anitet_part* part, int32_t list, int64_t* size);
+/** Halo list `list` (ANITET_HALO_*): offsets (offsets_len >= num_neighbours + 1) and items
+ * (items_len >= its size). The items of neighbour i (anitet_part_get_neighbours' i-th, counted
+ * from 0) are items[offsets[i] - index_base .. offsets[i+1] - index_base), local vertex or tet
+ * ids counted from index_base; offsets[0] is index_base (so that with 1, Fortran's
+ * items(offsets(i) : offsets(i+1) - 1) is neighbour i's list). */
+ANITET_API int anitet_part_get_halo(const anitet_part* part, int32_t list, int64_t* offsets,
+                                    int64_t offsets_len, int32_t* items, int64_t items_len,
+                                    int32_t index_base);
+/** Lends the part's own array `array` (ANITET_PART_*) without a copy: *data points to *count
+ * elements of type *element_type (ANITET_TYPE_*; element_type may be NULL), ids 0-based, valid
+ * and unchanged while the part lives (a lent part: while its partition lives). Read only. An
+ * empty array gives *count 0 and a *data that must not be read. Errors: INVALID_ARGUMENT (NULL,
+ * unknown array). */
+ANITET_API int anitet_part_get_array(const anitet_part* part, int32_t array, const void** data,
+                                     int64_t* count, int32_t* element_type);
+
+/** The part as bytes into buf (buf_len bytes); *needed gets the size needed. buf == NULL with
+ * buf_len == 0 asks for the size only and succeeds. The bytes are for anitet_part_deserialize
+ * on a machine of the same byte order (the ranks of one job). */
+ANITET_API int anitet_part_serialize(const anitet_part* part, void* buf, int64_t buf_len,
+                                     int64_t* needed);
+/** A part from the bytes of anitet_part_serialize (size bytes), checked: sizes, ids, owners and
+ * offsets in range. Errors: INVALID_ARGUMENT (NULL bytes or out, negative size), PARSE (not the
+ * bytes of a part, truncated, or inconsistent), OUT_OF_MEMORY. */
+ANITET_API int anitet_part_deserialize(const void* bytes, int64_t size, anitet_part** out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -45,6 +45,36 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_LAYERS_PUSH = 0
   integer(c_int32_t), parameter, public :: ANITET_LAYERS_FACE_PUSH = 1
   integer(c_int32_t), parameter, public :: ANITET_QUALITY_VERSION = 1
+  ! partitions
+  integer(c_int32_t), parameter, public :: ANITET_PARTITION_OPTIONS_VERSION = 1
+  integer(c_int32_t), parameter, public :: ANITET_PARTITION_INFO_VERSION = 1
+  integer(c_int32_t), parameter, public :: ANITET_HALO_VERTEX_SEND = 0
+  integer(c_int32_t), parameter, public :: ANITET_HALO_VERTEX_RECV = 1
+  integer(c_int32_t), parameter, public :: ANITET_HALO_TET_SEND = 2
+  integer(c_int32_t), parameter, public :: ANITET_HALO_TET_RECV = 3
+  integer(c_int32_t), parameter, public :: ANITET_TYPE_INT32 = 1
+  integer(c_int32_t), parameter, public :: ANITET_TYPE_INT64 = 2
+  integer(c_int32_t), parameter, public :: ANITET_TYPE_DOUBLE = 3
+  integer(c_int32_t), parameter, public :: ANITET_PART_POINTS = 0
+  integer(c_int32_t), parameter, public :: ANITET_PART_VERTEX_GLOBAL_IDS = 1
+  integer(c_int32_t), parameter, public :: ANITET_PART_VERTEX_OWNERS = 2
+  integer(c_int32_t), parameter, public :: ANITET_PART_TETS = 3
+  integer(c_int32_t), parameter, public :: ANITET_PART_TET_GLOBAL_IDS = 4
+  integer(c_int32_t), parameter, public :: ANITET_PART_TET_OWNERS = 5
+  integer(c_int32_t), parameter, public :: ANITET_PART_TET_LAYERS = 6
+  integer(c_int32_t), parameter, public :: ANITET_PART_REGIONS = 7
+  integer(c_int32_t), parameter, public :: ANITET_PART_BOUNDARY_TRIANGLES = 8
+  integer(c_int32_t), parameter, public :: ANITET_PART_BOUNDARY_PATCHES = 9
+  integer(c_int32_t), parameter, public :: ANITET_PART_BOUNDARY_GLOBAL_IDS = 10
+  integer(c_int32_t), parameter, public :: ANITET_PART_NEIGHBOURS = 11
+  integer(c_int32_t), parameter, public :: ANITET_PART_VERTEX_SEND_OFFSETS = 12
+  integer(c_int32_t), parameter, public :: ANITET_PART_VERTEX_SEND = 13
+  integer(c_int32_t), parameter, public :: ANITET_PART_VERTEX_RECV_OFFSETS = 14
+  integer(c_int32_t), parameter, public :: ANITET_PART_VERTEX_RECV = 15
+  integer(c_int32_t), parameter, public :: ANITET_PART_TET_SEND_OFFSETS = 16
+  integer(c_int32_t), parameter, public :: ANITET_PART_TET_SEND = 17
+  integer(c_int32_t), parameter, public :: ANITET_PART_TET_RECV_OFFSETS = 18
+  integer(c_int32_t), parameter, public :: ANITET_PART_TET_RECV = 19
 
   ! ---- versioned structs (same layout as the C structs) -----------------------------------------
   ! Set callbacks with c_funloc of a bind(c) procedure and user data with c_loc.
@@ -86,6 +116,29 @@ module anitet
     real(c_double) :: bad_fraction
   end type
 
+  type, bind(c), public :: anitet_partition_options_t
+    integer(c_int32_t) :: version
+    integer(c_int32_t) :: num_threads
+    integer(c_int32_t) :: ghost_layers
+    integer(c_int32_t) :: reserved0
+    real(c_double) :: imbalance
+    type(c_ptr) :: tet_weights  ! c_loc of real(c_double), target :: weights(num_tets), or c_null_ptr
+    integer(c_int64_t) :: num_tet_weights
+  end type
+
+  type, bind(c), public :: anitet_partition_info_t
+    integer(c_int32_t) :: version
+    integer(c_int32_t) :: num_parts
+    integer(c_int32_t) :: ghost_layers
+    integer(c_int32_t) :: empty_parts
+    integer(c_int64_t) :: num_tets
+    integer(c_int64_t) :: edge_cut
+    integer(c_int64_t) :: interface_vertices
+    real(c_double) :: imbalance
+    real(c_double) :: total_weight
+    real(c_double) :: max_part_weight
+  end type
+
   ! ---- raw C interfaces ---------------------------------------------------------------------------
   public :: c_anitet_options_init, c_anitet_version, c_anitet_version_number
   public :: c_anitet_last_error_message, c_anitet_error_name
@@ -103,6 +156,16 @@ module anitet
   public :: c_anitet_mesh_get_boundary_triangles, c_anitet_mesh_get_boundary_patches
   public :: c_anitet_mesh_get_metric_components, c_anitet_mesh_get_metric, c_anitet_mesh_set_metric
   public :: c_anitet_mesh_quality, c_anitet_mesh_quality_json
+  public :: c_anitet_partition_options_init, c_anitet_mesh_partition, c_anitet_partition_destroy
+  public :: c_anitet_partition_get_info, c_anitet_partition_get_tet_parts, c_anitet_partition_get_part
+  public :: c_anitet_part_destroy, c_anitet_part_get_index, c_anitet_part_get_counts
+  public :: c_anitet_part_get_points, c_anitet_part_get_tets, c_anitet_part_get_regions
+  public :: c_anitet_part_get_vertex_global_ids, c_anitet_part_get_vertex_owners
+  public :: c_anitet_part_get_tet_global_ids, c_anitet_part_get_tet_owners, c_anitet_part_get_tet_layers
+  public :: c_anitet_part_get_boundary_triangles, c_anitet_part_get_boundary_patches
+  public :: c_anitet_part_get_boundary_global_ids, c_anitet_part_get_neighbours
+  public :: c_anitet_part_get_halo_size, c_anitet_part_get_halo, c_anitet_part_get_array
+  public :: c_anitet_part_serialize, c_anitet_part_deserialize
 
   interface
     integer(c_int) function c_anitet_options_init(options, version) &
@@ -393,6 +456,222 @@ module anitet
       integer(c_int64_t), intent(out) :: needed
     end function
 
+    ! ---- partitions ----
+    integer(c_int) function c_anitet_partition_options_init(options, version) &
+        bind(c, name="anitet_partition_options_init")
+      import :: c_int, c_int32_t, anitet_partition_options_t
+      type(anitet_partition_options_t), intent(out) :: options
+      integer(c_int32_t), value :: version
+    end function
+
+    integer(c_int) function c_anitet_mesh_partition(mesh, num_parts, options, out) &
+        bind(c, name="anitet_mesh_partition")
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), value :: num_parts
+      type(c_ptr), value :: options  ! const anitet_partition_options*, may be c_null_ptr
+      type(c_ptr), intent(out) :: out
+    end function
+
+    subroutine c_anitet_partition_destroy(partition) bind(c, name="anitet_partition_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: partition
+    end subroutine
+
+    integer(c_int) function c_anitet_partition_get_info(partition, info) &
+        bind(c, name="anitet_partition_get_info")
+      import :: c_int, c_ptr, anitet_partition_info_t
+      type(c_ptr), value :: partition
+      type(anitet_partition_info_t), intent(inout) :: info
+    end function
+
+    integer(c_int) function c_anitet_partition_get_tet_parts(partition, parts, parts_len) &
+        bind(c, name="anitet_partition_get_tet_parts")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: partition
+      integer(c_int32_t), intent(out) :: parts(*)
+      integer(c_int64_t), value :: parts_len
+    end function
+
+    integer(c_int) function c_anitet_partition_get_part(partition, index, part) &
+        bind(c, name="anitet_partition_get_part")
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: partition
+      integer(c_int32_t), value :: index
+      type(c_ptr), intent(out) :: part
+    end function
+
+    subroutine c_anitet_part_destroy(part) bind(c, name="anitet_part_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: part
+    end subroutine
+
+    integer(c_int) function c_anitet_part_get_index(part, index, num_parts, num_neighbours, &
+        ghost_layers) bind(c, name="anitet_part_get_index")
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), intent(out) :: index, num_parts, num_neighbours, ghost_layers
+    end function
+
+    integer(c_int) function c_anitet_part_get_counts(part, num_vertices, num_owned_vertices, &
+        num_tets, num_owned_tets, num_boundary_triangles, num_owned_boundary_triangles) &
+        bind(c, name="anitet_part_get_counts")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int64_t), intent(out) :: num_vertices, num_owned_vertices, num_tets, num_owned_tets
+      integer(c_int64_t), intent(out) :: num_boundary_triangles, num_owned_boundary_triangles
+    end function
+
+    integer(c_int) function c_anitet_part_get_points(part, xyz, xyz_len) &
+        bind(c, name="anitet_part_get_points")
+      import :: c_int, c_int32_t, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: part
+      real(c_double), intent(out) :: xyz(*)
+      integer(c_int64_t), value :: xyz_len
+    end function
+
+    integer(c_int) function c_anitet_part_get_tets(part, tets, tets_len, index_base) &
+        bind(c, name="anitet_part_get_tets")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), intent(out) :: tets(*)
+      integer(c_int64_t), value :: tets_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    integer(c_int) function c_anitet_part_get_regions(part, regions, regions_len) &
+        bind(c, name="anitet_part_get_regions")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), intent(out) :: regions(*)
+      integer(c_int64_t), value :: regions_len
+    end function
+
+    integer(c_int) function c_anitet_part_get_vertex_global_ids(part, ids, ids_len, index_base) &
+        bind(c, name="anitet_part_get_vertex_global_ids")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int64_t), intent(out) :: ids(*)
+      integer(c_int64_t), value :: ids_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    integer(c_int) function c_anitet_part_get_vertex_owners(part, owners, owners_len) &
+        bind(c, name="anitet_part_get_vertex_owners")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), intent(out) :: owners(*)
+      integer(c_int64_t), value :: owners_len
+    end function
+
+    integer(c_int) function c_anitet_part_get_tet_global_ids(part, ids, ids_len, index_base) &
+        bind(c, name="anitet_part_get_tet_global_ids")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int64_t), intent(out) :: ids(*)
+      integer(c_int64_t), value :: ids_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    integer(c_int) function c_anitet_part_get_tet_owners(part, owners, owners_len) &
+        bind(c, name="anitet_part_get_tet_owners")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), intent(out) :: owners(*)
+      integer(c_int64_t), value :: owners_len
+    end function
+
+    integer(c_int) function c_anitet_part_get_tet_layers(part, layers, layers_len) &
+        bind(c, name="anitet_part_get_tet_layers")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), intent(out) :: layers(*)
+      integer(c_int64_t), value :: layers_len
+    end function
+
+    integer(c_int) function c_anitet_part_get_boundary_triangles(part, tri, tri_len, index_base) &
+        bind(c, name="anitet_part_get_boundary_triangles")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), intent(out) :: tri(*)
+      integer(c_int64_t), value :: tri_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    integer(c_int) function c_anitet_part_get_boundary_patches(part, patch, patch_len) &
+        bind(c, name="anitet_part_get_boundary_patches")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), intent(out) :: patch(*)
+      integer(c_int64_t), value :: patch_len
+    end function
+
+    integer(c_int) function c_anitet_part_get_boundary_global_ids(part, ids, ids_len, index_base) &
+        bind(c, name="anitet_part_get_boundary_global_ids")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int64_t), intent(out) :: ids(*)
+      integer(c_int64_t), value :: ids_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    integer(c_int) function c_anitet_part_get_neighbours(part, neighbours, neighbours_len) &
+        bind(c, name="anitet_part_get_neighbours")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), intent(out) :: neighbours(*)
+      integer(c_int64_t), value :: neighbours_len
+    end function
+
+    integer(c_int) function c_anitet_part_get_halo_size(part, list, size) &
+        bind(c, name="anitet_part_get_halo_size")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), value :: list
+      integer(c_int64_t), intent(out) :: size
+    end function
+
+    integer(c_int) function c_anitet_part_get_halo(part, list, offsets, offsets_len, items, &
+        items_len, index_base) bind(c, name="anitet_part_get_halo")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), value :: list
+      integer(c_int64_t), intent(out) :: offsets(*)
+      integer(c_int64_t), value :: offsets_len
+      integer(c_int32_t), intent(out) :: items(*)
+      integer(c_int64_t), value :: items_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    ! Lends an array of the part without a copy (0-based ids): c_f_pointer it into a Fortran
+    ! pointer of the ANITET_TYPE_* kind; valid while the part lives.
+    integer(c_int) function c_anitet_part_get_array(part, array, data, count, element_type) &
+        bind(c, name="anitet_part_get_array")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      integer(c_int32_t), value :: array
+      type(c_ptr), intent(out) :: data
+      integer(c_int64_t), intent(out) :: count
+      integer(c_int32_t), intent(out) :: element_type
+    end function
+
+    integer(c_int) function c_anitet_part_serialize(part, buf, buf_len, needed) &
+        bind(c, name="anitet_part_serialize")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: part
+      type(c_ptr), value :: buf
+      integer(c_int64_t), value :: buf_len
+      integer(c_int64_t), intent(out) :: needed
+    end function
+
+    integer(c_int) function c_anitet_part_deserialize(bytes, size, out) &
+        bind(c, name="anitet_part_deserialize")
+      import :: c_int, c_int8_t, c_int64_t, c_ptr
+      integer(c_int8_t), intent(in) :: bytes(*)
+      integer(c_int64_t), value :: size
+      type(c_ptr), intent(out) :: out
+    end function
+
     ! From the C library, to measure returned strings.
     integer(c_size_t) function c_strlen(s) bind(c, name="strlen")
       import :: c_size_t, c_ptr
@@ -416,6 +695,16 @@ module anitet
   public :: anitet_mesh_get_boundary_patches, anitet_mesh_get_metric_components
   public :: anitet_mesh_get_metric, anitet_mesh_set_metric, anitet_mesh_quality
   public :: anitet_mesh_quality_json
+
+  public :: anitet_partition_options_init, anitet_mesh_partition, anitet_partition_destroy
+  public :: anitet_partition_get_info, anitet_partition_get_tet_parts, anitet_partition_get_part
+  public :: anitet_part_destroy, anitet_part_get_index, anitet_part_get_counts, anitet_part_get_points
+  public :: anitet_part_get_tets, anitet_part_get_regions, anitet_part_get_vertex_global_ids
+  public :: anitet_part_get_vertex_owners, anitet_part_get_tet_global_ids, anitet_part_get_tet_owners
+  public :: anitet_part_get_tet_layers, anitet_part_get_boundary_triangles
+  public :: anitet_part_get_boundary_patches, anitet_part_get_boundary_global_ids
+  public :: anitet_part_get_neighbours, anitet_part_get_halo, anitet_part_serialize
+  public :: anitet_part_deserialize
 
 contains
 
@@ -875,6 +1164,248 @@ contains
     allocate(buf(needed))
     rc = c_anitet_mesh_quality_json(mesh, opt_ptr(input), c_loc(buf), needed, written)
     if (rc == ANITET_OK) text = buffer_text(buf, needed)
+  end function
+
+  ! ---- partitions -------------------------------------------------------------------------------
+  ! Part numbers (indices, owners, neighbours) are 0-based: they are MPI ranks. Local and global
+  ! ids are counted from index_base (default 1).
+
+  integer function anitet_partition_options_init(options, version) result(rc)
+    type(anitet_partition_options_t), intent(out) :: options
+    integer, intent(in), optional :: version
+    integer(c_int32_t) :: v
+    v = ANITET_PARTITION_OPTIONS_VERSION
+    if (present(version)) v = int(version, c_int32_t)
+    rc = c_anitet_partition_options_init(options, v)
+  end function
+
+  integer function anitet_mesh_partition(mesh, num_parts, partition, options) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer, intent(in) :: num_parts
+    type(c_ptr), intent(out) :: partition
+    type(anitet_partition_options_t), intent(in), optional, target :: options
+    if (present(options)) then
+      rc = c_anitet_mesh_partition(mesh, int(num_parts, c_int32_t), c_loc(options), partition)
+    else
+      rc = c_anitet_mesh_partition(mesh, int(num_parts, c_int32_t), c_null_ptr, partition)
+    end if
+  end function
+
+  subroutine anitet_partition_destroy(partition)
+    type(c_ptr), intent(inout) :: partition
+    call c_anitet_partition_destroy(partition)
+    partition = c_null_ptr
+  end subroutine
+
+  integer function anitet_partition_get_info(partition, info) result(rc)
+    type(c_ptr), intent(in) :: partition
+    type(anitet_partition_info_t), intent(out) :: info
+    info%version = ANITET_PARTITION_INFO_VERSION
+    rc = c_anitet_partition_get_info(partition, info)
+  end function
+
+  ! parts(num_tets of the mesh): the part of each tet.
+  integer function anitet_partition_get_tet_parts(partition, parts) result(rc)
+    type(c_ptr), intent(in) :: partition
+    integer(c_int32_t), allocatable, intent(out) :: parts(:)
+    type(anitet_partition_info_t) :: info
+    rc = anitet_partition_get_info(partition, info)
+    if (rc /= ANITET_OK) return
+    allocate(parts(info%num_tets))
+    rc = c_anitet_partition_get_tet_parts(partition, parts, size(parts, kind=c_int64_t))
+  end function
+
+  ! A part lent by the partition (index 0 .. num_parts - 1): valid while the partition lives.
+  integer function anitet_partition_get_part(partition, index, part) result(rc)
+    type(c_ptr), intent(in) :: partition
+    integer, intent(in) :: index
+    type(c_ptr), intent(out) :: part
+    rc = c_anitet_partition_get_part(partition, int(index, c_int32_t), part)
+  end function
+
+  ! Frees a part of one's own (anitet_part_deserialize, anitet_mesh_scatter); a lent one is left.
+  subroutine anitet_part_destroy(part)
+    type(c_ptr), intent(inout) :: part
+    call c_anitet_part_destroy(part)
+    part = c_null_ptr
+  end subroutine
+
+  integer function anitet_part_get_index(part, index, num_parts, num_neighbours, ghost_layers) &
+      result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int32_t), intent(out) :: index, num_parts, num_neighbours, ghost_layers
+    rc = c_anitet_part_get_index(part, index, num_parts, num_neighbours, ghost_layers)
+  end function
+
+  integer function anitet_part_get_counts(part, num_vertices, num_owned_vertices, num_tets, &
+      num_owned_tets, num_boundary_triangles, num_owned_boundary_triangles) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int64_t), intent(out) :: num_vertices, num_owned_vertices, num_tets, num_owned_tets
+    integer(c_int64_t), intent(out) :: num_boundary_triangles, num_owned_boundary_triangles
+    rc = c_anitet_part_get_counts(part, num_vertices, num_owned_vertices, num_tets, &
+                                  num_owned_tets, num_boundary_triangles, &
+                                  num_owned_boundary_triangles)
+  end function
+
+  integer function anitet_part_get_points(part, xyz) result(rc)
+    type(c_ptr), intent(in) :: part
+    real(c_double), allocatable, intent(out) :: xyz(:, :)
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(xyz(3, nv))
+    rc = c_anitet_part_get_points(part, xyz, size(xyz, kind=c_int64_t))
+  end function
+
+  integer function anitet_part_get_tets(part, tets, index_base) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int32_t), allocatable, intent(out) :: tets(:, :)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(tets(4, nt))
+    rc = c_anitet_part_get_tets(part, tets, size(tets, kind=c_int64_t), base_of(index_base))
+  end function
+
+  integer function anitet_part_get_regions(part, regions) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int32_t), allocatable, intent(out) :: regions(:)
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(regions(nt))
+    rc = c_anitet_part_get_regions(part, regions, size(regions, kind=c_int64_t))
+  end function
+
+  integer function anitet_part_get_vertex_global_ids(part, ids, index_base) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int64_t), allocatable, intent(out) :: ids(:)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(ids(nv))
+    rc = c_anitet_part_get_vertex_global_ids(part, ids, size(ids, kind=c_int64_t), base_of(index_base))
+  end function
+
+  integer function anitet_part_get_vertex_owners(part, owners) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int32_t), allocatable, intent(out) :: owners(:)
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(owners(nv))
+    rc = c_anitet_part_get_vertex_owners(part, owners, size(owners, kind=c_int64_t))
+  end function
+
+  integer function anitet_part_get_tet_global_ids(part, ids, index_base) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int64_t), allocatable, intent(out) :: ids(:)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(ids(nt))
+    rc = c_anitet_part_get_tet_global_ids(part, ids, size(ids, kind=c_int64_t), base_of(index_base))
+  end function
+
+  integer function anitet_part_get_tet_owners(part, owners) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int32_t), allocatable, intent(out) :: owners(:)
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(owners(nt))
+    rc = c_anitet_part_get_tet_owners(part, owners, size(owners, kind=c_int64_t))
+  end function
+
+  integer function anitet_part_get_tet_layers(part, layers) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int32_t), allocatable, intent(out) :: layers(:)
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(layers(nt))
+    rc = c_anitet_part_get_tet_layers(part, layers, size(layers, kind=c_int64_t))
+  end function
+
+  integer function anitet_part_get_boundary_triangles(part, tri, index_base) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int32_t), allocatable, intent(out) :: tri(:, :)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(tri(3, nb))
+    rc = c_anitet_part_get_boundary_triangles(part, tri, size(tri, kind=c_int64_t), base_of(index_base))
+  end function
+
+  integer function anitet_part_get_boundary_patches(part, patch) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int32_t), allocatable, intent(out) :: patch(:)
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(patch(nb))
+    rc = c_anitet_part_get_boundary_patches(part, patch, size(patch, kind=c_int64_t))
+  end function
+
+  integer function anitet_part_get_boundary_global_ids(part, ids, index_base) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int64_t), allocatable, intent(out) :: ids(:)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    rc = c_anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob)
+    if (rc /= ANITET_OK) return
+    allocate(ids(nb))
+    rc = c_anitet_part_get_boundary_global_ids(part, ids, size(ids, kind=c_int64_t), base_of(index_base))
+  end function
+
+  integer function anitet_part_get_neighbours(part, neighbours) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int32_t), allocatable, intent(out) :: neighbours(:)
+    integer(c_int32_t) :: index, num_parts, num_neighbours, ghost_layers
+    rc = c_anitet_part_get_index(part, index, num_parts, num_neighbours, ghost_layers)
+    if (rc /= ANITET_OK) return
+    allocate(neighbours(num_neighbours))
+    rc = c_anitet_part_get_neighbours(part, neighbours, size(neighbours, kind=c_int64_t))
+  end function
+
+  ! Halo list `list` (ANITET_HALO_*): offsets(num_neighbours + 1) and items; with the default
+  ! index_base 1, items(offsets(i) : offsets(i + 1) - 1) is the list of neighbours(i).
+  integer function anitet_part_get_halo(part, list, offsets, items, index_base) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer, intent(in) :: list
+    integer(c_int64_t), allocatable, intent(out) :: offsets(:)
+    integer(c_int32_t), allocatable, intent(out) :: items(:)
+    integer, intent(in), optional :: index_base
+    integer(c_int32_t) :: index, num_parts, num_neighbours, ghost_layers
+    integer(c_int64_t) :: n
+    rc = c_anitet_part_get_index(part, index, num_parts, num_neighbours, ghost_layers)
+    if (rc /= ANITET_OK) return
+    rc = c_anitet_part_get_halo_size(part, int(list, c_int32_t), n)
+    if (rc /= ANITET_OK) return
+    allocate(offsets(num_neighbours + 1), items(n))
+    rc = c_anitet_part_get_halo(part, int(list, c_int32_t), offsets, size(offsets, kind=c_int64_t), &
+                                items, n, base_of(index_base))
+  end function
+
+  integer function anitet_part_serialize(part, bytes) result(rc)
+    type(c_ptr), intent(in) :: part
+    integer(c_int8_t), allocatable, target, intent(out) :: bytes(:)
+    integer(c_int64_t) :: needed, written
+    needed = 0
+    rc = c_anitet_part_serialize(part, c_null_ptr, 0_c_int64_t, needed)
+    if (rc /= ANITET_OK) return
+    allocate(bytes(needed))
+    rc = c_anitet_part_serialize(part, c_loc(bytes), needed, written)
+  end function
+
+  integer function anitet_part_deserialize(bytes, part) result(rc)
+    integer(c_int8_t), intent(in) :: bytes(:)
+    type(c_ptr), intent(out) :: part
+    rc = c_anitet_part_deserialize(bytes, size(bytes, kind=c_int64_t), part)
   end function
 
 end module anitet

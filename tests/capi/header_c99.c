@@ -7,6 +7,8 @@ int anitet_header_check(void);
 int anitet_header_check(void) {
   anitet_options options = ANITET_OPTIONS_INIT;
   anitet_quality quality = ANITET_QUALITY_INIT;
+  anitet_partition_options partition_options = ANITET_PARTITION_OPTIONS_INIT;
+  anitet_partition_info partition_info = ANITET_PARTITION_INFO_INIT;
   anitet_progress_fn progress = 0;
   anitet_log_fn log = 0;
   anitet_metric_fn metric = 0;
@@ -15,5 +17,7 @@ int anitet_header_check(void) {
   (void)metric;
   options.layer_scheme = ANITET_LAYERS_FACE_PUSH;
   options.size_scale = 2.0;
-  return options.version + quality.version + ANITET_VERSION_NUMBER + ANITET_ERR_INTERNAL;
+  partition_options.ghost_layers = 2;
+  return options.version + quality.version + partition_options.version + partition_info.version +
+         ANITET_VERSION_NUMBER + ANITET_ERR_INTERNAL;
 }

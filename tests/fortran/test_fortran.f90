@@ -1,7 +1,7 @@
 ! The Fortran module over the C ABI: a cube surface built in memory (1-based), validated and read
 ! back; a volume mesh read from the tests' data and filled into allocatable arrays; the error
 ! paths a Fortran caller meets; the examples' sphere meshed with and without a metric, and with
-! a metric from per-point values or a .sol on a background mesh.
+! a metric from per-point values or a .sol on a background mesh; a mesh in parts.
 ! Argument 1: the tests' data directory (tests/data).
 program test_fortran
   use, intrinsic :: iso_c_binding
@@ -21,6 +21,7 @@ program test_fortran
   call check_mesh_from_arrays()
   call check_metric_and_mesher()
   call check_metric_on_background(trim(data_dir) // "/io/box.mesh")
+  call check_partition(trim(data_dir) // "/io/box.mesh")
 
   if (failures > 0) then
     print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
@@ -299,6 +300,70 @@ contains
     call anitet_surface_destroy(surface)
     call anitet_metric_destroy(from_file)
     call anitet_mesh_destroy(background)
+  end subroutine
+
+  ! The box's 6 tets in 2 parts: every tet own once, 1-based local ids in range, halo offsets
+  ! from 1, the bytes of a part round trip, and the documented errors.
+  subroutine check_partition(path)
+    character(len=*), intent(in) :: path
+    type(c_ptr) :: mesh, partition, part, copy
+    type(anitet_partition_options_t), target :: options
+    type(anitet_partition_info_t) :: info
+    integer(c_int32_t), allocatable :: tet_parts(:), tets(:, :), owners(:), items(:), neighbours(:)
+    integer(c_int64_t), allocatable :: ids(:), offsets(:)
+    integer(c_int8_t), allocatable :: bytes(:), bytes2(:)
+    integer(c_int64_t) :: nv, nov, nt, nto, nb, nob
+    integer(c_int32_t) :: part_index, num_parts, num_neighbours, layers
+    integer :: p, own(6)
+    call check(anitet_mesh_read(path, mesh) == ANITET_OK, "read " // path)
+    call check(anitet_partition_options_init(options) == ANITET_OK, "partition options")
+    call check(options%ghost_layers == 1 .and. options%imbalance == 0.03_c_double, "partition defaults")
+    call check(anitet_mesh_partition(mesh, 2, partition, options) == ANITET_OK, "partition")
+    call check(anitet_partition_get_info(partition, info) == ANITET_OK, "partition info")
+    call check(info%num_parts == 2 .and. info%num_tets == 6 .and. info%edge_cut > 0, "info figures")
+    call check(anitet_partition_get_tet_parts(partition, tet_parts) == ANITET_OK, "tet parts")
+    call check(size(tet_parts) == 6 .and. all(tet_parts >= 0 .and. tet_parts <= 1), "tet parts range")
+    own = 0
+    do p = 0, 1
+      call check(anitet_partition_get_part(partition, p, part) == ANITET_OK, "get part")
+      call check(anitet_part_get_index(part, part_index, num_parts, num_neighbours, layers) == ANITET_OK &
+                 .and. part_index == p .and. num_parts == 2 .and. num_neighbours == 1, "part index")
+      call check(anitet_part_get_counts(part, nv, nov, nt, nto, nb, nob) == ANITET_OK, "part counts")
+      call check(anitet_part_get_tets(part, tets) == ANITET_OK, "part tets")
+      call check(all(shape(tets) == [4_c_int64_t, nt]) .and. all(tets >= 1 .and. tets <= nv), &
+                 "1-based local tets")
+      call check(anitet_part_get_tet_global_ids(part, ids) == ANITET_OK, "tet global ids")
+      own(ids(1:nto)) = own(ids(1:nto)) + 1
+      call check(anitet_part_get_tet_owners(part, owners) == ANITET_OK, "tet owners")
+      call check(all(owners(1:nto) == p) .and. all(owners(nto + 1:) /= p), "own tets first")
+      call check(anitet_part_get_neighbours(part, neighbours) == ANITET_OK, "neighbours")
+      call check(neighbours(1) == 1 - p, "the other part is the neighbour")
+      call check(anitet_part_get_halo(part, ANITET_HALO_VERTEX_RECV, offsets, items) == ANITET_OK, &
+                 "vertex recv list")
+      call check(offsets(1) == 1 .and. offsets(2) == size(items) + 1, "1-based offsets")
+      call check(all(items > nov .and. items <= nv), "received vertices are not own")
+      call check(anitet_part_serialize(part, bytes) == ANITET_OK, "serialize")
+      call check(anitet_part_deserialize(bytes, copy) == ANITET_OK, "deserialize")
+      call check(anitet_part_serialize(copy, bytes2) == ANITET_OK, "serialize again")
+      call check(size(bytes2) == size(bytes) .and. all(bytes2 == bytes), "bytes round trip")
+      call anitet_part_destroy(copy)
+      call check(anitet_part_deserialize(bytes(1:size(bytes) - 1), copy) == ANITET_ERR_PARSE, &
+                 "truncated bytes")
+      call check(.not. c_associated(copy), "no part from truncated bytes")
+    end do
+    call check(all(own == 1), "every tet own in one part")
+    call check(anitet_partition_get_part(partition, 2, part) == ANITET_ERR_INVALID_ARGUMENT, &
+               "part 2 of 2")
+    call anitet_partition_destroy(partition)
+    call check(.not. c_associated(partition), "destroy clears the partition")
+    call check(anitet_mesh_partition(mesh, 0, partition) == ANITET_ERR_INVALID_ARGUMENT, "0 parts")
+    call check(anitet_mesh_partition(mesh, 7, partition) == ANITET_ERR_INVALID_ARGUMENT, "7 parts")
+    call check(.not. c_associated(partition), "no partition on error")
+    options%version = 99
+    call check(anitet_mesh_partition(mesh, 2, partition, options) == ANITET_ERR_INVALID_ARGUMENT, &
+               "unknown options version")
+    call check(index(anitet_last_error_message(), "version 99") > 0, "version error message")
+    call anitet_mesh_destroy(mesh)
   end subroutine
 
 end program test_fortran

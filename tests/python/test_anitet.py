@@ -54,7 +54,8 @@ class HeaderDrift(unittest.TestCase):
 
     def test_constants(self):
         pattern = (r"#define ANITET_((?:ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|VERSION_MAJOR|"
-                   r"VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION)) \(?(-?\d+)\)?")
+                   r"VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|PARTITION_[A-Z]+_VERSION|"
+                   r"HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+)) \(?(-?\d+)\)?")
         found = re.findall(pattern, self.header)
         self.assertGreater(len(found), 25)
         for name, value in found:
@@ -68,6 +69,12 @@ class HeaderDrift(unittest.TestCase):
     def test_struct_layouts(self):
         self.assertEqual([f[0] for f in _capi.COptions._fields_], self.struct_fields("anitet_options"))
         self.assertEqual([f[0] for f in _capi.CQuality._fields_], self.struct_fields("anitet_quality"))
+        self.assertEqual([f[0] for f in _capi.CPartitionOptions._fields_],
+                         self.struct_fields("anitet_partition_options"))
+        self.assertEqual([f[0] for f in _capi.CPartitionInfo._fields_],
+                         self.struct_fields("anitet_partition_info"))
+        self.assertEqual(ctypes.sizeof(_capi.CPartitionOptions), 24 + ctypes.sizeof(ctypes.c_void_p) + 8)
+        self.assertEqual(ctypes.sizeof(_capi.CPartitionInfo), 64)
         # Version 1 ends after the four pointers; version 2 adds 32 bytes.
         self.assertEqual(_capi.COptions.layers.offset, 24 + 4 * ctypes.sizeof(ctypes.c_void_p))
         self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.layers.offset + 32)
@@ -371,6 +378,114 @@ class Arrays(unittest.TestCase):
         else:
             self.assertIsInstance(s.points(), list)
             self.assertEqual(s.points()[1], (1.0, 0.0, 0.0))
+
+
+class Partitions(unittest.TestCase):
+    """anitet.partition_mesh: the header's promises, seen from Python, and NumPy views."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.mesh = anitet.mesh_surface(sphere()[0])
+
+    def check(self, partition, num_parts):
+        info = partition.info()
+        self.assertEqual(info.num_parts, num_parts)
+        self.assertLessEqual(info.imbalance, 0.03 + 1e-12)
+        tet_parts = list(partition.tet_parts())
+        self.assertEqual(len(tet_parts), self.mesh.num_tets)
+        own = [0] * len(tet_parts)
+        parts = list(partition)
+        self.assertEqual(len(parts), num_parts)
+        for p, part in enumerate(parts):
+            nv, nov, nt, nto, nb, nob = part.counts()
+            self.assertEqual(part.index, p)
+            ids = [int(g) for g in part.tet_global_ids]
+            owners = [int(o) for o in part.tet_owners]
+            layers = [int(x) for x in part.tet_layers]
+            for i, g in enumerate(ids):
+                self.assertEqual(owners[i], tet_parts[g])
+                self.assertEqual(layers[i] == 0, i < nto)
+                if i < nto:
+                    own[g] += 1
+                else:  # a ghost tet is own on its owner
+                    owner = parts[owners[i]]
+                    self.assertIn(g, [int(x) for x in owner.tet_global_ids[:owner.counts()[3]]])
+            self.assertEqual(len(rows(part.tets)), nt)
+            self.assertEqual(len(rows(part.points)), nv)
+            # p's send lists name the global ids of its neighbours' recv lists from p.
+            for send, recv, ids_of in ((anitet.HALO_VERTEX_SEND, anitet.HALO_VERTEX_RECV, "vertex_global_ids"),
+                                       (anitet.HALO_TET_SEND, anitet.HALO_TET_RECV, "tet_global_ids")):
+                mine = getattr(part, ids_of)
+                for q, items in part.halo(send).items():
+                    theirs = getattr(parts[q], ids_of)
+                    back = parts[q].halo(recv)[p]
+                    self.assertEqual([int(mine[i]) for i in items], [int(theirs[i]) for i in back])
+        self.assertEqual(own, [1] * len(own))
+
+    def test_parts(self):
+        for n in (1, 2, 5):
+            self.check(self.mesh.partition(n), n)
+        self.check(anitet.partition_mesh(self.mesh, 3, ghost_layers=2, num_threads=1), 3)
+
+    def test_weights(self):
+        weights = [1.0 + (t % 3) for t in range(self.mesh.num_tets)]
+        p = self.mesh.partition(3, tet_weights=weights)
+        self.assertAlmostEqual(p.info().total_weight, sum(weights))
+        self.check(p, 3)
+
+    def test_views_without_copy_outlive_their_partition(self):
+        p = self.mesh.partition(2)
+        part = p[1]
+        tets, points = part.tets, part.points
+        expected = rows(tets)
+        if anitet.HAVE_NUMPY:
+            import numpy
+            self.assertEqual(tets.shape[1], 4)
+            self.assertEqual(points.shape[1], 3)
+            self.assertFalse(tets.flags.owndata)
+            self.assertFalse(tets.flags.writeable)
+            self.assertTrue(numpy.shares_memory(tets, part.tets))  # the library's memory, twice
+            self.assertEqual(part.vertex_global_ids.dtype, numpy.int64)
+        else:
+            self.assertIsInstance(tets, list)
+        p.close()
+        del p, part
+        import gc
+        gc.collect()
+        self.assertEqual(rows(tets), expected)  # the view holds the memory
+
+    def test_closed_partition(self):
+        p = self.mesh.partition(2)
+        p.close()
+        with self.assertRaises(anitet.AnitetError) as e:
+            p.info()
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+
+    def test_bytes(self):
+        part = self.mesh.partition(3)[2]
+        data = part.to_bytes()
+        copy = anitet.Part.from_bytes(data)
+        self.assertEqual(copy.to_bytes(), data)
+        self.assertEqual(rows(copy.tets), rows(part.tets))
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.Part.from_bytes(data[:-3])
+        self.assertEqual(e.exception.code, anitet.ERR_PARSE)
+
+    def test_errors(self):
+        n = self.mesh.num_tets
+        for bad in (0, -1, n + 1):
+            with self.assertRaises(anitet.AnitetError) as e:
+                self.mesh.partition(bad)
+            self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        with self.assertRaises(anitet.AnitetError) as e:
+            self.mesh.partition(2, tet_weights=[1.0] * (n - 1))
+        self.assertIn("num_tet_weights", e.exception.message)
+        with self.assertRaises(anitet.AnitetError):
+            self.mesh.partition(2, ghost_layers=-1)
+        with self.assertRaises(IndexError):
+            self.mesh.partition(2)[2]
+        with self.assertRaises(TypeError):
+            anitet.partition_mesh("mesh", 2)
 
 
 if __name__ == "__main__":

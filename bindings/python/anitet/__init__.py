@@ -9,6 +9,7 @@ of this package, then the system's loader (libanitet.so.0). NumPy is optional.
     mesh = anitet.mesh_surface(surface, layers=2, progress=lambda stage, f: print(stage, f))
     print(mesh.counts(), mesh.quality(surface))
     mesh.write("fandisk.mesh")
+    partition = mesh.partition(4)                          # parts for 4 ranks, NumPy views
 """
 from ._capi import (ERR_BAD_INDEX, ERR_BUFFER_TOO_SMALL, ERR_CANCELLED, ERR_DEGENERATE_TRIANGLE,
                     ERR_DUPLICATE_POINT, ERR_DUPLICATE_TRIANGLE, ERR_EMPTY_INPUT,
@@ -18,8 +19,18 @@ from ._capi import (ERR_BAD_INDEX, ERR_BUFFER_TOO_SMALL, ERR_CANCELLED, ERR_DEGE
                     ERR_NOT_IMPLEMENTED, ERR_OPEN_BOUNDARY, ERR_OUT_OF_MEMORY, ERR_PARSE,
                     ERR_RECOVERY_FAILED, ERR_SELF_INTERSECTION, ERR_UNSUPPORTED_FORMAT,
                     LAYERS_FACE_PUSH, LAYERS_PUSH, LOG_DEBUG, LOG_ERROR, LOG_INFO, LOG_WARNING, OK,
-                    OPTIONS_VERSION, QUALITY_VERSION, VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH)
+                    OPTIONS_VERSION, QUALITY_VERSION, VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH,
+                    HALO_TET_RECV, HALO_TET_SEND, HALO_VERTEX_RECV, HALO_VERTEX_SEND,
+                    PARTITION_INFO_VERSION, PARTITION_OPTIONS_VERSION, TYPE_DOUBLE, TYPE_INT32,
+                    TYPE_INT64)
+from ._capi import (PART_BOUNDARY_GLOBAL_IDS, PART_BOUNDARY_PATCHES, PART_BOUNDARY_TRIANGLES,  # noqa: F401
+                    PART_NEIGHBOURS, PART_POINTS, PART_REGIONS, PART_TET_GLOBAL_IDS, PART_TET_LAYERS,
+                    PART_TET_OWNERS, PART_TET_RECV, PART_TET_RECV_OFFSETS, PART_TET_SEND,
+                    PART_TET_SEND_OFFSETS, PART_TETS, PART_VERTEX_GLOBAL_IDS, PART_VERTEX_OWNERS,
+                    PART_VERTEX_RECV, PART_VERTEX_RECV_OFFSETS, PART_VERTEX_SEND,
+                    PART_VERTEX_SEND_OFFSETS)
 from ._api import (HAVE_NUMPY, AnitetError, Mesh, Metric, Options, Quality, Surface, error_name,
                    mesh_surface, version, version_number)
+from ._partition import Part, Partition, PartitionInfo, partition_mesh
 
 __version__ = "%d.%d.%d" % (VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH)

@@ -47,6 +47,35 @@ OPTIONS_VERSION = 2
 QUALITY_VERSION = 1
 LAYERS_PUSH = 0
 LAYERS_FACE_PUSH = 1
+PARTITION_OPTIONS_VERSION = 1
+PARTITION_INFO_VERSION = 1
+HALO_VERTEX_SEND = 0
+HALO_VERTEX_RECV = 1
+HALO_TET_SEND = 2
+HALO_TET_RECV = 3
+TYPE_INT32 = 1
+TYPE_INT64 = 2
+TYPE_DOUBLE = 3
+PART_POINTS = 0
+PART_VERTEX_GLOBAL_IDS = 1
+PART_VERTEX_OWNERS = 2
+PART_TETS = 3
+PART_TET_GLOBAL_IDS = 4
+PART_TET_OWNERS = 5
+PART_TET_LAYERS = 6
+PART_REGIONS = 7
+PART_BOUNDARY_TRIANGLES = 8
+PART_BOUNDARY_PATCHES = 9
+PART_BOUNDARY_GLOBAL_IDS = 10
+PART_NEIGHBOURS = 11
+PART_VERTEX_SEND_OFFSETS = 12
+PART_VERTEX_SEND = 13
+PART_VERTEX_RECV_OFFSETS = 14
+PART_VERTEX_RECV = 15
+PART_TET_SEND_OFFSETS = 16
+PART_TET_SEND = 17
+PART_TET_RECV_OFFSETS = 18
+PART_TET_RECV = 19
 
 # ---- callbacks and structs ----------------------------------------------------------------------
 PROGRESS_FN = CFUNCTYPE(c_int, c_double, c_char_p, c_void_p)
@@ -93,6 +122,33 @@ class CQuality(Structure):
         ("max_dihedral_deg", c_double),
         ("good_fraction", c_double),
         ("bad_fraction", c_double),
+    ]
+
+
+class CPartitionOptions(Structure):
+    _fields_ = [
+        ("version", c_int32),
+        ("num_threads", c_int32),
+        ("ghost_layers", c_int32),
+        ("reserved0", c_int32),
+        ("imbalance", c_double),
+        ("tet_weights", POINTER(c_double)),
+        ("num_tet_weights", c_int64),
+    ]
+
+
+class CPartitionInfo(Structure):
+    _fields_ = [
+        ("version", c_int32),
+        ("num_parts", c_int32),
+        ("ghost_layers", c_int32),
+        ("empty_parts", c_int32),
+        ("num_tets", c_int64),
+        ("edge_cut", c_int64),
+        ("interface_vertices", c_int64),
+        ("imbalance", c_double),
+        ("total_weight", c_double),
+        ("max_part_weight", c_double),
     ]
 
 
@@ -143,6 +199,32 @@ _PROTOTYPES = {
     "anitet_mesh_set_metric": (c_int, [_P, _D, c_int64, c_int32]),
     "anitet_mesh_quality": (c_int, [_P, _P, POINTER(CQuality)]),
     "anitet_mesh_quality_json": (c_int, [_P, _P, c_char_p, c_int64, _I64]),
+    "anitet_partition_options_init": (c_int, [POINTER(CPartitionOptions), c_int32]),
+    "anitet_mesh_partition": (c_int, [_P, c_int32, POINTER(CPartitionOptions), _PP]),
+    "anitet_partition_destroy": (None, [_P]),
+    "anitet_partition_get_info": (c_int, [_P, POINTER(CPartitionInfo)]),
+    "anitet_partition_get_tet_parts": (c_int, [_P, _I32, c_int64]),
+    "anitet_partition_get_part": (c_int, [_P, c_int32, _PP]),
+    "anitet_part_destroy": (None, [_P]),
+    "anitet_part_get_index": (c_int, [_P, _I32, _I32, _I32, _I32]),
+    "anitet_part_get_counts": (c_int, [_P, _I64, _I64, _I64, _I64, _I64, _I64]),
+    "anitet_part_get_points": (c_int, [_P, _D, c_int64]),
+    "anitet_part_get_tets": (c_int, [_P, _I32, c_int64, c_int32]),
+    "anitet_part_get_regions": (c_int, [_P, _I32, c_int64]),
+    "anitet_part_get_vertex_global_ids": (c_int, [_P, _I64, c_int64, c_int32]),
+    "anitet_part_get_vertex_owners": (c_int, [_P, _I32, c_int64]),
+    "anitet_part_get_tet_global_ids": (c_int, [_P, _I64, c_int64, c_int32]),
+    "anitet_part_get_tet_owners": (c_int, [_P, _I32, c_int64]),
+    "anitet_part_get_tet_layers": (c_int, [_P, _I32, c_int64]),
+    "anitet_part_get_boundary_triangles": (c_int, [_P, _I32, c_int64, c_int32]),
+    "anitet_part_get_boundary_patches": (c_int, [_P, _I32, c_int64]),
+    "anitet_part_get_boundary_global_ids": (c_int, [_P, _I64, c_int64, c_int32]),
+    "anitet_part_get_neighbours": (c_int, [_P, _I32, c_int64]),
+    "anitet_part_get_halo_size": (c_int, [_P, c_int32, _I64]),
+    "anitet_part_get_halo": (c_int, [_P, c_int32, _I64, c_int64, _I32, c_int64, c_int32]),
+    "anitet_part_get_array": (c_int, [_P, c_int32, _PP, _I64, _I32]),
+    "anitet_part_serialize": (c_int, [_P, c_void_p, c_int64, _I64]),
+    "anitet_part_deserialize": (c_int, [c_void_p, c_int64, _PP]),
 }
 
 
