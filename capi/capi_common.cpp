@@ -135,6 +135,14 @@ const char* anitet_error_name(int32_t code) {
   return anitet::error_name(static_cast<anitet::Error>(code));
 }
 
+int anitet_set_last_error(int32_t code, const char* message) {
+  try {
+    return set_error(code, message ? std::string(message) : std::string());
+  } catch (...) {
+    return code;
+  }
+}
+
 int anitet_options_init(anitet_options* options, int32_t version) {
   const char* const fn = __func__;
   return guard(fn, [&] {

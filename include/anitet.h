@@ -636,6 +636,14 @@ ANITET_API int anitet_part_serialize(const anitet_part* part, void* buf, int64_t
  * bytes of a part, truncated, or inconsistent), OUT_OF_MEMORY. */
 ANITET_API int anitet_part_deserialize(const void* bytes, int64_t size, anitet_part** out);
 
+/* ---------------------------------------------------------------------------------------------
+ * For libraries layered on this ABI (anitet_mpi.h's libanitet_mpi).
+ * ------------------------------------------------------------------------------------------- */
+/** Sets the calling thread's last error message (anitet_last_error_message) to `message` (NULL:
+ * "") and returns `code` unchanged, so that a layered library reports its errors where the
+ * caller of anitet looks for them: `return anitet_set_last_error(ANITET_ERR_..., "...");`. */
+ANITET_API int anitet_set_last_error(int32_t code, const char* message);
+
 #ifdef __cplusplus
 }
 #endif

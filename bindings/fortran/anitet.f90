@@ -165,7 +165,7 @@ module anitet
   public :: c_anitet_part_get_boundary_triangles, c_anitet_part_get_boundary_patches
   public :: c_anitet_part_get_boundary_global_ids, c_anitet_part_get_neighbours
   public :: c_anitet_part_get_halo_size, c_anitet_part_get_halo, c_anitet_part_get_array
-  public :: c_anitet_part_serialize, c_anitet_part_deserialize
+  public :: c_anitet_part_serialize, c_anitet_part_deserialize, c_anitet_set_last_error
 
   interface
     integer(c_int) function c_anitet_options_init(options, version) &
@@ -670,6 +670,14 @@ module anitet
       integer(c_int8_t), intent(in) :: bytes(*)
       integer(c_int64_t), value :: size
       type(c_ptr), intent(out) :: out
+    end function
+
+    ! For libraries layered on the ABI: sets the last error message, returns code.
+    integer(c_int) function c_anitet_set_last_error(code, message) &
+        bind(c, name="anitet_set_last_error")
+      import :: c_int, c_int32_t, c_char
+      integer(c_int32_t), value :: code
+      character(kind=c_char), intent(in) :: message(*)
     end function
 
     ! From the C library, to measure returned strings.

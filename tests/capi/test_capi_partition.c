@@ -13,57 +13,12 @@
 #include <cmocka.h>
 
 #include "capi_test_util.h"
+#include "test_boxes.h"
 #include "sphere_surface.h" /* examples/c: the surface every example meshes */
 
 static int contains(const char* text, const char* part) { return strstr(text, part) != NULL; }
 
 /* ---- meshes --------------------------------------------------------------------------------- */
-
-/* Boxes of nx x ny x nz unit cubes side by side along x, `gap` cubes apart (0: sharing a face),
- * each cube in 6 positive tets around its diagonal; region b+1 for box b; no boundary triangles. */
-static anitet_mesh* make_boxes(int boxes, int nx, int ny, int nz, int gap) {
-  const int px = nx + 1, py = ny + 1, pz = nz + 1;
-  const int64_t np = (int64_t)boxes * px * py * pz, nt = (int64_t)boxes * 6 * nx * ny * nz;
-  double* xyz = malloc((size_t)(3 * np) * sizeof *xyz);
-  int32_t* tets = malloc((size_t)(4 * nt) * sizeof *tets);
-  int32_t* regions = malloc((size_t)nt * sizeof *regions);
-  static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  int64_t v = 0, t = 0;
-  int b, i, j, k, p, s;
-  anitet_mesh* m = NULL;
-  for (b = 0; b < boxes; ++b) {
-    const int32_t first = (int32_t)(b * px * py * pz);
-    for (k = 0; k < pz; ++k)
-      for (j = 0; j < py; ++j)
-        for (i = 0; i < px; ++i, ++v) {
-          xyz[3 * v] = b * (nx + gap) + i;
-          xyz[3 * v + 1] = j;
-          xyz[3 * v + 2] = k;
-        }
-    for (k = 0; k < nz; ++k)
-      for (j = 0; j < ny; ++j)
-        for (i = 0; i < nx; ++i)
-          for (p = 0; p < 6; ++p, ++t) {
-            int c[3];
-            int32_t q[4];
-            c[0] = i, c[1] = j, c[2] = k;
-            q[0] = first + (c[2] * py + c[1]) * px + c[0];
-            for (s = 0; s < 3; ++s) {
-              ++c[perms[p][s]];
-              q[s + 1] = first + (c[2] * py + c[1]) * px + c[0];
-            }
-            if (p == 1 || p == 2 || p == 5) { /* odd permutations: swap to stay positive */
-              const int32_t w = q[2];
-              q[2] = q[3], q[3] = w;
-            }
-            memcpy(&tets[4 * t], q, sizeof q);
-            regions[t] = b + 1;
-          }
-  }
-  assert_int_equal(anitet_mesh_create(xyz, np, tets, nt, regions, NULL, 0, NULL, 0, &m), ANITET_OK);
-  free(xyz), free(tets), free(regions);
-  return m;
-}
 
 static anitet_mesh* make_sphere_mesh(void) {
   static double xyz[3 * SPHERE_NPOINTS];
@@ -217,7 +172,7 @@ static void test_partition_options_init(void** state) {
 }
 
 static void test_partition_grid(void** state) {
-  anitet_mesh* m = make_boxes(1, 8, 6, 5, 0); /* 1440 tets */
+  anitet_mesh* m = test_boxes(1, 8, 6, 5, 0); /* 1440 tets */
   anitet_partition_options o = ANITET_PARTITION_OPTIONS_INIT;
   int32_t n, depth;
   (void)state;
@@ -267,7 +222,7 @@ static void test_partition_sphere_mesh(void** state) {
 }
 
 static void test_partition_disconnected_boxes(void** state) {
-  anitet_mesh* m = make_boxes(2, 4, 3, 3, 2); /* two boxes two cubes apart: no vertex shared */
+  anitet_mesh* m = test_boxes(2, 4, 3, 3, 2); /* two boxes two cubes apart: no vertex shared */
   anitet_partition_options o = ANITET_PARTITION_OPTIONS_INIT;
   int32_t n;
   (void)state;
@@ -294,7 +249,7 @@ static void test_partition_disconnected_boxes(void** state) {
 }
 
 static void test_partition_weights_and_threads(void** state) {
-  anitet_mesh* m = make_boxes(1, 10, 6, 6, 0);
+  anitet_mesh* m = test_boxes(1, 10, 6, 6, 0);
   anitet_partition_options o = ANITET_PARTITION_OPTIONS_INIT;
   anitet_partition *a, *b;
   anitet_partition_info info = ANITET_PARTITION_INFO_INIT;
@@ -331,7 +286,7 @@ static void test_partition_weights_and_threads(void** state) {
 }
 
 static void test_part_fill_accessors(void** state) {
-  anitet_mesh* m = make_boxes(1, 4, 4, 3, 0);
+  anitet_mesh* m = test_boxes(1, 4, 4, 3, 0);
   anitet_partition* pt = partition_ok(m, 3, NULL);
   const anitet_part* part = NULL;
   int64_t nv, nt, nb, i, c, n_items = 0, *off, *off1;
@@ -434,7 +389,7 @@ static void expect_partition_error(const anitet_mesh* m, int32_t parts, const an
 }
 
 static void test_partition_errors(void** state) {
-  anitet_mesh* m = make_boxes(1, 2, 1, 1, 0); /* 12 tets */
+  anitet_mesh* m = test_boxes(1, 2, 1, 1, 0); /* 12 tets */
   anitet_partition_options o = ANITET_PARTITION_OPTIONS_INIT;
   anitet_partition_info info = ANITET_PARTITION_INFO_INIT;
   anitet_partition* pt = NULL;
@@ -485,7 +440,7 @@ static void test_partition_errors(void** state) {
 }
 
 static void test_partition_accessor_errors(void** state) {
-  anitet_mesh* m = make_boxes(1, 2, 2, 1, 0);
+  anitet_mesh* m = test_boxes(1, 2, 2, 1, 0);
   anitet_partition* pt = partition_ok(m, 2, NULL);
   const anitet_part* part = NULL;
   anitet_partition_info info = ANITET_PARTITION_INFO_INIT;
@@ -534,6 +489,14 @@ static void test_partition_accessor_errors(void** state) {
   anitet_mesh_destroy(m);
 }
 
+static void test_set_last_error(void** state) {
+  (void)state;
+  assert_int_equal(anitet_set_last_error(ANITET_ERR_INTERNAL, "layered: it broke"), ANITET_ERR_INTERNAL);
+  assert_string_equal(anitet_last_error_message(), "layered: it broke");
+  assert_int_equal(anitet_set_last_error(ANITET_OK, NULL), ANITET_OK);
+  assert_string_equal(anitet_last_error_message(), "");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_partition_options_init),
@@ -545,6 +508,7 @@ int main(void) {
       cmocka_unit_test(test_part_bytes),
       cmocka_unit_test(test_partition_errors),
       cmocka_unit_test(test_partition_accessor_errors),
+      cmocka_unit_test(test_set_last_error),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

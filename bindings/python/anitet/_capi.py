@@ -225,6 +225,7 @@ _PROTOTYPES = {
     "anitet_part_get_array": (c_int, [_P, c_int32, _PP, _I64, _I32]),
     "anitet_part_serialize": (c_int, [_P, c_void_p, c_int64, _I64]),
     "anitet_part_deserialize": (c_int, [c_void_p, c_int64, _PP]),
+    "anitet_set_last_error": (c_int, [c_int32, c_char_p]),
 }
 
 
