@@ -29,7 +29,7 @@ extern "C" {
 
 /** The MPI tag of anitet_part_exchange's messages on the caller's communicator: have no other
  * message with this tag in flight on it during the call. */
-#define ANITET_MPI_EXCHANGE_TAG 0x616e
+#define ANITET_MPI_EXCHANGE_TAG 24942
 
 /* Where a field of anitet_part_exchange lives. */
 #define ANITET_FIELD_ON_VERTICES 0 /**< one value set per local vertex */
