@@ -1,10 +1,10 @@
 // The parts of an assignment of tets to parts: ghost layers, local numbering, vertex owners,
 // boundary triangles and the halo lists (the orders are part.hpp's).
 #include <algorithm>
-#include <iterator>
 #include <string>
 #include <utility>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "core/buckets.hpp"
@@ -19,6 +19,7 @@ constexpr uint32_t kNone = 0xffffffffu;
 // triangles of each tet with the owner of each triangle.
 struct Shared {
   std::vector<int32_t> vertex_owner;  // -1: a vertex in no tet
+  std::vector<uint8_t> interface;     // 1: the vertex's tets are in more than one part
   Csr part_tets;                      // the tets of each part, ascending
   Csr tet_triangles;                  // the boundary triangles that are faces of each tet
   std::vector<int32_t> triangle_owner;
@@ -42,10 +43,12 @@ Shared shared_tables(const VolumeMesh& mesh, const Csr& vtets, const std::vector
   Shared s;
   const size_t nv = mesh.num_vertices(), nt = mesh.num_tets(), nb = mesh.num_boundary_triangles();
   s.vertex_owner.assign(nv, -1);
+  s.interface.assign(nv, 0);
   tbb::parallel_for(size_t(0), nv, [&](size_t v) {
     int32_t owner = -1;
     for (int64_t k = vtets.begin(v); k < vtets.end(v); ++k) {
       const int32_t p = tet_part[vtets.items[size_t(k)]];
+      if (owner >= 0 && p != owner) s.interface[v] = 1;
       if (owner < 0 || p < owner) owner = p;
     }
     s.vertex_owner[v] = owner;
@@ -87,49 +90,62 @@ void sort_unique(std::vector<uint32_t>& v) {
   v.erase(std::unique(v.begin(), v.end()), v.end());
 }
 
-std::vector<uint32_t> vertices_of(const VolumeMesh& mesh, const std::vector<uint32_t>& tets) {
-  std::vector<uint32_t> out;
-  out.reserve(4 * tets.size());
-  for (uint32_t t : tets) out.insert(out.end(), &mesh.tet[4 * size_t(t)], &mesh.tet[4 * size_t(t)] + 4);
-  sort_unique(out);
-  return out;
-}
+// Per-thread marks over the whole mesh, so that a part costs in proportion to its own size: an
+// entry equal to `stamp` was seen while building the current part (a new stamp per part).
+struct Scratch {
+  std::vector<uint32_t> vertex_seen, tet_seen;
+  std::vector<int32_t> local;  // the local id of a vertex seen in the current part
+  uint32_t stamp = 0;
+  void begin_part(size_t nv, size_t nt) {
+    if (vertex_seen.size() != nv) vertex_seen.assign(nv, 0), local.assign(nv, 0);
+    if (tet_seen.size() != nt) tet_seen.assign(nt, 0);
+    ++stamp;
+  }
+};
 
-// Sorted a minus sorted b.
-std::vector<uint32_t> minus(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
-  std::vector<uint32_t> out;
-  std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
-  return out;
-}
-
-std::vector<uint32_t> merged(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
-  std::vector<uint32_t> out(a.size() + b.size());
-  std::merge(a.begin(), a.end(), b.begin(), b.end(), out.begin());
-  return out;
-}
-
-// Own tets, then the ghost layers; `vertices` gets every vertex of them, ascending.
+// Own tets, then the ghost layers, each ascending; `vertices` gets every vertex of them,
+// ascending, marked in the scratch.
 std::vector<std::vector<uint32_t>> local_tets(const VolumeMesh& mesh, const Csr& vtets, const Shared& s, int p,
-                                              int ghost_layers, std::vector<uint32_t>& vertices) {
+                                              int ghost_layers, Scratch& x, std::vector<uint32_t>& vertices) {
+  x.begin_part(mesh.num_vertices(), mesh.num_tets());
   std::vector<std::vector<uint32_t>> layers(1);
   layers[0].assign(s.part_tets.items.begin() + s.part_tets.begin(size_t(p)),
                    s.part_tets.items.begin() + s.part_tets.end(size_t(p)));
-  std::vector<uint32_t> held = layers[0];
-  vertices = vertices_of(mesh, held);
-  std::vector<uint32_t> frontier = vertices;  // the vertices first held in the last layer
+  // The frontier: vertices whose tets may not all be held yet. For the own tets, the interface
+  // vertices only (the other vertices have no tet of another part); then every new vertex.
+  std::vector<uint32_t> frontier;
+  auto hold_vertices = [&](const std::vector<uint32_t>& tets, bool interface_only) {
+    frontier.clear();
+    for (uint32_t t : tets) {
+      x.tet_seen[t] = x.stamp;
+      for (int k = 0; k < 4; ++k) {
+        const uint32_t v = mesh.tet[4 * size_t(t) + size_t(k)];
+        if (x.vertex_seen[v] == x.stamp) continue;
+        x.vertex_seen[v] = x.stamp;
+        vertices.push_back(v);
+        if (!interface_only || s.interface[v]) frontier.push_back(v);
+      }
+    }
+  };
+  vertices.clear();
+  hold_vertices(layers[0], true);
   for (int layer = 1; layer <= ghost_layers && !frontier.empty(); ++layer) {
     // Every tet of a vertex held earlier is held already: only the frontier's tets are new.
-    std::vector<uint32_t> candidates;
+    std::vector<uint32_t> fresh;
     for (uint32_t v : frontier)
-      candidates.insert(candidates.end(), vtets.items.begin() + vtets.begin(v), vtets.items.begin() + vtets.end(v));
-    sort_unique(candidates);
-    std::vector<uint32_t> fresh = minus(candidates, held);
+      for (int64_t k = vtets.begin(v); k < vtets.end(v); ++k) {
+        const uint32_t t = vtets.items[size_t(k)];
+        if (x.tet_seen[t] != x.stamp) {
+          x.tet_seen[t] = x.stamp;
+          fresh.push_back(t);
+        }
+      }
     if (fresh.empty()) break;
-    held = merged(held, fresh);
-    frontier = minus(vertices_of(mesh, fresh), vertices);
-    vertices = merged(vertices, frontier);
+    std::sort(fresh.begin(), fresh.end());
+    hold_vertices(fresh, false);
     layers.push_back(std::move(fresh));
   }
+  std::sort(vertices.begin(), vertices.end());
   return layers;
 }
 
@@ -158,9 +174,9 @@ struct Built {
 };
 
 Status build_one(const VolumeMesh& mesh, const Csr& vtets, const std::vector<int32_t>& tet_part, const Shared& s,
-                 int p, int num_parts, int ghost_layers, Built& out) {
+                 int p, int num_parts, int ghost_layers, Scratch& x, Built& out) {
   std::vector<uint32_t> vertices;
-  const std::vector<std::vector<uint32_t>> layers = local_tets(mesh, vtets, s, p, ghost_layers, vertices);
+  const std::vector<std::vector<uint32_t>> layers = local_tets(mesh, vtets, s, p, ghost_layers, x, vertices);
   size_t num_tets = 0;
   for (const auto& l : layers) num_tets += l.size();
   if (vertices.size() >= size_t(INT32_MAX) || num_tets >= size_t(INT32_MAX)) {
@@ -173,19 +189,16 @@ Status build_one(const VolumeMesh& mesh, const Csr& vtets, const std::vector<int
   part.num_parts = num_parts;
   part.ghost_layers = ghost_layers;
   // Local vertices: own first, then the others, each ascending.
-  std::vector<int32_t> local_of(vertices.size());
   for (int pass = 0; pass < 2; ++pass)
     for (size_t i = 0; i < vertices.size(); ++i)
       if ((s.vertex_owner[vertices[i]] == p) == (pass == 0)) {
-        local_of[i] = int32_t(part.vertex_global.size());
+        x.local[vertices[i]] = int32_t(part.vertex_global.size());
         part.vertex_global.push_back(vertices[i]);
         part.vertex_owner.push_back(s.vertex_owner[vertices[i]]);
         part.xyz.insert(part.xyz.end(), mesh.point(vertices[i]), mesh.point(vertices[i]) + 3);
         if (pass == 0) ++part.owned_vertices;
       }
-  auto local = [&](uint32_t v) {
-    return local_of[size_t(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin())];
-  };
+  auto local = [&](uint32_t v) { return x.local[v]; };
   for (size_t layer = 0; layer < layers.size(); ++layer)
     for (uint32_t t : layers[layer]) {
       part.tet_global.push_back(t);
@@ -277,8 +290,10 @@ Result<std::vector<Part>> build_parts(const VolumeMesh& mesh, const Csr& vertex_
   const Shared s = shared_tables(mesh, vertex_tets, tet_part, num_parts);
   std::vector<Built> built(static_cast<size_t>(num_parts));
   std::vector<Status> status(static_cast<size_t>(num_parts));
+  tbb::enumerable_thread_specific<Scratch> scratch;
   tbb::parallel_for(0, num_parts, [&](int p) {
-    status[size_t(p)] = build_one(mesh, vertex_tets, tet_part, s, p, num_parts, ghost_layers, built[size_t(p)]);
+    status[size_t(p)] =
+        build_one(mesh, vertex_tets, tet_part, s, p, num_parts, ghost_layers, scratch.local(), built[size_t(p)]);
   });
   for (const Status& st : status)
     if (!st.ok()) return st;
