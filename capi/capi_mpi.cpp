@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <new>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -59,7 +60,8 @@ int receive_bytes(std::vector<uint8_t>& bytes, bool& failed, int from, MPI_Comm 
   return rc;
 }
 
-// The root: part r as bytes (an empty vector when it could not be made).
+// The root: part r as bytes (an empty vector when it could not be made: the rank is told, rather
+// than left waiting for bytes that never come).
 std::vector<uint8_t> part_bytes(const anitet_partition* partition, int r) {
   const anitet_part* part = nullptr;
   int64_t needed = 0;
@@ -67,9 +69,13 @@ std::vector<uint8_t> part_bytes(const anitet_partition* partition, int r) {
       anitet_part_serialize(part, nullptr, 0, &needed) != ANITET_OK) {
     return {};
   }
-  std::vector<uint8_t> bytes(static_cast<size_t>(needed));
-  if (anitet_part_serialize(part, bytes.data(), needed, nullptr) != ANITET_OK) return {};
-  return bytes;
+  try {
+    std::vector<uint8_t> bytes(static_cast<size_t>(needed));
+    if (anitet_part_serialize(part, bytes.data(), needed, nullptr) != ANITET_OK) return {};
+    return bytes;
+  } catch (const std::bad_alloc&) {
+    return {};
+  }
 }
 
 // The root's outcome (code and message) on every rank.

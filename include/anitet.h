@@ -455,8 +455,9 @@ typedef struct anitet_partition_options {
                                    (default 0.03) */
   const double* tet_weights;  /**< NULL (every tet weighs 1) or one weight per tet of the mesh,
                                    finite, >= 0, one > 0; read during the call only. METIS gets
-                                   them rounded to integers relative to the largest (at most
-                                   1000 steps; a positive weight at least 1) */
+                                   them rounded to integers relative to the largest (1000 steps,
+                                   fewer past 2 million tets so that their sum stays below
+                                   2^31; a positive weight at least 1) */
   int64_t num_tet_weights;    /**< the length of tet_weights (the mesh's tets), 0 with NULL */
   /* Version 2 and later append fields here. */
 } anitet_partition_options;
