@@ -191,11 +191,18 @@ int run_check_surface(const CheckSurfaceArgs& args) {
 CLI::App* add_check_surface_command(CLI::App& app, CheckSurfaceArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "check-surface", "Read and validate a triangulated surface; report problems and safe repairs");
-  cmd->add_option("IN", args.input, "Surface file (.off .obj .stl .ply .mesh .msh, or .su2: its boundary markers)")->required();
+  cmd->add_option("IN", args.input,
+                  "Surface (.off .obj .stl .ply .mesh .meshb .msh .su2), or a volume mesh whose boundary "
+                  "triangles are the surface (.mesh .meshb .msh .vtu .su2 .node/.ele)")
+      ->required();
   cmd->add_option("-o,--output", args.output,
                         "Write the surface after the safe repairs (merged vertices, reoriented triangles and "
                         "shells) here when it is valid: .off, .obj, .stl (float: lossy) or .mesh (keeps patch labels)");
   cmd->add_flag("--json", args.json, "Print the report as JSON");
+  cmd->footer(
+      "Examples:\n"
+      "  anitet check-surface part.stl                     # what is wrong, with element numbers\n"
+      "  anitet check-surface soup.stl -o repaired.mesh    # the repaired surface, patches kept");
   return cmd;
 }
 

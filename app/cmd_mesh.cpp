@@ -111,6 +111,109 @@ int exit_code_of(Error e) {
 
 }  // namespace
 
+namespace {
+
+// --verbose: every stage's figures, then the full quality report.
+void print_details(const MesherResult& r, const QualityReport& quality) {
+  const BoundaryLayerReport& bl = r.boundary_layer;
+  std::cout << "details:\n";
+    for (const StageReport& s : r.stages)
+      std::cout << "  stage " << s.name << ": " << format_seconds(s.seconds) << ", " << s.tets << " tets\n";
+    if (bl.layers > 0) {
+      std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
+                << bl.tets << " tets, " << bl.vertices << " vertices kept fixed; " << bl.full_columns
+                << " full columns, " << bl.nominal_columns << " within 10% of h0 r^i (max error "
+                << bl.max_height_error << "); reduced vertices " << bl.reduced_vertices << " ("
+                << 100.0 * r.layers.bl_reduced_share << "%); first height min " << bl.first_height_min
+                << " mean " << bl.first_height_mean << " max " << bl.first_height_max << "; growth "
+                << bl.growth_mean << "; BL vertices moved after stage 1 by at most " << bl.max_displacement
+                << "; " << format_seconds(r.layers.bl_seconds) << "\n";
+      std::cout << "  boundary layer: wall vertices by layers reached:";
+      for (size_t i = 0; i < bl.columns_reaching.size(); ++i)
+        if (bl.columns_reaching[i] > 0) std::cout << " " << i << ": " << bl.columns_reaching[i];
+      std::cout << "\n";
+    }
+    std::cout << "  stage 2 Steiner points on S1: " << r.recovery.steiner_on_edges << " on edges, "
+              << r.recovery.steiner_on_faces << " in faces (" << recovery_strategy_name(r.recovery.strategy)
+              << "); coupling split " << r.couple.edge_split_tets
+              << " T1 tets and re-coned " << r.couple.faces_reconed << " S1 faces\n"
+              << "  stage 2 time: Delaunay " << format_seconds(r.recovery.seconds_delaunay) << ", recovery "
+              << format_seconds(r.recovery.seconds_recovery) << ", carving " << format_seconds(r.recovery.seconds_carve) << "\n"
+              << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits (" << r.refine.parallel_splits << " by the slab tasks), "
+              << r.refine.collapses << " collapses (" << r.refine.split_rejected << " splits put off, "
+              << r.refine.collapse_rejected << " collapses refused); normalized edge length mean " << r.refine.length_mean
+              << ", " << 100.0 * r.refine.length_in_range << "% in [1/sqrt2, sqrt2]"
+              << (r.anisotropic_cycles > 0 ? " (anisotropic metric: refinement and optimization ran " +
+                                                  std::to_string(1 + r.anisotropic_cycles) + " times)"
+                                            : std::string())
+              << "\n"
+              << "  refinement time: edge lists " << format_seconds(r.refine.seconds_edges) << ", split choice "
+              << format_seconds(r.refine.seconds_choice) << ", insertion " << format_seconds(r.refine.seconds_insertion) << ", collapses "
+              << format_seconds(r.refine.seconds_collapses) << ""
+              << (r.refine.seconds_flips > 0.0 ? ", metric flips " + format_seconds(r.refine.seconds_flips)
+                                               : std::string())
+              << "\n"
+              << "  optimization: " << optimization_counts(r.optimize) << "; radius ratio min " << r.optimize.before.min << " -> "
+              << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
+              << "\n"
+              << "  optimization time: summaries and metrics " << format_seconds(r.optimize.seconds_setup) << ", CVT "
+              << format_seconds(r.optimize.seconds_cvt) << ", flips " << format_seconds(r.optimize.seconds_flips) << ", slivers "
+              << format_seconds(r.optimize.seconds_slivers) << ", certification " << format_seconds(r.optimize.seconds_certify) << "\n";
+    if (r.metric_quality.tets > 0) {
+      const QualitySummary& mq = r.metric_quality;
+      std::cout << "  in the metric (anisotropic field; the report below is Euclidean): radius ratio mean "
+                << mq.mean << " min " << mq.min << ", below 0.1: " << mq.below_01 << " ("
+                << 100.0 * double(mq.below_01) / double(mq.tets) << "%), below 0.4: " << mq.below_04 << " ("
+                << 100.0 * double(mq.below_04) / double(mq.tets) << "%)\n";
+    }
+    std::cout << quality_report_text(quality);
+}
+
+// The default report: about a dozen lines, what most runs need to know.
+void print_summary(const MeshArgs& args, const MesherResult& r, const QualityReport& q, bool report_written) {
+  const double rate = r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0;
+  std::cout << "anitet mesh: " << args.input << " -> " << args.output << ": " << r.mesh.num_vertices()
+            << " vertices, " << r.mesh.num_tets() << " tets in " << format_seconds(r.seconds) << " ("
+            << std::llround(rate) << " tets/s)\n";
+  std::cout << "  stages:";
+  for (const StageReport& st : r.stages)
+    if (st.name != "output" && st.seconds >= 0.0005) std::cout << " " << st.name << " " << format_seconds(st.seconds) << ",";
+  std::cout << " report " << format_seconds(q.seconds) << "\n";
+  const SurfaceMatchReport& sm = q.surface;
+  std::cout << "  surface kept exactly: " << (sm.boundary_constrained ? "YES" : "NO") << " ("
+            << sm.input_triangles - sm.input_triangles_missing << " of " << sm.input_triangles
+            << " input triangles are faces of the mesh, " << sm.steiner_points_on_boundary
+            << " points added on the surface)\n";
+  std::cout << "  valid: " << (q.valid ? "YES" : "NO") << " (" << q.nonpositive_tets << " inverted or flat tets, "
+            << q.faces_shared_by_more_than_two << " faces of three tets)\n";
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "  radius ratio: mean %.3f, min %.3f (touching the surface: mean %.3f, min %.3f; interior: "
+                "mean %.3f, min %.3f)\n",
+                q.radius_ratio.mean, q.radius_ratio.min, sm.touching_surface.radius_ratio.mean,
+                sm.touching_surface.radius_ratio.min, sm.interior.radius_ratio.mean, sm.interior.radius_ratio.min);
+  std::cout << line;
+  std::snprintf(line, sizeof line,
+                "  dihedral angles %.1f to %.1f deg; %.2f%% of tets above radius ratio 0.4, %.2f%% below 0.1\n",
+                q.min_dihedral_deg, q.max_dihedral_deg, 100.0 * q.good_fraction, 100.0 * q.bad_fraction);
+  std::cout << line;
+  const BoundaryLayerReport& bl = r.boundary_layer;
+  if (bl.layers > 0)
+    std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
+              << bl.full_columns << " full columns (" << std::llround(bl.wall_vertices ? 100.0 * double(bl.full_columns) / double(bl.wall_vertices) : 0.0)
+              << "%), first height " << bl.first_height_min << " .. " << bl.first_height_max << "\n";
+  if (r.metric_quality.tets > 0) {
+    std::snprintf(line, sizeof line,
+                  "  in the metric: %.1f%% of edges in [1/sqrt2, sqrt2]; radius ratio mean %.3f, min %.3f\n",
+                  100.0 * r.refine.length_in_range, r.metric_quality.mean, r.metric_quality.min);
+    std::cout << line;
+  }
+  for (const Notice& n : r.notices) std::cout << "  notice: " << n.message << "\n";
+  if (!args.report_html.empty() && report_written) std::cout << "  html report: " << args.report_html << "\n";
+}
+
+}  // namespace
+
 int run_mesh_pipeline(MeshArgs& args) {
   const std::string cmd = "anitet mesh";
   if (const int code = check_output_paths(args); code != kExitOk) return code;
@@ -334,61 +437,9 @@ int run_mesh_pipeline(MeshArgs& args) {
     out["not_written"] = not_written;
     std::cout << out.dump(1) << "\n";
   } else if (!args.quiet) {
-    std::cout << "anitet mesh: " << args.input << " -> " << args.output << ": " << r.mesh.num_vertices()
-              << " vertices, " << r.mesh.num_tets() << " tets in " << r.seconds << " s ("
-              << (r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0) << " tets/s)\n";
-    for (const StageReport& s : r.stages)
-      std::cout << "  stage " << s.name << ": " << s.seconds << " s, " << s.tets << " tets\n";
-    for (const Notice& n : r.notices) std::cout << "  notice: " << n.message << "\n";
-    if (bl.layers > 0) {
-      std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
-                << bl.tets << " tets, " << bl.vertices << " vertices kept fixed; " << bl.full_columns
-                << " full columns, " << bl.nominal_columns << " within 10% of h0 r^i (max error "
-                << bl.max_height_error << "); reduced vertices " << bl.reduced_vertices << " ("
-                << 100.0 * r.layers.bl_reduced_share << "%); first height min " << bl.first_height_min
-                << " mean " << bl.first_height_mean << " max " << bl.first_height_max << "; growth "
-                << bl.growth_mean << "; BL vertices moved after stage 1 by at most " << bl.max_displacement
-                << "; " << r.layers.bl_seconds << " s\n";
-      std::cout << "  boundary layer: wall vertices by layers reached:";
-      for (size_t i = 0; i < bl.columns_reaching.size(); ++i)
-        if (bl.columns_reaching[i] > 0) std::cout << " " << i << ": " << bl.columns_reaching[i];
-      std::cout << "\n";
-    }
-    std::cout << "  stage 2 Steiner points on S1: " << r.recovery.steiner_on_edges << " on edges, "
-              << r.recovery.steiner_on_faces << " in faces (" << recovery_strategy_name(r.recovery.strategy)
-              << "); coupling split " << r.couple.edge_split_tets
-              << " T1 tets and re-coned " << r.couple.faces_reconed << " S1 faces\n"
-              << "  stage 2 time: Delaunay " << r.recovery.seconds_delaunay << " s, recovery "
-              << r.recovery.seconds_recovery << " s, carving " << r.recovery.seconds_carve << " s\n"
-              << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits (" << r.refine.parallel_splits << " by the slab tasks), "
-              << r.refine.collapses << " collapses (" << r.refine.split_rejected << " splits put off, "
-              << r.refine.collapse_rejected << " collapses refused); normalized edge length mean " << r.refine.length_mean
-              << ", " << 100.0 * r.refine.length_in_range << "% in [1/sqrt2, sqrt2]"
-              << (r.anisotropic_cycles > 0 ? " (anisotropic metric: refinement and optimization ran " +
-                                                  std::to_string(1 + r.anisotropic_cycles) + " times)"
-                                            : std::string())
-              << "\n"
-              << "  refinement time: edge lists " << r.refine.seconds_edges << " s, split choice "
-              << r.refine.seconds_choice << " s, insertion " << r.refine.seconds_insertion << " s, collapses "
-              << r.refine.seconds_collapses << " s"
-              << (r.refine.seconds_flips > 0.0 ? ", metric flips " + std::to_string(r.refine.seconds_flips) + " s"
-                                               : std::string())
-              << "\n"
-              << "  optimization: " << optimization_counts(r.optimize) << "; radius ratio min " << r.optimize.before.min << " -> "
-              << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
-              << "\n"
-              << "  optimization time: summaries and metrics " << r.optimize.seconds_setup << " s, CVT "
-              << r.optimize.seconds_cvt << " s, flips " << r.optimize.seconds_flips << " s, slivers "
-              << r.optimize.seconds_slivers << " s, certification " << r.optimize.seconds_certify << " s\n";
-    if (r.metric_quality.tets > 0) {
-      const QualitySummary& mq = r.metric_quality;
-      std::cout << "  in the metric (anisotropic field; the report below is Euclidean): radius ratio mean "
-                << mq.mean << " min " << mq.min << ", below 0.1: " << mq.below_01 << " ("
-                << 100.0 * double(mq.below_01) / double(mq.tets) << "%), below 0.4: " << mq.below_04 << " ("
-                << 100.0 * double(mq.below_04) / double(mq.tets) << "%)\n";
-    }
-    std::cout << quality_report_text(quality.value());
-    if (!args.report_html.empty() && not_written.empty()) std::cout << "html report: " << args.report_html << "\n";
+    print_summary(args, r, quality.value(), not_written.empty());
+    if (args.verbose) print_details(r, quality.value());
+    else std::cout << "  (-v: every stage's figures and the full quality report)\n";
   }
   return not_written.empty() ? kExitOk : kExitReadError;
 }
@@ -438,51 +489,92 @@ int check_mesh_option_combinations(const CLI::App& cmd, const MeshArgs& a) {
 CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
   args.command = "mesh";
   CLI::App* cmd = app.add_subcommand(
-      "mesh", "Mesh the volume inside a closed surface, keeping it exactly: layers, Delaunay "
-              "with boundary recovery, coupling, metric refinement/coarsening, CVT and sliver removal");
+      "mesh", "Fill a closed surface with tetrahedra, keeping the surface exactly (every input triangle a "
+              "face of the mesh, no point added on it): advancing-front layers, Delaunay with boundary "
+              "recovery, coupling, refinement and coarsening to the sizing field, CVT and sliver removal");
   add_mesh_io_options(cmd, args);
-  CLI::Option* mesh_report = cmd->add_option(
-      "--report", args.report_html,
-      "Also write the HTML quality report of the mesh here (summary with the stage timers, histograms, cut views)");
-  cmd->add_option("--cut", args.report_cut, "Cut planes of the HTML report: x,y,z as fractions of the bounding box")
+  const char* io = "Input and output";
+  CLI::Option* mesh_report =
+      cmd->add_option("--report", args.report_html,
+                      "Also write the HTML quality report here (run figures, histograms, cut views)")
+          ->group(io);
+  cmd->add_option("--cut", args.report_cut, "Cut planes of the HTML report: x,y,z as fractions of the box")
       ->expected(3)
       ->delimiter(',')
       ->capture_default_str()
       ->check(in_range(0.0, 1.0))
-      ->needs(mesh_report);
+      ->needs(mesh_report)
+      ->group(io);
+  cmd->add_flag("--json", args.json, "Print the report as JSON (on failure too: {\"ok\": false, ...})")->group(io);
+  cmd->add_flag("-v,--verbose", args.verbose, "Print every stage's figures and the full quality report")->group(io);
+
+  const char* stages = "Stages";
+  cmd->add_option("--front-layers", args.layers,
+                  "Advancing-front layers of stage 1: the paper's layers that hide the surface from the "
+                  "Delaunay stage (not boundary layers: those are --bl-*)")
+      ->capture_default_str()
+      ->check(in_range(1, 50))
+      ->group(stages);
+  cmd->add_option("--layers", args.deprecated_layers, "Deprecated name of --front-layers")
+      ->check(in_range(1, 50))
+      ->group("");  // hidden
   cmd->add_option("--stop-after", args.stop_after,
-                       "Stop after a stage and write its result: 'layers' writes T1 (stage 1) to the "
-                       "output, with S1 as one more patch, and S1 to OUTSTEM.front.off")
-      ->check(CLI::IsMember({"layers"}));
-  cmd->add_option("--layers", args.layers, "Number of advancing-front layers (stage 1)")
-      ->capture_default_str()
-      ->check(in_range(1, 50));
+                  "Stop after a stage and write its result: 'layers' writes T1 (stage 1) to the output, "
+                  "with S1 as one more patch, and S1 to OUTSTEM.front.off")
+      ->check(CLI::IsMember({"layers"}))
+      ->group(stages);
   cmd->add_option("--attempts-seconds", args.attempts_seconds,
-                       "Wall time for stages 1-2 and the coupling, run again with other layer counts and "
-                       "recovery strategies when S1 is not recovered; no new attempt starts after it (0: no limit)")
+                  "Wall time for stages 1-2 and the coupling, run again with other layer counts and "
+                  "recovery strategies when S1 is not recovered; no attempt starts after it (0: no limit)")
       ->capture_default_str()
-      ->check(non_negative());
+      ->check(non_negative())
+      ->group(stages);
   cmd->add_option("--layer-scheme", args.layer_scheme,
-                       "Stage 1 scheme: push (prism layers, each front vertex pushed off in turn) or "
-                       "faces (the paper's: a tet on every face, then vertex pushes)")
+                  "Stage 1 scheme: push (prism layers, each front vertex pushed off in turn) or faces "
+                  "(the paper's: a tet on every face, then vertex pushes)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"push", "faces"}));
+      ->check(CLI::IsMember({"push", "faces"}))
+      ->group(stages);
   cmd->add_option("--push-tasks-min-vertices", args.push_tasks_min_vertices,
-                       "Stage 1 pushes a layer on two tasks, one per side of a plane, when it has at least "
-                       "this many front vertices (the same mesh on one core as on two); 0: every push one by "
-                       "one, in vertex order")
-      ->capture_default_str();
+                  "Stage 1 pushes a layer on two tasks, one per side of a plane, from this many front "
+                  "vertices (the same mesh either way); 0: every push one by one")
+      ->capture_default_str()
+      ->group(stages);
+  cmd->add_flag("--no-refine", args.no_refine, "Skip refinement/coarsening by metric edge length")->group(stages);
+  cmd->add_flag("--no-optimize", args.no_optimize, "Skip CVT smoothing, flips and sliver removal")->group(stages);
+  cmd->add_option("--anisotropic-cycles", args.anisotropic_cycles,
+                  "With an anisotropic metric (--metric tensors, --bl-sizing): more rounds of refinement "
+                  "then optimization after the first, which even the metric lengths and shapes further")
+      ->check(in_range(0, 10))
+      ->capture_default_str()
+      ->group(stages);
+
+  const char* sizing = "Sizing";
+  cmd->add_option("--size", args.size,
+                  "A factor on every target edge length (of --metric's field, or of the default grid from "
+                  "the surface's triangle sizes), after --hmin/--hmax/--hgrad: 0.5 = twice as fine, 2 = "
+                  "twice as coarse")
+      ->capture_default_str()
+      ->check(positive())
+      ->group(sizing);
+  cmd->add_option("--max-tets", args.max_tets,
+                  "Refuse to refine when the sizing field asks for more tets than this (estimated before "
+                  "refinement); default: what free memory holds at about 200 bytes a tet; 0: no limit")
+      ->check(non_negative())
+      ->group(sizing);
+  add_metric_options(*cmd, args.metric);
+
   const char* bl_group = "Boundary layer";
   cmd->add_option("--bl-patches", args.bl_patches,
-                       "The input's patch labels (comma-separated) that are walls, each a whole shell: "
-                       "n thin prism layers grow there first, then the ordinary --layers on the whole "
-                       "front. BL tets keep their heights through the pipeline (frozen for refinement "
-                       "and optimization) and get region bodies + body (1 for one body)")
+                  "The input's patch labels (comma-separated) that are walls, each a whole shell: n thin "
+                  "prism layers grow there first, then the front layers on the whole front. BL tets keep "
+                  "their heights (frozen for refinement and optimization) and get region bodies + body "
+                  "(1 for one body)")
       ->delimiter(',')
       ->group(bl_group);
   CLI::Option* first_height_opt =
       cmd->add_option("--bl-first-height", args.bl_first_height,
-                           "First layer height h0 (length units; needed with --bl-patches unless --bl-yplus gives it)")
+                      "First layer height h0 (a length; needed with --bl-patches unless --bl-yplus gives it)")
           ->check(positive())
           ->group(bl_group);
   CLI::Option* reynolds_opt =
@@ -491,13 +583,13 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
           ->group(bl_group);
   CLI::Option* ref_length_opt =
       cmd->add_option("--bl-ref-length", args.bl_ref_length,
-                           "Reference length L of --bl-reynolds (length units), for --bl-yplus")
+                      "Reference length L of --bl-reynolds (a length), for --bl-yplus")
           ->check(positive())
           ->group(bl_group);
   cmd->add_option("--bl-yplus", args.bl_yplus,
-                       "Target y+ of the first layer: h0 from the flat-plate estimate Cf = 0.026 Re^(-1/7), "
-                       "h0 = y+ L / (Re sqrt(Cf/2)); needs --bl-reynolds and --bl-ref-length, excludes "
-                       "--bl-first-height; the h0 used is printed")
+                  "Target y+ of the first layer: h0 from the flat-plate estimate Cf = 0.026 Re^(-1/7), "
+                  "h0 = y+ L / (Re sqrt(Cf/2)); needs --bl-reynolds and --bl-ref-length, excludes "
+                  "--bl-first-height; the h0 used is printed")
       ->check(positive())
       ->needs(reynolds_opt)
       ->needs(ref_length_opt)
@@ -512,34 +604,30 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
       ->check(in_range(1, 1000))
       ->group(bl_group);
   cmd->add_flag("--bl-sizing", args.bl_sizing,
-                     "Refine the interior to continue the boundary layer's heights: the sizing field is "
-                     "intersected with a metric of normal size h0 + (r - 1) d at distance d from the walls, "
-                     "so the tets on the BL's top are about as thin as its last layer instead of jumping to "
-                     "the surface's sizes. Anisotropic near the walls: refinement is slower. Needs "
-                     "--bl-patches and --bl-growth above 1")
+                "Refine the interior to continue the boundary layer's heights (normal size h0 + (r - 1) d "
+                "at distance d from the walls) instead of jumping to the surface's sizes; anisotropic near "
+                "the walls, so refinement is slower. Needs --bl-patches and --bl-growth above 1")
       ->group(bl_group);
-  cmd->add_option("--size", args.size,
-                       "Scale every target edge length of the sizing field (--metric's, or the paper's "
-                       "grid from the surface's triangle sizes), after --hmin/--hmax/--hgrad: 0.5 = "
-                       "twice as fine, 2 = twice as coarse")
-      ->capture_default_str()
-      ->check(positive())
-      ->group("Sizing");
-  add_metric_options(*cmd, args.metric);
-  cmd->add_flag("--no-refine", args.no_refine, "Skip refinement/coarsening by metric edge length");
-  cmd->add_flag("--no-optimize", args.no_optimize, "Skip CVT smoothing, flips and sliver removal");
-  cmd
-      ->add_option("--anisotropic-cycles", args.anisotropic_cycles,
-                   "With an anisotropic metric (--metric tensors, --bl-sizing): more rounds of refinement then "
-                   "optimization after the first, which even the metric lengths and shapes further")
-      ->check(in_range(0, 10))
-      ->capture_default_str();
-  cmd->add_flag("--json", args.json, "Print the report as JSON");
+  cmd->footer(
+      "Examples:\n"
+      "  anitet mesh part.stl -o part.mesh                    # the defaults: sizes from the surface\n"
+      "  anitet mesh part.stl -o fine.vtu --size 0.5          # every size halved\n"
+      "  anitet mesh case.mesh -o case.su2 --also-write case.cgns --patch-names 1=wall,2=farfield \\\n"
+      "      --bl-patches 1 --bl-first-height 1e-3 --bl-layers 10   # boundary layers on patch 1");
   return cmd;
 }
 
 int run_mesh(const CLI::App& cmd, MeshArgs& args) {
   if (const int code = check_mesh_option_combinations(cmd, args); code != kExitOk) return code;
+  if (args.deprecated_layers > 0) {
+    if (cmd.count("--front-layers") > 0) {
+      std::cerr << "anitet mesh: --layers is the old name of --front-layers: give --front-layers only\n";
+      return kExitUsage;
+    }
+    std::cerr << "anitet mesh: --layers is deprecated: it is --front-layers (stage 1's advancing-front "
+                 "layers; boundary layers are --bl-layers)\n";
+    args.layers = args.deprecated_layers;
+  }
   if (args.bl_yplus > 0.0) {
     Result<double> h0 = first_height_from_yplus(args.bl_yplus, args.bl_reynolds, args.bl_ref_length);
     if (!h0.ok()) {

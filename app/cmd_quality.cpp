@@ -129,7 +129,7 @@ int run_report(QualityArgs& args) {
 CLI::App* add_quality_command(CLI::App& app, QualityArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "quality", "Quality report of a tetrahedral mesh, optionally against its input surface");
-  cmd->add_option("MESH", args.mesh, "Mesh file (.mesh .msh .vtu, TetGen .node/.ele)")->required();
+  cmd->add_option("MESH", args.mesh, "Mesh file (.mesh .meshb .msh .vtu, TetGen .node/.ele)")->required();
   cmd->add_option("--surface", args.surface,
                           "Input surface: check that the mesh keeps it (boundary constrained)");
   cmd->add_flag("--json", args.json, "Print the report as JSON");
@@ -159,13 +159,17 @@ CLI::App* add_quality_command(CLI::App& app, QualityArgs& args) {
                           "Per-vertex Medit .sol of MESH (sizes or tensors, as `mesh --write-metric` "
                           "writes): the report's edge lengths are measured in it")
       ->needs(report_opt);
+  cmd->footer(
+      "Examples:\n"
+      "  anitet quality part.mesh --surface part.stl         # valid? surface kept? shape figures\n"
+      "  anitet quality part.mesh --strict --json            # exit 4 when invalid or not kept");
   return cmd;
 }
 
 CLI::App* add_report_command(CLI::App& app, QualityArgs& args) {
     CLI::App* cmd = app.add_subcommand(
       "report", "Write the self-contained HTML quality report of a mesh (histograms, cut views) and print the text report");
-  cmd->add_option("MESH", args.mesh, "Mesh file (.mesh .msh .vtu, TetGen .node/.ele)")->required();
+  cmd->add_option("MESH", args.mesh, "Mesh file (.mesh .meshb .msh .vtu, TetGen .node/.ele)")->required();
   cmd->add_option("--surface", args.surface, "Input surface: check that the mesh keeps it");
   cmd->add_option("-o,--output", args.report_html, "The HTML page (default: MESH with .html)");
   cmd->add_option("--cut", args.cut, "Cut planes: x,y,z as fractions of the bounding box")
@@ -177,6 +181,10 @@ CLI::App* add_report_command(CLI::App& app, QualityArgs& args) {
       ->capture_default_str()
       ->check(positive());
   cmd->add_option("--metric", args.metric_sol, "Per-vertex Medit .sol of MESH: edge lengths in it");
+  cmd->footer(
+      "Examples:\n"
+      "  anitet report part.mesh --surface part.stl          # writes part.html\n"
+      "  anitet report part.mesh -o view.html --cut 0.5,0.3,0.5");
   return cmd;
 }
 

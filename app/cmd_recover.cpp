@@ -65,8 +65,13 @@ int run_recover(MeshArgs& args) {
 CLI::App* add_recover_command(CLI::App& app, MeshArgs& args) {
   args.command = "recover";
   CLI::App* cmd = app.add_subcommand(
-      "recover", "Delaunay mesh of the surface's points with the surface recovered conformingly (Steiner points on it)");
+      "recover", "The Delaunay tetrahedra of the surface's points with the surface recovered conformingly "
+                 "(Steiner points added on it): stage 2 of mesh alone, for tests and comparisons");
   add_mesh_io_options(cmd, args);
+  cmd->footer(
+      "Examples:\n"
+      "  anitet recover part.stl -o part.mesh       # the Delaunay tets of the surface's points\n"
+      "  anitet recover part.stl -o part.vtu --recovery split");
   return cmd;
 }
 

@@ -77,7 +77,10 @@ struct MeshArgs {
   bool quiet = false;
   bool json = false;
   std::string stop_after;               // "" (the whole pipeline) or "layers"
-  int layers = 1;                       // stage 1 layer count
+  int layers = 1;                       // --front-layers: stage 1 layer count
+  int deprecated_layers = 0;            // --layers, the old name of --front-layers (0: not given)
+  bool verbose = false;                 // -v: every stage's figures and the full quality report
+  double max_tets = -1;                 // --max-tets (-1: from free memory; 0: no limit)
   double attempts_seconds = 240;        // MesherOptions::attempts_seconds
   std::string layer_scheme = "push";    // "push" (prism layers) or "faces" (the paper's)
   size_t push_tasks_min_vertices = LayersOptions().push_tasks_min_vertices;

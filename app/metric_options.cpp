@@ -111,10 +111,14 @@ void add_metric_options(CLI::App& cmd, MetricCliOptions& o) {
                  "Background tetrahedral mesh of a .sol/.solb --metric (.mesh .meshb .msh .vtu .node)")
       ->group(group)
       ->check(CLI::ExistingFile);
-  cmd.add_option("--hmin", o.hmin, "Smallest edge size (0: no bound)")
+  cmd.add_option("--hmin", o.hmin,
+                 "Smallest target edge length: an absolute length in the input's units, applied to the "
+                 "field before --size (0: no bound)")
       ->group(group)
       ->check(non_negative());
-  cmd.add_option("--hmax", o.hmax, "Largest edge size (0: no bound)")
+  cmd.add_option("--hmax", o.hmax,
+                 "Largest target edge length: an absolute length in the input's units, applied to the "
+                 "field before --size (0: no bound)")
       ->group(group)
       ->check(non_negative());
   cmd.add_option("--hgrad", o.hgrad,

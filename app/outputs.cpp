@@ -127,27 +127,33 @@ int check_patch_names(MeshArgs& args, const CheckedSurface& input, const std::ve
 }
 
 void add_mesh_io_options(CLI::App* cmd, MeshArgs& args) {
-  cmd->add_option("IN", args.input, "Closed surface file (.off .obj .stl .ply .mesh .msh, or .su2: its boundary markers as named patches)")->required();
-  cmd->add_option("-o,--output", args.output,
-                  "Output mesh: .mesh .msh .vtu, or for solvers .su2 (SU2), .cgns (CGNS), .exo/.e "
-                  "(Exodus II), or a directory path ending in polyMesh (OpenFOAM, e.g. CASE/constant/polyMesh)")
+  const char* io = "Input and output";
+  cmd->add_option("IN", args.input,
+                  "Closed surface (.off .obj .stl .ply .mesh .meshb .msh .su2), or a volume mesh whose "
+                  "boundary triangles are the surface (.mesh .meshb .msh .vtu .su2 .node/.ele)")
       ->required();
+  cmd->add_option("-o,--output", args.output,
+                  "Output mesh: .mesh .meshb .msh .vtu, or for solvers .su2 (SU2), .cgns (CGNS), .exo/.e "
+                  "(Exodus II), or a directory path ending in polyMesh (OpenFOAM: CASE/constant/polyMesh)")
+      ->required()
+      ->group(io);
   cmd->add_option("--also-write", args.also_write,
-                  "Also write the same mesh to this file (any output format; repeat for more), e.g. "
-                  "-o case.cgns --also-write case.su2 --also-write case.mesh");
-  cmd->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
+                  "Also write the same mesh to this file, any output format; repeat for more (-o case.cgns "
+                  "--also-write case.su2)")
+      ->group(io);
+  cmd->add_option("--patch-names", args.patch_names_spec,
+                  "Names of the input's patch labels, LABEL=NAME,... (1=wall,2=farfield); unnamed labels "
+                  "are patch<label>. A name: 1-32 letters, digits or '_', starting with a letter. Used as "
+                  "SU2 markers, OpenFOAM patches, CGNS and Exodus names, Gmsh physical names. A name with "
+                  "'farfield' or 'symmetry' (any case) sets the CGNS BC and OpenFOAM patch type; others are walls")
+      ->group(io);
+  cmd->add_flag("-q,--quiet", args.quiet, "Print nothing but errors")->group(io);
   cmd->add_option("--recovery", args.recovery,
                   "Stage 2 recovery strategies: all (split constraints, then the fuzzy-face ones when it "
-                  "fails), split (split constraints only: fast, every decision combinatorial) or fuzzy "
-                  "(the fuzzy-face strategies only)")
+                  "fails), split (split constraints only: fast, every decision combinatorial) or fuzzy")
       ->capture_default_str()
-      ->check(CLI::IsMember({"all", "split", "fuzzy"}));
-  cmd->add_option("--patch-names", args.patch_names_spec,
-                  "Names of the input's patch labels in the output, LABEL=NAME,... (e.g. 1=wall,2=farfield); "
-                  "unnamed labels are patch<label>. A name is 1-32 letters, digits or '_', starting with a "
-                  "letter. Used as SU2 markers, OpenFOAM patches, CGNS and Exodus names, Gmsh physical names "
-                  "(Medit: comments). A name containing 'farfield' or 'symmetry' (any case) sets the CGNS BC "
-                  "(BCFarfield, BCSymmetryPlane) and OpenFOAM patch type (patch, symmetry); others are walls");
+      ->check(CLI::IsMember({"all", "split", "fuzzy"}))
+      ->group("Stages");
 }
 
 }  // namespace anitet::cli

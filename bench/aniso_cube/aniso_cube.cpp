@@ -17,7 +17,7 @@
 // kernel picks, still two triangles per cell), S's facets protected and its vertices fixed, and
 // refine_mesh / optimize_mesh run on it with the metric, as the pipeline runs them (with
 // --cycles more rounds of both, default the pipeline's MesherOptions::anisotropic_cycles).
-// Usage: bench_aniso_cube [--direct] [--no-refine] [--no-optimize] [--cycles N] [--layers N] [--size S]
+// Usage: bench_aniso_cube [--direct] [--no-refine] [--no-optimize] [--cycles N] [--front-layers N] [--size S]
 //                         [--surface OUT.off] [-o OUT.mesh]
 // Exit status 0 when both targets are met, 1 when not, 2 on a usage error, 3 when meshing fails.
 #include <algorithm>
@@ -175,7 +175,7 @@ anitet::Status direct_initial_mesh(const anitet::SurfaceMesh& cube, anitet::TetM
 
 int usage() {
   std::fprintf(stderr,
-               "usage: bench_aniso_cube [--direct] [--no-refine] [--no-optimize] [--cycles N] [--layers N] [--size S] "
+               "usage: bench_aniso_cube [--direct] [--no-refine] [--no-optimize] [--cycles N] [--front-layers N] [--size S] "
                "[--surface OUT.off] [-o OUT.mesh]\n");
   return 2;
 }
@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
     else if (a == "--direct") direct = true;
     else if (a == "--no-optimize") opt.run_optimize = false;
     else if (a == "--cycles" && has_next) opt.anisotropic_cycles = std::atoi(argv[++i]);
-    else if (a == "--layers" && has_next) opt.layers.layers = std::atoi(argv[++i]);
+    else if (a == "--front-layers" && has_next) opt.layers.layers = std::atoi(argv[++i]);
     else if (a == "--size" && has_next) opt.refine.size_scale = std::atof(argv[++i]);
     else if (a == "--surface" && has_next) out_surface = argv[++i];
     else if (a == "-o" && has_next) out_mesh = argv[++i];

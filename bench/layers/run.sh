@@ -13,7 +13,7 @@ fail=0 runs=0
 for f in $clean; do
   for n in 1 2 3; do
     s=$(date +%s.%N)
-    "$anitet" mesh "$surf/$f" --stop-after layers --layers "$n" -o "$tmp/out.mesh" >"$tmp/log" 2>&1; rc=$?
+    "$anitet" mesh "$surf/$f" --stop-after layers --front-layers "$n" -o "$tmp/out.mesh" >"$tmp/log" 2>&1; rc=$?
     e=$(date +%s.%N)
     audit=$(grep "audit:" "$tmp/log" | sed 's/^ *//')
     eps=$(grep "epsilon halving" "$tmp/log" | sed 's/^ *epsilon halving: //')

@@ -32,7 +32,7 @@ size=$(echo "$info" | sed -n 's/.*body size \([0-9.eE+-]*\),.*/\1/p')
 
 # The reference length of the Reynolds number is the body's size (its largest extent).
 "$anitet" mesh "$domain" -o "$out/$name.cgns" --also-write "$out/$name.su2" --also-write "$out/$name.mesh" \
-    --layers 2 --patch-names 1=wall,2=farfield \
+    --front-layers 2 --patch-names 1=wall,2=farfield \
     --bl-patches 1 --bl-yplus "${YPLUS:-100}" --bl-reynolds "${REYNOLDS:-5e6}" --bl-ref-length "$size" \
     --bl-layers "${BL_LAYERS:-5}" --bl-growth "${BL_GROWTH:-1.2}" --hgrad "${HGRAD:-1.3}"
 

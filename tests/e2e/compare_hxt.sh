@@ -23,7 +23,7 @@ for s in "$@"; do
   name=$(basename "$s"); stem=${name%.*}
   echo "== $name"
   t0=$(date +%s.%N)
-  if "$anitet" mesh "$s" -o "$out/$stem.mesh" --layers 1 -q; then
+  if "$anitet" mesh "$s" -o "$out/$stem.mesh" --front-layers 1 -q; then
     t1=$(date +%s.%N)
     echo "  anitet: $(echo "$t1 - $t0" | bc) s"
     $py $check "$out/$stem.mesh" --surface "$s" | summary

@@ -6,8 +6,8 @@
 set -u
 anitet=$1; in=$2; dir=$3
 mkdir -p "$dir"; rm -f "$dir"/first.su2 "$dir"/second.mesh "$dir"/second.su2
-"$anitet" mesh "$in" -o "$dir/first.su2" --layers 1 --patch-names 1=wall,2=farfield -q || { echo "FAIL: first mesh exited $?"; exit 1; }
-"$anitet" mesh "$dir/first.su2" -o "$dir/second.mesh" --also-write "$dir/second.su2" --layers 1 -q || { echo "FAIL: mesh from the .su2 exited $?"; exit 1; }
+"$anitet" mesh "$in" -o "$dir/first.su2" --front-layers 1 --patch-names 1=wall,2=farfield -q || { echo "FAIL: first mesh exited $?"; exit 1; }
+"$anitet" mesh "$dir/first.su2" -o "$dir/second.mesh" --also-write "$dir/second.su2" --front-layers 1 -q || { echo "FAIL: mesh from the .su2 exited $?"; exit 1; }
 "$anitet" quality "$dir/second.mesh" --surface "$dir/first.su2" --strict > "$dir/quality.txt" || { echo "FAIL: quality --strict exited $?"; cat "$dir/quality.txt"; exit 1; }
 grep -q "boundary constrained: YES" "$dir/quality.txt" || { echo "FAIL: not boundary constrained"; exit 1; }
 markers=$(grep '^MARKER_TAG=' "$dir/second.su2" | tr -d ' ' | tr '\n' ' ')

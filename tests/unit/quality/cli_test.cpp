@@ -149,7 +149,7 @@ TEST_F(Cli, QualityOfAWrittenMesh) {
 
 TEST_F(Cli, MeshWritesTheMeshAndRefusesBadInputFirst) {
   const std::string out = dir_ + "/out.mesh";
-  RunResult r = run("mesh '" + kSurfaces + "/decimated-knight.off' --layers 1 -o '" + out + "' --quiet");
+  RunResult r = run("mesh '" + kSurfaces + "/decimated-knight.off' --front-layers 1 -o '" + out + "' --quiet");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(std::ifstream(out).good());
   const std::string bad = dir_ + "/bad.mesh";
