@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -113,60 +114,78 @@ int exit_code_of(Error e) {
 
 namespace {
 
+// The memory a run takes per tet at its peak (bench/results/scale: 186-194 bytes at 10^7 tets).
+constexpr double kBytesPerTet = 200;
+
+// MemAvailable of /proc/meminfo, in bytes; 0 when it cannot be read.
+double available_memory_bytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kb = 0;
+  while (in >> key) {
+    if (key == "MemAvailable:" && in >> kb) return kb * 1024.0;
+    in.ignore(256, '\n');
+  }
+  return 0;
+}
+
 // --verbose: every stage's figures, then the full quality report.
 void print_details(const MesherResult& r, const QualityReport& quality) {
   const BoundaryLayerReport& bl = r.boundary_layer;
   std::cout << "details:\n";
-    for (const StageReport& s : r.stages)
-      std::cout << "  stage " << s.name << ": " << format_seconds(s.seconds) << ", " << s.tets << " tets\n";
-    if (bl.layers > 0) {
-      std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
-                << bl.tets << " tets, " << bl.vertices << " vertices kept fixed; " << bl.full_columns
-                << " full columns, " << bl.nominal_columns << " within 10% of h0 r^i (max error "
-                << bl.max_height_error << "); reduced vertices " << bl.reduced_vertices << " ("
-                << 100.0 * r.layers.bl_reduced_share << "%); first height min " << bl.first_height_min
-                << " mean " << bl.first_height_mean << " max " << bl.first_height_max << "; growth "
-                << bl.growth_mean << "; BL vertices moved after stage 1 by at most " << bl.max_displacement
-                << "; " << format_seconds(r.layers.bl_seconds) << "\n";
-      std::cout << "  boundary layer: wall vertices by layers reached:";
-      for (size_t i = 0; i < bl.columns_reaching.size(); ++i)
-        if (bl.columns_reaching[i] > 0) std::cout << " " << i << ": " << bl.columns_reaching[i];
-      std::cout << "\n";
-    }
-    std::cout << "  stage 2 Steiner points on S1: " << r.recovery.steiner_on_edges << " on edges, "
-              << r.recovery.steiner_on_faces << " in faces (" << recovery_strategy_name(r.recovery.strategy)
-              << "); coupling split " << r.couple.edge_split_tets
-              << " T1 tets and re-coned " << r.couple.faces_reconed << " S1 faces\n"
-              << "  stage 2 time: Delaunay " << format_seconds(r.recovery.seconds_delaunay) << ", recovery "
-              << format_seconds(r.recovery.seconds_recovery) << ", carving " << format_seconds(r.recovery.seconds_carve) << "\n"
-              << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits (" << r.refine.parallel_splits << " by the slab tasks), "
-              << r.refine.collapses << " collapses (" << r.refine.split_rejected << " splits put off, "
-              << r.refine.collapse_rejected << " collapses refused); normalized edge length mean " << r.refine.length_mean
-              << ", " << 100.0 * r.refine.length_in_range << "% in [1/sqrt2, sqrt2]"
-              << (r.anisotropic_cycles > 0 ? " (anisotropic metric: refinement and optimization ran " +
-                                                  std::to_string(1 + r.anisotropic_cycles) + " times)"
-                                            : std::string())
-              << "\n"
-              << "  refinement time: edge lists " << format_seconds(r.refine.seconds_edges) << ", split choice "
-              << format_seconds(r.refine.seconds_choice) << ", insertion " << format_seconds(r.refine.seconds_insertion) << ", collapses "
-              << format_seconds(r.refine.seconds_collapses) << ""
-              << (r.refine.seconds_flips > 0.0 ? ", metric flips " + format_seconds(r.refine.seconds_flips)
-                                               : std::string())
-              << "\n"
-              << "  optimization: " << optimization_counts(r.optimize) << "; radius ratio min " << r.optimize.before.min << " -> "
-              << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
-              << "\n"
-              << "  optimization time: summaries and metrics " << format_seconds(r.optimize.seconds_setup) << ", CVT "
-              << format_seconds(r.optimize.seconds_cvt) << ", flips " << format_seconds(r.optimize.seconds_flips) << ", slivers "
-              << format_seconds(r.optimize.seconds_slivers) << ", certification " << format_seconds(r.optimize.seconds_certify) << "\n";
-    if (r.metric_quality.tets > 0) {
-      const QualitySummary& mq = r.metric_quality;
-      std::cout << "  in the metric (anisotropic field; the report below is Euclidean): radius ratio mean "
-                << mq.mean << " min " << mq.min << ", below 0.1: " << mq.below_01 << " ("
-                << 100.0 * double(mq.below_01) / double(mq.tets) << "%), below 0.4: " << mq.below_04 << " ("
-                << 100.0 * double(mq.below_04) / double(mq.tets) << "%)\n";
-    }
-    std::cout << quality_report_text(quality);
+  if (r.estimated_tets > 0)
+  std::cout << "  tets estimated before refinement: " << std::llround(r.estimated_tets) << " (made: " << r.mesh.num_tets()
+            << ")\n";
+  for (const StageReport& s : r.stages)
+    std::cout << "  stage " << s.name << ": " << format_seconds(s.seconds) << ", " << s.tets << " tets\n";
+  if (bl.layers > 0) {
+    std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
+              << bl.tets << " tets, " << bl.vertices << " vertices kept fixed; " << bl.full_columns
+              << " full columns, " << bl.nominal_columns << " within 10% of h0 r^i (max error "
+              << bl.max_height_error << "); reduced vertices " << bl.reduced_vertices << " ("
+              << 100.0 * r.layers.bl_reduced_share << "%); first height min " << bl.first_height_min
+              << " mean " << bl.first_height_mean << " max " << bl.first_height_max << "; growth "
+              << bl.growth_mean << "; BL vertices moved after stage 1 by at most " << bl.max_displacement
+              << "; " << format_seconds(r.layers.bl_seconds) << "\n";
+    std::cout << "  boundary layer: wall vertices by layers reached:";
+    for (size_t i = 0; i < bl.columns_reaching.size(); ++i)
+      if (bl.columns_reaching[i] > 0) std::cout << " " << i << ": " << bl.columns_reaching[i];
+    std::cout << "\n";
+  }
+  std::cout << "  stage 2 Steiner points on S1: " << r.recovery.steiner_on_edges << " on edges, "
+            << r.recovery.steiner_on_faces << " in faces (" << recovery_strategy_name(r.recovery.strategy)
+            << "); coupling split " << r.couple.edge_split_tets
+            << " T1 tets and re-coned " << r.couple.faces_reconed << " S1 faces\n"
+            << "  stage 2 time: Delaunay " << format_seconds(r.recovery.seconds_delaunay) << ", recovery "
+            << format_seconds(r.recovery.seconds_recovery) << ", carving " << format_seconds(r.recovery.seconds_carve) << "\n"
+            << "  refinement: " << r.refine.passes << " passes, " << r.refine.splits << " splits (" << r.refine.parallel_splits << " by the slab tasks), "
+            << r.refine.collapses << " collapses (" << r.refine.split_rejected << " splits put off, "
+            << r.refine.collapse_rejected << " collapses refused); normalized edge length mean " << r.refine.length_mean
+            << ", " << 100.0 * r.refine.length_in_range << "% in [1/sqrt2, sqrt2]"
+            << (r.anisotropic_cycles > 0 ? " (anisotropic metric: refinement and optimization ran " +
+                                                std::to_string(1 + r.anisotropic_cycles) + " times)"
+                                          : std::string())
+            << "\n"
+            << "  refinement time: edge lists " << format_seconds(r.refine.seconds_edges) << ", split choice "
+            << format_seconds(r.refine.seconds_choice) << ", insertion " << format_seconds(r.refine.seconds_insertion) << ", collapses "
+            << format_seconds(r.refine.seconds_collapses) << ""
+            << (r.refine.seconds_flips > 0.0 ? ", metric flips " + format_seconds(r.refine.seconds_flips)
+                                             : std::string())
+            << "\n"
+            << "  optimization: " << optimization_counts(r.optimize) << "; radius ratio min " << r.optimize.before.min << " -> "
+            << r.optimize.after.min << ", mean " << r.optimize.before.mean << " -> " << r.optimize.after.mean
+            << "\n"
+            << "  optimization time: summaries and metrics " << format_seconds(r.optimize.seconds_setup) << ", CVT "
+            << format_seconds(r.optimize.seconds_cvt) << ", flips " << format_seconds(r.optimize.seconds_flips) << ", slivers "
+            << format_seconds(r.optimize.seconds_slivers) << ", certification " << format_seconds(r.optimize.seconds_certify) << "\n";
+  if (r.metric_quality.tets > 0) {
+    const QualitySummary& mq = r.metric_quality;
+    std::cout << "  in the metric (anisotropic field; the report below is Euclidean): radius ratio mean "
+              << mq.mean << " min " << mq.min << ", below 0.1: " << mq.below_01 << " ("
+              << 100.0 * double(mq.below_01) / double(mq.tets) << "%), below 0.4: " << mq.below_04 << " ("
+              << 100.0 * double(mq.below_04) / double(mq.tets) << "%)\n";
+  }
+  std::cout << quality_report_text(quality);
 }
 
 // The default report: about a dozen lines, what most runs need to know.
@@ -246,6 +265,8 @@ int run_mesh_pipeline(MeshArgs& args) {
 
   MesherOptions options;
   options.num_threads = args.threads;
+  const double free_bytes = available_memory_bytes();
+  options.max_tets = args.max_tets >= 0 ? args.max_tets : free_bytes > 0 ? free_bytes / kBytesPerTet : 0.0;
   options.layers.layers = args.layers;
   options.attempts_seconds = args.attempts_seconds;
   options.recovery = recovery_options(args);
@@ -311,6 +332,15 @@ int run_mesh_pipeline(MeshArgs& args) {
   if (!run.ok()) {
     std::cerr << cmd << ": meshing '" << args.input << "' failed: " << run.status().message() << " ["
               << error_name(run.status().code()) << "]\n";
+    if (run.status().message().find("the sizing field asks for about") != std::string::npos) {
+      char hint[200];
+      if (args.max_tets >= 0)
+        std::snprintf(hint, sizeof hint, "--max-tets %.3g", args.max_tets);
+      else
+        std::snprintf(hint, sizeof hint, "the %.1f GB of free memory at about %.0f bytes a tet", free_bytes / 1e9, kBytesPerTet);
+      std::cerr << cmd << ": the limit is " << hint << ": a larger --size or --hmin makes fewer tets; "
+                << "--max-tets 0 removes the limit\n";
+    }
     const Error e = run.status().code();  // bad options (e.g. a wall patch no triangle has): usage
     return e == Error::NotImplemented ? kExitNotImplemented : e == Error::InvalidArgument ? kExitUsage : kExitInternal;
   }
@@ -397,6 +427,7 @@ int run_mesh_pipeline(MeshArgs& args) {
     nlohmann::json out = {
         {"input", args.input}, {"output", args.output}, {"also_write", args.also_write}, {"report", args.report_html}, {"seconds", r.seconds}, {"stages", stages},
         {"tets_per_second", r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0},
+        {"estimated_tets", r.estimated_tets},
         {"layers", {{"layers_used", r.layers_used}, {"retries", r.layers_retries}}},
         {"recovery", {{"steiner_on_s1_edges", r.recovery.steiner_on_edges},
                       {"steiner_on_s1_faces", r.recovery.steiner_on_faces},

@@ -444,6 +444,15 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
     }
     result.stages.push_back({"sizing", since(t), 0});
     const ScaledSizing scaled(*field, options_.refine.size_scale > 0.0 ? options_.refine.size_scale : 1.0);
+    if (options_.run_refine) {
+      result.estimated_tets = estimate_refined_tets(mesh, scaled);
+      if (options_.max_tets > 0 && result.estimated_tets > options_.max_tets) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg, "the sizing field asks for about %.3g tets (estimated before refinement), more than the limit of %.3g",
+                      result.estimated_tets, options_.max_tets);
+        return Status(Error::InvalidArgument, msg);
+      }
+    }
     if (options_.stage3) {
       if (!options_.run_refine || !options_.run_optimize)
         return Status(Error::NotImplemented, "stages 3b/3c in parts need both refinement and optimization");

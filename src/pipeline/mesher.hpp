@@ -57,6 +57,9 @@ struct MesherOptions {
   OptimizeOptions optimize;
   bool run_refine = true;
   bool run_optimize = true;
+  // Refinement is refused (Error::InvalidArgument, before it starts) when the sizing field asks
+  // for more tets than this, estimated on the coupled mesh (estimate_refined_tets); 0: no limit.
+  double max_tets = 0;
   // With an anisotropic field (OptimizeStats::anisotropic), this many more rounds of refinement
   // then optimization after the first (see refine_optimize_cycles). Needs both stages on.
   int anisotropic_cycles = 2;
@@ -137,6 +140,7 @@ struct MesherResult {
   // metric (summarize_metric_quality); tets == 0 otherwise.
   QualitySummary metric_quality;
   std::vector<Notice> notices;  // what was done otherwise than asked (empty: everything as asked)
+  double estimated_tets = 0;    // the refinement's tets estimated before it ran (0: not estimated)
   double seconds = 0.0;
 };
 
