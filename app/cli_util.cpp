@@ -163,7 +163,7 @@ bool ProgressLine::update(const std::string& stage, double fraction) {
   std::snprintf(pct, sizeof pct, "%3d%% ", int(fraction * 100 + 0.5));
   text += pct + stage + "  " + format_seconds(elapsed);
   // The time left, once the fraction says something (the first stages are short).
-  if (fraction > 0.05 && fraction < 1.0 && elapsed > 1.0)
+  if (fraction > 0.05 && fraction < 1.0 && elapsed > 0.5)
     text += ", about " + format_seconds(elapsed / fraction * (1.0 - fraction)) + " left";
   const size_t pad = last_width_ > text.size() ? last_width_ - text.size() : 0;
   last_width_ = text.size();

@@ -2,7 +2,6 @@
 // recovery, coupling, refinement, optimization) with the sizing field of the metric options
 // (metric_options.hpp), then the mesh written and its quality report printed (the same as
 // `anitet quality OUT --surface IN`, measured in the local frame with --geodetic).
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -32,26 +31,6 @@
 namespace anitet::cli {
 
 namespace {
-
-// A one-line progress bar on stderr: stage name, fraction, elapsed time.
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
-  bool update(const std::string& stage, double fraction) {
-    if (!enabled_) return true;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const int width = 30, filled = static_cast<int>(fraction * width + 0.5);
-    std::fprintf(stderr, "\r[%-*s] %3d%% %-10s %7.2f s", width, std::string(size_t(filled), '#').c_str(),
-                 static_cast<int>(fraction * 100 + 0.5), stage.c_str(), elapsed);
-    if (fraction >= 1.0) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-    return true;
-  }
-
- private:
-  bool enabled_;
-  std::chrono::steady_clock::time_point start_;
-};
 
 // The optimizer's counts, as both the text summary and the HTML report give them.
 std::string optimization_counts(const OptimizeStats& o) {
@@ -326,7 +305,7 @@ int run_mesh_pipeline(MeshArgs& args) {
       return distributed->stage3(mesh, f, options.refine, options.optimize, refine, optimize);
     };
   }
-  ProgressBar bar(!args.quiet && !args.json && isatty(STDERR_FILENO) && (!distributed || distributed->rank == 0));
+  ProgressLine bar(!args.quiet && !args.json && (!distributed || distributed->rank == 0));
   options.progress = [&bar](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
   Result<MesherResult> run = Mesher(options).run_validated(checked.surface);
   if (!run.ok()) {

@@ -732,6 +732,8 @@ Result<OptimizeStats> Optimizer::run() {
     take_lap(stats_.seconds_cvt);
     optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
     take_lap(stats_.seconds_flips);
+    // The CVT iterations are about two thirds of the stage's time.
+    if (options_.progress) options_.progress(0.65 * double(it + 1) / double(options_.cvt_iterations));
   }
   std::vector<uint32_t>().swap(ball_start_);
   std::vector<uint32_t>().swap(ball_tets_);
@@ -744,6 +746,7 @@ Result<OptimizeStats> Optimizer::run() {
     take_lap(stats_.seconds_slivers);
     if (moved == 0) break;
   }
+  if (options_.progress) options_.progress(0.85);
   // Tets that no move lifted, such as four nearly collinear points whose every vertex is held by
   // its other tets, get an edge collapse, then the flips and one more perturbation round.
   // The perturbation round after collapses looks only at the tets near them: the others were

@@ -49,6 +49,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 #include "core/sizing.hpp"
 #include "core/status.hpp"
@@ -83,6 +84,9 @@ struct OptimizeOptions {
   int perturb_trials = 24;        // trial positions per vertex and round (8x in the polish of
                                   // the tets below 0.1 after the collapses, see the top)
   int num_threads = 0;            // 0: TBB's default; n: an arena of n threads (same result)
+  // Called as the optimization goes with the share of it done (after each CVT iteration, after the
+  // sliver rounds, at the end). For progress display only (it cannot stop the stage).
+  std::function<void(double fraction)> progress;
   uint64_t seed = 0x5eed;
 };
 

@@ -49,7 +49,7 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 // Share of the run's time each stage takes, roughly, for the progress fraction.
 constexpr double kDoneAfterValidate = 0.03, kDoneAfterLayers = 0.2, kDoneAfterRecovery = 0.35,
-                 kDoneAfterCoupling = 0.4, kDoneAfterSizing = 0.45, kDoneAfterRefine = 0.7;
+                 kDoneAfterCoupling = 0.4, kDoneAfterSizing = 0.45, kDoneAfterRefine = 0.7, kDoneAfterOptimize = 0.95;
 
 // Freezes the boundary layer (the tets of region >= first_bl_region) for refinement and
 // optimization: every facet of a BL tet protected on both sides, every BL vertex locked.
@@ -462,11 +462,22 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
         return Status(st.code(), "stages 3b/3c in parts: " + st.message());
       result.stages.push_back({"refine+optimize in parts", since(t), result.optimize.after.tets});
     } else {
+      // Refinement and optimization tell their progress within the stage (not cancellable there).
+      auto within = [&](const char* stage, double from, double to) {
+        return [this, stage, from, to](double f) {
+          if (options_.progress) options_.progress(stage, from + f * (to - from));
+        };
+      };
+      RefineOptions refine_options = options_.refine;
+      refine_options.expected_tets = result.estimated_tets;
+      refine_options.progress = within("refine", kDoneAfterSizing, kDoneAfterRefine);
+      OptimizeOptions optimize_options = options_.optimize;
+      optimize_options.progress = within("optimize", kDoneAfterRefine, kDoneAfterOptimize);
       if (options_.run_refine) {
         if (Status st = progress("refine", kDoneAfterSizing); !st.ok()) return st;
         t = Clock::now();
         const auto coupled_vertices = static_cast<uint32_t>(mesh.num_vertices());
-        Result<RefineStats> refined = refine_mesh(mesh, *field, options_.refine);
+        Result<RefineStats> refined = refine_mesh(mesh, *field, refine_options);
         if (!refined.ok()) return Status(refined.status().code(), "stage 3b (refinement): " + refined.status().message());
         // The optimizer walks balls and rings all over the mesh: 1.2 s of its 5.2 s on armadillo went
         // to memory scattered by refinement's passes. The coupled mesh's vertices keep their ids
@@ -478,7 +489,7 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
       if (options_.run_optimize) {
         if (Status st = progress("optimize", kDoneAfterRefine); !st.ok()) return st;
         t = Clock::now();
-        Result<OptimizeStats> optimized = optimize_mesh(mesh, scaled, options_.optimize);
+        Result<OptimizeStats> optimized = optimize_mesh(mesh, scaled, optimize_options);
         if (!optimized.ok())
           return Status(optimized.status().code(), "stage 3c (optimization): " + optimized.status().message());
         result.optimize = optimized.value();
@@ -486,7 +497,7 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
       }
       if (options_.run_refine && options_.run_optimize && result.optimize.anisotropic &&
           options_.anisotropic_cycles > 0) {
-        if (Status st = progress("cycles", kDoneAfterRefine); !st.ok()) return st;
+        if (Status st = progress("cycles", kDoneAfterOptimize); !st.ok()) return st;
         t = Clock::now();
         if (Status st = refine_optimize_cycles(mesh, *field, options_.refine, options_.optimize,
                                                options_.anisotropic_cycles, result.refine, result.optimize);

@@ -1081,6 +1081,11 @@ Result<RefineStats> Refiner::run() {
     stats_.splits += splits;
     stats_.collapses += collapses;
     stats_.passes = pass + 1;
+    if (options_.progress) {
+      const double share = options_.expected_tets > 0 ? double(mesh_.num_live_tets()) / options_.expected_tets
+                                                       : double(pass + 1) / double(options_.max_passes);
+      options_.progress(std::min(0.95, share));
+    }
     if (double(splits + collapses) < options_.stop_fraction * double(edge_count)) break;
     stats_.stopped_at_pass_cap = pass + 1 == options_.max_passes;
   }

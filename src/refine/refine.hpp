@@ -40,6 +40,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 #include "core/sizing.hpp"
 #include "core/status.hpp"
@@ -83,6 +84,11 @@ struct RefineOptions {
   // Threads for the split points' measures (midpoint, metric, vetoes): 0 TBB's default, n an
   // arena of n threads. The mesh does not depend on it.
   int num_threads = 0;
+  // Called after each pass with the share of the work done: the live tets over expected_tets
+  // when that is given (estimate_refined_tets), else passes over max_passes; at most 0.95 until
+  // the end. For progress display only (it cannot stop the stage).
+  std::function<void(double fraction)> progress;
+  double expected_tets = 0;
   // The split points of a pass (isotropic metric) are inserted by BatchInserter: this many slabs,
   // one task each, then the points whose cavity crossed a slab one by one. The mesh depends on
   // it, never on the thread count; 1: one by one throughout.
