@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -20,20 +22,35 @@ std::string coords(const std::array<double, 3>& p) {
   return buf;
 }
 
-std::string describe_example(const ProblemExample& e) {
+// An example for people: elements numbered from 1, with the file line of each triangle when the
+// reader knew it.
+std::string describe_example(const ProblemExample& e, const SurfaceMesh& s) {
   std::ostringstream os;
   if (!e.triangles.empty()) {
     os << "triangles";
-    for (size_t i = 0; i < e.triangles.size(); ++i) os << (i ? ", " : " ") << e.triangles[i];
+    for (size_t i = 0; i < e.triangles.size(); ++i) {
+      os << (i ? ", " : " ") << uint64_t{e.triangles[i]} + 1;
+      if (e.triangles[i] < s.line.size()) os << " (line " << s.line[e.triangles[i]] << ")";
+    }
   }
   if (!e.vertices.empty()) {
     os << (e.triangles.empty() ? "" : "; ") << "vertices";
     for (size_t i = 0; i < e.vertices.size(); ++i) {
-      os << (i ? ", " : " ") << e.vertices[i];
+      os << (i ? ", " : " ") << uint64_t{e.vertices[i]} + 1;
       if (i < e.points.size()) os << " " << coords(e.points[i]);
     }
   }
   return os.str();
+}
+
+// Line `line` (1-based) of the file, without its end; empty when it cannot be read.
+std::string file_line(const std::string& path, uint32_t line) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text;
+  for (uint32_t n = 1; n <= line && std::getline(in, text); ++n) {
+  }
+  while (!text.empty() && (text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  return in ? text : std::string();
 }
 
 struct PatchCount {
@@ -59,22 +76,38 @@ int load_and_validate(const std::string& command, const std::string& path, Check
   if (!read.ok()) {
     std::cerr << "anitet " << command << ": cannot read surface '" << path << "': "
               << read.status().message() << " [" << error_name(read.status().code()) << "]\n";
-    return kExitReadError;
+    return exit_code_of_read(read.status().code());
   }
+  out.read = true;
   out.surface = std::move(read).value();
   out.report = validate_surface(out.surface);
   if (!out.report.ok()) {
-    if (print_invalid) print_invalid_surface(command, path, out.report);
+    if (print_invalid) print_invalid_surface(command, path, out);
     return kExitInvalidInput;
   }
   return kExitOk;
 }
 
-void print_invalid_surface(const std::string& command, const std::string& path,
-                           const ValidationReport& report) {
+void print_invalid_surface(const std::string& command, const std::string& path, const CheckedSurface& checked) {
+  const ValidationReport& report = checked.report;
   const Status st = report.status();
   std::cerr << "anitet " << command << ": invalid surface '" << path << "': " << st.message() << " ["
             << error_name(st.code()) << "]\n";
+  // The first error's triangles where they are in the file: PATH:LINE: triangle K: the line.
+  for (const Problem& p : report.problems) {
+    if (p.severity != Severity::Error) continue;
+    std::vector<uint32_t> shown;
+    for (const ProblemExample& e : p.examples)
+      for (uint32_t t : e.triangles) {
+        if (t >= checked.surface.line.size() || shown.size() == 4) continue;
+        if (std::find(shown.begin(), shown.end(), t) != shown.end()) continue;
+        shown.push_back(t);
+        const uint32_t line = checked.surface.line[t];
+        std::cerr << "  " << path << ":" << line << ": triangle " << uint64_t{t} + 1 << ": " << file_line(path, line)
+                  << "\n";
+      }
+    break;
+  }
   for (const Problem& p : report.problems) {
     if (p.severity == Severity::Error) std::cerr << "  " << p.kind << ": " << p.count << "\n";
   }
@@ -123,7 +156,7 @@ std::string describe_validation(const std::string& path, const CheckedSurface& c
       if (!p.message.empty()) os << " - " << p.message;
       os << "\n";
       for (size_t i = 0; i < p.examples.size(); ++i) {
-        os << "      #" << i + 1 << " " << describe_example(p.examples[i]) << "\n";
+        os << "      #" << i + 1 << " " << describe_example(p.examples[i], checked.surface) << "\n";
       }
       if (p.count > p.examples.size()) os << "      ... " << p.count - p.examples.size() << " more\n";
     }
@@ -145,7 +178,7 @@ int run_check_surface(const CheckSurfaceArgs& args) {
   }
   CheckedSurface checked;
   const int code = load_and_validate("check-surface", args.input, checked, false);
-  if (code == kExitReadError) return code;
+  if (!checked.read) return code;
   const std::vector<PatchCount> patches = patch_counts(checked.surface);
   bool written = false;
   if (!args.output.empty() && code == kExitOk) {
@@ -181,7 +214,7 @@ int run_check_surface(const CheckSurfaceArgs& args) {
   }
   std::cout.flush();  // the report first, then the verdict on stderr
   if (code == kExitInvalidInput) {
-    print_invalid_surface("check-surface", args.input, checked.report);
+    print_invalid_surface("check-surface", args.input, checked);
     if (!args.output.empty()) std::cerr << "anitet check-surface: '" << args.output << "' not written: the surface is invalid\n";
   }
   return code;

@@ -76,15 +76,17 @@ std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r)
   return rows;
 }
 
-// The exit code of a library error: bad options (InvalidArgument) are usage errors, missing
-// or unreadable files read errors.
+// The exit code of a library error: bad options (InvalidArgument) are usage errors, files that
+// cannot be opened read errors, malformed ones invalid input (exit_code_of_read).
 int exit_code_of(Error e) {
   switch (e) {
     case Error::InvalidArgument: return kExitUsage;
     case Error::NotImplemented: return kExitNotImplemented;
     case Error::FileNotFound:
     case Error::Parse:
-    case Error::UnsupportedFormat: return kExitReadError;
+    case Error::BadIndex:
+    case Error::EmptyInput:
+    case Error::UnsupportedFormat: return exit_code_of_read(e);
     default: return kExitInternal;
   }
 }
@@ -237,7 +239,7 @@ int run_mesh_pipeline(MeshArgs& args) {
   if (frame.value()) {
     checked.report = validate_surface(checked.surface);
     if (!checked.report.ok()) {
-      print_invalid_surface("mesh", args.input + " (in the local frame)", checked.report);
+      print_invalid_surface("mesh", args.input + " (in the local frame)", checked);
       return kExitInvalidInput;
     }
   }

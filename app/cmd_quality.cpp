@@ -19,14 +19,14 @@ int run_quality(const QualityArgs& args) {
   if (!mesh.ok()) {
     std::cerr << "anitet quality: cannot read mesh '" << args.mesh << "': " << mesh.status().message()
               << " [" << error_name(mesh.status().code()) << "]\n";
-    return kExitReadError;
+    return exit_code_of_read(mesh.status().code());
   }
   if (!args.metric_sol.empty()) {
     Result<metric::SolField> sol = metric::read_sol(args.metric_sol);
     if (!sol.ok()) {
       std::cerr << "anitet quality: cannot read metric '" << args.metric_sol << "': " << sol.status().message()
                 << " [" << error_name(sol.status().code()) << "]\n";
-      return kExitReadError;
+      return exit_code_of_read(sol.status().code());
     }
     if (sol.value().num_vertices() != mesh.value().num_vertices()) {
       std::cerr << "anitet quality: metric '" << args.metric_sol << "' has " << sol.value().num_vertices()
@@ -43,7 +43,7 @@ int run_quality(const QualityArgs& args) {
     if (!read.ok()) {
       std::cerr << "anitet quality: cannot read surface '" << args.surface
                 << "': " << read.status().message() << " [" << error_name(read.status().code()) << "]\n";
-      return kExitReadError;
+      return exit_code_of_read(read.status().code());
     }
     surface = std::move(read).value();
   }

@@ -11,6 +11,9 @@ struct SurfaceMesh {
   std::vector<double> xyz;      // 3 per vertex
   std::vector<uint32_t> tri;    // 3 per triangle, counter-clockwise seen from outside the domain
   std::vector<int32_t> patch;   // 1 per triangle: the input's surface/patch label (0 when none)
+  // The line of its file each triangle was read from (text formats: OFF, OBJ, ASCII STL, Medit),
+  // for messages that point into the file; empty when unknown.
+  std::vector<uint32_t> line;
 
   size_t num_vertices() const { return xyz.size() / 3; }
   size_t num_triangles() const { return tri.size() / 3; }

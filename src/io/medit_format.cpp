@@ -25,6 +25,7 @@ struct MeditContent {
   std::vector<double> xyz;
   std::vector<uint32_t> tri, quad, tet;  // 0-based after the index check
   std::vector<int32_t> tri_ref, quad_ref, tet_ref;
+  std::vector<uint32_t> tri_line, quad_line;  // the file line of each triangle and quadrilateral
 };
 
 bool starts_number(std::string_view token) {
@@ -41,7 +42,7 @@ bool read_ref(TextScanner& in, int32_t& ref) {
 
 // Reads `count` elements of `n` vertex indices and a ref; indices are checked later.
 Status read_elements(TextScanner& in, const char* what, int n, std::vector<uint32_t>& vertices,
-                     std::vector<int32_t>& refs) {
+                     std::vector<int32_t>& refs, std::vector<uint32_t>* lines = nullptr) {
   uint64_t count = 0;
   if (!in.read_count(UINT32_MAX, count)) return in.expected(std::string("the number of ") + what);
   // Each element takes at least 2 bytes per number.
@@ -51,6 +52,10 @@ Status read_elements(TextScanner& in, const char* what, int n, std::vector<uint3
   vertices.reserve(vertices.size() + n * count);
   refs.reserve(refs.size() + count);
   for (uint64_t e = 0; e < count; ++e) {
+    if (lines) {
+      in.skip_space();
+      lines->push_back(uint32_t(std::min<size_t>(in.line(), UINT32_MAX)));
+    }
     for (int k = 0; k < n; ++k) {
       int64_t v = 0;
       if (!in.read_int(v)) {
@@ -121,9 +126,9 @@ Status parse_medit(std::string_view data, const std::string& name, MeditContent&
         }
       }
     } else if (iequals(key, "Triangles")) {
-      status = read_elements(in, "triangles", 3, out.tri, out.tri_ref);
+      status = read_elements(in, "triangles", 3, out.tri, out.tri_ref, &out.tri_line);
     } else if (iequals(key, "Quadrilaterals")) {
-      status = read_elements(in, "quadrilaterals", 4, out.quad, out.quad_ref);
+      status = read_elements(in, "quadrilaterals", 4, out.quad, out.quad_ref, &out.quad_line);
     } else if (iequals(key, "Tetrahedra")) {
       status = read_elements(in, "tetrahedra", 4, out.tet, out.tet_ref);
     } else if (starts_number(key)) {
@@ -149,8 +154,9 @@ Result<SurfaceMesh> parse_medit_surface(std::string_view data, const std::string
   mesh.xyz = std::move(content.xyz);
   mesh.tri = std::move(content.tri);
   mesh.patch = std::move(content.tri_ref);
+  mesh.line = std::move(content.tri_line);
   for (size_t q = 0; q < content.quad_ref.size(); ++q) {
-    add_fan(mesh, &content.quad[4 * q], 4, content.quad_ref[q]);
+    add_fan(mesh, &content.quad[4 * q], 4, content.quad_ref[q], content.quad_line[q]);
   }
   if (mesh.tri.empty()) return Status(Error::EmptyInput, name + ": the file has no triangles");
   return mesh;

@@ -59,7 +59,7 @@ Result<SurfaceMesh> parse_obj(std::string_view data, const std::string& name) {
         polygon.push_back(static_cast<uint32_t>(index));
       }
       if (polygon.size() < 3) return in.error(Error::Parse, "a face needs at least 3 vertices");
-      add_fan(mesh, polygon.data(), polygon.size(), label);
+      add_fan(mesh, polygon.data(), polygon.size(), label, in.line());
     } else if (key == "g" || key == "o") {
       std::string group(in.rest_of_line());
       if (group.empty()) {

@@ -59,6 +59,8 @@ Result<SurfaceMesh> parse_off(std::string_view data, const std::string& name) {
   }
   std::vector<uint32_t> polygon;
   for (uint64_t f = 0; f < nf; ++f) {
+    in.skip_space();
+    const size_t line = in.line();
     uint64_t k = 0;
     if (!in.read_count(in.remaining(), k) || k < 3) {
       return in.expected("the vertex count (at least 3) of face " + std::to_string(f));
@@ -73,7 +75,7 @@ Result<SurfaceMesh> parse_off(std::string_view data, const std::string& name) {
       }
       polygon.push_back(static_cast<uint32_t>(index));
     }
-    add_fan(mesh, polygon.data(), polygon.size(), 0);
+    add_fan(mesh, polygon.data(), polygon.size(), 0, line);
     in.skip_line();  // face colour
   }
   // Data after the announced faces: the counts are wrong; refuse rather than drop faces.

@@ -21,6 +21,11 @@ constexpr uint64_t kMaxVertices = 0xfffffff0u;
 inline void add_fan(SurfaceMesh& mesh, const uint32_t* v, size_t k, int32_t label) {
   for (size_t i = 1; i + 1 < k; ++i) mesh.add_triangle(v[0], v[i], v[i + 1], label);
 }
+// The same, read from line `line` of a text file (SurfaceMesh::line).
+inline void add_fan(SurfaceMesh& mesh, const uint32_t* v, size_t k, int32_t label, size_t line) {
+  add_fan(mesh, v, k, label);
+  mesh.line.resize(mesh.num_triangles(), uint32_t(std::min<size_t>(line, UINT32_MAX)));
+}
 
 // True when `count` items of at least `min_bytes` bytes each can fit in `remaining` bytes: a
 // bogus count is rejected before anything is reserved for it.

@@ -104,6 +104,7 @@ Result<SurfaceMesh> parse_ascii_stl(std::string_view data, const std::string& na
                                           (word.empty() ? std::string("end of file")
                                                         : "'" + quote_token(word) + "'"));
       }
+      const size_t line = in.line();
       if (iequals(in.peek_token(), "normal")) {
         in.next_token();
         double n;
@@ -126,7 +127,7 @@ Result<SurfaceMesh> parse_ascii_stl(std::string_view data, const std::string& na
       if (polygon.size() < 3) return in.expected("'vertex' (a facet needs 3)");
       if (!in.read_keyword("endloop")) return in.expected("'endloop'");
       if (!in.read_keyword("endfacet")) return in.expected("'endfacet'");
-      add_fan(mesh, polygon.data(), polygon.size(), solids);
+      add_fan(mesh, polygon.data(), polygon.size(), solids, line);
     }
   }
   if (mesh.tri.empty()) return Status(Error::EmptyInput, name + ": the STL file has no triangles");

@@ -18,9 +18,14 @@ inline std::string format_point(const double* p) {
   return buf;
 }
 
+// Messages number triangles and vertices from 1, in the order of the surface as read (vertices
+// after the merge of duplicates), as people and most file formats count; the report's examples
+// and every array keep 0-based ids.
+inline std::string one_based(uint32_t id) { return std::to_string(uint64_t{id} + 1); }
+
 inline std::string format_ids(const std::vector<uint32_t>& ids) {
   std::string out = "(";
-  for (size_t i = 0; i < ids.size(); ++i) out += (i ? ", " : "") + std::to_string(ids[i]);
+  for (size_t i = 0; i < ids.size(); ++i) out += (i ? ", " : "") + one_based(ids[i]);
   return out + ")";
 }
 

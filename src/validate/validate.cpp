@@ -23,6 +23,7 @@ namespace {
 using report_detail::corners;
 using report_detail::format_ids;
 using report_detail::format_point;
+using report_detail::one_based;
 using report_detail::ReportBuilder;
 using Pair = std::pair<uint32_t, uint32_t>;
 
@@ -67,7 +68,7 @@ bool check_arrays(const SurfaceMesh& s, ReportBuilder& out) {
   out.error(Error::BadIndex, bad.size(),
             std::to_string(bad.size()) + " triangles refer to vertices that do not exist (" +
                 std::to_string(s.num_vertices()) + " vertices); first: triangle " +
-                std::to_string(bad[0]) + " " + format_ids(corners(s, bad[0])),
+                one_based(bad[0]) + " " + format_ids(corners(s, bad[0])),
             [&](size_t k) { return out.example({bad[k]}, corners(s, bad[k])); });
   return false;
 }
@@ -92,7 +93,7 @@ bool check_finite(const SurfaceMesh& s, ReportBuilder& out) {
             std::to_string(bad.size()) +
                 " vertices have NaN or infinite coordinates (geometric checks skipped); first: "
                 "vertex " +
-                std::to_string(bad[0]) + " " + format_point(s.point(bad[0])),
+                one_based(bad[0]) + " " + format_point(s.point(bad[0])),
             [&](size_t k) { return out.example({}, {bad[k]}); });
   return false;
 }
@@ -118,7 +119,7 @@ void check_degenerate(const SurfaceMesh& s, bool geometry_ok, ReportBuilder& out
             std::to_string(bad.size()) +
                 " triangles have zero area (a repeated vertex or three collinear points); "
                 "first: triangle " +
-                std::to_string(bad[0]) + " " + format_ids(corners(s, bad[0])) + " at " +
+                one_based(bad[0]) + " " + format_ids(corners(s, bad[0])) + " at " +
                 format_point(s.point(s.tri[3 * size_t(bad[0])])),
             [&](size_t k) { return out.example({bad[k]}, corners(s, bad[k])); });
 }
@@ -146,8 +147,8 @@ void check_duplicates(const SurfaceMesh& s, ReportBuilder& out) {
   out.error(Error::DuplicateTriangle, dups.size(),
             std::to_string(dups.size()) +
                 " triangles repeat the vertex set of an earlier triangle; first: triangle " +
-                std::to_string(dups[0].first) + " repeats triangle " +
-                std::to_string(dups[0].second) + " " + format_ids(corners(s, dups[0].first)),
+                one_based(dups[0].first) + " repeats triangle " +
+                one_based(dups[0].second) + " " + format_ids(corners(s, dups[0].first)),
             [&](size_t k) {
               return out.example({dups[k].first, dups[k].second}, corners(s, dups[k].first));
             });
@@ -163,7 +164,7 @@ void report_topology(const SurfaceMesh& s, const topology::EdgeTable& edges,
     return out.example(tris, {edges.edge_lo(e), edges.edge_hi(e)});
   };
   const auto edge_text = [&](uint32_t e) {
-    return "edge (" + std::to_string(edges.edge_lo(e)) + ", " + std::to_string(edges.edge_hi(e)) +
+    return "edge (" + one_based(edges.edge_lo(e)) + ", " + one_based(edges.edge_hi(e)) +
            ") at " + format_point(s.point(edges.edge_lo(e))) + " - " +
            format_point(s.point(edges.edge_hi(e))) + " of triangles " +
            format_ids(edge_example(e).triangles);
@@ -184,7 +185,7 @@ void report_topology(const SurfaceMesh& s, const topology::EdgeTable& edges,
     out.error(Error::NonManifoldVertex, vs.size(),
               std::to_string(vs.size()) +
                   " vertices have corners forming more than one fan; first: vertex " +
-                  std::to_string(vs[0]) + " at " + format_point(s.point(vs[0])),
+                  one_based(vs[0]) + " at " + format_point(s.point(vs[0])),
               [&](size_t k) { return out.example({}, {vs[k]}); });
   }
 }
@@ -212,8 +213,8 @@ std::vector<uint8_t> report_intersections(const SurfaceMesh& s, const topology::
     return out.example({pr.first, pr.second}, vs);
   };
   const auto pair_text = [&](const Pair& pr) {
-    return "triangles " + std::to_string(pr.first) + " " + format_ids(corners(s, pr.first)) +
-           " and " + std::to_string(pr.second) + " " + format_ids(corners(s, pr.second)) +
+    return "triangles " + one_based(pr.first) + " " + format_ids(corners(s, pr.first)) +
+           " and " + one_based(pr.second) + " " + format_ids(corners(s, pr.second)) +
            " near " + format_point(s.point(s.tri[3 * size_t(pr.first)]));
   };
   if (!self.empty()) {
@@ -318,7 +319,7 @@ void reorient_triangles(SurfaceMesh& s, const std::vector<uint8_t>& usable, topo
   out.add(Error::InconsistentOrientation, Severity::Error, "non_orientable_shell", failed.size(),
           std::to_string(failed.size()) + " shells are not orientable (no orientation of their triangles agrees "
           "across every edge, as on a Moebius band); first: shell " + std::to_string(f.shell) + " at edge (" +
-          std::to_string(f.edge_lo) + ", " + std::to_string(f.edge_hi) + ") " + format_point(s.point(f.edge_lo)) +
+          one_based(f.edge_lo) + ", " + one_based(f.edge_hi) + ") " + format_point(s.point(f.edge_lo)) +
           " - " + format_point(s.point(f.edge_hi)),
           [&](size_t k) { return out.example({topo.shell_first_triangle[failed[k].shell]}, {failed[k].edge_lo, failed[k].edge_hi}); });
 }
@@ -334,7 +335,7 @@ void report_unreferenced(const SurfaceMesh& s, ReportBuilder& out) {
   out.add(Error::Ok, Severity::Warning, "unreferenced_vertex", unused.size(),
           std::to_string(unused.size()) +
               " vertices are used by no triangle (kept, ids unchanged); first: vertex " +
-              std::to_string(unused[0]) + " at " + format_point(s.point(unused[0])),
+              one_based(unused[0]) + " at " + format_point(s.point(unused[0])),
           [&](size_t k) { return out.example({}, {unused[k]}); });
 }
 

@@ -35,7 +35,8 @@
 // shell at odd depth bounds a cavity and faces into the cavity (negative signed volume). Each
 // body (even-depth shell) is a region; a cavity belongs to its parent's region.
 //
-// All element ids in the report refer to the surface after the repairs.
+// All element ids in the report refer to the surface after the repairs; the problems' messages
+// number triangles and vertices from 1 (the examples' arrays are 0-based like every array).
 #pragma once
 
 #include <array>
