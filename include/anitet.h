@@ -96,9 +96,10 @@ typedef struct anitet_mesh anitet_mesh;       /**< a tetrahedral mesh (read, giv
 typedef struct anitet_metric anitet_metric;   /**< a metric (sizing) field */
 
 /** Progress: `fraction` in [0, 1] of the running call's work done, on entering the named stage
- * ("validate" for anitet_surface_validate, 0 then 1). Return 0 to continue, non-zero to cancel:
- * the running call then returns ANITET_ERR_CANCELLED and creates nothing. Stages are not
- * interrupted in the middle: cancelling takes effect at the next call.
+ * ("validate" for anitet_surface_validate, 0 then 1), and as "refine" and "optimize" go (the
+ * same name again, the fraction growing). Return 0 to continue, non-zero to cancel: the running
+ * call then returns ANITET_ERR_CANCELLED and creates nothing. Stages are not interrupted in the
+ * middle: cancelling takes effect at the next stage, and the callback is not called again.
  * The mesher's stages: "validate" (0), "layers", "recovery", "coupling", "sizing", "refine",
  * "optimize", "done" (1); later versions may add stages, so do not rely on the list. */
 typedef int (*anitet_progress_fn)(double fraction, const char* stage, void* user_data);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <new>
 #include <optional>
 #include <system_error>
@@ -232,302 +233,382 @@ Result<MesherResult> Mesher::run_scaled(const SurfaceMesh& surface) const {
   return run;
 }
 
-Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
-  const auto start = Clock::now();
-  // The default grid's OpenVDB module opens during stage 1 (see metric::VdbModulePreload; at
-  // once when the caller opened it already).
-  std::optional<metric::VdbModulePreload> preload;
-  if ((options_.run_refine || options_.run_optimize) && !options_.sizing && tbb::this_task_arena::max_concurrency() > 1)
-    preload.emplace();
-  auto progress = [&](const char* stage, double fraction) -> Status {
-    if (options_.progress && !options_.progress(stage, fraction))
-      return Status(Error::Cancelled, std::string("cancelled at stage '") + stage + "'");
-    return Status::success();
-  };
-  MesherResult result;
+namespace {
 
-  if (options_.layers.boundary_layer.enabled() && options_.layers.boundary_layer.region == 0)
-    return Status(Error::InvalidArgument,
-                  "boundary layer: region must be nonzero (coupling tells the BL tets by it)");
-  if (options_.boundary_layer_sizing &&
-      !(options_.layers.boundary_layer.enabled() && options_.layers.boundary_layer.growth > 1.0))
-    return Status(Error::InvalidArgument, "boundary-layer sizing needs a boundary layer (wall patches) with growth above 1");
-  if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
-  // The default sizing grid needs the surface only: it is built on another core while stage 2
-  // runs on one (armadillo: 0.4 s). Not during stage 1, whose plans and improvement passes use
-  // both cores. A task of the run's own arena (so that --threads / num_threads bounds it too),
-  // and stages 1-2 and the coupling run isolated (`isolated` below): no TBB wait inside their
-  // parallel loops takes the grid task up and runs it nested there (they would then wait for the
-  // grid). On one thread the task runs at the wait.
-  std::optional<Result<metric::MetricField>> default_grid;
-  auto build_grid = [&] {
+// The default sizing grid needs the surface only: it is built on another core while stage 2 runs
+// on one (armadillo: 0.4 s). Not during stage 1, whose plans and improvement passes use both
+// cores. A task of the run's own arena (so that --threads / num_threads bounds it too); stages 1-2
+// and the coupling run isolated (MeshingRun::isolated), so that no TBB wait inside their parallel
+// loops takes the grid task up and runs it nested there (they would then wait for the grid). On
+// one thread the task runs at the wait.
+class DefaultGrid {
+ public:
+  DefaultGrid(const SurfaceMesh& surface, const metric::SurfaceSizingOptions& options, bool wanted)
+      : surface_(surface), options_(options), wanted_(wanted) {}
+  ~DefaultGrid() {  // a run that ends early drops a grid not started yet
+    if (waited_) return;
+    group_.cancel();
+    group_.wait();
+  }
+  void start() {
+    if (started_ || !wanted_) return;
+    started_ = true;
+    group_.run([this] { build(); });
+  }
+  Result<metric::MetricField> take() {
+    start();
+    group_.wait();
+    waited_ = true;
+    if (!grid_) build();
+    return std::move(*grid_);
+  }
+
+ private:
+  void build() {
     // An exception must not leave the task (the group's wait would rethrow it).
     try {
-      default_grid.emplace(metric::surface_sizing_field(surface, options_.surface_sizing));
+      grid_.emplace(metric::surface_sizing_field(surface_, options_));
     } catch (const std::bad_alloc&) {
-      default_grid.emplace(Status(Error::OutOfMemory, "out of memory"));
+      grid_.emplace(Status(Error::OutOfMemory, "out of memory"));
     } catch (const std::exception& e) {
-      default_grid.emplace(Status(Error::Internal, std::string("building it threw: ") + e.what()));
+      grid_.emplace(Status(Error::Internal, std::string("building it threw: ") + e.what()));
     }
-  };
-  tbb::task_group grid_group;
-  struct CancelGrid {  // a run that ends early drops a grid not started yet
-    tbb::task_group& group;
-    bool waited = false;
-    ~CancelGrid() {
-      if (waited) return;
-      group.cancel();
-      group.wait();
-    }
-  } cancel_grid{grid_group};
-  bool grid_started = false;
-  auto start_grid = [&] {
-    if (grid_started || !(options_.run_refine || options_.run_optimize) || options_.sizing) return;
-    grid_started = true;
-    grid_group.run(build_grid);
-  };
-  auto wait_for_grid = [&] {
-    grid_group.wait();
-    cancel_grid.waited = true;
-    if (!default_grid) build_grid();
-  };
-  auto isolated = [](auto&& f) { return tbb::this_task_arena::isolate(f); };
-  // Stages 1 and 2. When stage 2 cannot recover S1, stage 1 is run again with another number of
-  // layers (fewer first, down to 1, then more, up to 3): S1 changes shape and its recovery may then
-  // succeed (bimba_low: not with 2 layers, yes with 1). The fast split-constraints recovery is
-  // tried with every layer count before the slower fuzzy-face strategies are (femur: 2 layers
-  // fail, 1 works in 0.2 s). MesherResult::layers_used says which count worked.
-  const IsotropicSurfaceSizing surface_sizing(surface);
-  const LayerSizing sizing(surface_sizing, options_.sizing);
-  std::vector<int> layer_counts = {options_.layers.layers};
-  if (options_.retry_layer_counts) {
-    for (int n = options_.layers.layers - 1; n >= 1; --n) layer_counts.push_back(n);
-    // Then more layers, up to 3 at least (the default of 1 gets 2 and 3).
-    for (int n = options_.layers.layers + 1; n <= std::max(options_.layers.layers + 1, 3); ++n)
-      layer_counts.push_back(n);
   }
-  std::vector<std::pair<int, RecoveryOptions>> attempts;
-  const RecoveryOptions& ro = options_.recovery;
-  if (ro.split_constraints && ro.fuzzy_faces) {
-    RecoveryOptions split = ro, fuzzy = ro;
-    split.fuzzy_faces = false;
-    fuzzy.split_constraints = false;
-    for (int n : layer_counts) attempts.push_back({n, split});
-    for (int n : layer_counts) attempts.push_back({n, fuzzy});
-  } else {
-    for (int n : layer_counts) attempts.push_back({n, ro});
-  }
-  // Each attempt runs stages 1, 2 and the coupling: a recovered S2 whose subfaces do not all give
-  // positive cones from their T1 apexes (rounding, on slivers) fails the coupling, and the next
-  // attempt is tried as for a recovery failure.
-  const BoundaryLayerOptions& bl = options_.layers.boundary_layer;
-  std::vector<uint32_t> t1_origin;  // kept for the boundary-layer figures (stage 1's vertex ids
-  std::vector<double> t1_xyz;       // survive the later stages)
-  Result<RecoveryOutput> recovered = Status(Error::Internal, "no layer count tried");
-  Result<CoupledMesh> coupled = Status(Error::Internal, "no layer count tried");
-  Status first_failure;
-  std::string failed_stage;
-  const auto attempts_start = Clock::now();
-  const double budget = options_.attempts_seconds;
-  size_t attempts_run = 0;
-  bool out_of_time = false;
-  for (size_t attempt = 0; attempt < attempts.size(); ++attempt) {
-    if (attempt > 0 && budget > 0 && since(attempts_start) >= budget) {
-      out_of_time = true;
-      break;
-    }
-    ++attempts_run;
-    auto t = Clock::now();
-    LayersOptions layer_options = options_.layers;
-    layer_options.layers = attempts[attempt].first;
-    Result<LayersOutput> layers = isolated([&] { return build_layers(surface, sizing, layer_options); });
-    if (!layers.ok()) return Status(layers.status().code(), "stage 1 (layers): " + layers.status().message());
-    result.layers = layers->stats;
-    result.layers_retries = attempt;
-    result.layers_used = layer_options.layers;
-    result.stages.push_back({attempt == 0 ? "layers" : "layers (retry)", since(t), layers->stats.tets});
-    start_grid();
+  const SurfaceMesh& surface_;
+  const metric::SurfaceSizingOptions& options_;
+  bool wanted_, started_ = false, waited_ = false;
+  tbb::task_group group_;
+  std::optional<Result<metric::MetricField>> grid_;
+};
 
-    if (Status st = progress("recovery", kDoneAfterLayers); !st.ok()) return st;
-    t = Clock::now();
-    std::vector<uint32_t> s1_map;
-    const SurfaceMesh s1 = front_surface(layers.value(), &s1_map);
-    // Every piece of an S1 face must see that face's T1 apex, so that the coupling's cones over
-    // them are positive (split-constraints strategy).
-    RecoveryOptions recovery_options = attempts[attempt].second;
-    recovery_options.face_apex.resize(3 * s1.num_triangles());
+// The field stages 3b and 3c follow and what it is built from (the caller's field, or the default
+// grid; intersected with the boundary layer's metric with boundary_layer_sizing). `field` points
+// into the object: it is not copied or moved.
+struct StageField {
+  StageField() = default;
+  StageField(const StageField&) = delete;
+  StageField& operator=(const StageField&) = delete;
+  std::optional<metric::MetricField> grid;
+  std::optional<metric::BoundaryLayerField> bl_field;
+  const SizingField* field = nullptr;
+};
+
+// One run of the pipeline after validation, its steps in order (Mesher::run_in_range).
+class MeshingRun {
+ public:
+  MeshingRun(const MesherOptions& options, const SurfaceMesh& surface)
+      : o_(options),
+        surface_(surface),
+        grid_(surface, options.surface_sizing, (options.run_refine || options.run_optimize) && !options.sizing) {}
+
+  Result<MesherResult> run() {
+    const auto start = Clock::now();
+    // The default grid's OpenVDB module opens during stage 1 (see metric::VdbModulePreload; at
+    // once when the caller opened it already).
+    std::optional<metric::VdbModulePreload> preload;
+    if ((o_.run_refine || o_.run_optimize) && !o_.sizing && tbb::this_task_arena::max_concurrency() > 1)
+      preload.emplace();
+    if (Status st = check_options(); !st.ok()) return st;
+    if (Status st = progress("layers", kDoneAfterValidate); !st.ok()) return st;
+    Result<CoupledMesh> coupled = stages_1_and_2();
+    if (!coupled.ok()) return coupled.status();
+    TetMesh& mesh = coupled->mesh;
+    const auto bodies = int32_t(coupled->stats.bodies);
+    if (o_.layers.boundary_layer.enabled()) result_.boundary_layer.vertices = freeze_boundary_layer(mesh, bodies);
+    if (o_.run_refine || o_.run_optimize) {
+      if (Status st = progress("sizing", kDoneAfterCoupling); !st.ok()) return st;
+      StageField field;  // (it points into itself: filled in place)
+      if (Status st = stage_field(field); !st.ok()) return st;
+      if (Status st = refine_and_optimize(mesh, *field.field); !st.ok()) return st;
+    }
+    finish(mesh, bodies);
+    if (Status st = progress("done", 1.0); !st.ok()) return st;
+    result_.seconds = since(start);
+    return std::move(result_);
+  }
+
+ private:
+  Status check_options() const {
+    const BoundaryLayerOptions& bl = o_.layers.boundary_layer;
+    if (bl.enabled() && bl.region == 0)
+      return Status(Error::InvalidArgument, "boundary layer: region must be nonzero (coupling tells the BL tets by it)");
+    if (o_.boundary_layer_sizing && !(bl.enabled() && bl.growth > 1.0))
+      return Status(Error::InvalidArgument, "boundary-layer sizing needs a boundary layer (wall patches) with growth above 1");
+    return Status::success();
+  }
+
+  Status progress(const char* stage, double fraction) {
+    if (cancel_asked_ || (o_.progress && !o_.progress(stage, fraction)))
+      return Status(Error::Cancelled, std::string("cancelled at stage '") + stage + "'");
+    return Status::success();
+  }
+
+  template <class F>
+  static auto isolated(F&& f) {
+    return tbb::this_task_arena::isolate(f);
+  }
+
+  // Stages 1 and 2 and the coupling are tried with these layer counts and recovery strategies in
+  // turn until one attempt gives a coupled mesh. When stage 2 cannot recover S1, stage 1 runs
+  // again with another number of layers (fewer first, down to 1, then more, up to 3): S1 changes
+  // shape and its recovery may then succeed (bimba_low: not with 2 layers, yes with 1). The fast
+  // split-constraints recovery is tried with every layer count before the slower fuzzy-face
+  // strategies are (femur: 2 layers fail, 1 works in 0.2 s). A recovered S2 whose subfaces do not
+  // all give positive cones from their T1 apexes (rounding, on slivers) fails the coupling, and
+  // the next attempt is tried as for a recovery failure.
+  std::vector<std::pair<int, RecoveryOptions>> attempts() const {
+    std::vector<int> layer_counts = {o_.layers.layers};
+    if (o_.retry_layer_counts) {
+      for (int n = o_.layers.layers - 1; n >= 1; --n) layer_counts.push_back(n);
+      // Then more layers, up to 3 at least (the default of 1 gets 2 and 3).
+      for (int n = o_.layers.layers + 1; n <= std::max(o_.layers.layers + 1, 3); ++n) layer_counts.push_back(n);
+    }
+    std::vector<std::pair<int, RecoveryOptions>> out;
+    const RecoveryOptions& ro = o_.recovery;
+    if (ro.split_constraints && ro.fuzzy_faces) {
+      RecoveryOptions split = ro, fuzzy = ro;
+      split.fuzzy_faces = false;
+      fuzzy.split_constraints = false;
+      for (int n : layer_counts) out.push_back({n, split});
+      for (int n : layer_counts) out.push_back({n, fuzzy});
+    } else {
+      for (int n : layer_counts) out.push_back({n, ro});
+    }
+    return out;
+  }
+
+  // The recovery's options for S1: every piece of an S1 face must see that face's T1 apex, so
+  // that the coupling's cones over them are positive (split-constraints strategy); the attempts'
+  // budget bounds its time.
+  RecoveryOptions recovery_options(RecoveryOptions ro, const LayersOutput& layers, const SurfaceMesh& s1,
+                                   double budget_left) const {
+    ro.face_apex.resize(3 * s1.num_triangles());
     for (size_t i = 0; i < s1.num_triangles(); ++i) {
-      const uint32_t apex = layers->mesh.vertex(layers->front_tet[i], int(layers->front_facet[i]));
-      std::copy(layers->mesh.point(apex), layers->mesh.point(apex) + 3, &recovery_options.face_apex[3 * i]);
+      const uint32_t apex = layers.mesh.vertex(layers.front_tet[i], int(layers.front_facet[i]));
+      std::copy(layers.mesh.point(apex), layers.mesh.point(apex) + 3, &ro.face_apex[3 * i]);
     }
-    if (budget > 0) {
-      // What is left of the budget; the fuzzy faces run up to three variants, each with max_seconds.
-      const double left = std::max(1.0, budget - since(attempts_start));
-      recovery_options.split_max_seconds = std::min(recovery_options.split_max_seconds, left);
-      const double variants = recovery_options.retry_strategies ? 3.0 : 1.0;
-      recovery_options.max_seconds = std::min(recovery_options.max_seconds, left / variants);
+    if (o_.attempts_seconds > 0) {
+      // The fuzzy faces run up to three variants, each with max_seconds.
+      const double left = std::max(1.0, budget_left);
+      ro.split_max_seconds = std::min(ro.split_max_seconds, left);
+      const double variants = ro.retry_strategies ? 3.0 : 1.0;
+      ro.max_seconds = std::min(ro.max_seconds, left / variants);
     }
-    recovered = isolated([&] { return recover_boundary(s1, recovery_options); });
-    result.stages.push_back({attempt == 0 ? "recovery" : "recovery (retry)", since(t),
-                             recovered.ok() ? recovered->stats.tets : 0});
-    if (!recovered.ok()) {
-      if (recovered.status().code() != Error::RecoveryFailed) {
-        first_failure = recovered.status();
-        failed_stage = "stage 2 (recovery of S1): ";
+    return ro;
+  }
+
+  Result<CoupledMesh> stages_1_and_2() {
+    const IsotropicSurfaceSizing surface_sizing(surface_);
+    const LayerSizing sizing(surface_sizing, o_.sizing);
+    const std::vector<std::pair<int, RecoveryOptions>> tries = attempts();
+    Result<CoupledMesh> coupled = Status(Error::Internal, "no layer count tried");
+    Status first_failure;
+    std::string failed_stage;
+    const auto attempts_start = Clock::now();
+    const double budget = o_.attempts_seconds;
+    size_t attempts_run = 0;
+    bool out_of_time = false;
+    auto failed = [&](const Status& st, const char* stage) {
+      if (!first_failure.ok()) return;
+      first_failure = st;
+      failed_stage = stage;
+    };
+    for (size_t attempt = 0; attempt < tries.size(); ++attempt) {
+      if (attempt > 0 && budget > 0 && since(attempts_start) >= budget) {
+        out_of_time = true;
         break;
       }
-      if (first_failure.ok()) {
-        first_failure = recovered.status();
-        failed_stage = "stage 2 (recovery of S1): ";
-      }
-      continue;
-    }
+      ++attempts_run;
+      auto t = Clock::now();
+      LayersOptions layer_options = o_.layers;
+      layer_options.layers = tries[attempt].first;
+      Result<LayersOutput> layers = isolated([&] { return build_layers(surface_, sizing, layer_options); });
+      if (!layers.ok()) return Status(layers.status().code(), "stage 1 (layers): " + layers.status().message());
+      result_.layers = layers->stats;
+      result_.layers_retries = attempt;
+      result_.layers_used = layer_options.layers;
+      result_.stages.push_back({attempt == 0 ? "layers" : "layers (retry)", since(t), layers->stats.tets});
+      grid_.start();
 
-    if (bl.enabled()) {
-      t1_origin = layers->vertex_origin;
-      t1_xyz = layers->mesh.xyz;
+      if (Status st = progress("recovery", kDoneAfterLayers); !st.ok()) return st;
+      t = Clock::now();
+      std::vector<uint32_t> s1_map;
+      const SurfaceMesh s1 = front_surface(layers.value(), &s1_map);
+      const RecoveryOptions ro = recovery_options(tries[attempt].second, layers.value(), s1, budget - since(attempts_start));
+      Result<RecoveryOutput> recovered = isolated([&] { return recover_boundary(s1, ro); });
+      result_.stages.push_back({attempt == 0 ? "recovery" : "recovery (retry)", since(t),
+                                recovered.ok() ? recovered->stats.tets : 0});
+      if (!recovered.ok()) {
+        const bool retry = recovered.status().code() == Error::RecoveryFailed;
+        if (!retry) first_failure = Status();  // this one is the error to report
+        failed(recovered.status(), "stage 2 (recovery of S1): ");
+        if (retry) continue;
+        break;
+      }
+      if (o_.layers.boundary_layer.enabled()) {
+        t1_origin_ = layers->vertex_origin;
+        t1_xyz_ = layers->mesh.xyz;
+      }
+      if (Status st = progress("coupling", kDoneAfterRecovery); !st.ok()) return st;
+      t = Clock::now();
+      coupled = isolated([&] { return couple_meshes(surface_, std::move(layers).value(), s1_map, recovered.value()); });
+      result_.stages.push_back({attempt == 0 ? "coupling" : "coupling (retry)", since(t),
+                                coupled.ok() ? coupled->stats.tets : 0});
+      if (coupled.ok()) {
+        result_.recovery = recovered->stats;
+        result_.couple = coupled->stats;
+        return coupled;
+      }
+      failed(coupled.status(), "stage 3 (coupling): ");
     }
-    if (Status st = progress("coupling", kDoneAfterRecovery); !st.ok()) return st;
-    t = Clock::now();
-    coupled = isolated([&] { return couple_meshes(surface, std::move(layers).value(), s1_map, recovered.value()); });
-    result.stages.push_back({attempt == 0 ? "coupling" : "coupling (retry)", since(t),
-                             coupled.ok() ? coupled->stats.tets : 0});
-    if (coupled.ok()) break;
-    if (first_failure.ok()) {
-      first_failure = coupled.status();
-      failed_stage = "stage 3 (coupling): ";
-    }
-  }
-  if (!coupled.ok()) {
     std::string msg = failed_stage + first_failure.message();
-    if (attempts.size() > 1)
-      msg += " (" + std::to_string(attempts_run) + " of " + std::to_string(attempts.size()) +
+    if (tries.size() > 1)
+      msg += " (" + std::to_string(attempts_run) + " of " + std::to_string(tries.size()) +
              " attempts: layer counts and recovery strategies";
     if (out_of_time)
       msg += "; the others not run: the attempts' budget of " + std::to_string(int(budget)) +
              " s ran out (attempts_seconds; --attempts-seconds on the command line)";
-    if (attempts.size() > 1) msg += ")";
+    if (tries.size() > 1) msg += ")";
     return Status(first_failure.code(), msg);
   }
-  result.recovery = recovered->stats;
-  result.couple = coupled->stats;
 
-  auto t = Clock::now();
-  TetMesh& mesh = coupled->mesh;
-  if (bl.enabled()) result.boundary_layer.vertices = freeze_boundary_layer(mesh, int32_t(coupled->stats.bodies));
-  if (options_.run_refine || options_.run_optimize) {
-    if (Status st = progress("sizing", kDoneAfterCoupling); !st.ok()) return st;
-    t = Clock::now();
-    const SizingField* field = options_.sizing;
-    std::optional<metric::MetricField> grid;
-    if (!field) {
-      start_grid();
-      wait_for_grid();
-      Result<metric::MetricField>& built = *default_grid;
+  Status stage_field(StageField& out) {
+    const auto t = Clock::now();
+    out.field = o_.sizing;
+    if (!out.field) {
+      Result<metric::MetricField> built = grid_.take();
       if (!built.ok()) return Status(built.status().code(), "sizing field: " + built.status().message());
-      grid.emplace(std::move(built).value());
-      field = &*grid;
+      out.field = &out.grid.emplace(std::move(built).value());
     }
     // boundary_layer_sizing: the interior's sizes continue the layers' heights (normal size
     // h0 + (r - 1) d at distance d from the walls, intersected with the field above), so the tets
     // on the BL's top are about as thin as its last layer and grow from there.
-    std::optional<metric::BoundaryLayerField> bl_field;
-    if (bl.enabled() && options_.boundary_layer_sizing) {
+    const BoundaryLayerOptions& bl = o_.layers.boundary_layer;
+    if (bl.enabled() && o_.boundary_layer_sizing) {
       metric::BoundaryLayerOptions bo;
       bo.first_height = bl.first_height;
       bo.growth = bl.growth;
       bo.wall_patches = bl.wall_patches;
-      Result<metric::BoundaryLayerField> built = metric::BoundaryLayerField::create(surface, *field, bo);
+      Result<metric::BoundaryLayerField> built = metric::BoundaryLayerField::create(surface_, *out.field, bo);
       if (!built.ok()) return Status(built.status().code(), "boundary-layer sizing: " + built.status().message());
-      bl_field.emplace(std::move(built).value());
-      field = &*bl_field;
+      out.field = &out.bl_field.emplace(std::move(built).value());
     }
-    result.stages.push_back({"sizing", since(t), 0});
-    const ScaledSizing scaled(*field, options_.refine.size_scale > 0.0 ? options_.refine.size_scale : 1.0);
-    if (options_.run_refine) {
-      result.estimated_tets = estimate_refined_tets(mesh, scaled);
-      if (options_.max_tets > 0 && result.estimated_tets > options_.max_tets) {
+    result_.stages.push_back({"sizing", since(t), 0});
+    return Status::success();
+  }
+
+  Status refine_and_optimize(TetMesh& mesh, const SizingField& field) {
+    const ScaledSizing scaled(field, o_.refine.size_scale > 0.0 ? o_.refine.size_scale : 1.0);
+    if (o_.run_refine) {
+      result_.estimated_tets = estimate_refined_tets(mesh, scaled);
+      if (o_.max_tets > 0 && result_.estimated_tets > o_.max_tets) {
         char msg[200];
-        std::snprintf(msg, sizeof msg, "the sizing field asks for about %.3g tets (estimated before refinement), more than the limit of %.3g",
-                      result.estimated_tets, options_.max_tets);
+        std::snprintf(msg, sizeof msg,
+                      "the sizing field asks for about %.3g tets (estimated before refinement), more than the limit of %.3g",
+                      result_.estimated_tets, o_.max_tets);
         return Status(Error::InvalidArgument, msg);
       }
     }
-    if (options_.stage3) {
-      if (!options_.run_refine || !options_.run_optimize)
+    if (o_.stage3) {
+      if (!o_.run_refine || !o_.run_optimize)
         return Status(Error::NotImplemented, "stages 3b/3c in parts need both refinement and optimization");
       if (Status st = progress("refine", kDoneAfterSizing); !st.ok()) return st;
-      t = Clock::now();
-      if (Status st = options_.stage3(mesh, *field, result.refine, result.optimize); !st.ok())
+      const auto t = Clock::now();
+      if (Status st = o_.stage3(mesh, field, result_.refine, result_.optimize); !st.ok())
         return Status(st.code(), "stages 3b/3c in parts: " + st.message());
-      result.stages.push_back({"refine+optimize in parts", since(t), result.optimize.after.tets});
+      result_.stages.push_back({"refine+optimize in parts", since(t), result_.optimize.after.tets});
     } else {
-      // Refinement and optimization tell their progress within the stage (not cancellable there).
-      auto within = [&](const char* stage, double from, double to) {
-        return [this, stage, from, to](double f) {
-          if (options_.progress) options_.progress(stage, from + f * (to - from));
-        };
-      };
-      RefineOptions refine_options = options_.refine;
-      refine_options.expected_tets = result.estimated_tets;
-      refine_options.progress = within("refine", kDoneAfterSizing, kDoneAfterRefine);
-      OptimizeOptions optimize_options = options_.optimize;
-      optimize_options.progress = within("optimize", kDoneAfterRefine, kDoneAfterOptimize);
-      if (options_.run_refine) {
-        if (Status st = progress("refine", kDoneAfterSizing); !st.ok()) return st;
-        t = Clock::now();
-        const auto coupled_vertices = static_cast<uint32_t>(mesh.num_vertices());
-        Result<RefineStats> refined = refine_mesh(mesh, *field, refine_options);
-        if (!refined.ok()) return Status(refined.status().code(), "stage 3b (refinement): " + refined.status().message());
-        // The optimizer walks balls and rings all over the mesh: 1.2 s of its 5.2 s on armadillo went
-        // to memory scattered by refinement's passes. The coupled mesh's vertices keep their ids
-        // (stage 1's boundary-layer figures are measured by them).
-        order_for_locality(mesh, coupled_vertices);
-        result.refine = refined.value();
-        result.stages.push_back({"refine", since(t), refined->tets_after});
-      }
-      if (options_.run_optimize) {
-        if (Status st = progress("optimize", kDoneAfterRefine); !st.ok()) return st;
-        t = Clock::now();
-        Result<OptimizeStats> optimized = optimize_mesh(mesh, scaled, optimize_options);
-        if (!optimized.ok())
-          return Status(optimized.status().code(), "stage 3c (optimization): " + optimized.status().message());
-        result.optimize = optimized.value();
-        result.stages.push_back({"optimize", since(t), optimized->after.tets});
-      }
-      if (options_.run_refine && options_.run_optimize && result.optimize.anisotropic &&
-          options_.anisotropic_cycles > 0) {
+      if (o_.run_refine)
+        if (Status st = refine(mesh, field); !st.ok()) return st;
+      if (o_.run_optimize)
+        if (Status st = optimize(mesh, scaled); !st.ok()) return st;
+      if (o_.run_refine && o_.run_optimize && result_.optimize.anisotropic && o_.anisotropic_cycles > 0) {
         if (Status st = progress("cycles", kDoneAfterOptimize); !st.ok()) return st;
-        t = Clock::now();
-        if (Status st = refine_optimize_cycles(mesh, *field, options_.refine, options_.optimize,
-                                               options_.anisotropic_cycles, result.refine, result.optimize);
+        const auto t = Clock::now();
+        if (Status st = refine_optimize_cycles(mesh, field, o_.refine, o_.optimize, o_.anisotropic_cycles,
+                                               result_.refine, result_.optimize);
             !st.ok())
           return st;
-        result.anisotropic_cycles = options_.anisotropic_cycles;
-        result.stages.push_back({"cycles", since(t), result.optimize.after.tets});
+        result_.anisotropic_cycles = o_.anisotropic_cycles;
+        result_.stages.push_back({"cycles", since(t), result_.optimize.after.tets});
       }
     }
-    if (result.optimize.anisotropic) result.metric_quality = summarize_metric_quality(mesh, scaled);
+    if (result_.optimize.anisotropic) result_.metric_quality = summarize_metric_quality(mesh, scaled);
+    return Status::success();
   }
 
-  t = Clock::now();
-  if (bl.enabled()) {
-    measure_boundary_layer(surface, bl, result.layers.bl_layers, t1_origin, t1_xyz, mesh, result.boundary_layer);
-    for (uint32_t k = 0; k < mesh.num_tet_slots(); ++k)
-      if (!mesh.is_deleted(k) && mesh.tet_region[k] >= int32_t(coupled->stats.bodies)) ++result.boundary_layer.tets;
-    result.boundary_layer.reduced_vertices = result.layers.bl_reduced_vertices;
+  // Refinement and optimization tell their progress within the stage; a cancel asked there takes
+  // effect at the next stage, and the callback is not called again meanwhile.
+  std::function<void(double)> within(const char* stage, double from, double to) {
+    return [this, stage, from, to](double f) {
+      if (o_.progress && !cancel_asked_ && !o_.progress(stage, from + f * (to - from))) cancel_asked_ = true;
+    };
   }
-  // Vertices of no tet are dropped (those coarsening removed, and input vertices of no triangle,
-  // e.g. a volume mesh's interior ones); the input's others stay first, in input order. The
-  // boundary triangles are the input's, renumbered with the vertices.
-  std::vector<uint32_t> vertex_map;
-  result.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/true, surface.tri, surface.patch, &vertex_map);
-  result.input_vertex.assign(vertex_map.begin(), vertex_map.begin() + std::ptrdiff_t(surface.num_vertices()));
-  result.stages.push_back({"output", since(t), result.mesh.num_tets()});
-  result.notices = shortfalls(result, options_);
-  if (Status st = progress("done", 1.0); !st.ok()) return st;
-  result.seconds = since(start);
-  return result;
+
+  Status refine(TetMesh& mesh, const SizingField& field) {
+    if (Status st = progress("refine", kDoneAfterSizing); !st.ok()) return st;
+    const auto t = Clock::now();
+    RefineOptions options = o_.refine;
+    options.expected_tets = result_.estimated_tets;
+    options.progress = within("refine", kDoneAfterSizing, kDoneAfterRefine);
+    const auto coupled_vertices = static_cast<uint32_t>(mesh.num_vertices());
+    Result<RefineStats> refined = refine_mesh(mesh, field, options);
+    if (!refined.ok()) return Status(refined.status().code(), "stage 3b (refinement): " + refined.status().message());
+    // The optimizer walks balls and rings all over the mesh: 1.2 s of its 5.2 s on armadillo went
+    // to memory scattered by refinement's passes. The coupled mesh's vertices keep their ids
+    // (stage 1's boundary-layer figures are measured by them).
+    order_for_locality(mesh, coupled_vertices);
+    result_.refine = refined.value();
+    result_.stages.push_back({"refine", since(t), refined->tets_after});
+    return Status::success();
+  }
+
+  Status optimize(TetMesh& mesh, const SizingField& scaled) {
+    if (Status st = progress("optimize", kDoneAfterRefine); !st.ok()) return st;
+    const auto t = Clock::now();
+    OptimizeOptions options = o_.optimize;
+    options.progress = within("optimize", kDoneAfterRefine, kDoneAfterOptimize);
+    Result<OptimizeStats> optimized = optimize_mesh(mesh, scaled, options);
+    if (!optimized.ok())
+      return Status(optimized.status().code(), "stage 3c (optimization): " + optimized.status().message());
+    result_.optimize = optimized.value();
+    result_.stages.push_back({"optimize", since(t), optimized->after.tets});
+    return Status::success();
+  }
+
+  // The boundary layer's figures, then the VolumeMesh: vertices of no tet are dropped (those
+  // coarsening removed, and input vertices of no triangle, e.g. a volume mesh's interior ones);
+  // the input's others stay first, in input order. The boundary triangles are the input's,
+  // renumbered with the vertices.
+  void finish(const TetMesh& mesh, int32_t bodies) {
+    const auto t = Clock::now();
+    const BoundaryLayerOptions& bl = o_.layers.boundary_layer;
+    if (bl.enabled()) {
+      measure_boundary_layer(surface_, bl, result_.layers.bl_layers, t1_origin_, t1_xyz_, mesh, result_.boundary_layer);
+      for (uint32_t k = 0; k < mesh.num_tet_slots(); ++k)
+        if (!mesh.is_deleted(k) && mesh.tet_region[k] >= bodies) ++result_.boundary_layer.tets;
+      result_.boundary_layer.reduced_vertices = result_.layers.bl_reduced_vertices;
+    }
+    std::vector<uint32_t> vertex_map;
+    result_.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/true, surface_.tri, surface_.patch, &vertex_map);
+    result_.input_vertex.assign(vertex_map.begin(), vertex_map.begin() + std::ptrdiff_t(surface_.num_vertices()));
+    result_.stages.push_back({"output", since(t), result_.mesh.num_tets()});
+    result_.notices = shortfalls(result_, o_);
+  }
+
+  const MesherOptions& o_;
+  const SurfaceMesh& surface_;
+  DefaultGrid grid_;
+  MesherResult result_;
+  std::vector<uint32_t> t1_origin_;  // kept for the boundary-layer figures (stage 1's vertex ids
+  std::vector<double> t1_xyz_;       // survive the later stages)
+  bool cancel_asked_ = false;        // by a progress call within a stage
+};
+
+}  // namespace
+
+Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
+  return MeshingRun(options_, surface).run();
 }
 
 Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,

@@ -166,6 +166,7 @@ struct progress_log {
   int decreasing; /* a fraction below the previous one was seen */
   double first, last;
   char stages[128]; /* stage names, space-separated */
+  char last_stage[32];
   int logs, stage_lines, error_lines;
 };
 
@@ -175,10 +176,12 @@ static int on_progress(double fraction, const char* stage, void* user_data) {
   else if (fraction < r->last) r->decreasing = 1;
   r->last = fraction;
   r->calls++;
-  if (strlen(r->stages) + strlen(stage) + 2 < sizeof r->stages) {
+  /* A stage may report several times as it goes (refine, optimize): its name is kept once. */
+  if (strcmp(stage, r->last_stage) != 0 && strlen(r->stages) + strlen(stage) + 2 < sizeof r->stages) {
     strcat(r->stages, stage);
     strcat(r->stages, " ");
   }
+  strncpy(r->last_stage, stage, sizeof r->last_stage - 1);
   return r->calls == r->cancel_at ? 1 : 0;
 }
 
