@@ -6,6 +6,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <limits>
+#include <set>
 #include <string>
 
 #include "anitet.h"
@@ -314,7 +315,21 @@ const std::vector<Target>& targets() {
   static const std::vector<Target> all = {
       {"off", [](const uint8_t* d, size_t n) { check_surface("off", read_off(text(d, n), kName)); }},
       {"obj", [](const uint8_t* d, size_t n) { check_surface("obj", read_obj(text(d, n), kName)); }},
-      {"stl", [](const uint8_t* d, size_t n) { check_surface("stl", read_stl(text(d, n), kName)); }},
+      {"stl",
+       [](const uint8_t* d, size_t n) {
+         PatchNames names;
+         Result<SurfaceMesh> mesh = read_stl(text(d, n), kName, &names);
+         check_surface("stl", mesh);
+         // The solid names made patch names: valid, unique, each for a label the triangles have.
+         std::set<std::string> seen;
+         for (const auto& [label, name] : names) {
+           if (Status s = check_patch_name(name); !s.ok()) broken("stl", "solid " + name + ": " + s.message());
+           if (!seen.insert(name).second) broken("stl", "two labels named " + name);
+           if (!mesh.ok() || std::find(mesh->patch.begin(), mesh->patch.end(), label) == mesh->patch.end()) {
+             broken("stl", "name " + name + " for label " + std::to_string(label) + ", which no triangle has");
+           }
+         }
+       }},
       {"ply", [](const uint8_t* d, size_t n) { check_surface("ply", read_ply(text(d, n), kName)); }},
       {"medit",
        [](const uint8_t* d, size_t n) {

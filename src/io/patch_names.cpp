@@ -25,19 +25,41 @@ std::string lower(std::string s) {
   return s;
 }
 
+constexpr size_t kMaxNameLength = 32;  // CGNS node names and Exodus names (MAX_STR_LENGTH)
+
+bool name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+// `text` as a valid name, maybe not unique; "" when nothing of it is usable.
+std::string valid_name(const std::string& text) {
+  std::string out;
+  bool gap = false;  // a run of invalid characters since the last valid one
+  for (char c : text) {
+    if (!name_char(c)) {
+      gap = true;
+      continue;
+    }
+    if (gap && !out.empty()) out += '_';
+    gap = false;
+    out += c;
+  }
+  if (out.empty()) return out;
+  if (!std::isalpha(static_cast<unsigned char>(out[0]))) out = "patch_" + out;
+  out.resize(std::min(out.size(), kMaxNameLength));
+  return out;
+}
+
 }  // namespace
 
 Status check_patch_name(const std::string& name) {
-  constexpr size_t kMaxLength = 32;  // CGNS node names and Exodus names (MAX_STR_LENGTH)
   if (name.empty()) return Status(Error::InvalidArgument, "empty patch name");
-  if (name.size() > kMaxLength) {
+  if (name.size() > kMaxNameLength) {
     return Status(Error::InvalidArgument, "patch name '" + name + "' is longer than 32 characters");
   }
   if (!std::isalpha(static_cast<unsigned char>(name[0]))) {
     return Status(Error::InvalidArgument, "patch name '" + name + "' must start with a letter");
   }
   for (char c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') {
+    if (!name_char(c)) {
       return Status(Error::InvalidArgument, "patch name '" + name +
                                                 "' may only contain letters, digits and '_' (valid in "
                                                 "SU2, OpenFOAM, CGNS and Exodus)");
@@ -81,6 +103,30 @@ Result<PatchNames> parse_patch_names(const std::string& spec) {
     if (!seen.insert(name).second) {
       return Status(Error::InvalidArgument, "the name '" + name + "' is given twice");
     }
+    names[label] = name;
+  }
+  return names;
+}
+
+PatchNames patch_names_from_text(const std::map<int32_t, std::string>& texts) {
+  std::map<int32_t, std::string> wanted;
+  std::set<std::string> taken;
+  for (const auto& [label, text] : texts) {
+    std::string name = valid_name(text);
+    if (name.empty()) {
+      taken.insert(labelled("patch", label));  // the default name it keeps
+    } else {
+      wanted[label] = std::move(name);
+    }
+  }
+  PatchNames names;
+  for (const auto& [label, base] : wanted) {
+    std::string name = base;
+    for (int n = 2; taken.count(name); ++n) {
+      const std::string suffix = "_" + std::to_string(n);
+      name = base.substr(0, kMaxNameLength - suffix.size()) + suffix;
+    }
+    taken.insert(name);
     names[label] = name;
   }
   return names;

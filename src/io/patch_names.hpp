@@ -26,6 +26,15 @@ Result<PatchNames> parse_patch_names(const std::string& spec);
 // Error::InvalidArgument unless `name` follows the rule above.
 Status check_patch_name(const std::string& name);
 
+// Patch names made from free text, such as the names after `solid` in an STL file, which CAD
+// exporters fill with part names ("Part1 - Body:1", "1002_tray_bottom"): `texts` maps every
+// label of the mesh to its text ("" for none). Each run of characters other than [A-Za-z0-9_]
+// becomes one '_' (dropped at either end), a name not starting with a letter gets the prefix
+// "patch_", and it is cut to 32 characters; a name already taken (by a smaller label, or as the
+// default name of an unnamed label) gets the suffix _2, _3, .... A text with nothing usable
+// (only blanks or punctuation) leaves its label unnamed (its default name).
+PatchNames patch_names_from_text(const std::map<int32_t, std::string>& texts);
+
 // The name of a label: the given one, else patch<label> (prefix "region" for regions).
 std::string patch_name(const PatchNames& names, int32_t label);
 std::string region_name(int32_t label);

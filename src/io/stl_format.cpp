@@ -2,6 +2,8 @@
 // 3 corners) and a 2-byte attribute (not a label). Corners are merged by exact coordinates.
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "io/byte_reader.hpp"
@@ -79,20 +81,91 @@ Result<SurfaceMesh> parse_binary_stl(std::string_view data, const std::string& n
   return mesh;
 }
 
-// ASCII: solid name / facet normal n n n / outer loop / vertex x y z (3 or more) / endloop /
-// endfacet ... endsolid name; several solid blocks get patch labels 1, 2, ...
-Result<SurfaceMesh> parse_ascii_stl(std::string_view data, const std::string& name) {
+// The patch label of each `solid` block: a named block shares the label of an earlier block of
+// the same name (one patch exported in pieces), an unnamed one gets a label of its own.
+class SolidLabels {
+ public:
+  int32_t label_of(std::string_view name) {
+    if (!name.empty()) {
+      auto [it, fresh] = by_name_.emplace(std::string(name), static_cast<int32_t>(texts_.size() + 1));
+      if (!fresh) return it->second;
+    }
+    texts_.emplace_back(name);
+    has_triangles_.push_back(false);
+    return static_cast<int32_t>(texts_.size());
+  }
+  void add_triangles(int32_t label) { has_triangles_[static_cast<size_t>(label - 1)] = true; }
+  // The labels with triangles, increasing, with their texts.
+  std::map<int32_t, std::string> used() const {
+    std::map<int32_t, std::string> out;
+    for (size_t i = 0; i < texts_.size(); ++i) {
+      if (has_triangles_[i]) out.emplace(static_cast<int32_t>(i + 1), texts_[i]);
+    }
+    return out;
+  }
+
+ private:
+  std::vector<std::string> texts_;  // the name after `solid` of label i + 1, "" when none
+  std::vector<bool> has_triangles_;
+  std::map<std::string, int32_t> by_name_;
+};
+
+// One facet: [normal n n n] outer loop / vertex x y z (3 or more) / endloop / endfacet, after
+// its `facet` keyword; fan-triangulated into `mesh` with `label`.
+Status parse_facet(TextScanner& in, ExactVertexMerger& merger, std::vector<uint32_t>& polygon,
+                   SurfaceMesh& mesh, int32_t label) {
+  const size_t line = in.line();
+  if (iequals(in.peek_token(), "normal")) {
+    in.next_token();
+    double n;
+    for (int k = 0; k < 3; ++k) {
+      if (!in.read_double(n)) return in.expected("a normal component");
+    }
+  }
+  if (!in.read_keyword("outer")) return in.expected("'outer loop'");
+  if (!in.read_keyword("loop")) return in.expected("'loop'");
+  polygon.clear();
+  while (iequals(in.peek_token(), "vertex")) {
+    in.next_token();
+    double p[3];
+    for (double& c : p) {
+      if (!in.read_double(c)) return in.expected("a vertex coordinate");
+    }
+    if (mesh.num_vertices() >= kMaxVertices) return in.error(Error::Parse, "too many vertices");
+    polygon.push_back(merger.insert(p[0], p[1], p[2]));
+  }
+  if (polygon.size() < 3) return in.expected("'vertex' (a facet needs 3)");
+  if (!in.read_keyword("endloop")) return in.expected("'endloop'");
+  if (!in.read_keyword("endfacet")) return in.expected("'endfacet'");
+  add_fan(mesh, polygon.data(), polygon.size(), label, line);
+  return Status::success();
+}
+
+// With a single label in use, the file is one patch: label 0, unnamed (a lone solid's name is
+// mostly the exporter's or the part's: "ascii", "Exported from ..."). Else each used label's
+// `solid` name made a valid patch name (patch_names_from_text) into `names`.
+void name_solids(SurfaceMesh& mesh, const SolidLabels& solids, PatchNames* names) {
+  const std::map<int32_t, std::string> used = solids.used();
+  if (used.size() == 1) {
+    mesh.patch.assign(mesh.patch.size(), 0);
+    return;
+  }
+  if (!names) return;
+  for (auto& [label, name] : patch_names_from_text(used)) (*names)[label] = std::move(name);
+}
+
+// ASCII: solid name / facet ... / endsolid name, repeated; each block a patch (SolidLabels).
+Result<SurfaceMesh> parse_ascii_stl(std::string_view data, const std::string& name, PatchNames* names) {
   TextScanner in(data, name, '\0');
   SurfaceMesh mesh;
   mesh.xyz.reserve(data.size() / 250 * 3);
   mesh.tri.reserve(data.size() / 250 * 3);
   ExactVertexMerger merger(mesh.xyz, data.size() / 500);
   std::vector<uint32_t> polygon;
-  int32_t solids = 0;
+  SolidLabels solids;
   while (in.skip_space()) {
     if (!in.read_keyword("solid")) return in.expected("'solid'");
-    in.rest_of_line();
-    ++solids;
+    const int32_t label = solids.label_of(in.rest_of_line());
     for (;;) {
       std::string_view word = in.next_token();
       if (iequals(word, "endsolid")) {
@@ -104,42 +177,20 @@ Result<SurfaceMesh> parse_ascii_stl(std::string_view data, const std::string& na
                                           (word.empty() ? std::string("end of file")
                                                         : "'" + quote_token(word) + "'"));
       }
-      const size_t line = in.line();
-      if (iequals(in.peek_token(), "normal")) {
-        in.next_token();
-        double n;
-        for (int k = 0; k < 3; ++k) {
-          if (!in.read_double(n)) return in.expected("a normal component");
-        }
-      }
-      if (!in.read_keyword("outer")) return in.expected("'outer loop'");
-      if (!in.read_keyword("loop")) return in.expected("'loop'");
-      polygon.clear();
-      while (iequals(in.peek_token(), "vertex")) {
-        in.next_token();
-        double p[3];
-        for (double& c : p) {
-          if (!in.read_double(c)) return in.expected("a vertex coordinate");
-        }
-        if (mesh.num_vertices() >= kMaxVertices) return in.error(Error::Parse, "too many vertices");
-        polygon.push_back(merger.insert(p[0], p[1], p[2]));
-      }
-      if (polygon.size() < 3) return in.expected("'vertex' (a facet needs 3)");
-      if (!in.read_keyword("endloop")) return in.expected("'endloop'");
-      if (!in.read_keyword("endfacet")) return in.expected("'endfacet'");
-      add_fan(mesh, polygon.data(), polygon.size(), solids, line);
+      if (Status s = parse_facet(in, merger, polygon, mesh, label); !s.ok()) return s;
+      solids.add_triangles(label);
     }
   }
   if (mesh.tri.empty()) return Status(Error::EmptyInput, name + ": the STL file has no triangles");
-  if (solids == 1) mesh.patch.assign(mesh.patch.size(), 0);
+  name_solids(mesh, solids, names);
   return mesh;
 }
 
 }  // namespace
 
-Result<SurfaceMesh> read_stl(std::string_view data, const std::string& name) {
+Result<SurfaceMesh> read_stl(std::string_view data, const std::string& name, PatchNames* names) {
   return catch_bad_alloc(name, [&] {
-    return is_binary_stl(data) ? parse_binary_stl(data, name) : parse_ascii_stl(data, name);
+    return is_binary_stl(data) ? parse_binary_stl(data, name) : parse_ascii_stl(data, name, names);
   });
 }
 

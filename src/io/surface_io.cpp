@@ -81,7 +81,7 @@ Result<SurfaceMesh> read_surface(std::string_view data, SurfaceFormat format, co
     case SurfaceFormat::Obj:
       return read_obj(data, name);
     case SurfaceFormat::Stl:
-      return read_stl(data, name);
+      return read_stl(data, name, names);
     case SurfaceFormat::Ply:
       return read_ply(data, name);
     case SurfaceFormat::Medit: {

@@ -25,8 +25,9 @@ Result<SurfaceFormat> surface_format_from_path(const std::string& path);
 
 // Reads a file, choosing the format from its extension. `names`, when given, receives the patch
 // names the file carries for the labels its triangles have (SU2 markers, Gmsh physical names,
-// anitet's "# patch" comments in Medit files; other formats: none); a name that is no valid patch
-// name (patch_names.hpp) is Error::InvalidArgument. A volume mesh (.mesh, .msh, .vtu, .su2, TetGen .node/.ele)
+// anitet's "# patch" comments in Medit files, STL `solid` names; other formats: none); a name
+// that is no valid patch name (patch_names.hpp) is Error::InvalidArgument, except in STL files,
+// whose free-text names are made valid (read_stl). A volume mesh (.mesh, .msh, .vtu, .su2, TetGen .node/.ele)
 // gives its surface: its boundary triangles with their patch labels, else (.mesh .msh .vtu
 // .node/.ele without any) the boundary faces of its tets, outward, patch 0; every vertex of the
 // file is kept in file order, so the tets' interior vertices are vertices of no triangle.
@@ -43,9 +44,12 @@ Result<SurfaceMesh> read_off(std::string_view data, const std::string& name);
 // patch label 1, 2, ... in order of first appearance; faces before any group get 0.
 Result<SurfaceMesh> read_obj(std::string_view data, const std::string& name);
 // STL ASCII or binary (detected by content, also when a binary header starts with "solid").
-// Corners with bit-equal coordinates are merged into one vertex. Patches: 0, or 1, 2, ... for the
-// blocks of an ASCII file with several `solid` blocks.
-Result<SurfaceMesh> read_stl(std::string_view data, const std::string& name);
+// Corners with bit-equal coordinates are merged into one vertex. Patches: 0, or, in an ASCII
+// file whose triangles are in several `solid` blocks, 1, 2, ... per block in file order (blocks
+// of the same name share one label). `names`, when given, then receives each label's `solid`
+// name made a valid, unique patch name (patch_names_from_text: "wall 1" becomes "wall_1"); an
+// unnamed block's label, a single patch, and binary files get none.
+Result<SurfaceMesh> read_stl(std::string_view data, const std::string& name, PatchNames* names = nullptr);
 // PLY ascii, binary_little_endian or binary_big_endian: `vertex` x y z and the `face` index list.
 Result<SurfaceMesh> read_ply(std::string_view data, const std::string& name);
 // Medit .mesh (ASCII): Vertices and Triangles (refs become patches; Quadrilaterals are split).

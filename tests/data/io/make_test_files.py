@@ -121,10 +121,10 @@ def obj_groups():
     write("box_groups.obj", "\n".join(lines) + "\n")
 
 
-def stl_ascii(name, blocks):
+def stl_ascii(name, blocks, solid_names):
     lines = []
-    for b, tris in enumerate(blocks):
-        lines.append("solid block%d" % b)
+    for solid, tris in zip(solid_names, blocks):
+        lines.append("solid " + solid)
         for t in tris:
             lines.append("  facet normal 0 0 0")
             lines.append("    outer loop")
@@ -132,7 +132,7 @@ def stl_ascii(name, blocks):
                 lines.append("      vertex " + " ".join("%.9g" % c for c in VERTS[v]))
             lines.append("    endloop")
             lines.append("  endfacet")
-        lines.append("endsolid block%d" % b)
+        lines.append("endsolid " + solid)
     write(name, "\n".join(lines) + "\n")
 
 
@@ -370,8 +370,9 @@ def vtu():
 off_quads()
 off_inline()
 obj_groups()
-stl_ascii("box_ascii.stl", [TRIS])
-stl_ascii("box_two_solids.stl", [TRIS[:4], TRIS[4:]])
+stl_ascii("box_ascii.stl", [TRIS], ["block0"])
+# Names as CAD exporters write them: "x ends" is read as the patch name x_ends.
+stl_ascii("box_two_solids.stl", [TRIS[:4], TRIS[4:]], ["x ends", "sides"])
 stl_binary("box_binary_solid_header.stl", b"solid this binary header starts like ASCII")
 ply_ascii()
 ply_binary("box_binary_le.ply", False)

@@ -51,6 +51,14 @@ template <class Mesh>
 ReaderCheck checker(Result<Mesh> (*read)(std::string_view, const std::string&)) {
   return [read](const std::string& data) { expect_sane(read(data, "fuzzed"), "fuzzed"); };
 }
+// A reader that also gives the file's patch names: asked for them, so that the naming runs too.
+template <class Mesh>
+ReaderCheck checker(Result<Mesh> (*read)(std::string_view, const std::string&, PatchNames*)) {
+  return [read](const std::string& data) {
+    PatchNames names;
+    expect_sane(read(data, "fuzzed", &names), "fuzzed");
+  };
+}
 
 // The readers that apply to a test file, by extension.
 std::vector<ReaderCheck> readers_for(const std::string& file) {

@@ -181,14 +181,79 @@ TEST(StlReader, AsciiErrorsNameTheLine) {
       << typo.status().message();
 }
 
-TEST(StlReader, SeveralSolidsBecomePatches) {
-  Result<SurfaceMesh> mesh = read_box("box_two_solids.stl");
+TEST(StlReader, SeveralSolidsBecomeNamedPatches) {
+  PatchNames names;
+  Result<SurfaceMesh> mesh = read_surface(io_data("box_two_solids.stl"), &names);
   ASSERT_TRUE(mesh.ok()) << mesh.status().message();
   EXPECT_EQ(mesh->num_vertices(), 8u);
   expect_box_triangles(mesh.value());
   std::vector<int32_t> expected(12, 2);
   std::fill(expected.begin(), expected.begin() + 4, 1);
   EXPECT_EQ(mesh->patch, expected);
+  // "solid x ends": the space is no patch-name character.
+  EXPECT_EQ(names, (PatchNames{{1, "x_ends"}, {2, "sides"}}));
+}
+
+// A tetrahedron in names.size() solid blocks (1 to 4): block i named names[i] holds facet i, the
+// last block the facets left.
+std::string tet_in_solids(const std::vector<std::string>& names) {
+  static const char* const kFacets[4][3] = {
+      {"0 0 0", "0 1 0", "1 0 0"}, {"0 0 0", "1 0 0", "0 0 1"}, {"1 0 0", "0 1 0", "0 0 1"}, {"0 0 0", "0 0 1", "0 1 0"}};
+  std::string text;
+  for (size_t f = 0; f < 4; ++f) {
+    if (f < names.size()) text += "solid " + names[f] + "\n";
+    text += "facet normal 0 0 0\nouter loop\n";
+    for (const char* v : kFacets[f]) text += std::string("vertex ") + v + "\n";
+    text += "endloop\nendfacet\n";
+    if (f + 1 < names.size() || f == 3) text += "endsolid\n";
+  }
+  return text;
+}
+
+Result<SurfaceMesh> read_named_stl(const std::vector<std::string>& solids, PatchNames& names) {
+  names.clear();
+  return read_surface(tet_in_solids(solids), SurfaceFormat::Stl, "n.stl", &names);
+}
+
+TEST(StlReader, SolidNamesAreMadeValidUniquePatchNames) {
+  PatchNames names;
+  // Invalid characters (runs become one '_'), a leading digit, more than 32 characters, and two
+  // texts that give the same name.
+  Result<SurfaceMesh> mesh =
+      read_named_stl({"Part1 - Body:1", "1002_tray", "a_very_long_name_from_a_cad_export_tool", "wall-2"}, names);
+  ASSERT_TRUE(mesh.ok()) << mesh.status().message();
+  EXPECT_EQ(mesh->patch, (std::vector<int32_t>{1, 2, 3, 4}));
+  EXPECT_EQ(names, (PatchNames{{1, "Part1_Body_1"},
+                               {2, "patch_1002_tray"},
+                               {3, "a_very_long_name_from_a_cad_expo"},
+                               {4, "wall_2"}}));
+  ASSERT_TRUE(read_named_stl({"wall 2", "wall:2", "wall_2", "x"}, names).ok());
+  EXPECT_EQ(names, (PatchNames{{1, "wall_2"}, {2, "wall_2_2"}, {3, "wall_2_3"}, {4, "x"}}));
+  for (const auto& [label, name] : names) EXPECT_TRUE(check_patch_name(name).ok()) << name;
+}
+
+TEST(StlReader, SolidsOfOneNameShareAPatchAndUnnamedOnesKeepTheDefault) {
+  PatchNames names;
+  Result<SurfaceMesh> mesh = read_named_stl({"wall", "inlet", "wall", ""}, names);
+  ASSERT_TRUE(mesh.ok()) << mesh.status().message();
+  EXPECT_EQ(mesh->patch, (std::vector<int32_t>{1, 2, 1, 3}));
+  EXPECT_EQ(names, (PatchNames{{1, "wall"}, {2, "inlet"}}));  // label 3: patch3
+  // Nothing usable in a text: unnamed. A name equal to an unnamed label's default is renamed.
+  mesh = read_named_stl({"patch2", "--", "ok"}, names);
+  ASSERT_TRUE(mesh.ok()) << mesh.status().message();
+  EXPECT_EQ(mesh->patch, (std::vector<int32_t>{1, 2, 3, 3}));
+  EXPECT_EQ(names, (PatchNames{{1, "patch2_2"}, {3, "ok"}}));
+  // One patch in all (one block, or blocks of one name): label 0, no name.
+  for (const auto& solids : {std::vector<std::string>{"wing"}, std::vector<std::string>{"wing", "wing"}}) {
+    mesh = read_named_stl(solids, names);
+    ASSERT_TRUE(mesh.ok()) << mesh.status().message();
+    EXPECT_EQ(mesh->patch, std::vector<int32_t>(4, 0));
+    EXPECT_TRUE(names.empty());
+  }
+  // Without `names` the labels are the same.
+  Result<SurfaceMesh> unnamed = read_stl(tet_in_solids({"wall", "inlet", "wall", ""}), "n.stl");
+  ASSERT_TRUE(unnamed.ok());
+  EXPECT_EQ(unnamed->patch, (std::vector<int32_t>{1, 2, 1, 3}));
 }
 
 TEST(StlReader, BinaryWhoseHeaderStartsWithSolid) {
