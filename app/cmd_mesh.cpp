@@ -198,6 +198,22 @@ void print_summary(const MeshArgs& args, const MesherResult& r, const QualityRep
                 q.min_dihedral_deg, q.max_dihedral_deg, 100.0 * q.good_fraction, 100.0 * q.bad_fraction);
   std::cout << line;
   const BoundaryLayerReport& bl = r.boundary_layer;
+  if (bl.layers > 0) {
+    // The BL's tets are thin by design (their own regions, from couple.bodies on): the rest alone.
+    size_t tets = 0;
+    double sum = 0.0, low = 1.0;
+    for (const RegionQuality& rq : q.by_region)
+      if (rq.region < int32_t(r.couple.bodies) && rq.quality.tets > 0) {
+        tets += rq.quality.tets;
+        sum += rq.quality.radius_ratio.mean * double(rq.quality.tets);
+        low = std::min(low, rq.quality.radius_ratio.min);
+      }
+    if (tets > 0) {
+      std::snprintf(line, sizeof line, "  outside the boundary layer: %zu tets, radius ratio mean %.3f, min %.3f\n", tets,
+                    sum / double(tets), low);
+      std::cout << line;
+    }
+  }
   if (bl.layers > 0)
     std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
               << bl.full_columns << " full columns (" << std::llround(bl.wall_vertices ? 100.0 * double(bl.full_columns) / double(bl.wall_vertices) : 0.0)
@@ -214,247 +230,292 @@ void print_summary(const MeshArgs& args, const MesherResult& r, const QualityRep
 
 }  // namespace
 
-int run_mesh_pipeline(MeshArgs& args) {
-  const std::string cmd = "anitet mesh";
-  if (const int code = check_output_paths(args); code != kExitOk) return code;
-  CheckedSurface checked;
-  if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
-  // The OpenVDB module (the sizing field's) opens on another core from here (60-90 ms of
-  // relocations). Not before the checks: their first TBB calls initialize TBB, which opens
-  // libraries too and would wait for the loader's lock.
-  std::optional<metric::VdbModulePreload> preload;
-  if ((!(args.no_refine && args.no_optimize) || wants_sizing_field(args.metric)) &&
-      tbb::this_task_arena::max_concurrency() > 1)
-    preload.emplace();
-  if (const int code = check_patch_names(args, checked); code != kExitOk) return code;
+namespace {
 
-  // --geodetic: the surface to a local frame in metres (validated again there: the checks are
-  // geometric), the mesh back to longitude, latitude, height at the end with --geodetic-output.
-  const std::vector<double> input_xyz = args.metric.geodetic_output ? checked.surface.xyz : std::vector<double>();
-  Result<std::optional<geo::GeoFrame>> frame = prepare_geodetic(args.metric, checked.surface);
-  if (!frame.ok()) {
-    std::cerr << cmd << ": --geodetic: '" << args.input << "': " << frame.status().message() << "\n";
-    return exit_code_of(frame.status().code());
-  }
-  if (frame.value()) {
-    checked.report = validate_surface(checked.surface);
-    if (!checked.report.ok()) {
-      print_invalid_surface("mesh", args.input + " (in the local frame)", checked);
-      return kExitInvalidInput;
+// `anitet mesh`'s steps, in the order run() takes them.
+class MeshCommand {
+ public:
+  explicit MeshCommand(MeshArgs& args) : args_(args) {}
+
+  int run() {
+    if (const int code = read_input(); code != kExitOk) return code;
+    if (const int code = mesher_options(); code != kExitOk) return code;
+    if (const int code = user_field(); code != kExitOk) return code;
+    if (const int code = distributed_options(); code != kExitOk) return code;
+    ProgressLine bar(!args_.quiet && !args_.json && (!distributed_ || distributed_->rank == 0));
+    options_.progress = [&bar](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
+    Result<MesherResult> run = Mesher(options_).run_validated(checked_.surface);
+    if (!run.ok()) return mesher_failed(run.status());
+    if (distributed_ && distributed_->rank != 0) return kExitOk;  // rank 0 writes and reports
+    MesherResult& r = run.value();
+    // A field built here, before the pipeline, is its sizing stage given to it ready: its time counts.
+    if (field_seconds_ > 0.0) {
+      for (StageReport& st : r.stages)
+        if (st.name == "sizing") st.seconds += field_seconds_;
+      r.seconds += field_seconds_;
     }
+    return write_and_report(r);
   }
 
-  MesherOptions options;
-  options.num_threads = args.threads;
-  const double free_bytes = available_memory_bytes();
-  options.max_tets = args.max_tets >= 0 ? args.max_tets : free_bytes > 0 ? free_bytes / kBytesPerTet : 0.0;
-  options.layers.layers = args.layers;
-  options.attempts_seconds = args.attempts_seconds;
-  options.recovery = recovery_options(args);
-  options.layers.scheme = args.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
-  options.layers.push_tasks_min_vertices = args.push_tasks_min_vertices;
-  if (!args.bl_patches.empty()) {
-    if (!(args.bl_first_height > 0.0)) {
-      std::cerr << cmd << ": --bl-patches needs --bl-first-height (or --bl-yplus)\n";
+ private:
+  // Read and validate the surface, the patch names; with --geodetic, the surface to a local frame
+  // in metres (validated again there: the checks are geometric).
+  int read_input() {
+    if (const int code = check_output_paths(args_); code != kExitOk) return code;
+    if (const int code = load_and_validate("mesh", args_.input, checked_); code != kExitOk) return code;
+    // The OpenVDB module (the sizing field's) opens on another core from here (60-90 ms of
+    // relocations). Not before the checks: their first TBB calls initialize TBB, which opens
+    // libraries too and would wait for the loader's lock.
+    if ((!(args_.no_refine && args_.no_optimize) || wants_sizing_field(args_.metric)) &&
+        tbb::this_task_arena::max_concurrency() > 1)
+      preload_.emplace();
+    if (const int code = check_patch_names(args_, checked_); code != kExitOk) return code;
+    if (args_.metric.geodetic_output) input_xyz_ = checked_.surface.xyz;
+    Result<std::optional<geo::GeoFrame>> frame = prepare_geodetic(args_.metric, checked_.surface);
+    if (!frame.ok()) {
+      std::cerr << kCmd << ": --geodetic: '" << args_.input << "': " << frame.status().message() << "\n";
+      return exit_code_of(frame.status().code());
+    }
+    frame_ = frame.value();
+    if (frame_) {
+      checked_.report = validate_surface(checked_.surface);
+      if (!checked_.report.ok()) {
+        print_invalid_surface("mesh", args_.input + " (in the local frame)", checked_);
+        return kExitInvalidInput;
+      }
+    }
+    return kExitOk;
+  }
+
+  int mesher_options() {
+    MesherOptions& o = options_;
+    o.num_threads = args_.threads;
+    free_bytes_ = available_memory_bytes();
+    o.max_tets = args_.max_tets >= 0 ? args_.max_tets : free_bytes_ > 0 ? free_bytes_ / kBytesPerTet : 0.0;
+    o.layers.layers = args_.layers;
+    o.attempts_seconds = args_.attempts_seconds;
+    o.recovery = recovery_options(args_);
+    o.layers.scheme = args_.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
+    o.layers.push_tasks_min_vertices = args_.push_tasks_min_vertices;
+    if (!args_.bl_patches.empty()) {
+      if (!(args_.bl_first_height > 0.0)) {
+        std::cerr << kCmd << ": --bl-patches needs --bl-first-height (or --bl-yplus)\n";
+        return kExitUsage;
+      }
+      BoundaryLayerOptions& bl = o.layers.boundary_layer;
+      bl.wall_patches.assign(args_.bl_patches.begin(), args_.bl_patches.end());
+      bl.first_height = args_.bl_first_height;
+      bl.growth = args_.bl_growth;
+      bl.layers = args_.bl_layers;
+    }
+    if (args_.bl_sizing && (args_.bl_patches.empty() || !(args_.bl_growth > 1.0))) {
+      std::cerr << kCmd << ": --bl-sizing needs --bl-patches and --bl-growth above 1\n";
       return kExitUsage;
     }
-    BoundaryLayerOptions& bl = options.layers.boundary_layer;
-    bl.wall_patches.assign(args.bl_patches.begin(), args.bl_patches.end());
-    bl.first_height = args.bl_first_height;
-    bl.growth = args.bl_growth;
-    bl.layers = args.bl_layers;
+    o.boundary_layer_sizing = args_.bl_sizing;
+    o.refine.size_scale = args_.size;
+    o.run_refine = !args_.no_refine;
+    o.run_optimize = !args_.no_optimize;
+    o.anisotropic_cycles = args_.anisotropic_cycles;
+    return kExitOk;
   }
-  if (args.bl_sizing && (args.bl_patches.empty() || !(args.bl_growth > 1.0))) {
-    std::cerr << cmd << ": --bl-sizing needs --bl-patches and --bl-growth above 1\n";
-    return kExitUsage;
-  }
-  options.boundary_layer_sizing = args.bl_sizing;
-  options.refine.size_scale = args.size;
-  options.run_refine = !args.no_refine;
-  options.run_optimize = !args.no_optimize;
-  options.anisotropic_cycles = args.anisotropic_cycles;
 
   // The sizing field: the user's (--metric, bounds, gradation) or, when only its output is asked
   // for, the default grid built here; else the Mesher builds the default grid itself.
-  std::unique_ptr<SizingField> field;
-  double field_seconds = 0.0;  // a field built here, before the pipeline: counted as its sizing stage
-  if (wants_sizing_field(args.metric)) {
+  int user_field() {
+    if (!wants_sizing_field(args_.metric)) return kExitOk;
     const auto t0 = std::chrono::steady_clock::now();
     Result<std::unique_ptr<SizingField>> built = build_sizing_field(
-        args.metric, checked.surface, frame.value() ? &*frame.value() : nullptr, options.surface_sizing);
+        args_.metric, checked_.surface, frame_ ? &*frame_ : nullptr, options_.surface_sizing);
     if (!built.ok()) {
-      std::cerr << cmd << ": sizing field: " << built.status().message() << " ["
-                << error_name(built.status().code()) << "]\n";
+      std::cerr << kCmd << ": sizing field: " << built.status().message() << " [" << error_name(built.status().code())
+                << "]\n";
       return exit_code_of(built.status().code());
     }
-    field = std::move(built).value();
-    options.sizing = field.get();
-    field_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    field_ = std::move(built).value();
+    options_.sizing = field_.get();
+    field_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return kExitOk;
   }
 
-  const DistributedRun* distributed = distributed_run();
-  if (distributed) {
-    if (!args.bl_patches.empty()) {
-      std::cerr << cmd << ": boundary layers are not implemented with MPI yet: run `anitet mesh`\n";
+  // anitet-mpi: stages 3b and 3c in parts, one per rank.
+  int distributed_options() {
+    distributed_ = distributed_run();
+    if (!distributed_) return kExitOk;
+    if (!args_.bl_patches.empty()) {
+      std::cerr << kCmd << ": boundary layers are not implemented with MPI yet: run `anitet mesh`\n";
       return kExitNotImplemented;
     }
-    if (args.no_refine || args.no_optimize) {
-      std::cerr << cmd << ": with MPI, refinement and optimization both run (they are what the ranks share)\n";
+    if (args_.no_refine || args_.no_optimize) {
+      std::cerr << kCmd << ": with MPI, refinement and optimization both run (they are what the ranks share)\n";
       return kExitUsage;
     }
-    options.stage3 = [distributed, &options](TetMesh& mesh, const SizingField& f, RefineStats& refine,
-                                             OptimizeStats& optimize) {
-      return distributed->stage3(mesh, f, options.refine, options.optimize, refine, optimize);
+    options_.stage3 = [this](TetMesh& mesh, const SizingField& f, RefineStats& refine, OptimizeStats& optimize) {
+      return distributed_->stage3(mesh, f, options_.refine, options_.optimize, refine, optimize);
     };
+    return kExitOk;
   }
-  ProgressLine bar(!args.quiet && !args.json && (!distributed || distributed->rank == 0));
-  options.progress = [&bar](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
-  Result<MesherResult> run = Mesher(options).run_validated(checked.surface);
-  if (!run.ok()) {
-    std::cerr << cmd << ": meshing '" << args.input << "' failed: " << run.status().message() << " ["
-              << error_name(run.status().code()) << "]\n";
-    if (run.status().message().find("the sizing field asks for about") != std::string::npos) {
+
+  int mesher_failed(const Status& st) const {
+    std::cerr << kCmd << ": meshing '" << args_.input << "' failed: " << st.message() << " [" << error_name(st.code())
+              << "]\n";
+    if (st.message().find("the sizing field asks for about") != std::string::npos) {
       char hint[200];
-      if (args.max_tets >= 0)
-        std::snprintf(hint, sizeof hint, "--max-tets %.3g", args.max_tets);
+      if (args_.max_tets >= 0)
+        std::snprintf(hint, sizeof hint, "--max-tets %.3g", args_.max_tets);
       else
-        std::snprintf(hint, sizeof hint, "the %.1f GB of free memory at about %.0f bytes a tet", free_bytes / 1e9, kBytesPerTet);
-      std::cerr << cmd << ": the limit is " << hint << ": a larger --size or --hmin makes fewer tets; "
+        std::snprintf(hint, sizeof hint, "the %.1f GB of free memory at about %.0f bytes a tet", free_bytes_ / 1e9,
+                      kBytesPerTet);
+      std::cerr << kCmd << ": the limit is " << hint << ": a larger --size or --hmin makes fewer tets; "
                 << "--max-tets 0 removes the limit\n";
     }
-    const Error e = run.status().code();  // bad options (e.g. a wall patch no triangle has): usage
+    const Error e = st.code();  // bad options (e.g. a wall patch no triangle has): usage
     return e == Error::NotImplemented ? kExitNotImplemented : e == Error::InvalidArgument ? kExitUsage : kExitInternal;
   }
-  MesherResult& r = run.value();
-  if (distributed && distributed->rank != 0) return kExitOk;  // rank 0 writes and reports
-  // The field built above is the pipeline's sizing stage, given to it ready: its time counts.
-  if (field_seconds > 0.0) {
-    for (StageReport& st : r.stages)
-      if (st.name == "sizing") st.seconds += field_seconds;
-    r.seconds += field_seconds;
-  }
-  // The mesh is written as it was measured unless --geodetic-output converts it after the
-  // report: then the file is written while the report is measured (both only read the mesh;
-  // armadillo: the writer's 0.45 s behind the report's 0.8 s).
-  // The writer is a task of the run's arena (--threads bounds it; on one thread it runs at the
-  // wait, after the report); the report is measured isolated, so that its parallel loops' waits
-  // do not take the writer up and run it nested.
-  const bool write_now = !args.metric.geodetic_output;
-  int write_code = kExitOk;
-  tbb::task_group writer;
-  if (write_now) writer.run([&] { write_code = write_outputs(args, r.mesh); });
-  struct WaitWriter {
-    tbb::task_group& group;
-    ~WaitWriter() { group.wait(); }
-  } wait_writer{writer};
-  // Measured in the local frame, against the surface that was meshed (with --report, by the
-  // HTML report, which gives the same report).
-  std::vector<std::string> not_written;  // the report or metric files that could not be written
-  Result<QualityReport> quality = Status(Error::Internal, "not measured");
-  if (args.report_html.empty()) {
-    quality = tbb::this_task_arena::isolate([&] { return compute_quality_report(r.mesh, &checked.surface); });
-  } else {
+
+  // The quality report, measured in the local frame against the surface that was meshed (with
+  // --report, by the HTML report, which gives the same report); a report file that cannot be
+  // written goes to not_written_.
+  Result<QualityReport> measure(const MesherResult& r) {
+    if (args_.report_html.empty())
+      return tbb::this_task_arena::isolate([&] { return compute_quality_report(r.mesh, &checked_.surface); });
     HtmlReportOptions html_options;
-    html_options.title = "anitet mesh: " + std::filesystem::path(args.input).filename().string();
-    html_options.mesh_name = args.output;
-    html_options.surface_name = args.input;
-    for (size_t k = 0; k < 3 && k < args.report_cut.size(); ++k) html_options.cut[k] = args.report_cut[k];
+    html_options.title = "anitet mesh: " + std::filesystem::path(args_.input).filename().string();
+    html_options.mesh_name = args_.output;
+    html_options.surface_name = args_.input;
+    for (size_t k = 0; k < 3 && k < args_.report_cut.size(); ++k) html_options.cut[k] = args_.report_cut[k];
     html_options.run_rows = run_rows(r);
     Result<HtmlReport> html = tbb::this_task_arena::isolate(
-        [&] { return quality_report_html(r.mesh, &checked.surface, QualityOptions(), html_options); });
-    if (html.ok()) {
-      if (Status st = write_file_bytes(args.report_html, html.value().html); !st.ok()) {
-        std::cerr << cmd << ": cannot write report '" << args.report_html << "': " << st.message() << "\n";
-        not_written.push_back(args.report_html);
+        [&] { return quality_report_html(r.mesh, &checked_.surface, QualityOptions(), html_options); });
+    if (!html.ok()) return html.status();
+    if (Status st = write_file_bytes(args_.report_html, html.value().html); !st.ok()) {
+      std::cerr << kCmd << ": cannot write report '" << args_.report_html << "': " << st.message() << "\n";
+      not_written_.push_back(args_.report_html);
+    }
+    return std::move(html).value().report;
+  }
+
+  // The mesh files, written beside the report's measures unless --geodetic-output converts the
+  // mesh after them (both only read the mesh; armadillo: the writer's 0.45 s behind the
+  // report's 0.8 s). The writer is a task of the run's arena (--threads bounds it; on one thread
+  // it runs at the wait, after the report); the report is measured isolated, so that its
+  // parallel loops' waits do not take the writer up and run it nested.
+  int write_and_report(MesherResult& r) {
+    const bool write_now = !args_.metric.geodetic_output;
+    int write_code = kExitOk;
+    tbb::task_group writer;
+    if (write_now) writer.run([&] { write_code = write_outputs(args_, r.mesh); });
+    struct WaitWriter {
+      tbb::task_group& group;
+      ~WaitWriter() { group.wait(); }
+    } wait_writer{writer};
+    Result<QualityReport> quality = measure(r);
+    if (!quality.ok()) {
+      std::cerr << kCmd << ": cannot measure the mesh: " << quality.status().message() << "\n";
+      return kExitInternal;
+    }
+    if (field_) {
+      if (Status st = write_metric_outputs(args_.metric, *field_, checked_.surface, r.mesh); !st.ok()) {
+        std::cerr << kCmd << ": cannot write the sizing field: " << st.message() << "\n";
+        for (const std::string& path : {args_.metric.write_metric, args_.metric.write_sizing})
+          if (!path.empty()) not_written_.push_back(path);
       }
-      quality = std::move(html).value().report;
-    } else {
-      quality = html.status();
     }
-  }
-  if (!quality.ok()) {
-    std::cerr << cmd << ": cannot measure the mesh: " << quality.status().message() << "\n";
-    return kExitInternal;
-  }
-  if (field) {
-    if (Status st = write_metric_outputs(args.metric, *field, checked.surface, r.mesh); !st.ok()) {
-      std::cerr << cmd << ": cannot write the sizing field: " << st.message() << "\n";
-      for (const std::string& path : {args.metric.write_metric, args.metric.write_sizing})
-        if (!path.empty()) not_written.push_back(path);
+    if (Status st = restore_geodetic(args_.metric, frame_, r.mesh); !st.ok()) {
+      std::cerr << kCmd << ": --geodetic-output: " << st.message() << "\n";
+      return kExitInternal;
     }
+    // The input's vertices are written back exactly as read (the round trip through the local
+    // frame is exact only to ~1e-9 m), so the output keeps the input surface bit for bit.
+    for (size_t v = 0; v < r.input_vertex.size() && 3 * v + 2 < input_xyz_.size(); ++v)
+      if (r.input_vertex[v] != TetMesh::kNone) std::copy_n(&input_xyz_[3 * v], 3, &r.mesh.xyz[3 * size_t(r.input_vertex[v])]);
+    writer.wait();
+    if (!write_now) write_code = write_outputs(args_, r.mesh);
+    if (write_code != kExitOk) return write_code;
+    if (!not_written_.empty()) {
+      // The meshes are complete; say so, and which files are not, before the run's report.
+      std::string list;
+      for (const std::string& p : not_written_) list += (list.empty() ? "'" : ", '") + p + "'";
+      std::cerr << kCmd << ": the mesh files are written and complete; not written: " << list << "\n";
+    }
+    if (args_.json) {
+      print_json(r, quality.value());
+    } else if (!args_.quiet) {
+      print_summary(args_, r, quality.value(), not_written_.empty());
+      if (args_.verbose) print_details(r, quality.value());
+      else std::cout << "  (-v: every stage's figures and the full quality report)\n";
+    }
+    return not_written_.empty() ? kExitOk : kExitReadError;
   }
-  if (Status st = restore_geodetic(args.metric, frame.value(), r.mesh); !st.ok()) {
-    std::cerr << cmd << ": --geodetic-output: " << st.message() << "\n";
-    return kExitInternal;
+
+  void print_json(const MesherResult& r, const QualityReport& quality) const {
+    const MeshArgs& args = args_;
+    const BoundaryLayerReport& bl = r.boundary_layer;
+    const std::vector<std::string>& not_written = not_written_;
+  nlohmann::json stages = nlohmann::json::array();
+  for (const StageReport& s : r.stages) stages.push_back({{"stage", s.name}, {"seconds", s.seconds}, {"tets", s.tets}});
+  nlohmann::json out = {
+      {"input", args.input}, {"output", args.output}, {"also_write", args.also_write}, {"report", args.report_html}, {"seconds", r.seconds}, {"stages", stages},
+      {"tets_per_second", r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0},
+      {"estimated_tets", r.estimated_tets},
+      {"layers", {{"layers_used", r.layers_used}, {"retries", r.layers_retries}}},
+      {"recovery", {{"steiner_on_s1_edges", r.recovery.steiner_on_edges},
+                    {"steiner_on_s1_faces", r.recovery.steiner_on_faces},
+                    {"strategy", r.recovery.strategy},
+                    {"strategy_name", recovery_strategy_name(r.recovery.strategy)},
+                    {"seconds", {{"delaunay", r.recovery.seconds_delaunay},
+                                 {"recovery", r.recovery.seconds_recovery},
+                                 {"carving", r.recovery.seconds_carve}}}}},
+      {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
+      {"refine", {{"passes", r.refine.passes}, {"stopped_at_pass_cap", r.refine.stopped_at_pass_cap}, {"metric_not_spd", r.refine.metric_not_spd}, {"splits", r.refine.splits}, {"parallel_splits", r.refine.parallel_splits}, {"collapses", r.refine.collapses},
+                  {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range},
+                  {"anisotropic_cycles", r.anisotropic_cycles},
+                  {"seconds", {{"edge_lists", r.refine.seconds_edges}, {"split_choice", r.refine.seconds_choice},
+                               {"insertion", r.refine.seconds_insertion}, {"collapses", r.refine.seconds_collapses},
+                               {"metric_flips", r.refine.seconds_flips}}}}},
+      {"metric_quality", {{"tets", r.metric_quality.tets}, {"radius_ratio_mean", r.metric_quality.mean},
+                          {"radius_ratio_min", r.metric_quality.min}, {"below_0.1", r.metric_quality.below_01},
+                          {"below_0.4", r.metric_quality.below_04}}},
+      {"boundary_layer", {{"layers", bl.layers}, {"first_height", args.bl_first_height}, {"yplus", args.bl_yplus}, {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
+                          {"vertices", bl.vertices}, {"full_columns", bl.full_columns}, {"columns_reaching", bl.columns_reaching},
+                          {"nominal_columns", bl.nominal_columns}, {"reduced_vertices", bl.reduced_vertices},
+                          {"reduced_share", r.layers.bl_reduced_share},
+                          {"first_height_min", bl.first_height_min}, {"first_height_mean", bl.first_height_mean},
+                          {"first_height_max", bl.first_height_max}, {"max_height_error", bl.max_height_error},
+                          {"growth_mean", bl.growth_mean}, {"max_displacement", bl.max_displacement},
+                          {"stage1_seconds", r.layers.bl_seconds}}},
+      {"optimize", {{"moves", r.optimize.moves}, {"flips23", r.optimize.flips23},
+                    {"edge_removals", r.optimize.edge_removals}, {"perturbations", r.optimize.perturbations},
+                    {"collapses", r.optimize.collapses},
+                    {"flat_found", r.optimize.flat_found}, {"flat_left", r.optimize.flat_left},
+                    {"seconds", {{"setup", r.optimize.seconds_setup}, {"cvt", r.optimize.seconds_cvt},
+                                 {"flips", r.optimize.seconds_flips}, {"slivers", r.optimize.seconds_slivers},
+                                 {"certify", r.optimize.seconds_certify}}}}},
+      {"quality", nlohmann::json::parse(quality_report_json(quality))}};
+  out["notices"] = nlohmann::json::array();
+  for (const Notice& n : r.notices) out["notices"].push_back({{"kind", n.kind}, {"message", n.message}});
+  out["ok"] = not_written.empty();
+  out["not_written"] = not_written;
+  std::cout << out.dump(1) << "\n";
   }
-  // The input's vertices come first, in input order: written back exactly as read (the round
-  // trip through the local frame is exact only to ~1e-9 m), so the output keeps the input
-  // surface bit for bit.
-  for (size_t v = 0; v < r.input_vertex.size() && 3 * v + 2 < input_xyz.size(); ++v)
-    if (r.input_vertex[v] != TetMesh::kNone) std::copy_n(&input_xyz[3 * v], 3, &r.mesh.xyz[3 * size_t(r.input_vertex[v])]);
-  writer.wait();
-  if (!write_now) write_code = write_outputs(args, r.mesh);
-  if (write_code != kExitOk) return write_code;
-  if (!not_written.empty()) {
-    // The meshes are complete; say so, and which files are not, before the run's report.
-    std::string list;
-    for (const std::string& p : not_written) list += (list.empty() ? "'" : ", '") + p + "'";
-    std::cerr << cmd << ": the mesh files are written and complete; not written: " << list << "\n";
-  }
-  const BoundaryLayerReport& bl = r.boundary_layer;
-  if (args.json) {
-    nlohmann::json stages = nlohmann::json::array();
-    for (const StageReport& s : r.stages) stages.push_back({{"stage", s.name}, {"seconds", s.seconds}, {"tets", s.tets}});
-    nlohmann::json out = {
-        {"input", args.input}, {"output", args.output}, {"also_write", args.also_write}, {"report", args.report_html}, {"seconds", r.seconds}, {"stages", stages},
-        {"tets_per_second", r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0},
-        {"estimated_tets", r.estimated_tets},
-        {"layers", {{"layers_used", r.layers_used}, {"retries", r.layers_retries}}},
-        {"recovery", {{"steiner_on_s1_edges", r.recovery.steiner_on_edges},
-                      {"steiner_on_s1_faces", r.recovery.steiner_on_faces},
-                      {"strategy", r.recovery.strategy},
-                      {"strategy_name", recovery_strategy_name(r.recovery.strategy)},
-                      {"seconds", {{"delaunay", r.recovery.seconds_delaunay},
-                                   {"recovery", r.recovery.seconds_recovery},
-                                   {"carving", r.recovery.seconds_carve}}}}},
-        {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
-        {"refine", {{"passes", r.refine.passes}, {"stopped_at_pass_cap", r.refine.stopped_at_pass_cap}, {"metric_not_spd", r.refine.metric_not_spd}, {"splits", r.refine.splits}, {"parallel_splits", r.refine.parallel_splits}, {"collapses", r.refine.collapses},
-                    {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range},
-                    {"anisotropic_cycles", r.anisotropic_cycles},
-                    {"seconds", {{"edge_lists", r.refine.seconds_edges}, {"split_choice", r.refine.seconds_choice},
-                                 {"insertion", r.refine.seconds_insertion}, {"collapses", r.refine.seconds_collapses},
-                                 {"metric_flips", r.refine.seconds_flips}}}}},
-        {"metric_quality", {{"tets", r.metric_quality.tets}, {"radius_ratio_mean", r.metric_quality.mean},
-                            {"radius_ratio_min", r.metric_quality.min}, {"below_0.1", r.metric_quality.below_01},
-                            {"below_0.4", r.metric_quality.below_04}}},
-        {"boundary_layer", {{"layers", bl.layers}, {"first_height", args.bl_first_height}, {"yplus", args.bl_yplus}, {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
-                            {"vertices", bl.vertices}, {"full_columns", bl.full_columns}, {"columns_reaching", bl.columns_reaching},
-                            {"nominal_columns", bl.nominal_columns}, {"reduced_vertices", bl.reduced_vertices},
-                            {"reduced_share", r.layers.bl_reduced_share},
-                            {"first_height_min", bl.first_height_min}, {"first_height_mean", bl.first_height_mean},
-                            {"first_height_max", bl.first_height_max}, {"max_height_error", bl.max_height_error},
-                            {"growth_mean", bl.growth_mean}, {"max_displacement", bl.max_displacement},
-                            {"stage1_seconds", r.layers.bl_seconds}}},
-        {"optimize", {{"moves", r.optimize.moves}, {"flips23", r.optimize.flips23},
-                      {"edge_removals", r.optimize.edge_removals}, {"perturbations", r.optimize.perturbations},
-                      {"collapses", r.optimize.collapses},
-                      {"flat_found", r.optimize.flat_found}, {"flat_left", r.optimize.flat_left},
-                      {"seconds", {{"setup", r.optimize.seconds_setup}, {"cvt", r.optimize.seconds_cvt},
-                                   {"flips", r.optimize.seconds_flips}, {"slivers", r.optimize.seconds_slivers},
-                                   {"certify", r.optimize.seconds_certify}}}}},
-        {"quality", nlohmann::json::parse(quality_report_json(quality.value()))}};
-    out["notices"] = nlohmann::json::array();
-    for (const Notice& n : r.notices) out["notices"].push_back({{"kind", n.kind}, {"message", n.message}});
-    out["ok"] = not_written.empty();
-    out["not_written"] = not_written;
-    std::cout << out.dump(1) << "\n";
-  } else if (!args.quiet) {
-    print_summary(args, r, quality.value(), not_written.empty());
-    if (args.verbose) print_details(r, quality.value());
-    else std::cout << "  (-v: every stage's figures and the full quality report)\n";
-  }
-  return not_written.empty() ? kExitOk : kExitReadError;
-}
+
+  static constexpr const char* kCmd = "anitet mesh";
+  MeshArgs& args_;
+  CheckedSurface checked_;
+  std::optional<metric::VdbModulePreload> preload_;
+  std::vector<double> input_xyz_;  // the input's coordinates as read (--geodetic-output)
+  std::optional<geo::GeoFrame> frame_;
+  MesherOptions options_;
+  double free_bytes_ = 0;
+  std::unique_ptr<SizingField> field_;
+  double field_seconds_ = 0.0;  // a field built here, before the pipeline
+  const DistributedRun* distributed_ = nullptr;
+  std::vector<std::string> not_written_;  // the report or metric files that could not be written
+};
+
+}  // namespace
+
+int run_mesh_pipeline(MeshArgs& args) { return MeshCommand(args).run(); }
 
 namespace {
 
