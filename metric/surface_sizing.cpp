@@ -74,28 +74,37 @@ bool triangle_cuts_box(const double a[3], const double b[3], const double c[3],
   return true;
 }
 
-Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOptions& options,
-                               SurfaceSizingStats* stats_out) {
-  const size_t nt = surface.num_triangles(), nv = surface.num_vertices();
-  if (nt == 0) return Status(Error::EmptyInput, "the surface has no triangle");
-  if (!(options.tolerance > 0.0) || options.max_iterations < 1 || options.padding < 0 ||
-      !(options.relaxation > 0.0 && options.relaxation < 2.0) || options.max_voxels < 8)
-    return Status(Error::InvalidArgument, "bad surface sizing options");
+namespace {
+
+struct Box {
   double lo[3], hi[3];
+};
+
+// The surface's box; Error::InvalidArgument for a vertex that is not finite.
+Result<Box> surface_box(const SurfaceMesh& surface) {
+  Box box;
   for (int k = 0; k < 3; ++k) {
-    lo[k] = std::numeric_limits<double>::infinity();
-    hi[k] = -lo[k];
+    box.lo[k] = std::numeric_limits<double>::infinity();
+    box.hi[k] = -box.lo[k];
   }
-  for (size_t v = 0; v < nv; ++v)
+  for (size_t v = 0; v < surface.num_vertices(); ++v)
     for (int k = 0; k < 3; ++k) {
       const double x = surface.xyz[3 * v + k];
-      if (!std::isfinite(x))
-        return Status(Error::InvalidArgument, "vertex " + std::to_string(v) + " is not finite");
-      lo[k] = std::min(lo[k], x);
-      hi[k] = std::max(hi[k], x);
+      if (!std::isfinite(x)) return Status(Error::InvalidArgument, "vertex " + std::to_string(v) + " is not finite");
+      box.lo[k] = std::min(box.lo[k], x);
+      box.hi[k] = std::max(box.hi[k], x);
     }
-  // Per-triangle size, and the mean and median edge lengths for the default voxel size.
-  std::vector<double> tri_size(nt);
+  return box;
+}
+
+// Each triangle's size (its shortest or mean edge), and the voxel size when none is given: the
+// mean edge length, unless a few long edges (needle fans, long CAD strips) make it more than
+// twice the median, for the grid must resolve the sizes of most triangles (adis16480: mean
+// 3.2 mm, median 0.26 mm; at 3.2 mm its rotated copy got 60% fewer tets than it).
+Status triangle_sizes(const SurfaceMesh& surface, const SurfaceSizingOptions& options, std::vector<double>& tri_size,
+                      double& voxel) {
+  const size_t nt = surface.num_triangles(), nv = surface.num_vertices();
+  tri_size.resize(nt);
   std::vector<double> edge_lengths(options.voxel_size > 0.0 ? 0 : 3 * nt);
   double edge_sum = 0.0;
   for (size_t t = 0; t < nt; ++t) {
@@ -111,25 +120,26 @@ Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOp
       edge_lengths[3 * t + 1] = l1;
       edge_lengths[3 * t + 2] = l2;
     }
-    tri_size[t] = options.triangle_size == TriangleSize::Shortest ? std::min({l0, l1, l2})
-                                                                  : (l0 + l1 + l2) / 3.0;
+    tri_size[t] = options.triangle_size == TriangleSize::Shortest ? std::min({l0, l1, l2}) : (l0 + l1 + l2) / 3.0;
   }
-  double h = options.voxel_size;
-  if (!(h > 0.0)) {
-    // The mean edge length, unless a few long edges (needle fans, long CAD strips) make it more
-    // than twice the median: the grid must resolve the sizes of most triangles (adis16480: mean
-    // 3.2 mm, median 0.26 mm; at 3.2 mm its rotated copy got 60% fewer tets than it).
+  voxel = options.voxel_size;
+  if (!(voxel > 0.0)) {
     auto mid = edge_lengths.begin() + std::ptrdiff_t(edge_lengths.size() / 2);
     std::nth_element(edge_lengths.begin(), mid, edge_lengths.end());
-    h = std::min(edge_sum / (3.0 * nt), 2.0 * *mid);
+    voxel = std::min(edge_sum / (3.0 * double(nt)), 2.0 * *mid);
   }
-  if (!(h > 0.0)) return Status(Error::InvalidArgument, "the surface has only zero-length edges");
-  // Grow the voxel until the lattice fits the memory bound.
+  if (!(voxel > 0.0)) return Status(Error::InvalidArgument, "the surface has only zero-length edges");
+  return Status::success();
+}
+
+// The lattice over the box (padded), its voxel grown until it fits options.max_voxels, the box
+// centred in it; every value infinite.
+Lattice empty_lattice(const Box& box, double h, const SurfaceSizingOptions& options) {
   Lattice lat;
   for (;;) {
     size_t count = 1;
     for (int k = 0; k < 3; ++k) {
-      const double n = std::floor((hi[k] - lo[k]) / h) + 1 + 2 * options.padding;
+      const double n = std::floor((box.hi[k] - box.lo[k]) / h) + 1 + 2 * options.padding;
       lat.dims[k] = n > 1e9 ? 1000000000 : int(n);
       count *= size_t(lat.dims[k]);
     }
@@ -138,56 +148,176 @@ Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOp
   }
   lat.spacing = h;
   lat.components = 1;
-  for (int k = 0; k < 3; ++k) {
-    // Centre the surface's box in the lattice.
-    const double extent = h * (lat.dims[k] - 1);
-    lat.origin[k] = 0.5 * (lo[k] + hi[k]) - 0.5 * extent;
-  }
-  const size_t nn = lat.num_nodes();
-  const double inf = std::numeric_limits<double>::infinity();
-  lat.values.assign(nn, inf);
-  std::vector<uint8_t> pinned(nn, 0);
-  const double half = 0.5 * h;
+  for (int k = 0; k < 3; ++k) lat.origin[k] = 0.5 * (box.lo[k] + box.hi[k]) - 0.5 * h * (lat.dims[k] - 1);
+  lat.values.assign(lat.num_nodes(), std::numeric_limits<double>::infinity());
+  return lat;
+}
+
+// The nodes the surface pins (their size the smallest of the triangles pinning them), marked
+// in `pinned`; whether any was.
+bool pin_nodes(Lattice& lat, const SurfaceMesh& surface, const std::vector<double>& tri_size, Pinning pinning,
+               std::vector<uint8_t>& pinned) {
+  const double h = lat.spacing, half = 0.5 * h;
   const double band = half * (1.0 + 1e-9);  // touching counts, as for the cube test
-  // Returns whether any voxel was pinned.
-  auto pin_voxels = [&](Pinning pinning) {
-    bool any = false;
-    for (size_t t = 0; t < nt; ++t) {
-      const double* p[3] = {surface.point(surface.tri[3 * t]), surface.point(surface.tri[3 * t + 1]),
-                            surface.point(surface.tri[3 * t + 2])};
-      int b0[3], b1[3];
-      for (int k = 0; k < 3; ++k) {
-        const double mn = std::min({p[0][k], p[1][k], p[2][k]}) - lat.origin[k];
-        const double mx = std::max({p[0][k], p[1][k], p[2][k]}) - lat.origin[k];
-        b0[k] = std::max(0, int(std::floor(mn / h - 0.5)));
-        b1[k] = std::min(lat.dims[k] - 1, int(std::ceil(mx / h + 0.5)));
-      }
-      for (int k = b0[2]; k <= b1[2]; ++k)
-        for (int j = b0[1]; j <= b1[1]; ++j)
-          for (int i = b0[0]; i <= b1[0]; ++i) {
-            double c[3];
-            lat.position(i, j, k, c);
-            const bool pin = pinning == Pinning::HalfVoxelBand
-                                 ? point_triangle_distance(c, p[0], p[1], p[2]) <= band
-                                 : triangle_cuts_box(p[0], p[1], p[2], c, half);
-            if (!pin) continue;
-            const size_t n = lat.node(i, j, k);
-            pinned[n] = 1;
-            any = true;
-            lat.values[n] = std::min(lat.values[n], tri_size[t]);
-          }
+  bool any = false;
+  for (size_t t = 0; t < surface.num_triangles(); ++t) {
+    const double* p[3] = {surface.point(surface.tri[3 * t]), surface.point(surface.tri[3 * t + 1]),
+                          surface.point(surface.tri[3 * t + 2])};
+    int b0[3], b1[3];
+    for (int k = 0; k < 3; ++k) {
+      const double mn = std::min({p[0][k], p[1][k], p[2][k]}) - lat.origin[k];
+      const double mx = std::max({p[0][k], p[1][k], p[2][k]}) - lat.origin[k];
+      b0[k] = std::max(0, int(std::floor(mn / h - 0.5)));
+      b1[k] = std::min(lat.dims[k] - 1, int(std::ceil(mx / h + 0.5)));
     }
-    return any;
+    for (int k = b0[2]; k <= b1[2]; ++k)
+      for (int j = b0[1]; j <= b1[1]; ++j)
+        for (int i = b0[0]; i <= b1[0]; ++i) {
+          double c[3];
+          lat.position(i, j, k, c);
+          const bool pin = pinning == Pinning::HalfVoxelBand ? point_triangle_distance(c, p[0], p[1], p[2]) <= band
+                                                             : triangle_cuts_box(p[0], p[1], p[2], c, half);
+          if (!pin) continue;
+          const size_t n = lat.node(i, j, k);
+          pinned[n] = 1;
+          any = true;
+          lat.values[n] = std::min(lat.values[n], tri_size[t]);
+        }
+  }
+  return any;
+}
+
+// drop_outside: the nodes reachable from the lattice's faces without crossing a pinned one are
+// outside (skip 2, inactive), but for the shell of those among the 26 neighbours of a pinned
+// node, which are kept.
+void drop_outside(Lattice& lat, std::vector<uint8_t>& skip, SurfaceSizingStats& stats) {
+  const int nx = lat.dims[0], ny = lat.dims[1], nz = lat.dims[2];
+  const size_t sy = size_t(nx), sz = size_t(nx) * ny, nn = lat.num_nodes();
+  std::vector<size_t> stack;
+  auto visit = [&](size_t n) {
+    if (skip[n] == 0) {
+      skip[n] = 2;
+      stack.push_back(n);
+    }
   };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        if (i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1) visit(lat.node(i, j, k));
+  while (!stack.empty()) {
+    const size_t n = stack.back();
+    stack.pop_back();
+    const int i = int(n % sy), j = int((n / sy) % size_t(ny)), k = int(n / sz);
+    if (i > 0) visit(n - 1);
+    if (i + 1 < nx) visit(n + 1);
+    if (j > 0) visit(n - sy);
+    if (j + 1 < ny) visit(n + sy);
+    if (k > 0) visit(n - sz);
+    if (k + 1 < nz) visit(n + sz);
+  }
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        if (skip[lat.node(i, j, k)] != 1) continue;
+        for (int c = std::max(k - 1, 0); c <= std::min(k + 1, nz - 1); ++c)
+          for (int b = std::max(j - 1, 0); b <= std::min(j + 1, ny - 1); ++b)
+            for (int a = std::max(i - 1, 0); a <= std::min(i + 1, nx - 1); ++a) {
+              uint8_t& st = skip[lat.node(a, b, c)];
+              if (st == 2) st = 3;
+            }
+      }
+  lat.active.assign(nn, 1);
+  for (size_t n = 0; n < nn; ++n) {
+    if (skip[n] == 3) skip[n] = 0;
+    if (skip[n] == 2) {
+      lat.active[n] = 0;
+      ++stats.dropped;
+    }
+  }
+  stats.working_bytes += nn;
+}
+
+// One Gauss-Seidel pass of the 6-neighbour average (one-sided at the lattice's faces); skipped
+// nodes are never written (the pinned ones: the paper's reset). The largest change.
+double laplacian_pass(Lattice& lat, const std::vector<uint8_t>& skip, double w) {
+  const int nx = lat.dims[0], ny = lat.dims[1], nz = lat.dims[2];
+  const size_t sy = size_t(nx), sz = size_t(nx) * ny;
+  double change = 0.0;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const size_t n = lat.node(i, j, k);
+        if (skip[n]) continue;
+        double s = 0.0;
+        int c = 0;
+        // Dropped neighbours count as absent, like those beyond the lattice's faces.
+        if (i > 0 && skip[n - 1] != 2) s += lat.values[n - 1], ++c;
+        if (i + 1 < nx && skip[n + 1] != 2) s += lat.values[n + 1], ++c;
+        if (j > 0 && skip[n - sy] != 2) s += lat.values[n - sy], ++c;
+        if (j + 1 < ny && skip[n + sy] != 2) s += lat.values[n + sy], ++c;
+        if (k > 0 && skip[n - sz] != 2) s += lat.values[n - sz], ++c;
+        if (k + 1 < nz && skip[n + sz] != 2) s += lat.values[n + sz], ++c;
+        if (c == 0) continue;
+        const double old = lat.values[n];
+        const double next = old + w * (s / c - old);
+        lat.values[n] = next;
+        change = std::max(change, std::fabs(next - old));
+      }
+  return change;
+}
+
+// A separable [1 2 1]/4 blur along x, y, z (clamped at the faces), then the skipped nodes reset.
+// The largest change.
+double gaussian_pass(Lattice& lat, const std::vector<uint8_t>& skip, std::vector<double>& tmp) {
+  const int nx = lat.dims[0], ny = lat.dims[1], nz = lat.dims[2];
+  const std::vector<double> before = lat.values;
+  const size_t stride[3] = {1, size_t(nx), size_t(nx) * ny};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int len = lat.dims[axis];
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          const int idx[3] = {i, j, k};
+          const size_t n = lat.node(i, j, k);
+          const bool has_l = idx[axis] > 0 && skip[n - stride[axis]] != 2;
+          const bool has_r = idx[axis] + 1 < len && skip[n + stride[axis]] != 2;
+          const double l = has_l ? lat.values[n - stride[axis]] : lat.values[n];
+          const double r = has_r ? lat.values[n + stride[axis]] : lat.values[n];
+          tmp[n] = 0.25 * (l + r) + 0.5 * lat.values[n];
+        }
+    lat.values.swap(tmp);
+  }
+  double change = 0.0;
+  for (size_t n = 0; n < lat.num_nodes(); ++n) {
+    if (skip[n]) lat.values[n] = before[n];
+    else change = std::max(change, std::fabs(lat.values[n] - before[n]));
+  }
+  return change;
+}
+
+}  // namespace
+
+Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOptions& options,
+                               SurfaceSizingStats* stats_out) {
+  if (surface.num_triangles() == 0) return Status(Error::EmptyInput, "the surface has no triangle");
+  if (!(options.tolerance > 0.0) || options.max_iterations < 1 || options.padding < 0 ||
+      !(options.relaxation > 0.0 && options.relaxation < 2.0) || options.max_voxels < 8)
+    return Status(Error::InvalidArgument, "bad surface sizing options");
+  Result<Box> box = surface_box(surface);
+  if (!box.ok()) return box.status();
+  std::vector<double> tri_size;
+  double h = 0.0;
+  if (Status st = triangle_sizes(surface, options, tri_size, h); !st.ok()) return st;
+  Lattice lat = empty_lattice(box.value(), h, options);
+  const size_t nn = lat.num_nodes();
+  std::vector<uint8_t> pinned(nn, 0);
   // A surface whose band holds no node at all (small, lying between the nodes of a voxel grown
   // by max_voxels far beyond its triangles) is pinned by the cube test, which always pins.
-  bool cube_fallback = false;
-  if (!pin_voxels(options.pinning) && options.pinning == Pinning::HalfVoxelBand)
-    cube_fallback = pin_voxels(Pinning::CutCube);
   SurfaceSizingStats stats;
-  stats.cube_fallback = cube_fallback;
+  if (!pin_nodes(lat, surface, tri_size, options.pinning, pinned) && options.pinning == Pinning::HalfVoxelBand)
+    stats.cube_fallback = pin_nodes(lat, surface, tri_size, Pinning::CutCube, pinned);
   stats.voxels = nn;
-  stats.voxel_size = h;
+  stats.voxel_size = lat.spacing;
   stats.working_bytes = nn * (sizeof(double) + 1);
   double sum = 0.0;
   for (size_t n = 0; n < nn; ++n)
@@ -200,116 +330,21 @@ Result<Lattice> surface_sizing(const SurfaceMesh& surface, const SurfaceSizingOp
   stats.mean_size = mean;
   for (size_t n = 0; n < nn; ++n)
     if (!pinned[n]) lat.values[n] = mean;
-
-  const int nx = lat.dims[0], ny = lat.dims[1], nz = lat.dims[2];
-  const size_t sy = size_t(nx), sz = size_t(nx) * ny;
   // skip[n]: pinned (1) or dropped (2): never written by the smoothing.
   std::vector<uint8_t>& skip = pinned;
-  if (options.drop_outside) {
-    std::vector<size_t> stack;
-    auto visit = [&](size_t n) {
-      if (skip[n] == 0) {
-        skip[n] = 2;
-        stack.push_back(n);
-      }
-    };
-    for (int k = 0; k < nz; ++k)
-      for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i)
-          if (i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1)
-            visit(lat.node(i, j, k));
-    while (!stack.empty()) {
-      const size_t n = stack.back();
-      stack.pop_back();
-      const int i = int(n % sy), j = int((n / sy) % size_t(ny)), k = int(n / sz);
-      if (i > 0) visit(n - 1);
-      if (i + 1 < nx) visit(n + 1);
-      if (j > 0) visit(n - sy);
-      if (j + 1 < ny) visit(n + sy);
-      if (k > 0) visit(n - sz);
-      if (k + 1 < nz) visit(n + sz);
-    }
-    // Keep the shell: outside voxels among the 26 neighbours of a pinned one.
-    for (int k = 0; k < nz; ++k)
-      for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i) {
-          if (skip[lat.node(i, j, k)] != 1) continue;
-          for (int c = std::max(k - 1, 0); c <= std::min(k + 1, nz - 1); ++c)
-            for (int b = std::max(j - 1, 0); b <= std::min(j + 1, ny - 1); ++b)
-              for (int a = std::max(i - 1, 0); a <= std::min(i + 1, nx - 1); ++a) {
-                uint8_t& st = skip[lat.node(a, b, c)];
-                if (st == 2) st = 3;
-              }
-        }
-    lat.active.assign(nn, 1);
-    for (size_t n = 0; n < nn; ++n) {
-      if (skip[n] == 3) skip[n] = 0;
-      if (skip[n] == 2) {
-        lat.active[n] = 0;
-        ++stats.dropped;
-      }
-    }
-    stats.working_bytes += nn;
-  }
+  if (options.drop_outside) drop_outside(lat, skip, stats);
   std::vector<double> tmp;
   if (options.smoothing == Smoothing::Gaussian) {
     tmp.resize(nn);
     stats.working_bytes += nn * sizeof(double);
   }
-  const double w = options.relaxation;
   const double stop = options.tolerance * mean;
-  double change = inf;
+  double change = std::numeric_limits<double>::infinity();
   int it = 0;
   while (it < options.max_iterations && !(change < stop)) {
     ++it;
-    change = 0.0;
-    if (options.smoothing == Smoothing::Laplacian) {
-      // One Gauss-Seidel pass of the 6-neighbour average (one-sided at the lattice's faces);
-      // pinned nodes are never written, which is the paper's reset.
-      for (int k = 0; k < nz; ++k)
-        for (int j = 0; j < ny; ++j)
-          for (int i = 0; i < nx; ++i) {
-            const size_t n = lat.node(i, j, k);
-            if (skip[n]) continue;
-            double s = 0.0;
-            int c = 0;
-            // Dropped neighbours count as absent, like those beyond the lattice's faces.
-            if (i > 0 && skip[n - 1] != 2) s += lat.values[n - 1], ++c;
-            if (i + 1 < nx && skip[n + 1] != 2) s += lat.values[n + 1], ++c;
-            if (j > 0 && skip[n - sy] != 2) s += lat.values[n - sy], ++c;
-            if (j + 1 < ny && skip[n + sy] != 2) s += lat.values[n + sy], ++c;
-            if (k > 0 && skip[n - sz] != 2) s += lat.values[n - sz], ++c;
-            if (k + 1 < nz && skip[n + sz] != 2) s += lat.values[n + sz], ++c;
-            if (c == 0) continue;
-            const double old = lat.values[n];
-            const double next = old + w * (s / c - old);
-            lat.values[n] = next;
-            change = std::max(change, std::fabs(next - old));
-          }
-    } else {
-      // Separable [1 2 1]/4 blur along x, y, z (clamped at the faces), then reset the pinned.
-      const std::vector<double> before = lat.values;
-      const size_t stride[3] = {1, size_t(nx), size_t(nx) * ny};
-      for (int axis = 0; axis < 3; ++axis) {
-        const int len = lat.dims[axis];
-        for (int k = 0; k < nz; ++k)
-          for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) {
-              const int idx[3] = {i, j, k};
-              const size_t n = lat.node(i, j, k);
-              const bool has_l = idx[axis] > 0 && skip[n - stride[axis]] != 2;
-              const bool has_r = idx[axis] + 1 < len && skip[n + stride[axis]] != 2;
-              const double l = has_l ? lat.values[n - stride[axis]] : lat.values[n];
-              const double r = has_r ? lat.values[n + stride[axis]] : lat.values[n];
-              tmp[n] = 0.25 * (l + r) + 0.5 * lat.values[n];
-            }
-        lat.values.swap(tmp);
-      }
-      for (size_t n = 0; n < nn; ++n) {
-        if (skip[n]) lat.values[n] = before[n];
-        else change = std::max(change, std::fabs(lat.values[n] - before[n]));
-      }
-    }
+    change = options.smoothing == Smoothing::Laplacian ? laplacian_pass(lat, skip, options.relaxation)
+                                                       : gaussian_pass(lat, skip, tmp);
   }
   stats.iterations = it;
   stats.converged = change < stop;
