@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "io/volume_io.hpp"
+#include "metric/bounded_sizing.hpp"
 #include "metric/combine.hpp"
 #include "metric/lattice.hpp"
 #include "metric/metric_field.hpp"
@@ -17,26 +18,6 @@ namespace anitet::cli {
 
 namespace {
 
-// A field together with the fields it refers to (BoundedField and BackgroundMeshField wrappers
-// hold references), so the caller gets one owner.
-class OwningField final : public SizingField {
- public:
-  void metric(const double p[3], double m[6]) const override { top_->metric(p, m); }
-  template <class F>
-  F& keep(F&& field) {
-    auto owned = std::make_unique<F>(std::move(field));
-    F& ref = *owned;
-    parts_.push_back(std::move(owned));
-    top_ = &ref;
-    return ref;
-  }
-  const SizingField& top() const { return *top_; }
-
- private:
-  std::vector<std::unique_ptr<SizingField>> parts_;
-  const SizingField* top_ = nullptr;
-};
-
 bool ends_with(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
   std::string tail = s.substr(s.size() - suffix.size());
@@ -44,58 +25,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return tail == suffix;
 }
 
-double mean_edge_length(const SurfaceMesh& s) {
-  double sum = 0.0;
-  size_t n = 0;
-  for (size_t t = 0; t < s.num_triangles(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = s.tri[3 * t + k], b = s.tri[3 * t + (k + 1) % 3];
-      if (a >= s.num_vertices() || b >= s.num_vertices()) continue;
-      const double* p = s.point(a);
-      const double* q = s.point(b);
-      sum += std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                       (p[2] - q[2]) * (p[2] - q[2]));
-      ++n;
-    }
-  return n ? sum / double(n) : 0.0;
-}
-
-// The field sampled as a voxel field over the surface's box (padded by two voxels), spacing the
-// mean edge length grown until the box has at most 2^24 voxels.
-Result<metric::MetricField> sample_on_surface_box(const SizingField& field, const SurfaceMesh& s) {
-  if (s.num_vertices() == 0) return Status(Error::EmptyInput, "no surface to sample the field over");
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (size_t v = 0; v < s.num_vertices(); ++v)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], s.point(v)[k]);
-      hi[k] = std::max(hi[k], s.point(v)[k]);
-    }
-  double h = mean_edge_length(s);
-  if (!(h > 0.0)) return Status(Error::InvalidArgument, "the surface has no edge");
-  const double limit = double(size_t(1) << 24);
-  for (;;) {
-    double count = 1.0;
-    for (int k = 0; k < 3; ++k) count *= std::ceil((hi[k] - lo[k]) / h) + 5.0;
-    if (count <= limit) break;
-    h *= 1.25;
-  }
-  for (int k = 0; k < 3; ++k) {
-    lo[k] -= 2.0 * h;
-    hi[k] += 2.0 * h;
-  }
-  return metric::MetricField::from_function(
-      [&field](const double p[3], double m[6]) { field.metric(p, m); }, lo, hi, h);
-}
-
-Status check_bounds(const MetricCliOptions& o) {
-  if (o.hmin < 0.0 || o.hmax < 0.0 || !std::isfinite(o.hmin) || !std::isfinite(o.hmax))
-    return Status(Error::InvalidArgument, "--hmin and --hmax must be >= 0");
-  if (o.hmin > 0.0 && o.hmax > 0.0 && o.hmin > o.hmax)
-    return Status(Error::InvalidArgument, "--hmin must not exceed --hmax");
-  if (o.hgrad != 0.0 && !(o.hgrad > 1.0))
-    return Status(Error::InvalidArgument, "--hgrad must be > 1");
-  return Status::success();
-}
+metric::SizeBounds bounds_of(const MetricCliOptions& o) { return {o.hmin, o.hmax, o.hgrad}; }
 
 }  // namespace
 
@@ -182,35 +112,26 @@ Result<std::unique_ptr<SizingField>> build_sizing_field(const MetricCliOptions& 
                                                         const geo::GeoFrame* frame,
                                                         const metric::SurfaceSizingOptions&
                                                             default_sizing) {
-  if (Status st = check_bounds(o); !st.ok()) return st;
-  const bool bound = o.hmin > 0.0 || o.hmax > 0.0;
-  auto out = std::make_unique<OwningField>();
+  if (Status st = metric::check_bounds(bounds_of(o)); !st.ok()) {
+    std::string msg = st.message();  // named as the options are
+    for (const char* name : {"hgrad", "hmax", "hmin"})
+      for (size_t at = msg.find(name); at != std::string::npos; at = msg.find(name, at + 3)) msg.insert(at, "--");
+    return Status(st.code(), msg);
+  }
   if (o.metric.empty()) {
     if (!o.background.empty())
       return Status(Error::InvalidArgument, "--background needs a .sol or .solb --metric");
-    // Bounded and graded on the dense lattice, before the sparse storage prunes it.
-    const metric::SurfaceSizingOptions& so = default_sizing;
-    Result<metric::Lattice> lat = metric::surface_sizing(surface, so);
-    if (!lat.ok()) return lat.status();
-    if (bound)
-      if (Status st = metric::bound_sizes(lat.value(), o.hmin, o.hmax); !st.ok()) return st;
-    if (o.hgrad > 0.0) {
-      Result<metric::GradationStats> g = metric::grade(lat.value(), o.hgrad);
-      if (!g.ok()) return g.status();
-    }
-    Result<metric::MetricField> f = metric::MetricField::from_lattice(lat.value(), so.prune_tolerance);
-    if (!f.ok()) return f.status();
-    out->keep(std::move(f.value()));
-  } else if (ends_with(o.metric, ".vdb")) {
+    return metric::bounded_sizing_field(surface, nullptr, bounds_of(o), default_sizing);
+  }
+  // The user's field, owned with what the bounds wrap it in.
+  auto out = std::make_unique<metric::OwningField>();
+  const SizingField* base = nullptr;
+  if (ends_with(o.metric, ".vdb")) {
     if (!o.background.empty())
       return Status(Error::InvalidArgument, "--background is for a .sol or .solb --metric, not a .vdb");
     Result<metric::MetricField> f = metric::read_metric_vdb(o.metric);
     if (!f.ok()) return f.status();
-    if (bound || o.hgrad > 0.0) {
-      f = metric::bound_and_grade(f.value(), o.hmin, o.hmax, o.hgrad);
-      if (!f.ok()) return f.status();
-    }
-    out->keep(std::move(f.value()));
+    base = &out->keep(std::move(f.value()));
   } else if (ends_with(o.metric, ".sol") || ends_with(o.metric, ".solb")) {
     if (o.background.empty())
       return Status(Error::InvalidArgument, "a .sol or .solb --metric needs --background MESH");
@@ -222,21 +143,13 @@ Result<std::unique_ptr<SizingField>> build_sizing_field(const MetricCliOptions& 
       if (Status st = geo::to_local(*frame, bg.value().xyz); !st.ok()) return st;
     Result<metric::BackgroundMeshField> f = metric::BackgroundMeshField::create(bg.value(), sol.value());
     if (!f.ok()) return f.status();
-    const SizingField& base = out->keep(std::move(f.value()));
-    if (o.hgrad > 0.0) {
-      // Gradation needs neighbours: on the voxels of a lattice over the surface.
-      Result<metric::MetricField> grid = sample_on_surface_box(base, surface);
-      if (!grid.ok()) return grid.status();
-      grid = metric::bound_and_grade(grid.value(), o.hmin, o.hmax, o.hgrad);
-      if (!grid.ok()) return grid.status();
-      out->keep(std::move(grid.value()));
-    } else if (bound) {
-      out->keep(metric::BoundedField(base, o.hmin, o.hmax));
-    }
+    base = &out->keep(std::move(f.value()));
   } else {
-    return Status(Error::UnsupportedFormat,
-                  "--metric '" + o.metric + "': expected a .vdb, .sol or .solb file");
+    return Status(Error::UnsupportedFormat, "--metric '" + o.metric + "': expected a .vdb, .sol or .solb file");
   }
+  Result<std::unique_ptr<SizingField>> bounded = metric::bounded_sizing_field(surface, base, bounds_of(o), default_sizing);
+  if (!bounded.ok()) return bounded.status();
+  out->keep_owned(std::move(bounded).value());
   return std::unique_ptr<SizingField>(std::move(out));
 }
 
@@ -254,10 +167,10 @@ Status write_metric_outputs(const MetricCliOptions& o, const SizingField& field,
   }
   if (!o.write_sizing.empty()) {
     const SizingField* f = &field;
-    if (const auto* owner = dynamic_cast<const OwningField*>(f)) f = &owner->top();
+    if (const auto* owner = dynamic_cast<const metric::OwningField*>(f)) f = &owner->top();
     if (const auto* grid = dynamic_cast<const metric::MetricField*>(f))
       return metric::write_metric_vdb(*grid, o.write_sizing);
-    Result<metric::MetricField> sampled = sample_on_surface_box(field, surface);
+    Result<metric::MetricField> sampled = metric::sample_on_surface_box(field, surface);
     if (!sampled.ok()) return sampled.status();
     return metric::write_metric_vdb(sampled.value(), o.write_sizing);
   }
