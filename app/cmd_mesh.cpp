@@ -24,6 +24,7 @@
 #include "metric/metric_field.hpp"
 #include "metric_options.hpp"
 #include "pipeline/mesher.hpp"
+#include "pipeline/result_json.hpp"
 #include "quality/html_report.hpp"
 #include "quality/quality_report.hpp"
 #include "surface_check.hpp"
@@ -448,55 +449,19 @@ class MeshCommand {
     return not_written_.empty() ? kExitOk : kExitReadError;
   }
 
+  // The run's figures (mesher_result_json, as the C ABI gives them), the files and the quality.
   void print_json(const MesherResult& r, const QualityReport& quality) const {
-    const MeshArgs& args = args_;
-    const BoundaryLayerReport& bl = r.boundary_layer;
-    const std::vector<std::string>& not_written = not_written_;
-  nlohmann::json stages = nlohmann::json::array();
-  for (const StageReport& s : r.stages) stages.push_back({{"stage", s.name}, {"seconds", s.seconds}, {"tets", s.tets}});
-  nlohmann::json out = {
-      {"input", args.input}, {"output", args.output}, {"also_write", args.also_write}, {"report", args.report_html}, {"seconds", r.seconds}, {"stages", stages},
-      {"tets_per_second", r.seconds > 0 ? double(r.mesh.num_tets()) / r.seconds : 0.0},
-      {"estimated_tets", r.estimated_tets},
-      {"layers", {{"layers_used", r.layers_used}, {"retries", r.layers_retries}}},
-      {"recovery", {{"steiner_on_s1_edges", r.recovery.steiner_on_edges},
-                    {"steiner_on_s1_faces", r.recovery.steiner_on_faces},
-                    {"strategy", r.recovery.strategy},
-                    {"strategy_name", recovery_strategy_name(r.recovery.strategy)},
-                    {"seconds", {{"delaunay", r.recovery.seconds_delaunay},
-                                 {"recovery", r.recovery.seconds_recovery},
-                                 {"carving", r.recovery.seconds_carve}}}}},
-      {"coupling", {{"edge_split_tets", r.couple.edge_split_tets}, {"faces_reconed", r.couple.faces_reconed}}},
-      {"refine", {{"passes", r.refine.passes}, {"stopped_at_pass_cap", r.refine.stopped_at_pass_cap}, {"metric_not_spd", r.refine.metric_not_spd}, {"splits", r.refine.splits}, {"parallel_splits", r.refine.parallel_splits}, {"collapses", r.refine.collapses},
-                  {"length_mean", r.refine.length_mean}, {"length_in_range", r.refine.length_in_range},
-                  {"anisotropic_cycles", r.anisotropic_cycles},
-                  {"seconds", {{"edge_lists", r.refine.seconds_edges}, {"split_choice", r.refine.seconds_choice},
-                               {"insertion", r.refine.seconds_insertion}, {"collapses", r.refine.seconds_collapses},
-                               {"metric_flips", r.refine.seconds_flips}}}}},
-      {"metric_quality", {{"tets", r.metric_quality.tets}, {"radius_ratio_mean", r.metric_quality.mean},
-                          {"radius_ratio_min", r.metric_quality.min}, {"below_0.1", r.metric_quality.below_01},
-                          {"below_0.4", r.metric_quality.below_04}}},
-      {"boundary_layer", {{"layers", bl.layers}, {"first_height", args.bl_first_height}, {"yplus", args.bl_yplus}, {"wall_vertices", bl.wall_vertices}, {"tets", bl.tets},
-                          {"vertices", bl.vertices}, {"full_columns", bl.full_columns}, {"columns_reaching", bl.columns_reaching},
-                          {"nominal_columns", bl.nominal_columns}, {"reduced_vertices", bl.reduced_vertices},
-                          {"reduced_share", r.layers.bl_reduced_share},
-                          {"first_height_min", bl.first_height_min}, {"first_height_mean", bl.first_height_mean},
-                          {"first_height_max", bl.first_height_max}, {"max_height_error", bl.max_height_error},
-                          {"growth_mean", bl.growth_mean}, {"max_displacement", bl.max_displacement},
-                          {"stage1_seconds", r.layers.bl_seconds}}},
-      {"optimize", {{"moves", r.optimize.moves}, {"flips23", r.optimize.flips23},
-                    {"edge_removals", r.optimize.edge_removals}, {"perturbations", r.optimize.perturbations},
-                    {"collapses", r.optimize.collapses},
-                    {"flat_found", r.optimize.flat_found}, {"flat_left", r.optimize.flat_left},
-                    {"seconds", {{"setup", r.optimize.seconds_setup}, {"cvt", r.optimize.seconds_cvt},
-                                 {"flips", r.optimize.seconds_flips}, {"slivers", r.optimize.seconds_slivers},
-                                 {"certify", r.optimize.seconds_certify}}}}},
-      {"quality", nlohmann::json::parse(quality_report_json(quality))}};
-  out["notices"] = nlohmann::json::array();
-  for (const Notice& n : r.notices) out["notices"].push_back({{"kind", n.kind}, {"message", n.message}});
-  out["ok"] = not_written.empty();
-  out["not_written"] = not_written;
-  std::cout << out.dump(1) << "\n";
+    nlohmann::json out = nlohmann::json::parse(mesher_result_json(r));
+    out["input"] = args_.input;
+    out["output"] = args_.output;
+    out["also_write"] = args_.also_write;
+    out["report"] = args_.report_html;
+    out["boundary_layer"]["first_height"] = args_.bl_first_height;
+    out["boundary_layer"]["yplus"] = args_.bl_yplus;
+    out["quality"] = nlohmann::json::parse(quality_report_json(quality));
+    out["ok"] = not_written_.empty();
+    out["not_written"] = not_written_;
+    std::cout << out.dump(1) << "\n";
   }
 
   static constexpr const char* kCmd = "anitet mesh";

@@ -1162,7 +1162,8 @@ double estimate_refined_tets(const TetMesh& mesh, const SizingField& field, doub
       at_vertex[v] = det_sqrt(m);
     }
   });
-  return tbb::parallel_reduce(
+  // (Deterministic: the same sum, bit for bit, on any number of threads.)
+  return tbb::parallel_deterministic_reduce(
              tbb::blocked_range<uint32_t>(0, mesh.num_tet_slots(), 4096), 0.0,
              [&](const tbb::blocked_range<uint32_t>& r, double sum) {
                double m[6];
