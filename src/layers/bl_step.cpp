@@ -29,8 +29,12 @@ Status LayerBuilder::setup_boundary_layer() {
     wall_triangles += wall ? 1 : 0;
     for (int k = 0; k < 3; ++k) (wall ? wall_ : other)[s_.tri[3 * t + k]] = 1;
   }
-  if (wall_triangles == 0)
-    return Status(Error::InvalidArgument, "layers: no triangle carries a wall patch label");
+  // A wall label no triangle has would be dropped without a word (a typo, another file's label).
+  for (int32_t label : bl.wall_patches)
+    if (std::find(s_.patch.begin(), s_.patch.end(), label) == s_.patch.end())
+      return Status(Error::InvalidArgument,
+                    "layers: boundary layer: no triangle has the wall patch label " + std::to_string(label));
+  if (wall_triangles == 0) return Status(Error::InvalidArgument, "layers: no triangle carries a wall patch label");
   for (size_t v = 0; v < nv; ++v)
     if (wall_[v] && other[v])
       return Status(Error::NotImplemented,
