@@ -21,6 +21,7 @@ const char* last_error_c_str() { return t_last_error.c_str(); }
 size_t options_size(int32_t version) {
   // Each version's struct ends where the next version's first field starts.
   if (version == 1) return offsetof(anitet_options, layers);
+  if (version == 2) return offsetof(anitet_options, attempts_seconds);
   return sizeof(anitet_options);
 }
 
@@ -84,10 +85,21 @@ static_assert(ANITET_VERSION_MAJOR == ANITET_BUILD_VERSION_MAJOR &&
 // Version 1 of anitet_options ends after log_user_data: its layout is frozen.
 static_assert(offsetof(anitet_options, layers) == 6 * sizeof(int32_t) + 4 * sizeof(void*),
               "the version 1 fields of anitet_options moved");
+// Versions 2 and 3 have no padding either (the Fortran and Python mirrors assume none), and
+// version 2 ends where version 3 starts.
 static_assert(offsetof(anitet_options, recovery_max_seconds) % alignof(double) == 0 &&
                   offsetof(anitet_options, size_scale) % alignof(double) == 0 &&
-                  sizeof(anitet_options) == offsetof(anitet_options, size_scale) + sizeof(double),
-              "anitet_options has padding: the Fortran and Python mirrors assume none");
+                  offsetof(anitet_options, attempts_seconds) == offsetof(anitet_options, size_scale) + sizeof(double),
+              "anitet_options (version 2) has padding");
+static_assert(offsetof(anitet_options, hmin) == offsetof(anitet_options, attempts_seconds) + 16 &&
+                  offsetof(anitet_options, bl_patches) == offsetof(anitet_options, anisotropic_cycles) + 8 &&
+                  offsetof(anitet_options, bl_first_height) == offsetof(anitet_options, bl_patches) + sizeof(void*) &&
+                  sizeof(anitet_options) == offsetof(anitet_options, bl_sizing) + sizeof(int32_t),
+              "anitet_options (version 3) has padding");
+static_assert(sizeof(anitet_run_stats) == offsetof(anitet_run_stats, bl_max_height_error) + sizeof(double) &&
+                  offsetof(anitet_run_stats, vertices) == 8 * sizeof(int32_t) &&
+                  offsetof(anitet_run_stats, bl_wall_vertices) == offsetof(anitet_run_stats, bl_layers) + 8,
+              "anitet_run_stats has padding");
 
 // The header's codes are anitet::Error's values: never renumber either.
 #define ANITET_SAME_CODE(c, e) static_assert(c == static_cast<int>(anitet::Error::e), #c)

@@ -103,7 +103,26 @@ int anitet_mesh_write(const anitet_mesh* mesh, const char* path) {
   return guard(fn, [&] {
     if (mesh == nullptr) return null_argument(fn, "mesh");
     if (path == nullptr) return null_argument(fn, "path");
-    return set_status(fn, anitet::write_volume_mesh(mesh->mesh, std::string(path)));
+    return set_status(fn, anitet::write_volume_mesh(mesh->mesh, std::string(path), mesh->patch_names));
+  });
+}
+
+int anitet_mesh_set_patch_name(anitet_mesh* mesh, int32_t label, const char* name) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (mesh == nullptr) return null_argument(fn, "mesh");
+    const auto& labels = mesh->mesh.bnd_patch;
+    if (std::find(labels.begin(), labels.end(), label) == labels.end())
+      return set_status(fn, anitet::Status(anitet::Error::InvalidArgument,
+                                           "no boundary triangle has patch label " + std::to_string(label)));
+    if (name == nullptr) {
+      mesh->patch_names.erase(label);
+      return ok();
+    }
+    std::string n(name);
+    if (anitet::Status s = anitet::check_patch_name(n); !s.ok()) return set_status(fn, s);
+    mesh->patch_names[label] = std::move(n);
+    return ok();
   });
 }
 

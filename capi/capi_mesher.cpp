@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -10,7 +11,9 @@
 
 #include "handles.hpp"
 #include "layers/layers.hpp"
+#include "metric/bounded_sizing.hpp"
 #include "pipeline/mesher.hpp"
+#include "pipeline/result_json.hpp"
 #include "shim.hpp"
 
 using namespace anitet::capi;
@@ -39,6 +42,25 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
   if (!(std::isfinite(o.size_scale) && o.size_scale > 0.0)) {
     return bad_option(function, "size_scale must be finite and > 0");
   }
+  if (!std::isfinite(o.attempts_seconds) || o.attempts_seconds < 0.0)
+    return bad_option(function, "attempts_seconds must be finite and >= 0");
+  if (o.recovery != ANITET_RECOVERY_ALL && o.recovery != ANITET_RECOVERY_SPLIT && o.recovery != ANITET_RECOVERY_FUZZY)
+    return bad_option(function, "recovery is " + std::to_string(o.recovery) + ", not ANITET_RECOVERY_ALL, _SPLIT or _FUZZY");
+  if (anitet::Status st = anitet::metric::check_bounds({o.hmin, o.hmax, o.hgrad}); !st.ok())
+    return bad_option(function, st.message());
+  if (!std::isfinite(o.max_tets) || o.max_tets < 0.0) return bad_option(function, "max_tets must be finite and >= 0");
+  if (o.anisotropic_cycles < 0 || o.anisotropic_cycles > 10)
+    return bad_option(function, "anisotropic_cycles is " + std::to_string(o.anisotropic_cycles) + ", not in 0..10");
+  if (o.bl_num_patches < 0) return bad_option(function, "bl_num_patches is negative");
+  if (o.bl_num_patches > 0) {
+    if (o.bl_patches == nullptr) return bad_option(function, "bl_patches is NULL with bl_num_patches > 0");
+    if (!(std::isfinite(o.bl_first_height) && o.bl_first_height > 0.0))
+      return bad_option(function, "bl_first_height must be finite and > 0 with boundary-layer walls");
+    if (!(o.bl_growth >= 1.0 && o.bl_growth <= 10.0)) return bad_option(function, "bl_growth must be in 1..10");
+    if (o.bl_layers < 1 || o.bl_layers > 1000) return bad_option(function, "bl_layers must be in 1..1000");
+  }
+  if (o.bl_sizing != 0 && (o.bl_num_patches == 0 || !(o.bl_growth > 1.0)))
+    return bad_option(function, "bl_sizing needs boundary-layer walls (bl_num_patches > 0) and bl_growth above 1");
   out.validation.merge_duplicate_vertices = o.merge_duplicate_vertices != 0;
   out.validation.orient_shells = o.orient_shells != 0;
   out.validation.check_self_intersections = o.check_self_intersections != 0;
@@ -52,6 +74,20 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
   out.run_refine = o.refine != 0;
   out.run_optimize = o.optimize != 0;
   out.refine.size_scale = o.size_scale;
+  out.attempts_seconds = o.attempts_seconds;
+  out.retry_layer_counts = o.retry_layer_counts != 0;
+  out.recovery.split_constraints = o.recovery != ANITET_RECOVERY_FUZZY;
+  out.recovery.fuzzy_faces = o.recovery != ANITET_RECOVERY_SPLIT;
+  out.max_tets = o.max_tets;
+  out.anisotropic_cycles = o.anisotropic_cycles;
+  if (o.bl_num_patches > 0) {
+    anitet::BoundaryLayerOptions& bl = out.layers.boundary_layer;
+    bl.wall_patches.assign(o.bl_patches, o.bl_patches + o.bl_num_patches);
+    bl.first_height = o.bl_first_height;
+    bl.growth = o.bl_growth;
+    bl.layers = o.bl_layers;
+  }
+  out.boundary_layer_sizing = o.bl_sizing != 0;
   return ANITET_OK;
 }
 
@@ -187,6 +223,16 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
     const anitet::ValidationReport report = anitet::validate_surface(repaired, mo.validation);
     log_validation(opt, report);
     if (!report.ok()) return set_status(fn, report.status());
+    // hmin, hmax, hgrad: the field (the caller's, or the surface's default grid) bounded and graded.
+    std::unique_ptr<anitet::SizingField> bounded;
+    const anitet::metric::SizeBounds bounds{opt.hmin, opt.hmax, opt.hgrad};
+    if (bounds.any() && (mo.run_refine || mo.run_optimize)) {
+      anitet::Result<std::unique_ptr<anitet::SizingField>> built =
+          anitet::metric::bounded_sizing_field(repaired, mo.sizing, bounds, mo.surface_sizing);
+      if (!built.ok()) return set_status(fn, built.status());
+      bounded = std::move(built).value();
+      mo.sizing = bounded.get();
+    }
 
     anitet::Result<anitet::MesherResult> run = anitet::Mesher(mo).run_validated(repaired);
     if (sizing && sizing->failed()) return metric_failed();
@@ -196,8 +242,10 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
       return code;
     }
     log_stages(opt, run.value());
+    for (const anitet::Notice& n : run->notices) log_line(opt, ANITET_LOG_WARNING, "notice: " + n.message);
     auto mesh = std::make_unique<anitet_mesh>();
     mesh->mesh = std::move(run->mesh);
+    mesh->run = std::make_unique<anitet::MesherResult>(std::move(run).value());
     if (sizing) {
       // The metric the mesh was made for, at its vertices (anitet_mesh_get_metric, .sol).
       anitet::VolumeMesh& v = mesh->mesh;
@@ -207,6 +255,80 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
     }
     *out = mesh.release();
     return ok();
+  });
+}
+
+namespace {
+
+// Copies the fields of `version` from the full struct into the caller's.
+void fill_run_stats(const anitet::MesherResult& r, const anitet::VolumeMesh& m, anitet_run_stats& s) {
+  s.layers_used = r.layers_used;
+  s.layers_retries = int32_t(r.layers_retries);
+  // RecoveryStats::strategy numbers the variants (recovery_strategy_name): 3-5 split constraints.
+  s.recovery_strategy = r.recovery.strategy >= 3 ? ANITET_RECOVERY_SPLIT : ANITET_RECOVERY_FUZZY;
+  s.refine_passes = r.refine.passes;
+  s.refine_stopped_at_pass_cap = r.refine.stopped_at_pass_cap ? 1 : 0;
+  s.anisotropic_cycles = r.anisotropic_cycles;
+  s.num_notices = int32_t(r.notices.size());
+  s.vertices = int64_t(m.num_vertices());
+  s.tets = int64_t(m.num_tets());
+  s.steiner_on_front_edges = int64_t(r.recovery.steiner_on_edges);
+  s.steiner_on_front_faces = int64_t(r.recovery.steiner_on_faces);
+  s.refine_splits = int64_t(r.refine.splits);
+  s.refine_collapses = int64_t(r.refine.collapses);
+  s.flat_tets_left = int64_t(r.optimize.flat_left);
+  s.metric_not_spd = int64_t(r.refine.metric_not_spd);
+  s.seconds = r.seconds;
+  s.estimated_tets = r.estimated_tets;
+  s.edges_in_range = r.refine.length_in_range;
+  s.metric_radius_ratio_mean = r.metric_quality.tets > 0 ? r.metric_quality.mean : 0.0;
+  s.metric_radius_ratio_min = r.metric_quality.tets > 0 ? r.metric_quality.min : 0.0;
+  const anitet::BoundaryLayerReport& bl = r.boundary_layer;
+  s.bl_layers = bl.layers;
+  s.reserved0 = 0;
+  s.bl_wall_vertices = int64_t(bl.wall_vertices);
+  s.bl_full_columns = int64_t(bl.full_columns);
+  s.bl_nominal_columns = int64_t(bl.nominal_columns);
+  s.bl_reduced_vertices = int64_t(bl.reduced_vertices);
+  s.bl_tets = int64_t(bl.tets);
+  s.bl_first_height_min = bl.first_height_min;
+  s.bl_first_height_mean = bl.first_height_mean;
+  s.bl_first_height_max = bl.first_height_max;
+  s.bl_growth_mean = bl.growth_mean;
+  s.bl_max_height_error = bl.max_height_error;
+}
+
+int no_run(const char* fn) {
+  return set_error(ANITET_ERR_INVALID_ARGUMENT,
+                   std::string(fn) + ": the mesh was not made by anitet_mesher_run (read or created from arrays)");
+}
+
+}  // namespace
+
+int anitet_mesh_get_run_stats(const anitet_mesh* mesh, anitet_run_stats* out) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (mesh == nullptr) return null_argument(fn, "mesh");
+    if (out == nullptr) return null_argument(fn, "out");
+    if (out->version < 1 || out->version > ANITET_RUN_STATS_VERSION)
+      return set_error(ANITET_ERR_INVALID_ARGUMENT, std::string(fn) + ": run stats version " +
+                                                        std::to_string(out->version) + " is not supported (1.." +
+                                                        std::to_string(ANITET_RUN_STATS_VERSION) + ")");
+    if (!mesh->run) return no_run(fn);
+    anitet_run_stats full = ANITET_RUN_STATS_INIT;
+    fill_run_stats(*mesh->run, mesh->mesh, full);
+    full.version = out->version;
+    std::memcpy(out, &full, sizeof full);  // version 1 is the whole struct
+    return ok();
+  });
+}
+
+int anitet_mesh_run_json(const anitet_mesh* mesh, char* buf, int64_t buf_len, int64_t* needed) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (mesh == nullptr) return null_argument(fn, "mesh");
+    if (!mesh->run) return no_run(fn);
+    return copy_text(fn, anitet::mesher_result_json(*mesh->run), buf, buf_len, needed);
   });
 }
 

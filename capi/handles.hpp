@@ -9,7 +9,9 @@
 #include "core/sizing.hpp"
 #include "core/surface_mesh.hpp"
 #include "core/volume_mesh.hpp"
+#include "io/patch_names.hpp"
 #include "partition/partition.hpp"
+#include "pipeline/mesher.hpp"
 #include "validate/validate.hpp"
 
 struct anitet_surface {
@@ -19,6 +21,8 @@ struct anitet_surface {
 
 struct anitet_mesh {
   anitet::VolumeMesh mesh;
+  anitet::PatchNames patch_names;              // anitet_mesh_set_patch_name; used by anitet_mesh_write
+  std::unique_ptr<anitet::MesherResult> run;   // anitet_mesher_run's figures (its mesh moved out)
 };
 
 struct anitet_metric {

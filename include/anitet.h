@@ -113,11 +113,16 @@ typedef int (*anitet_metric_fn)(double x, double y, double z, double m[6], void*
  * Versioned options.
  * ------------------------------------------------------------------------------------------- */
 /** The newest version of anitet_options this header declares. */
-#define ANITET_OPTIONS_VERSION 2
+#define ANITET_OPTIONS_VERSION 3
 
 /** Values of anitet_options.layer_scheme (version 2). */
 #define ANITET_LAYERS_PUSH 0       /**< prism layers by vertex pushes only (the default) */
 #define ANITET_LAYERS_FACE_PUSH 1  /**< the paper's two steps: face tets, then vertex pushes */
+
+/** Values of anitet_options.recovery (version 3): stage 2's strategies. */
+#define ANITET_RECOVERY_ALL 0    /**< split constraints, then the fuzzy-face ones when it fails */
+#define ANITET_RECOVERY_SPLIT 1  /**< split constraints only (fast, every decision combinatorial) */
+#define ANITET_RECOVERY_FUZZY 2  /**< the fuzzy-face strategies only */
 
 /** Options of the validation and the mesher, a versioned struct: set it with
  * ANITET_OPTIONS_INIT or anitet_options_init(), then change fields. */
@@ -133,19 +138,49 @@ typedef struct anitet_options {
   anitet_log_fn log;                 /**< may be NULL */
   void* log_user_data;               /**< passed to log untouched */
   /* Version 2 (read only when version >= 2; a version 1 caller gets the defaults): */
-  int32_t layers;                    /**< boundary layers of stage 1, >= 1 (default 1) */
+  int32_t layers;                    /**< advancing-front layers of stage 1, >= 1 (default 1);
+                                        not boundary layers (those are bl_*, version 3) */
   int32_t layer_scheme;              /**< ANITET_LAYERS_PUSH (default) or ANITET_LAYERS_FACE_PUSH */
   double recovery_max_seconds;       /**< time budget of the boundary recovery; 0: default (20) */
   int32_t refine;                    /**< 1: refine to the sizes (default), 0: skip the stage */
   int32_t optimize;                  /**< 1: optimize the quality (default), 0: skip the stage */
   double size_scale;                 /**< every target edge length times this (> 0; default 1;
                                         2 = a mesh twice as coarse) */
-  /* Version 3 and later append fields here. */
+  /* Version 3 (read only when version >= 3; older callers get the defaults): the options of
+   * `anitet mesh`. */
+  double attempts_seconds;           /**< wall time for stages 1-2 and the coupling, run again
+                                        with other layer counts and recovery strategies when the
+                                        front is not recovered; no attempt starts after it
+                                        (default 240; 0: no limit) */
+  int32_t retry_layer_counts;        /**< 1 (default): those retries try other layer counts;
+                                        0: the given count only */
+  int32_t recovery;                  /**< ANITET_RECOVERY_ALL (default), _SPLIT or _FUZZY */
+  double hmin;                       /**< smallest target edge length, absolute (0: no bound) */
+  double hmax;                       /**< largest target edge length, absolute (0: no bound) */
+  double hgrad;                      /**< gradation, > 1 (0: none, the default): the size grows
+                                        by at most this factor per unit of metric length */
+  double max_tets;                   /**< refuse to refine (INVALID_ARGUMENT) when the sizing
+                                        field asks for more tets than this, estimated before
+                                        refinement (0: no limit, the default) */
+  int32_t anisotropic_cycles;        /**< with an anisotropic field, this many more rounds of
+                                        refinement then optimization (0-10, default 2) */
+  int32_t bl_num_patches;            /**< boundary layer: the number of labels in bl_patches
+                                        (0, the default: no boundary layer) */
+  const int32_t* bl_patches;         /**< the surface's patch labels that are walls, each a
+                                        whole shell; read during the call only (may be NULL
+                                        when bl_num_patches is 0) */
+  double bl_first_height;            /**< the first layer's height h0 (> 0 with walls) */
+  double bl_growth;                  /**< growth ratio r >= 1: layer i is h0 r^i (default 1.2) */
+  int32_t bl_layers;                 /**< number of boundary layers n, 1..1000 (default 10) */
+  int32_t bl_sizing;                 /**< 1: the interior's sizes continue the layers' heights
+                                        (an anisotropic metric near the walls; default 0) */
+  /* Version 4 and later append fields here. */
 } anitet_options;
 
 /** Initializer of an anitet_options of version ANITET_OPTIONS_VERSION with the defaults. */
-#define ANITET_OPTIONS_INIT \
-  { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0, 1, ANITET_LAYERS_PUSH, 0.0, 1, 1, 1.0 }
+#define ANITET_OPTIONS_INIT                                                                     \
+  { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0, 1, ANITET_LAYERS_PUSH, 0.0, 1, 1, 1.0, \
+    240.0, 1, ANITET_RECOVERY_ALL, 0.0, 0.0, 0.0, 0.0, 2, 0, 0, 0.0, 1.2, 10, 0 }
 
 /** Fills the fields of `version` (1 .. ANITET_OPTIONS_VERSION) of *options with their defaults
  * and sets options->version; a struct of an older version is not written past its end.
@@ -279,20 +314,24 @@ ANITET_API int anitet_metric_evaluate(const anitet_metric* metric, double x, dou
 
 /** Meshes the inside of `surface` into a new mesh *out (*out is NULL after any error). The call
  * validates a copy of the surface with the options' repairs (`surface` itself is not changed),
- * then runs the stages: boundary layers, Delaunay with conforming boundary recovery, coupling,
- * refinement to the sizes and quality optimization (options may skip the last two).
+ * then runs the stages: advancing-front layers (with a boundary layer first on the walls
+ * options->bl_patches names), Delaunay with conforming boundary recovery, coupling, refinement
+ * to the sizes and quality optimization (options may skip the last two), every stage in one
+ * task arena of options->num_threads threads (0: the library's default, all cores).
  * Sizes: refinement and optimization follow `metric` when not NULL (evaluated wherever they
  * need it; the mesh then carries its tensors at the vertices, see anitet_mesh_get_metric), else
- * a sizing field built from the surface's triangles; options->size_scale scales either. The
- * boundary layers follow the surface's edge lengths.
+ * a sizing field built from the surface's triangles; options->hmin, hmax and hgrad bound and
+ * grade it, then options->size_scale scales it. The front layers follow the surface's edge
+ * lengths. What the run did is kept with the mesh (anitet_mesh_get_run_stats,
+ * anitet_mesh_run_json), including what it did otherwise than asked (notices).
  * The mesh: the (repaired) surface's points first and in order, positive tets, a region label
  * per body, the surface's triangles as boundary triangles with their patch labels. Same inputs
  * and options, same mesh, bit for bit. options may be NULL for the defaults; options->progress
  * is called on entering each stage and may cancel; options->log gets the repairs and problems
  * of the validation and one line per stage.
- * Errors: INVALID_ARGUMENT (NULL surface or out, bad options version or value; a metric
- * callback that fails or returns a tensor that is not positive definite: the message names the
- * point), the validation's codes (OPEN_BOUNDARY, SELF_INTERSECTION, ...), CANCELLED,
+ * Errors: INVALID_ARGUMENT (NULL surface or out, bad options version or value, a wall label no
+ * triangle has, more tets than options->max_tets; a metric callback that fails or returns a
+ * tensor that is not positive definite: the message names the point), the validation's codes (OPEN_BOUNDARY, SELF_INTERSECTION, ...), CANCELLED,
  * RECOVERY_FAILED, INTERNAL (a stage failed), OUT_OF_MEMORY. */
 ANITET_API int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric,
                                  const anitet_options* options, anitet_mesh** out);
@@ -345,11 +384,81 @@ ANITET_API int anitet_mesh_get_metric_components(const anitet_mesh* mesh, int32_
 /** Fills values (values_len >= components*num_points). */
 ANITET_API int anitet_mesh_get_metric(const anitet_mesh* mesh, double* values,
                                       int64_t values_len);
+/** Names the boundary patch `label` (1-32 letters, digits or '_', starting with a letter) in the
+ * files anitet_mesh_write writes: SU2 markers, OpenFOAM patches, CGNS and Exodus names, Gmsh
+ * physical names (unnamed labels are patch<label>). NULL name removes the name. The name is
+ * copied. Errors: INVALID_ARGUMENT (NULL mesh, an invalid name, no boundary triangle with the
+ * label). */
+ANITET_API int anitet_mesh_set_patch_name(anitet_mesh* mesh, int32_t label, const char* name);
+
 /** Replaces the per-vertex metric: components 1 (size, > 0) or 6 (xx xy yy xz yz zz) values per
  * point, values_len == components*num_points, all finite; components 0 removes it (values may
  * be NULL). Errors: INVALID_ARGUMENT. */
 ANITET_API int anitet_mesh_set_metric(anitet_mesh* mesh, const double* values, int64_t values_len,
                                       int32_t components);
+
+/* ---------------------------------------------------------------------------------------------
+ * What a meshing run did (meshes made by anitet_mesher_run).
+ * ------------------------------------------------------------------------------------------- */
+/** The newest version of anitet_run_stats this header declares. */
+#define ANITET_RUN_STATS_VERSION 1
+
+/** Figures of the run that made a mesh (anitet_mesh_get_run_stats), a versioned struct: set its
+ * version with ANITET_RUN_STATS_INIT. Everything else the run measured (each stage's time and
+ * tets, the notices' sentences, the boundary layer's columns) is in anitet_mesh_run_json. */
+typedef struct anitet_run_stats {
+  int32_t version;                 /**< ANITET_RUN_STATS_VERSION (1), set by the caller */
+  int32_t layers_used;             /**< stage-1 front layers of the attempt that worked */
+  int32_t layers_retries;          /**< attempts before it (other layer counts or strategies) */
+  int32_t recovery_strategy;       /**< ANITET_RECOVERY_SPLIT or _FUZZY: the one that worked */
+  int32_t refine_passes;           /**< refinement passes (0: not run) */
+  int32_t refine_stopped_at_pass_cap; /**< 1: refinement ran out of passes before settling */
+  int32_t anisotropic_cycles;      /**< extra refine + optimize rounds run */
+  int32_t num_notices;             /**< what was done otherwise than asked (see the JSON) */
+  int64_t vertices;                /**< of the mesh */
+  int64_t tets;                    /**< of the mesh */
+  int64_t steiner_on_front_edges;  /**< stage 2's points on the front's edges */
+  int64_t steiner_on_front_faces;  /**< stage 2's points inside the front's faces */
+  int64_t refine_splits;           /**< edges split */
+  int64_t refine_collapses;        /**< edges collapsed */
+  int64_t flat_tets_left;          /**< tets left flat to double rounding */
+  int64_t metric_not_spd;          /**< vertices whose metric was measured as Euclidean */
+  double seconds;                  /**< the whole run */
+  double estimated_tets;           /**< the refinement's tets estimated before it (0: none) */
+  double edges_in_range;           /**< share of edges of metric length in [1/sqrt2, sqrt2] */
+  double metric_radius_ratio_mean; /**< in the metric, anisotropic fields only (else 0) */
+  double metric_radius_ratio_min;  /**< in the metric, anisotropic fields only (else 0) */
+  int32_t bl_layers;               /**< boundary layers built (0: no boundary layer) */
+  int32_t reserved0;               /**< 0 */
+  int64_t bl_wall_vertices;        /**< input vertices on the walls */
+  int64_t bl_full_columns;         /**< wall vertices whose column reaches every layer */
+  int64_t bl_nominal_columns;      /**< full columns with every height within 10% of h0 r^i */
+  int64_t bl_reduced_vertices;     /**< wall vertices with a reduced layer */
+  int64_t bl_tets;                 /**< tets of the boundary layer */
+  double bl_first_height_min;      /**< over the full columns */
+  double bl_first_height_mean;     /**< over the full columns */
+  double bl_first_height_max;      /**< over the full columns */
+  double bl_growth_mean;           /**< the columns' mean growth ratio */
+  double bl_max_height_error;      /**< max |h / (h0 r^i) - 1| over the nominal columns */
+  /* Version 2 and later append fields here. */
+} anitet_run_stats;
+
+/** Initializer of an anitet_run_stats of version ANITET_RUN_STATS_VERSION, all figures 0. */
+#define ANITET_RUN_STATS_INIT \
+  { ANITET_RUN_STATS_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, \
+    0, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0.0, 0.0, 0.0 }
+
+/** The figures of the run that made `mesh`. out->version must be 1 .. ANITET_RUN_STATS_VERSION;
+ * the fields of that version are filled. Errors: INVALID_ARGUMENT (NULL, an unknown version, a
+ * mesh not made by anitet_mesher_run: read or created from arrays). */
+ANITET_API int anitet_mesh_get_run_stats(const anitet_mesh* mesh, anitet_run_stats* out);
+/** The run's whole report as JSON text into buf (buf_len bytes, NUL included), as `anitet mesh
+ * --json` gives it without the quality part: stages (name, seconds, tets), layers, recovery,
+ * coupling, refine, optimize, metric_quality, boundary_layer (with columns_reaching), notices
+ * (kind, message), seconds. *needed gets the size needed; buf == NULL with buf_len == 0 asks for
+ * the size only and succeeds. Errors: as anitet_mesh_get_run_stats, BUFFER_TOO_SMALL. */
+ANITET_API int anitet_mesh_run_json(const anitet_mesh* mesh, char* buf, int64_t buf_len,
+                                    int64_t* needed);
 
 /* ---------------------------------------------------------------------------------------------
  * Quality report.

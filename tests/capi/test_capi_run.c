@@ -1,0 +1,354 @@
+/* The C ABI's version 3 of anitet_options (the options of `anitet mesh`: boundary layer, size
+ * bounds, recovery strategy, retries, tet cap) and what a run returns (anitet_run_stats,
+ * anitet_mesh_run_json), patch names for the written files; every documented error. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "capi_test_util.h"
+#include "sphere_surface.h" /* examples/c: the surface every example meshes */
+
+static int contains(const char* text, const char* part) { return strstr(text, part) != NULL; }
+
+/* The unit sphere (patches 1-3) inside the box [-3, 3]^3 (patch 4): the sphere is a wall. */
+enum { BOX_NPOINTS = SPHERE_NPOINTS + 8, BOX_NTRI = SPHERE_NTRI + 12 };
+static double g_xyz[3 * BOX_NPOINTS];
+static int32_t g_tri[3 * BOX_NTRI], g_patch[BOX_NTRI];
+
+static anitet_surface* make_sphere_in_box(void) {
+  static const int32_t box_tri[36] = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                                      2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+  anitet_surface* s = NULL;
+  int i;
+  sphere_build(g_xyz, g_tri, g_patch);
+  for (i = 0; i < 8; ++i) {
+    double* p = &g_xyz[3 * (SPHERE_NPOINTS + i)];
+    p[0] = (i & 1) ? 3.0 : -3.0, p[1] = (i & 2) ? 3.0 : -3.0, p[2] = (i & 4) ? 3.0 : -3.0;
+  }
+  for (i = 0; i < 36; ++i) g_tri[3 * SPHERE_NTRI + i] = SPHERE_NPOINTS + box_tri[i];
+  for (i = 0; i < 12; ++i) g_patch[SPHERE_NTRI + i] = 4;
+  assert_int_equal(anitet_surface_create(g_xyz, BOX_NPOINTS, g_tri, BOX_NTRI, g_patch, 0, &s), ANITET_OK);
+  return s;
+}
+
+static anitet_mesh* run_ok(const anitet_surface* s, const anitet_options* o) {
+  anitet_mesh* m = NULL;
+  const int rc = anitet_mesher_run(s, NULL, o, &m);
+  if (rc != ANITET_OK) fail_msg("anitet_mesher_run: %s", anitet_last_error_message());
+  assert_non_null(m);
+  return m;
+}
+
+static int64_t tets_of(const anitet_mesh* m) {
+  int64_t nt = 0;
+  assert_int_equal(anitet_mesh_get_counts(m, NULL, &nt, NULL), ANITET_OK);
+  return nt;
+}
+
+static char* run_json(const anitet_mesh* m) {
+  int64_t needed = 0;
+  char* text;
+  assert_int_equal(anitet_mesh_run_json(m, NULL, 0, &needed), ANITET_OK);
+  assert_true(needed > 1);
+  text = malloc((size_t)needed);
+  assert_non_null(text);
+  assert_int_equal(anitet_mesh_run_json(m, text, needed - 1, NULL), ANITET_ERR_BUFFER_TOO_SMALL);
+  assert_int_equal(anitet_mesh_run_json(m, text, needed, NULL), ANITET_OK);
+  assert_int_equal((int64_t)strlen(text) + 1, needed);
+  return text;
+}
+
+/* ---- options, version 3 --------------------------------------------------------------------- */
+
+static void test_options_v3_defaults(void** state) {
+  anitet_options a = ANITET_OPTIONS_INIT, b;
+  (void)state;
+  memset(&b, 0x5a, sizeof b);
+  assert_int_equal(anitet_options_init(&b, 3), ANITET_OK);
+  assert_int_equal(b.version, 3);
+  assert_true(b.attempts_seconds == 240.0);
+  assert_int_equal(b.retry_layer_counts, 1);
+  assert_int_equal(b.recovery, ANITET_RECOVERY_ALL);
+  assert_true(b.hmin == 0.0 && b.hmax == 0.0 && b.hgrad == 0.0 && b.max_tets == 0.0);
+  assert_int_equal(b.anisotropic_cycles, 2);
+  assert_int_equal(b.bl_num_patches, 0);
+  assert_null(b.bl_patches);
+  assert_true(b.bl_first_height == 0.0 && b.bl_growth == 1.2);
+  assert_int_equal(b.bl_layers, 10);
+  assert_int_equal(b.bl_sizing, 0);
+  /* The initializer and the function agree field by field. */
+  assert_true(a.attempts_seconds == b.attempts_seconds && a.bl_growth == b.bl_growth);
+  assert_int_equal(a.retry_layer_counts, b.retry_layer_counts);
+  assert_int_equal(a.anisotropic_cycles, b.anisotropic_cycles);
+  assert_int_equal(a.bl_layers, b.bl_layers);
+  assert_null(a.bl_patches);
+}
+
+/* A caller compiled against version 2: its struct ends after size_scale. The library writes
+ * nothing past it and reads nothing past it (garbage there, which would be invalid as version 3
+ * fields, does not matter: a version 2 caller gets version 3's defaults). */
+static void test_options_v2_caller(void** state) {
+  const size_t v2_size = offsetof(anitet_options, attempts_seconds);
+  anitet_options o;
+  const unsigned char* bytes = (const unsigned char*)&o;
+  anitet_surface* s = make_sphere_in_box();
+  anitet_mesh *a, *b;
+  size_t i;
+  (void)state;
+  assert_int_equal(v2_size, offsetof(anitet_options, size_scale) + sizeof(double));
+  memset(&o, 0xff, sizeof o);
+  assert_int_equal(anitet_options_init(&o, 2), ANITET_OK);
+  assert_int_equal(o.version, 2);
+  assert_true(o.size_scale == 1.0);
+  for (i = v2_size; i < sizeof o; ++i) assert_int_equal(bytes[i], 0xff);
+  a = run_ok(s, &o);
+  b = run_ok(s, NULL);
+  assert_int_equal(tets_of(a), tets_of(b));
+  anitet_mesh_destroy(a);
+  anitet_mesh_destroy(b);
+  anitet_surface_destroy(s);
+}
+
+static void expect_bad(const anitet_surface* s, const anitet_options* o, const char* words) {
+  anitet_mesh* m = (anitet_mesh*)1;
+  assert_int_equal(anitet_mesher_run(s, NULL, o, &m), ANITET_ERR_INVALID_ARGUMENT);
+  assert_null(m);
+  if (!contains(anitet_last_error_message(), words))
+    fail_msg("message '%s' lacks '%s'", anitet_last_error_message(), words);
+}
+
+static void test_options_v3_errors(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  const int32_t walls[3] = {1, 2, 3}, unknown_wall[1] = {7};
+  anitet_options o = ANITET_OPTIONS_INIT;
+  (void)state;
+  o.attempts_seconds = -1.0;
+  expect_bad(s, &o, "attempts_seconds");
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.recovery = 3;
+  expect_bad(s, &o, "recovery is 3");
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.hmin = 2.0, o.hmax = 1.0;
+  expect_bad(s, &o, "hmin");
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.hgrad = 0.5;
+  expect_bad(s, &o, "hgrad");
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.hmax = NAN;
+  expect_bad(s, &o, "hmax");
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.max_tets = -1.0;
+  expect_bad(s, &o, "max_tets");
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.anisotropic_cycles = 11;
+  expect_bad(s, &o, "anisotropic_cycles is 11");
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.bl_num_patches = -1;
+  expect_bad(s, &o, "bl_num_patches");
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.bl_num_patches = 3, o.bl_patches = NULL, o.bl_first_height = 0.02;
+  expect_bad(s, &o, "bl_patches is NULL");
+  o.bl_patches = walls, o.bl_first_height = 0.0;
+  expect_bad(s, &o, "bl_first_height");
+  o.bl_first_height = 0.02, o.bl_growth = 0.5;
+  expect_bad(s, &o, "bl_growth");
+  o.bl_growth = 1.2, o.bl_layers = 0;
+  expect_bad(s, &o, "bl_layers");
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.bl_sizing = 1;
+  expect_bad(s, &o, "bl_sizing");
+  /* A wall label that no triangle has is an error, not ignored. */
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.bl_num_patches = 1, o.bl_patches = unknown_wall, o.bl_first_height = 0.02;
+  expect_bad(s, &o, "wall patch label 7");
+  /* A tet cap below what the field asks for: refused before refinement, with the estimate. */
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.hmax = 0.2, o.max_tets = 100.0;
+  expect_bad(s, &o, "100");
+  anitet_surface_destroy(s);
+}
+
+/* ---- what a run did ------------------------------------------------------------------------- */
+
+static void test_run_stats_plain(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  anitet_mesh* m = run_ok(s, NULL);
+  anitet_run_stats st = ANITET_RUN_STATS_INIT;
+  int64_t np = 0, nt = 0;
+  char* json;
+  (void)state;
+  assert_int_equal(anitet_mesh_get_run_stats(m, &st), ANITET_OK);
+  assert_string_equal(anitet_last_error_message(), "");
+  assert_int_equal(st.version, ANITET_RUN_STATS_VERSION);
+  assert_int_equal(anitet_mesh_get_counts(m, &np, &nt, NULL), ANITET_OK);
+  assert_int_equal(st.vertices, np);
+  assert_int_equal(st.tets, nt);
+  assert_int_equal(st.layers_used, 1);
+  assert_true(st.recovery_strategy == ANITET_RECOVERY_SPLIT || st.recovery_strategy == ANITET_RECOVERY_FUZZY);
+  assert_true(st.refine_passes >= 1);
+  assert_true(st.seconds > 0.0);
+  assert_true(st.edges_in_range > 0.0 && st.edges_in_range <= 1.0);
+  assert_int_equal(st.bl_layers, 0);
+  assert_int_equal(st.bl_wall_vertices, 0);
+  json = run_json(m);
+  assert_true(json[0] == '{');
+  assert_true(contains(json, "\"stages\""));
+  assert_true(contains(json, "\"recovery\""));
+  assert_true(contains(json, "\"notices\""));
+  free(json);
+  anitet_mesh_destroy(m);
+  anitet_surface_destroy(s);
+}
+
+static void test_run_stats_errors(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  anitet_mesh *m = run_ok(s, NULL), *made = NULL;
+  anitet_run_stats st = ANITET_RUN_STATS_INIT;
+  int64_t needed = -1;
+  char buf[8];
+  (void)state;
+  assert_int_equal(anitet_mesh_get_run_stats(NULL, &st), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "mesh is NULL"));
+  assert_int_equal(anitet_mesh_get_run_stats(m, NULL), ANITET_ERR_INVALID_ARGUMENT);
+  st.version = 0;
+  assert_int_equal(anitet_mesh_get_run_stats(m, &st), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "version 0"));
+  st.version = ANITET_RUN_STATS_VERSION + 1;
+  assert_int_equal(anitet_mesh_get_run_stats(m, &st), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_run_json(NULL, buf, sizeof buf, &needed), ANITET_ERR_INVALID_ARGUMENT);
+  /* A mesh from arrays was made by no run. */
+  assert_int_equal(anitet_mesh_create(kCubeXyz, 8, (const int32_t[]){0, 1, 3, 4}, 1, NULL, NULL, 0, NULL, 0, &made),
+                   ANITET_OK);
+  st.version = ANITET_RUN_STATS_VERSION;
+  assert_int_equal(anitet_mesh_get_run_stats(made, &st), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "not made by anitet_mesher_run"));
+  assert_int_equal(anitet_mesh_run_json(made, buf, sizeof buf, &needed), ANITET_ERR_INVALID_ARGUMENT);
+  anitet_mesh_destroy(made);
+  anitet_mesh_destroy(m);
+  anitet_surface_destroy(s);
+}
+
+/* A boundary layer on the sphere: its report through the stats and the JSON. */
+static void test_boundary_layer(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  const int32_t walls[3] = {1, 2, 3};
+  anitet_options o = ANITET_OPTIONS_INIT;
+  anitet_run_stats st = ANITET_RUN_STATS_INIT;
+  anitet_quality q = ANITET_QUALITY_INIT;
+  anitet_mesh* m;
+  char* json;
+  (void)state;
+  o.bl_num_patches = 3, o.bl_patches = walls;
+  o.bl_first_height = 0.02, o.bl_growth = 1.25, o.bl_layers = 4;
+  m = run_ok(s, &o);
+  assert_int_equal(anitet_mesh_get_run_stats(m, &st), ANITET_OK);
+  assert_int_equal(st.bl_layers, 4);
+  assert_int_equal(st.bl_wall_vertices, SPHERE_NPOINTS);
+  assert_int_equal(st.bl_full_columns, SPHERE_NPOINTS);
+  assert_true(st.bl_nominal_columns >= SPHERE_NPOINTS * 9 / 10);
+  assert_true(st.bl_tets >= 3 * 4 * SPHERE_NTRI);
+  assert_true(fabs(st.bl_first_height_mean - 0.02) < 0.002);
+  assert_true(st.bl_first_height_min > 0.0 && st.bl_first_height_min <= st.bl_first_height_max);
+  assert_true(fabs(st.bl_growth_mean - 1.25) < 0.05);
+  assert_true(st.bl_max_height_error <= 0.1);
+  json = run_json(m);
+  assert_true(contains(json, "\"boundary_layer\""));
+  assert_true(contains(json, "\"columns_reaching\""));
+  free(json);
+  assert_int_equal(anitet_mesh_quality(m, s, &q), ANITET_OK);
+  assert_int_equal(q.valid, 1);
+  assert_int_equal(q.boundary_constrained, 1);
+  anitet_mesh_destroy(m);
+  anitet_surface_destroy(s);
+}
+
+/* hmax, the recovery strategy and the retry switch reach the pipeline. */
+static void test_options_v3_used(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  anitet_options o = ANITET_OPTIONS_INIT;
+  anitet_run_stats st = ANITET_RUN_STATS_INIT;
+  anitet_mesh *plain = run_ok(s, NULL), *m;
+  (void)state;
+  o.hmax = 0.4;
+  m = run_ok(s, &o);
+  assert_true(tets_of(m) > 2 * tets_of(plain));
+  anitet_mesh_destroy(m);
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.recovery = ANITET_RECOVERY_FUZZY;
+  o.retry_layer_counts = 0;
+  m = run_ok(s, &o);
+  assert_int_equal(anitet_mesh_get_run_stats(m, &st), ANITET_OK);
+  assert_int_equal(st.recovery_strategy, ANITET_RECOVERY_FUZZY);
+  assert_int_equal(st.layers_retries, 0);
+  anitet_mesh_destroy(m);
+  o.recovery = ANITET_RECOVERY_SPLIT;
+  m = run_ok(s, &o);
+  assert_int_equal(anitet_mesh_get_run_stats(m, &st), ANITET_OK);
+  assert_int_equal(st.recovery_strategy, ANITET_RECOVERY_SPLIT);
+  anitet_mesh_destroy(m);
+  anitet_mesh_destroy(plain);
+  anitet_surface_destroy(s);
+}
+
+/* ---- patch names ---------------------------------------------------------------------------- */
+
+static int file_contains(const char* path, const char* part) {
+  FILE* f = fopen(path, "rb");
+  static char text[1 << 20];
+  size_t n;
+  if (!f) return 0;
+  n = fread(text, 1, sizeof text - 1, f);
+  fclose(f);
+  text[n] = '\0';
+  return contains(text, part);
+}
+
+static void test_patch_names(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  anitet_mesh* m = run_ok(s, NULL);
+  char path[4096];
+  (void)state;
+  snprintf(path, sizeof path, "%s/capi_patch_names.su2", ANITET_TEST_OUTPUT_DIR);
+  assert_int_equal(anitet_mesh_set_patch_name(m, 4, "farfield"), ANITET_OK);
+  assert_int_equal(anitet_mesh_set_patch_name(m, 2, "sphere_band"), ANITET_OK);
+  assert_int_equal(anitet_mesh_write(m, path), ANITET_OK);
+  assert_true(file_contains(path, "MARKER_TAG= farfield"));
+  assert_true(file_contains(path, "MARKER_TAG= sphere_band"));
+  assert_true(file_contains(path, "MARKER_TAG= patch1"));
+  /* NULL removes a name. */
+  assert_int_equal(anitet_mesh_set_patch_name(m, 2, NULL), ANITET_OK);
+  assert_int_equal(anitet_mesh_write(m, path), ANITET_OK);
+  assert_true(file_contains(path, "MARKER_TAG= patch2"));
+  assert_false(file_contains(path, "sphere_band"));
+  /* Errors: NULL mesh, an invalid name, a label no boundary triangle has. */
+  assert_int_equal(anitet_mesh_set_patch_name(NULL, 4, "farfield"), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_set_patch_name(m, 4, "9lives"), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_set_patch_name(m, 4, "far field"), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_set_patch_name(m, 4, ""), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_set_patch_name(m, 9, "wall"), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "9"));
+  /* Two labels with one name: the write says so and writes nothing. */
+  assert_int_equal(anitet_mesh_set_patch_name(m, 1, "farfield"), ANITET_OK);
+  remove(path);
+  assert_int_equal(anitet_mesh_write(m, path), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "farfield"));
+  assert_false(file_contains(path, "NELEM"));
+  anitet_mesh_destroy(m);
+  anitet_surface_destroy(s);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_options_v3_defaults), cmocka_unit_test(test_options_v2_caller),
+      cmocka_unit_test(test_options_v3_errors),   cmocka_unit_test(test_run_stats_plain),
+      cmocka_unit_test(test_run_stats_errors),    cmocka_unit_test(test_boundary_layer),
+      cmocka_unit_test(test_options_v3_used),     cmocka_unit_test(test_patch_names),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
