@@ -295,6 +295,7 @@ class MeshCommand {
     o.max_tets = args_.max_tets >= 0 ? args_.max_tets : free_bytes_ > 0 ? free_bytes_ / kBytesPerTet : 0.0;
     o.layers.layers = args_.layers;
     o.attempts_seconds = args_.attempts_seconds;
+    o.retry_layer_counts = !args_.no_layer_retries;
     o.recovery = recovery_options(args_);
     o.layers.scheme = args_.layer_scheme == "faces" ? LayerScheme::kFacesThenPush : LayerScheme::kPushOnly;
     o.layers.push_tasks_min_vertices = args_.push_tasks_min_vertices;
@@ -512,6 +513,7 @@ int check_mesh_option_combinations(const CLI::App& cmd, const MeshArgs& a) {
       {"--no-optimize", layers_only, "the whole pipeline (--stop-after layers stops before optimization)"},
       {"--recovery", layers_only, "stage 2 (--stop-after layers stops before it)"},
       {"--attempts-seconds", layers_only, "stage 2 (--stop-after layers stops before it)"},
+      {"--no-layer-retries", layers_only, "stage 2 (--stop-after layers stops before it)"},
   };
   for (const Rule& r : rules) {
     if (r.applies && given(r.option)) {
@@ -566,6 +568,10 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
                   "recovery strategies when S1 is not recovered; no attempt starts after it (0: no limit)")
       ->capture_default_str()
       ->check(non_negative())
+      ->group(stages);
+  cmd->add_flag("--no-layer-retries", args.no_layer_retries,
+                "When S1 is not recovered, try the other recovery strategies with the given "
+                "--front-layers count only, not with other counts")
       ->group(stages);
   cmd->add_option("--layer-scheme", args.layer_scheme,
                   "Stage 1 scheme: push (prism layers, each front vertex pushed off in turn) or faces "

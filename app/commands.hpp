@@ -82,6 +82,7 @@ struct MeshArgs {
   bool verbose = false;                 // -v: every stage's figures and the full quality report
   double max_tets = -1;                 // --max-tets (-1: from free memory; 0: no limit)
   double attempts_seconds = 240;        // MesherOptions::attempts_seconds
+  bool no_layer_retries = false;        // !MesherOptions::retry_layer_counts
   std::string layer_scheme = "push";    // "push" (prism layers) or "faces" (the paper's)
   size_t push_tasks_min_vertices = LayersOptions().push_tasks_min_vertices;
   std::vector<int> bl_patches;          // boundary-layer walls (patch labels); empty: none

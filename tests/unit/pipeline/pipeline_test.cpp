@@ -127,6 +127,13 @@ TEST(Pipeline, AttemptsStopWhenTheirBudgetRunsOut) {
   EXPECT_EQ(one.status().code(), Error::RecoveryFailed);
   EXPECT_NE(one.status().message().find("(1 of 6 attempts"), std::string::npos) << one.status().message();
   EXPECT_NE(one.status().message().find("budget"), std::string::npos) << one.status().message();
+  // Without layer-count retries: the given count with each strategy family only.
+  o.attempts_seconds = 0;
+  o.retry_layer_counts = false;
+  Result<MesherResult> no_retries = Mesher(o).run(s.value());
+  ASSERT_FALSE(no_retries.ok());
+  EXPECT_NE(no_retries.status().message().find("(2 of 2 attempts"), std::string::npos)
+      << no_retries.status().message();
 }
 
 TEST(Pipeline, SameInputSameMeshBitForBit) {
