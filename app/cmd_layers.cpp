@@ -14,6 +14,7 @@
 #include "io/volume_io.hpp"
 #include "layers/layers.hpp"
 #include "layers/layers_check.hpp"
+#include "pipeline/stage1.hpp"
 #include "quality/quality_report.hpp"
 #include "surface_check.hpp"
 
@@ -85,8 +86,7 @@ int run_mesh_layers(MeshArgs& args) {
   CheckedSurface checked;
   if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
   const SurfaceMesh& surface = checked.surface;
-  int32_t front_label = 1;  // S1's patch in the output: one more than the input's labels
-  for (int32_t label : surface.patch) front_label = std::max(front_label, label + 1);
+  const int32_t front_label = front_patch_label(surface);  // S1's patch in the output
   if (const int code = check_patch_names(args, checked, {front_label}); code != kExitOk) return code;
 
   LayersOptions options;
@@ -103,8 +103,7 @@ int run_mesh_layers(MeshArgs& args) {
     options.boundary_layer.growth = args.bl_growth;
     options.boundary_layer.layers = args.bl_layers;
   }
-  IsotropicSurfaceSizing sizing(surface);
-  Result<LayersOutput> built = build_layers(surface, sizing, options);
+  Result<Stage1Result> built = run_stage1(surface, options);
   if (!built.ok()) {
     std::cerr << cmd << ": stage 1 (layers) failed on '" << args.input << "': " << built.status().message()
               << " [" << error_name(built.status().code()) << "]\n";
@@ -112,21 +111,9 @@ int run_mesh_layers(MeshArgs& args) {
                ? kExitUsage
                : kExitInternal;
   }
-  const LayersOutput& r = built.value();
-  // The audit is the library's own independent check; a failure is a bug, reported as such.
-  const LayersCheck check = check_layers(surface, r);
-  if (!check.ok()) {
-    std::cerr << cmd << ": internal error: the layers on '" << args.input
-              << "' fail their audit: " << check.problems << "\n";
-    return kExitInternal;
-  }
-
-  // S and S1 as patches; vertices of no tet (input vertices of no triangle) dropped.
-  std::vector<uint32_t> bnd_tri = surface.tri;
-  std::vector<int32_t> bnd_patch = surface.patch;
-  bnd_tri.insert(bnd_tri.end(), r.front_tri.begin(), r.front_tri.end());
-  bnd_patch.insert(bnd_patch.end(), r.num_front_triangles(), front_label);
-  const VolumeMesh vm = r.mesh.to_volume_mesh(/*drop_unused_vertices=*/true, bnd_tri, bnd_patch);
+  const LayersOutput& r = built->layers;
+  const LayersCheck& check = built->check;
+  const VolumeMesh& vm = built->mesh;
   if (const int code = write_outputs(args, vm); code != kExitOk) return code;
   const std::string front_file = front_path(args.output);
   if (Status st = write_surface(front_surface(r), front_file); !st.ok()) {

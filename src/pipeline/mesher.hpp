@@ -21,6 +21,7 @@
 #include "layers/layers.hpp"
 #include "metric/surface_sizing.hpp"
 #include "optimize/optimize.hpp"
+#include "pipeline/bl_report.hpp"
 #include "recovery/recovery.hpp"
 #include "refine/refine.hpp"
 #include "validate/validate.hpp"
@@ -90,25 +91,6 @@ struct StageReport {
   std::string name;
   double seconds = 0.0;
   size_t tets = 0;  // tets the stage leaves (its own output)
-};
-
-// Boundary-layer figures measured on the final mesh (MesherOptions::layers.boundary_layer).
-// A column is a wall vertex followed up the BL layers (each pushed vertex to the one pushed from
-// it); the height of layer i is the length of its step, measured after refinement and
-// optimization, against the requested h0 r^i.
-struct BoundaryLayerReport {
-  int layers = 0;              // BL layers built (n)
-  size_t wall_vertices = 0;    // input vertices on the wall patches
-  size_t tets = 0;             // BL tets in the output (regions bodies .. 2 bodies - 1)
-  size_t vertices = 0;         // BL vertices (wall vertices included), frozen for stages 3b/3c
-  size_t full_columns = 0;     // wall vertices whose column reaches all n layers
-  std::vector<size_t> columns_reaching;  // [i]: wall vertices whose column reaches i layers (0..n)
-  size_t nominal_columns = 0;  // full columns with every height within 10% of h0 r^i
-  size_t reduced_vertices = 0; // wall vertices with a reduced layer (stage 1's count)
-  double first_height_min = 0.0, first_height_mean = 0.0, first_height_max = 0.0;  // full columns
-  double max_height_error = 0.0;  // max |h / (h0 r^i) - 1| over the nominal columns
-  double growth_mean = 0.0;       // mean of (h_(n-1) / h_0)^(1 / (n-1)) over full columns
-  double max_displacement = 0.0;  // largest move of a BL vertex after stage 1 (0: kept)
 };
 
 // Something the run did otherwise, or less, than asked (the front-layer count changed by the

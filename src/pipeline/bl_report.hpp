@@ -1,0 +1,40 @@
+// The boundary layer's columns measured on a mesh: what the run built against what was asked.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/surface_mesh.hpp"
+#include "core/tet_mesh.hpp"
+#include "layers/layers.hpp"
+
+namespace anitet {
+
+// Boundary-layer figures (MesherOptions::layers.boundary_layer), measured on the final mesh, or on
+// T1 when stage 1 runs alone. A column is a wall vertex followed up the BL layers (each pushed
+// vertex to the one pushed from it); the height of layer i is the length of its step (after
+// refinement and optimization, on the final mesh), against the requested h0 r^i.
+struct BoundaryLayerReport {
+  int layers = 0;              // BL layers built (n)
+  size_t wall_vertices = 0;    // input vertices on the wall patches
+  size_t tets = 0;             // BL tets in the output (regions bodies .. 2 bodies - 1)
+  size_t vertices = 0;         // BL vertices (wall vertices included), frozen for stages 3b/3c
+  size_t full_columns = 0;     // wall vertices whose column reaches all n layers
+  std::vector<size_t> columns_reaching;  // [i]: wall vertices whose column reaches i layers (0..n)
+  size_t nominal_columns = 0;  // full columns with every height within 10% of h0 r^i
+  size_t reduced_vertices = 0; // wall vertices with a reduced layer (stage 1's count)
+  double first_height_min = 0.0, first_height_mean = 0.0, first_height_max = 0.0;  // full columns
+  double max_height_error = 0.0;  // max |h / (h0 r^i) - 1| over the nominal columns
+  double growth_mean = 0.0;       // mean of (h_(n-1) / h_0)^(1 / (n-1)) over full columns
+  double max_displacement = 0.0;  // largest move of a BL vertex after stage 1 (0: kept)
+};
+
+// The BL columns of `surface`'s wall vertices measured on `mesh` (stage 1's T1, or the final
+// mesh, whose vertex ids T1's are). vertex_origin and t1_xyz: stage 1's, for the T1 vertices;
+// max_displacement is measured on the vertices flagged vflag::kBoundaryLayer (none in T1: 0).
+void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptions& bl, int layers,
+                            const std::vector<uint32_t>& vertex_origin, const std::vector<double>& t1_xyz,
+                            const TetMesh& mesh, BoundaryLayerReport& r);
+
+}  // namespace anitet
