@@ -156,13 +156,7 @@ Result<std::unique_ptr<SizingField>> build_sizing_field(const MetricCliOptions& 
 Status write_metric_outputs(const MetricCliOptions& o, const SizingField& field,
                             const SurfaceMesh& surface, VolumeMesh& mesh) {
   if (!o.write_metric.empty()) {
-    metric::sample_at_vertices(field, mesh, false);
-    bool isotropic = true;
-    for (size_t v = 0; v < mesh.num_vertices() && isotropic; ++v) {
-      const double* m = &mesh.vertex_metric[6 * v];
-      isotropic = m[1] == 0.0 && m[3] == 0.0 && m[4] == 0.0 && m[0] == m[2] && m[0] == m[5];
-    }
-    if (isotropic) metric::sample_at_vertices(field, mesh, true);
+    metric::sample_sizes_or_tensors(field, mesh);
     if (Status st = write_sol(mesh, o.write_metric); !st.ok()) return st;
   }
   if (!o.write_sizing.empty()) {

@@ -53,6 +53,17 @@ void sample_at_vertices(const SizingField& field, VolumeMesh& mesh, bool as_size
   }
 }
 
+void sample_sizes_or_tensors(const SizingField& field, VolumeMesh& mesh) {
+  sample_at_vertices(field, mesh, false);
+  const size_t nv = mesh.num_vertices();
+  for (size_t v = 0; v < nv; ++v) {
+    const double* m = &mesh.vertex_metric[6 * v];
+    if (m[1] != 0.0 || m[3] != 0.0 || m[4] != 0.0 || m[0] != m[2] || m[0] != m[5]) return;
+  }
+  for (size_t v = 0; v < nv; ++v) mesh.vertex_metric[v] = 1.0 / std::sqrt(mesh.vertex_metric[6 * v]);
+  mesh.vertex_metric.resize(nv);
+}
+
 Result<BackgroundMeshField> BackgroundMeshField::create(const VolumeMesh& mesh,
                                                         const SolField& field) {
   const size_t nv = mesh.num_vertices();

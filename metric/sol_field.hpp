@@ -32,6 +32,9 @@ Result<SolField> read_sol(const std::string& path);
 // Samples a field at the mesh's vertices into mesh.vertex_metric (6 values per vertex, or the
 // size 1/sqrt(m_xx) per vertex when `as_size`, for isotropic fields), ready for write_sol.
 void sample_at_vertices(const SizingField& field, VolumeMesh& mesh, bool as_size = false);
+// The same, choosing: sizes when every tensor sampled is isotropic (a multiple of I), else
+// tensors (what --write-metric and anitet_mesh_sample_metric write).
+void sample_sizes_or_tensors(const SizingField& field, VolumeMesh& mesh);
 
 // The field of a .sol on its background mesh: inside a tet, barycentric interpolation of h
 // (isotropic: linear fields are exact) or of log(M) (tensors, log-Euclidean). Points outside the
