@@ -94,7 +94,8 @@ static_assert(offsetof(anitet_options, recovery_max_seconds) % alignof(double) =
 static_assert(offsetof(anitet_options, hmin) == offsetof(anitet_options, attempts_seconds) + 16 &&
                   offsetof(anitet_options, bl_patches) == offsetof(anitet_options, anisotropic_cycles) + 8 &&
                   offsetof(anitet_options, bl_first_height) == offsetof(anitet_options, bl_patches) + sizeof(void*) &&
-                  sizeof(anitet_options) == offsetof(anitet_options, bl_sizing) + sizeof(int32_t),
+                  offsetof(anitet_options, push_tasks_min_vertices) == offsetof(anitet_options, bl_sizing) + 4 &&
+                  sizeof(anitet_options) == offsetof(anitet_options, reserved1) + sizeof(int32_t),
               "anitet_options (version 3) has padding");
 static_assert(sizeof(anitet_run_stats) == offsetof(anitet_run_stats, bl_max_height_error) + sizeof(double) &&
                   offsetof(anitet_run_stats, vertices) == 8 * sizeof(int32_t) &&

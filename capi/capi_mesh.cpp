@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "caller_sizing.hpp"
 #include "handles.hpp"
 #include "io/volume_io.hpp"
+#include "metric/sol_field.hpp"
 #include "quality/quality_report.hpp"
 #include "shim.hpp"
 
@@ -104,6 +106,23 @@ int anitet_mesh_write(const anitet_mesh* mesh, const char* path) {
     if (mesh == nullptr) return null_argument(fn, "mesh");
     if (path == nullptr) return null_argument(fn, "path");
     return set_status(fn, anitet::write_volume_mesh(mesh->mesh, std::string(path), mesh->patch_names));
+  });
+}
+
+int anitet_mesh_sample_metric(anitet_mesh* mesh, const anitet_metric* metric) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (mesh == nullptr) return null_argument(fn, "mesh");
+    if (metric == nullptr) return null_argument(fn, "metric");
+    const CallerSizing sizing(*metric, 1.0);
+    anitet::VolumeMesh& m = mesh->mesh;
+    std::vector<double> before = std::move(m.vertex_metric);
+    anitet::metric::sample_sizes_or_tensors(sizing, m);
+    if (sizing.failed()) {
+      m.vertex_metric = std::move(before);
+      return set_error(ANITET_ERR_INVALID_ARGUMENT, std::string(fn) + ": " + sizing.failure());
+    }
+    return ok();
   });
 }
 

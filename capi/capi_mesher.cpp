@@ -2,6 +2,7 @@
 // callbacks and the caller's metric around anitet::Mesher, the result as a new anitet_mesh.
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -9,11 +10,15 @@
 #include <sstream>
 #include <string>
 
+#include <tbb/task_arena.h>
+
+#include "caller_sizing.hpp"
 #include "handles.hpp"
 #include "layers/layers.hpp"
 #include "metric/bounded_sizing.hpp"
 #include "pipeline/mesher.hpp"
 #include "pipeline/result_json.hpp"
+#include "pipeline/stage1.hpp"
 #include "shim.hpp"
 
 using namespace anitet::capi;
@@ -61,6 +66,7 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
   }
   if (o.bl_sizing != 0 && (o.bl_num_patches == 0 || !(o.bl_growth > 1.0)))
     return bad_option(function, "bl_sizing needs boundary-layer walls (bl_num_patches > 0) and bl_growth above 1");
+  if (o.push_tasks_min_vertices < 0) return bad_option(function, "push_tasks_min_vertices is negative");
   out.validation.merge_duplicate_vertices = o.merge_duplicate_vertices != 0;
   out.validation.orient_shells = o.orient_shells != 0;
   out.validation.check_self_intersections = o.check_self_intersections != 0;
@@ -70,6 +76,7 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
   out.optimize.num_threads = o.num_threads;
   out.layers.layers = o.layers;
   out.layers.scheme = static_cast<anitet::LayerScheme>(o.layer_scheme);
+  out.layers.push_tasks_min_vertices = size_t(o.push_tasks_min_vertices);
   if (o.recovery_max_seconds > 0.0) out.recovery.max_seconds = o.recovery_max_seconds;
   out.run_refine = o.refine != 0;
   out.run_optimize = o.optimize != 0;
@@ -91,74 +98,6 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
   return ANITET_OK;
 }
 
-// Symmetric positive definite (leading minors > 0) and finite.
-bool positive_definite(const double m[6]) {
-  for (int i = 0; i < 6; ++i)
-    if (!std::isfinite(m[i])) return false;
-  const double d2 = m[0] * m[2] - m[1] * m[1];
-  const double d3 = m[0] * (m[2] * m[5] - m[4] * m[4]) - m[1] * (m[1] * m[5] - m[4] * m[3]) +
-                    m[3] * (m[1] * m[4] - m[2] * m[3]);
-  return m[0] > 0.0 && d2 > 0.0 && d3 > 0.0;
-}
-
-// The caller's metric as the pipeline's sizing field. SizingField::metric cannot fail, so a
-// failing analytic callback (or a tensor of it that is not positive definite) is recorded,
-// answered with a coarse isotropic metric, and turned into an error at the next stage boundary.
-class CallerSizing final : public anitet::SizingField {
- public:
-  CallerSizing(const anitet_metric& m, double fallback_size) : m_(m), fallback_(fallback_size) {}
-
-  void metric(const double p[3], double out[6]) const override {
-    if (m_.kind == anitet_metric::Kind::Uniform) {
-      anitet::isotropic_metric(m_.size, out);
-      return;
-    }
-    if (m_.kind == anitet_metric::Kind::Field) {  // SPD by construction (checked when created)
-      m_.field->metric(p, out);
-      return;
-    }
-    const int rc = m_.fn(p[0], p[1], p[2], out, m_.user_data);
-    if (rc == 0 && positive_definite(out)) return;
-    if (!failed_.exchange(true)) {
-      std::ostringstream why;
-      why.precision(17);
-      why << "the metric callback ";
-      if (rc != 0) why << "returned " << rc;
-      else why << "gave a tensor that is not positive definite";
-      why << " at (" << p[0] << ", " << p[1] << ", " << p[2] << ")";
-      const std::lock_guard<std::mutex> lock(mutex_);
-      failure_ = why.str();
-    }
-    anitet::isotropic_metric(fallback_, out);
-  }
-
-  bool failed() const { return failed_.load(); }
-  std::string failure() const {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    return failure_;
-  }
-
- private:
-  const anitet_metric& m_;
-  double fallback_;
-  mutable std::atomic<bool> failed_{false};
-  mutable std::mutex mutex_;
-  mutable std::string failure_;
-};
-
-// The diagonal of the bounding box (1 for a degenerate one): a size coarse enough to end a run
-// quickly once its metric has failed.
-double bounding_diagonal(const anitet::SurfaceMesh& s) {
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (size_t i = 0; i < s.xyz.size(); ++i) {
-    lo[i % 3] = std::min(lo[i % 3], s.xyz[i]);
-    hi[i % 3] = std::max(hi[i % 3], s.xyz[i]);
-  }
-  const double d = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  return std::isfinite(d) && d > 0.0 ? d : 1.0;
-}
-
 void log_line(const anitet_options& o, int32_t level, const std::string& text) {
   if (o.log) o.log(level, text.c_str(), o.log_user_data);
 }
@@ -177,6 +116,24 @@ void log_stages(const anitet_options& o, const anitet::MesherResult& r) {
     line << "stage " << stage.name << ": " << stage.tets << " tets, " << stage.seconds << " s";
     log_line(o, ANITET_LOG_INFO, line.str());
   }
+}
+
+// Runs f in a task arena of `threads` threads (0: all cores), as the pipeline runs its stages.
+template <class F>
+auto in_arena(int32_t threads, F&& f) {
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  return arena.execute(std::forward<F>(f));
+}
+
+// A copy of the caller's surface validated with the options' repairs (the caller's is never
+// changed); the report goes to the log callback.
+int validated_copy(const char* fn, const anitet_surface& surface, const anitet_options& opt,
+                   const anitet::MesherOptions& mo, anitet::SurfaceMesh& out) {
+  out = surface.mesh;
+  const anitet::ValidationReport report =
+      in_arena(opt.num_threads, [&] { return anitet::validate_surface(out, mo.validation); });
+  log_validation(opt, report);
+  return report.ok() ? ANITET_OK : set_status(fn, report.status());
 }
 
 }  // namespace
@@ -219,16 +176,15 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
       return set_error(ANITET_ERR_CANCELLED,
                        std::string(fn) + ": cancelled by the progress callback before validation");
     }
-    anitet::SurfaceMesh repaired = surface->mesh;
-    const anitet::ValidationReport report = anitet::validate_surface(repaired, mo.validation);
-    log_validation(opt, report);
-    if (!report.ok()) return set_status(fn, report.status());
+    anitet::SurfaceMesh repaired;
+    if (const int code = validated_copy(fn, *surface, opt, mo, repaired); code != ANITET_OK) return code;
     // hmin, hmax, hgrad: the field (the caller's, or the surface's default grid) bounded and graded.
     std::unique_ptr<anitet::SizingField> bounded;
     const anitet::metric::SizeBounds bounds{opt.hmin, opt.hmax, opt.hgrad};
     if (bounds.any() && (mo.run_refine || mo.run_optimize)) {
-      anitet::Result<std::unique_ptr<anitet::SizingField>> built =
-          anitet::metric::bounded_sizing_field(repaired, mo.sizing, bounds, mo.surface_sizing);
+      anitet::Result<std::unique_ptr<anitet::SizingField>> built = in_arena(opt.num_threads, [&] {
+        return anitet::metric::bounded_sizing_field(repaired, mo.sizing, bounds, mo.surface_sizing);
+      });
       if (!built.ok()) return set_status(fn, built.status());
       bounded = std::move(built).value();
       mo.sizing = bounded.get();
@@ -258,6 +214,84 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
   });
 }
 
+int anitet_layers_run(const anitet_surface* surface, const anitet_options* options, anitet_mesh** out) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (out == nullptr) return null_argument(fn, "out");
+    *out = nullptr;
+    if (surface == nullptr) return null_argument(fn, "surface");
+    anitet_options opt;
+    if (const int code = read_options(fn, options, opt); code != ANITET_OK) return code;
+    anitet::MesherOptions mo;
+    if (const int code = to_mesher_options(fn, opt, mo); code != ANITET_OK) return code;
+    const auto start = std::chrono::steady_clock::now();
+    if (opt.progress && opt.progress(0.0, "validate", opt.progress_user_data) != 0)
+      return set_error(ANITET_ERR_CANCELLED, std::string(fn) + ": cancelled by the progress callback before validation");
+    anitet::SurfaceMesh repaired;
+    if (const int code = validated_copy(fn, *surface, opt, mo, repaired); code != ANITET_OK) return code;
+    if (opt.progress && opt.progress(0.05, "layers", opt.progress_user_data) != 0)
+      return set_error(ANITET_ERR_CANCELLED, std::string(fn) + ": cancelled at stage 'layers'");
+    anitet::Result<anitet::Stage1Result> built =
+        in_arena(opt.num_threads, [&] { return anitet::run_stage1(repaired, mo.layers); });
+    if (!built.ok()) {
+      const int code = set_status(fn, anitet::Status(built.status().code(), "stage 1 (layers): " + built.status().message()));
+      log_line(opt, ANITET_LOG_ERROR, anitet_last_error_message());
+      return code;
+    }
+    // The run's record: stage 1's figures and the boundary layer measured on T1.
+    auto run = std::make_unique<anitet::MesherResult>();
+    run->layers = built->layers.stats;
+    run->layers_used = mo.layers.layers;
+    run->boundary_layer = built->boundary_layer;
+    run->stages.push_back({"layers", built->layers.stats.seconds, built->layers.stats.tets});
+    run->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    log_stages(opt, *run);
+    auto mesh = std::make_unique<anitet_mesh>();
+    mesh->mesh = std::move(built->mesh);
+    mesh->run = std::move(run);
+    if (opt.progress && opt.progress(1.0, "done", opt.progress_user_data) != 0)
+      return set_error(ANITET_ERR_CANCELLED, std::string(fn) + ": cancelled at stage 'done'");
+    *out = mesh.release();
+    return ok();
+  });
+}
+
+int anitet_bl_first_height(double yplus, double reynolds, double ref_length, double* h0) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (h0 == nullptr) return null_argument(fn, "h0");
+    anitet::Result<double> h = anitet::first_height_from_yplus(yplus, reynolds, ref_length);
+    if (!h.ok()) return set_status(fn, h.status());
+    *h0 = h.value();
+    return ok();
+  });
+}
+
+int anitet_metric_create_surface_sizing(const anitet_surface* surface, const anitet_options* options,
+                                        anitet_metric** out) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (out == nullptr) return null_argument(fn, "out");
+    *out = nullptr;
+    if (surface == nullptr) return null_argument(fn, "surface");
+    anitet_options opt;
+    if (const int code = read_options(fn, options, opt); code != ANITET_OK) return code;
+    anitet::MesherOptions mo;
+    if (const int code = to_mesher_options(fn, opt, mo); code != ANITET_OK) return code;
+    anitet::SurfaceMesh repaired;
+    if (const int code = validated_copy(fn, *surface, opt, mo, repaired); code != ANITET_OK) return code;
+    anitet::Result<std::unique_ptr<anitet::SizingField>> built = in_arena(opt.num_threads, [&] {
+      return anitet::metric::bounded_sizing_field(repaired, nullptr, {opt.hmin, opt.hmax, opt.hgrad}, mo.surface_sizing);
+    });
+    if (!built.ok()) return set_status(fn, built.status());
+    auto metric = std::make_unique<anitet_metric>();
+    metric->kind = anitet_metric::Kind::Field;
+    metric->field = std::shared_ptr<const anitet::SizingField>(std::move(built).value());
+    *out = metric.release();
+    return ok();
+  });
+}
+
 namespace {
 
 // Copies the fields of `version` from the full struct into the caller's.
@@ -265,7 +299,12 @@ void fill_run_stats(const anitet::MesherResult& r, const anitet::VolumeMesh& m, 
   s.layers_used = r.layers_used;
   s.layers_retries = int32_t(r.layers_retries);
   // RecoveryStats::strategy numbers the variants (recovery_strategy_name): 3-5 split constraints.
-  s.recovery_strategy = r.recovery.strategy >= 3 ? ANITET_RECOVERY_SPLIT : ANITET_RECOVERY_FUZZY;
+  const bool recovered = std::any_of(r.stages.begin(), r.stages.end(), [](const anitet::StageReport& st) {
+    return st.name == "recovery" || st.name == "recovery (retry)";
+  });
+  s.recovery_strategy = !recovered                 ? 0
+                        : r.recovery.strategy >= 3 ? ANITET_RECOVERY_SPLIT
+                                                   : ANITET_RECOVERY_FUZZY;
   s.refine_passes = r.refine.passes;
   s.refine_stopped_at_pass_cap = r.refine.stopped_at_pass_cap ? 1 : 0;
   s.anisotropic_cycles = r.anisotropic_cycles;

@@ -7,8 +7,10 @@
 #include <string>
 #include <utility>
 
+#include "caller_sizing.hpp"
 #include "handles.hpp"
 #include "io/volume_io.hpp"
+#include "metric/bounded_sizing.hpp"
 #include "metric/metric_field.hpp"
 #include "metric/sol_field.hpp"
 #include "shim.hpp"
@@ -35,24 +37,35 @@ anitet_metric* new_field_metric(std::shared_ptr<const anitet::SizingField> field
   return metric.release();
 }
 
-// A .sol or .solb on the background mesh at background_path: both read, then the interpolating
-// field.
-int read_sol_metric(const char* fn, const std::string& path, const std::string& background_path,
-                    anitet_metric** out) {
+// A .sol or .solb on a background mesh: `background`, or when NULL the mesh read from
+// `background_name` (after the .sol, whose errors come first): the interpolating field.
+int sol_metric_on(const char* fn, const std::string& path, const anitet::VolumeMesh* background,
+                  const std::string& background_name, anitet_metric** out) {
   anitet::Result<anitet::metric::SolField> sol = anitet::metric::read_sol(path);
   if (!sol.ok()) return set_status(fn, sol.status());
-  anitet::Result<anitet::VolumeMesh> background = anitet::read_volume_mesh(background_path);
-  if (!background.ok()) return set_status(fn, background.status());
+  anitet::Result<anitet::VolumeMesh> read = anitet::VolumeMesh();
+  if (background == nullptr) {
+    read = anitet::read_volume_mesh(background_name);
+    if (!read.ok()) return set_status(fn, read.status());
+    background = &read.value();
+  }
   anitet::Result<anitet::metric::BackgroundMeshField> field =
-      anitet::metric::BackgroundMeshField::create(background.value(), sol.value());
+      anitet::metric::BackgroundMeshField::create(*background, sol.value());
   if (!field.ok()) {
     return set_error(static_cast<int>(field.status().code()),
-                     std::string(fn) + ": " + path + " on " + background_path + ": " +
-                         field.status().message());
+                     std::string(fn) + ": " + path + " on " + background_name + ": " + field.status().message());
   }
   *out = new_field_metric(
       std::make_shared<const anitet::metric::BackgroundMeshField>(std::move(field.value())));
   return ok();
+}
+
+// The grid behind a field metric, when it is one (a .vdb, or the surface's default field).
+const anitet::metric::MetricField* grid_of(const anitet_metric& m) {
+  if (m.kind != anitet_metric::Kind::Field) return nullptr;
+  const anitet::SizingField* f = m.field.get();
+  if (const auto* owner = dynamic_cast<const anitet::metric::OwningField*>(f)) f = &owner->top();
+  return dynamic_cast<const anitet::metric::MetricField*>(f);
 }
 
 }  // namespace
@@ -117,7 +130,7 @@ int anitet_metric_read(const char* path, const char* background_mesh_path, anite
                          std::string(fn) + ": " + file + ": a " + ext +
                              " needs its background mesh (background_mesh_path is NULL)");
       }
-      return read_sol_metric(fn, file, std::string(background_mesh_path), out);
+      return sol_metric_on(fn, file, nullptr, background_mesh_path, out);
     }
     return set_error(ANITET_ERR_UNSUPPORTED_FORMAT,
                      std::string(fn) + ": " + file + ": expected a .vdb, .sol or .solb file");
@@ -193,6 +206,42 @@ int anitet_metric_evaluate(const anitet_metric* metric, double x, double y, doub
                                                         ", " + std::to_string(y) + ", " + std::to_string(z) + ")");
     }
     return ok();
+  });
+}
+
+int anitet_metric_read_on_mesh(const char* path, const anitet_mesh* background, anitet_metric** out) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (out == nullptr) return null_argument(fn, "out");
+    *out = nullptr;
+    if (path == nullptr) return null_argument(fn, "path");
+    if (background == nullptr) return null_argument(fn, "background");
+    const std::string file(path), ext = extension(file);
+    if (ext != ".sol" && ext != ".solb")
+      return set_error(ANITET_ERR_UNSUPPORTED_FORMAT, std::string(fn) + ": " + file + ": expected a .sol or .solb file");
+    return sol_metric_on(fn, file, &background->mesh, "the background mesh", out);
+  });
+}
+
+int anitet_metric_write(const anitet_metric* metric, const anitet_surface* box_of, const char* path) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (metric == nullptr) return null_argument(fn, "metric");
+    if (path == nullptr) return null_argument(fn, "path");
+    const std::string file(path);
+    if (extension(file) != ".vdb")
+      return set_error(ANITET_ERR_UNSUPPORTED_FORMAT, std::string(fn) + ": " + file + ": expected a .vdb path");
+    if (const anitet::metric::MetricField* grid = grid_of(*metric))
+      return set_status(fn, anitet::metric::write_metric_vdb(*grid, file));
+    if (box_of == nullptr)
+      return set_error(ANITET_ERR_INVALID_ARGUMENT,
+                       std::string(fn) + ": box_of is NULL: this metric is not a grid, so it is sampled over a "
+                                         "surface's box");
+    const CallerSizing sizing(*metric, bounding_diagonal(box_of->mesh));
+    anitet::Result<anitet::metric::MetricField> sampled = anitet::metric::sample_on_surface_box(sizing, box_of->mesh);
+    if (sizing.failed()) return set_error(ANITET_ERR_INVALID_ARGUMENT, std::string(fn) + ": " + sizing.failure());
+    if (!sampled.ok()) return set_status(fn, sampled.status());
+    return set_status(fn, anitet::metric::write_metric_vdb(sampled.value(), file));
   });
 }
 

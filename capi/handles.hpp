@@ -9,6 +9,7 @@
 #include "core/sizing.hpp"
 #include "core/surface_mesh.hpp"
 #include "core/volume_mesh.hpp"
+#include "geo/geodetic.hpp"
 #include "io/patch_names.hpp"
 #include "partition/partition.hpp"
 #include "pipeline/mesher.hpp"
@@ -34,6 +35,10 @@ struct anitet_metric {
   // Field: a metric/ field read from a file or built on a background mesh (immutable, its
   // metric() may be called from several threads at once).
   std::shared_ptr<const anitet::SizingField> field;
+};
+
+struct anitet_geo_frame {
+  anitet::geo::GeoFrame frame;
 };
 
 struct anitet_part {

@@ -94,6 +94,7 @@ extern "C" {
 typedef struct anitet_surface anitet_surface; /**< a triangulated closed surface (the input) */
 typedef struct anitet_mesh anitet_mesh;       /**< a tetrahedral mesh (read, given or meshed) */
 typedef struct anitet_metric anitet_metric;   /**< a metric (sizing) field */
+typedef struct anitet_geo_frame anitet_geo_frame; /**< a local Cartesian frame on WGS84 */
 
 /** Progress: `fraction` in [0, 1] of the running call's work done, on entering the named stage
  * ("validate" for anitet_surface_validate, 0 then 1), and as "refine" and "optimize" go (the
@@ -174,13 +175,17 @@ typedef struct anitet_options {
   int32_t bl_layers;                 /**< number of boundary layers n, 1..1000 (default 10) */
   int32_t bl_sizing;                 /**< 1: the interior's sizes continue the layers' heights
                                         (an anisotropic metric near the walls; default 0) */
+  int32_t push_tasks_min_vertices;   /**< stage 1 pushes a layer of at least this many front
+                                        vertices on two tasks (the same mesh either way;
+                                        0: one by one; default 2000) */
+  int32_t reserved1;                 /**< keep 0 (alignment; may gain a meaning later) */
   /* Version 4 and later append fields here. */
 } anitet_options;
 
 /** Initializer of an anitet_options of version ANITET_OPTIONS_VERSION with the defaults. */
 #define ANITET_OPTIONS_INIT                                                                     \
   { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0, 1, ANITET_LAYERS_PUSH, 0.0, 1, 1, 1.0, \
-    240.0, 1, ANITET_RECOVERY_ALL, 0.0, 0.0, 0.0, 0.0, 2, 0, 0, 0.0, 1.2, 10, 0 }
+    240.0, 1, ANITET_RECOVERY_ALL, 0.0, 0.0, 0.0, 0.0, 2, 0, 0, 0.0, 1.2, 10, 0, 2000, 0 }
 
 /** Fills the fields of `version` (1 .. ANITET_OPTIONS_VERSION) of *options with their defaults
  * and sets options->version; a struct of an older version is not written past its end.
@@ -307,6 +312,30 @@ ANITET_API void anitet_metric_destroy(anitet_metric* metric);
  * points), and the analytic callback's failure as INVALID_ARGUMENT naming its return value. */
 ANITET_API int anitet_metric_evaluate(const anitet_metric* metric, double x, double y, double z,
                                       double m[6]);
+/** The sizing field anitet_mesher_run follows when it is given no metric: an OpenVDB grid over
+ * the surface's box built from its triangles' sizes, bounded and graded by options->hmin, hmax
+ * and hgrad (options may be NULL: none). The surface is validated first, with the options'
+ * repairs, as anitet_mesher_run does (`surface` itself is not changed). Give it to
+ * anitet_mesher_run to mesh to it, to anitet_metric_write to look at it (`anitet mesh
+ * --write-sizing`), or to anitet_mesh_sample_metric. Errors: INVALID_ARGUMENT (NULL surface or
+ * out, bad options), the validation's codes, OUT_OF_MEMORY. */
+ANITET_API int anitet_metric_create_surface_sizing(const anitet_surface* surface,
+                                                   const anitet_options* options,
+                                                   anitet_metric** out);
+/** A .sol or .solb metric (as in anitet_metric_read) on a background mesh in memory, e.g. one
+ * moved to a local frame by anitet_mesh_to_local, or the mesh of the last adaptation pass. The
+ * background's points and tets are copied. Errors: as anitet_metric_read. */
+ANITET_API int anitet_metric_read_on_mesh(const char* path, const anitet_mesh* background,
+                                          anitet_metric** out);
+/** Writes `metric` as OpenVDB grids (.vdb, the path's extension), which anitet_metric_read and
+ * `anitet mesh --metric` read back (`anitet mesh --write-sizing`): a grid metric (read from a
+ * .vdb, or made by anitet_metric_create_surface_sizing) as it is, any other sampled on a lattice
+ * over the bounding box of the surface `box_of` (required then, else it may be NULL), spaced at
+ * its mean edge length (coarser when the box would pass 2^24 points). Errors: INVALID_ARGUMENT (NULL metric or path; box_of
+ * NULL when it is needed; a failing metric callback), UNSUPPORTED_FORMAT (not .vdb),
+ * FILE_NOT_FOUND (cannot create the file). */
+ANITET_API int anitet_metric_write(const anitet_metric* metric, const anitet_surface* box_of,
+                                   const char* path);
 
 /* ---------------------------------------------------------------------------------------------
  * Meshing.
@@ -335,6 +364,23 @@ ANITET_API int anitet_metric_evaluate(const anitet_metric* metric, double x, dou
  * RECOVERY_FAILED, INTERNAL (a stage failed), OUT_OF_MEMORY. */
 ANITET_API int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric,
                                  const anitet_options* options, anitet_mesh** out);
+/** Stage 1 alone (`anitet mesh --stop-after layers`), to look at the layers: validates a copy of
+ * the surface as anitet_mesher_run does, builds the advancing-front layers (options->layers,
+ * layer_scheme, push_tasks_min_vertices and the boundary layer's bl_* fields; the other fields
+ * of version 2 and 3 are not used) at the surface's own sizes, audits them, and returns T1 in
+ * *out: the surface's points first and in order (those of no triangle dropped), the surface's
+ * triangles as boundary triangles under their labels, the new front S1's triangles under one
+ * more label (the largest label + 1, at least 1), the boundary layer's tets in region 1 and the
+ * others in region 0. anitet_mesh_get_run_stats gives layers_used and the boundary layer's
+ * figures measured on T1; anitet_mesh_run_json the stage's figures. Errors: as
+ * anitet_mesher_run (INTERNAL when the layers fail their audit: a bug). */
+ANITET_API int anitet_layers_run(const anitet_surface* surface, const anitet_options* options,
+                                 anitet_mesh** out);
+/** The first boundary-layer height h0 for a target y+ (`anitet mesh --bl-yplus`), from the
+ * flat-plate estimate: Cf = 0.026 Re^(-1/7), h0 = y+ L / (Re sqrt(Cf / 2)), with the Reynolds
+ * number Re = U L / nu and the reference length L (in the coordinates' unit). Errors:
+ * INVALID_ARGUMENT (NULL h0; an argument not finite or <= 0). */
+ANITET_API int anitet_bl_first_height(double yplus, double reynolds, double ref_length, double* h0);
 
 /* ---------------------------------------------------------------------------------------------
  * Volume meshes.
@@ -396,6 +442,12 @@ ANITET_API int anitet_mesh_set_patch_name(anitet_mesh* mesh, int32_t label, cons
  * be NULL). Errors: INVALID_ARGUMENT. */
 ANITET_API int anitet_mesh_set_metric(anitet_mesh* mesh, const double* values, int64_t values_len,
                                       int32_t components);
+/** Sets the mesh's per-vertex metric to `metric`'s values at its points, as `anitet mesh
+ * --write-metric` samples the sizing field: components 1 (sizes) when every tensor is
+ * isotropic, else 6. anitet_mesh_write_metric then writes it as a .sol/.solb. Errors:
+ * INVALID_ARGUMENT (NULL mesh or metric; a failing metric callback, naming the point: the mesh's
+ * metric is then unchanged). */
+ANITET_API int anitet_mesh_sample_metric(anitet_mesh* mesh, const anitet_metric* metric);
 
 /* ---------------------------------------------------------------------------------------------
  * What a meshing run did (meshes made by anitet_mesher_run).
@@ -410,7 +462,8 @@ typedef struct anitet_run_stats {
   int32_t version;                 /**< ANITET_RUN_STATS_VERSION (1), set by the caller */
   int32_t layers_used;             /**< stage-1 front layers of the attempt that worked */
   int32_t layers_retries;          /**< attempts before it (other layer counts or strategies) */
-  int32_t recovery_strategy;       /**< ANITET_RECOVERY_SPLIT or _FUZZY: the one that worked */
+  int32_t recovery_strategy;       /**< ANITET_RECOVERY_SPLIT or _FUZZY: the one that worked
+                                      (0: no recovery ran, anitet_layers_run) */
   int32_t refine_passes;           /**< refinement passes (0: not run) */
   int32_t refine_stopped_at_pass_cap; /**< 1: refinement ran out of passes before settling */
   int32_t anisotropic_cycles;      /**< extra refine + optimize rounds run */
@@ -501,6 +554,50 @@ ANITET_API int anitet_mesh_quality(const anitet_mesh* mesh, const anitet_surface
  * the same for the same inputs (its "seconds" field is 0), so a size query then a fill agree. */
 ANITET_API int anitet_mesh_quality_json(const anitet_mesh* mesh, const anitet_surface* input,
                                         char* buf, int64_t buf_len, int64_t* needed);
+
+/* ---------------------------------------------------------------------------------------------
+ * Geographic coordinates (`anitet mesh --geodetic`): points given as longitude, latitude (degrees)
+ * and ellipsoidal height (metres) on WGS84, in that order (x = lon, y = lat, z = h), are meshed
+ * in a local Cartesian frame in metres: move the surface (and a background mesh) to the frame,
+ * mesh, and move the mesh back if wanted. Conversions use GeographicLib.
+ * ------------------------------------------------------------------------------------------- */
+/** Values of the frame kind. */
+#define ANITET_GEO_ENU 0 /**< east-north-up tangent frame at the origin (exact round trip) */
+#define ANITET_GEO_UTM 1 /**< UTM easting/northing of the origin's zone, the height as z */
+
+/** A frame of `kind` at the origin (lat, lon in degrees, height in metres). Errors:
+ * INVALID_ARGUMENT (NULL out, unknown kind, a value not finite, |lat| > 90, |lon| > 540). */
+ANITET_API int anitet_geo_frame_create(int32_t kind, double lat, double lon, double height,
+                                       anitet_geo_frame** out);
+/** A frame of `kind` at the centre of the bounding box of the surface's points (lon, lat, h;
+ * longitudes unwrapped around the first point's, for data across the antimeridian), as
+ * `anitet mesh --geodetic` without --origin. Errors: INVALID_ARGUMENT (NULL, unknown kind, a
+ * point out of range), EMPTY_INPUT (no point). */
+ANITET_API int anitet_geo_frame_create_centred(int32_t kind, const anitet_surface* surface,
+                                               anitet_geo_frame** out);
+/** Frees a frame; NULL is accepted. */
+ANITET_API void anitet_geo_frame_destroy(anitet_geo_frame* frame);
+/** The frame's origin (lat, lon, h) and, for UTM, its zone (1-60) and hemisphere (1: north);
+ * any output pointer may be NULL. Errors: INVALID_ARGUMENT (NULL frame). */
+ANITET_API int anitet_geo_frame_get(const anitet_geo_frame* frame, double* lat, double* lon,
+                                    double* height, int32_t* utm_zone, int32_t* utm_north);
+/** Moves the surface's points from (lon, lat, h) to the frame's x, y, z in metres, in place.
+ * Errors: INVALID_ARGUMENT (NULL; a point out of range, named: then no point is moved). A
+ * surface moved this way must be validated again (anitet_surface_validate) before its report is
+ * read; anitet_mesher_run validates by itself. */
+ANITET_API int anitet_surface_to_local(anitet_surface* surface, const anitet_geo_frame* frame);
+/** The same for a mesh's points (a background mesh of a .sol metric, say; its metric values are
+ * not converted). Errors: as anitet_surface_to_local. */
+ANITET_API int anitet_mesh_to_local(anitet_mesh* mesh, const anitet_geo_frame* frame);
+/** Moves the mesh's points from the frame back to (lon, lat, h), longitudes in [-180, 180]
+ * (`anitet mesh --geodetic-output`). A round trip through the frame loses rounding, so when
+ * `geodetic_surface` is not NULL it must be the surface, before anitet_surface_to_local, that
+ * the mesh was made from by anitet_mesher_run: the mesh's points that are its points get its
+ * coordinates back exactly. Errors: INVALID_ARGUMENT (NULL mesh or frame; a point out of range;
+ * geodetic_surface given for a mesh not made by anitet_mesher_run, or whose run had another
+ * number of surface points, e.g. after a repair merged some). */
+ANITET_API int anitet_mesh_to_geodetic(anitet_mesh* mesh, const anitet_geo_frame* frame,
+                                       const anitet_surface* geodetic_surface);
 
 /* ---------------------------------------------------------------------------------------------
  * Partitions: a mesh in parts for the ranks of a solver (docs/partitions.md has an example).

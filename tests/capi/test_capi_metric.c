@@ -455,6 +455,116 @@ static void test_from_points_errors(void** state) {
   anitet_mesh_destroy(bg);
 }
 
+/* ---- the surface's own field, writing a metric, sampling it at a mesh's points ---------------- */
+
+static void test_surface_sizing_and_write(void** state) {
+  anitet_surface* s = make_cube();
+  anitet_metric *field = NULL, *bounded = NULL, *back = NULL, *uniform = NULL;
+  anitet_options o = ANITET_OPTIONS_INIT;
+  anitet_mesh *plain = NULL, *with_field = NULL;
+  int64_t n_plain = 0, n_field = 0;
+  double a[6], b[6];
+  (void)state;
+  /* The field anitet_mesher_run follows without a metric: meshing to it gives the same mesh. */
+  assert_int_equal(anitet_metric_create_surface_sizing(s, NULL, &field), ANITET_OK);
+  assert_int_equal(anitet_mesher_run(s, NULL, NULL, &plain), ANITET_OK);
+  assert_int_equal(anitet_mesher_run(s, field, NULL, &with_field), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_counts(plain, NULL, &n_plain, NULL), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_counts(with_field, NULL, &n_field, NULL), ANITET_OK);
+  assert_true(llabs(n_field - n_plain) * 100 <= 15 * n_plain);
+  /* hmax bounds it. */
+  o.hmax = 0.1;
+  assert_int_equal(anitet_metric_create_surface_sizing(s, &o, &bounded), ANITET_OK);
+  assert_int_equal(anitet_metric_evaluate(bounded, 0.5, 0.5, 0.5, a), ANITET_OK);
+  assert_true(a[0] >= 1.0 / (0.1 * 0.1) * (1 - 1e-6));
+  /* Written as a .vdb and read back: the same values (a grid, written as it is). */
+  assert_int_equal(anitet_metric_write(bounded, NULL, OUT("surface_sizing.vdb")), ANITET_OK);
+  assert_int_equal(anitet_metric_read(OUT("surface_sizing.vdb"), NULL, &back), ANITET_OK);
+  assert_int_equal(anitet_metric_evaluate(back, 0.5, 0.5, 0.5, b), ANITET_OK);
+  assert_true(near(b[0], a[0], 1e-5) && near(b[2], a[2], 1e-5) && near(b[5], a[5], 1e-5));
+  anitet_metric_destroy(back);
+  /* Any other metric is sampled over a surface's box, which must then be given. */
+  assert_int_equal(anitet_metric_create_uniform(0.3, &uniform), ANITET_OK);
+  assert_int_equal(anitet_metric_write(uniform, NULL, OUT("uniform.vdb")), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "box_of"));
+  assert_int_equal(anitet_metric_write(uniform, s, OUT("uniform.vdb")), ANITET_OK);
+  assert_int_equal(anitet_metric_read(OUT("uniform.vdb"), NULL, &back), ANITET_OK);
+  assert_int_equal(anitet_metric_evaluate(back, 0.2, 0.9, 0.4, b), ANITET_OK);
+  assert_isotropic(b, 0.3, 1e-5);
+  anitet_metric_destroy(back);
+  /* Errors. */
+  assert_int_equal(anitet_metric_write(uniform, s, OUT("uniform.sol")), ANITET_ERR_UNSUPPORTED_FORMAT);
+  assert_int_equal(anitet_metric_write(NULL, s, OUT("x.vdb")), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_metric_create_surface_sizing(NULL, NULL, &back), ANITET_ERR_INVALID_ARGUMENT);
+  o = (anitet_options)ANITET_OPTIONS_INIT;
+  o.hgrad = 0.5;
+  assert_int_equal(anitet_metric_create_surface_sizing(s, &o, &back), ANITET_ERR_INVALID_ARGUMENT);
+  assert_null(back);
+  anitet_metric_destroy(uniform);
+  anitet_metric_destroy(bounded);
+  anitet_metric_destroy(field);
+  anitet_mesh_destroy(with_field);
+  anitet_mesh_destroy(plain);
+  anitet_surface_destroy(s);
+}
+
+static int stretched_x(double x, double y, double z, double m[6], void* user_data) {
+  (void)y, (void)z, (void)user_data;
+  if (x > 1.5) return 3;
+  m[0] = 100.0, m[1] = 0.0, m[2] = 4.0, m[3] = 0.0, m[4] = 0.0, m[5] = 4.0;
+  return 0;
+}
+
+static void test_sample_and_read_on_mesh(void** state) {
+  anitet_mesh* bg = make_background(NULL);
+  anitet_metric *uniform = NULL, *stretched = NULL, *on_mesh = NULL;
+  int32_t components = -1;
+  double values[48], t[6];
+  (void)state;
+  /* Isotropic: sizes (1 component); anisotropic: tensors (6). */
+  assert_int_equal(anitet_metric_create_uniform(0.25, &uniform), ANITET_OK);
+  assert_int_equal(anitet_mesh_sample_metric(bg, uniform), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_metric_components(bg, &components), ANITET_OK);
+  assert_int_equal(components, 1);
+  assert_int_equal(anitet_mesh_get_metric(bg, values, 8), ANITET_OK);
+  assert_true(near(values[7], 0.25, 1e-15));
+  assert_int_equal(anitet_metric_create_analytic(stretched_x, NULL, &stretched), ANITET_OK);
+  assert_int_equal(anitet_mesh_sample_metric(bg, stretched), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_metric_components(bg, &components), ANITET_OK);
+  assert_int_equal(components, 6);
+  assert_int_equal(anitet_mesh_get_metric(bg, values, 48), ANITET_OK);
+  assert_true(values[0] == 100.0 && values[2] == 4.0);
+  /* Its .sol read back on the mesh in memory. */
+  assert_int_equal(anitet_mesh_write_metric(bg, OUT("sampled.sol")), ANITET_OK);
+  assert_int_equal(anitet_metric_read_on_mesh(OUT("sampled.sol"), bg, &on_mesh), ANITET_OK);
+  assert_int_equal(anitet_metric_evaluate(on_mesh, 0.5, 0.5, 0.5, t), ANITET_OK);
+  assert_true(near(t[0], 100.0, 1e-9) && near(t[2], 4.0, 1e-9));
+  anitet_metric_destroy(on_mesh);
+  /* A callback failing at a point: an error naming it, the mesh's metric unchanged. */
+  {
+    anitet_mesh* far = NULL;
+    double xyz[24];
+    int32_t tet[4] = {0, 1, 2, 3};
+    int i;
+    for (i = 0; i < 24; ++i) xyz[i] = kCubeXyz[i] * 2.0;
+    assert_int_equal(anitet_mesh_create(xyz, 8, tet, 1, NULL, NULL, 0, NULL, 0, &far), ANITET_OK);
+    assert_int_equal(anitet_mesh_sample_metric(far, uniform), ANITET_OK);
+    assert_int_equal(anitet_mesh_sample_metric(far, stretched), ANITET_ERR_INVALID_ARGUMENT);
+    assert_true(contains(anitet_last_error_message(), "returned 3"));
+    assert_int_equal(anitet_mesh_get_metric_components(far, &components), ANITET_OK);
+    assert_int_equal(components, 1);
+    anitet_mesh_destroy(far);
+  }
+  assert_int_equal(anitet_mesh_sample_metric(NULL, uniform), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_sample_metric(bg, NULL), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_metric_read_on_mesh(OUT("sampled.vdb"), bg, &on_mesh), ANITET_ERR_UNSUPPORTED_FORMAT);
+  assert_int_equal(anitet_metric_read_on_mesh(OUT("no-such.sol"), bg, &on_mesh), ANITET_ERR_FILE_NOT_FOUND);
+  assert_int_equal(anitet_metric_read_on_mesh(OUT("sampled.sol"), NULL, &on_mesh), ANITET_ERR_INVALID_ARGUMENT);
+  anitet_metric_destroy(stretched);
+  anitet_metric_destroy(uniform);
+  anitet_mesh_destroy(bg);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_read_vdb_values),
@@ -465,6 +575,8 @@ int main(void) {
       cmocka_unit_test(test_from_points_values_and_ownership),
       cmocka_unit_test(test_from_points_mesh),
       cmocka_unit_test(test_from_points_errors),
+      cmocka_unit_test(test_surface_sizing_and_write),
+      cmocka_unit_test(test_sample_and_read_on_mesh),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

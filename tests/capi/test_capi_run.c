@@ -82,6 +82,8 @@ static void test_options_v3_defaults(void** state) {
   assert_true(b.bl_first_height == 0.0 && b.bl_growth == 1.2);
   assert_int_equal(b.bl_layers, 10);
   assert_int_equal(b.bl_sizing, 0);
+  assert_int_equal(b.push_tasks_min_vertices, 2000);
+  assert_int_equal(a.push_tasks_min_vertices, 2000);
   /* The initializer and the function agree field by field. */
   assert_true(a.attempts_seconds == b.attempts_seconds && a.bl_growth == b.bl_growth);
   assert_int_equal(a.retry_layer_counts, b.retry_layer_counts);
@@ -343,12 +345,85 @@ static void test_patch_names(void** state) {
   anitet_surface_destroy(s);
 }
 
+/* ---- stage 1 alone, y+ ------------------------------------------------------------------------ */
+
+static void test_layers_run(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  const int32_t walls[3] = {1, 2, 3};
+  anitet_options o = ANITET_OPTIONS_INIT;
+  anitet_run_stats st = ANITET_RUN_STATS_INIT;
+  anitet_mesh *t1 = NULL, *t1_one_by_one = NULL;
+  int64_t np = 0, nt = 0, nb = 0, nt2 = 0, i, front = 0;
+  int32_t* patch;
+  char* json;
+  (void)state;
+  o.bl_num_patches = 3, o.bl_patches = walls;
+  o.bl_first_height = 0.02, o.bl_growth = 1.25, o.bl_layers = 3;
+  assert_int_equal(anitet_layers_run(s, &o, &t1), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_counts(t1, &np, &nt, &nb), ANITET_OK);
+  /* The input's triangles, then S1's under label 5 (the largest, 4, plus one). */
+  assert_true(nb > BOX_NTRI);
+  patch = malloc((size_t)nb * sizeof *patch);
+  assert_non_null(patch);
+  assert_int_equal(anitet_mesh_get_boundary_patches(t1, patch, nb), ANITET_OK);
+  for (i = 0; i < BOX_NTRI; ++i) assert_int_equal(patch[i], g_patch[i]);
+  for (i = BOX_NTRI; i < nb; ++i) front += patch[i] == 5;
+  assert_int_equal(front, nb - BOX_NTRI);
+  free(patch);
+  /* Its figures: the layers used, the boundary layer measured on T1, no recovery. */
+  assert_int_equal(anitet_mesh_get_run_stats(t1, &st), ANITET_OK);
+  assert_int_equal(st.layers_used, 1);
+  assert_int_equal(st.recovery_strategy, 0);
+  assert_int_equal(st.refine_passes, 0);
+  assert_int_equal(st.tets, nt);
+  assert_int_equal(st.bl_layers, 3);
+  assert_int_equal(st.bl_wall_vertices, SPHERE_NPOINTS);
+  assert_int_equal(st.bl_full_columns, SPHERE_NPOINTS);
+  assert_true(st.bl_tets > 0 && st.bl_tets < nt);
+  assert_true(fabs(st.bl_first_height_mean - 0.02) < 0.002);
+  json = run_json(t1);
+  assert_true(contains(json, "\"layers\""));
+  free(json);
+  /* Pushes one by one: the same T1. */
+  o.push_tasks_min_vertices = 0;
+  assert_int_equal(anitet_layers_run(s, &o, &t1_one_by_one), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_counts(t1_one_by_one, NULL, &nt2, NULL), ANITET_OK);
+  assert_int_equal(nt2, nt);
+  anitet_mesh_destroy(t1_one_by_one);
+  /* Errors: NULLs, a bad option, an open surface. */
+  assert_int_equal(anitet_layers_run(NULL, &o, &t1_one_by_one), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_layers_run(s, &o, NULL), ANITET_ERR_INVALID_ARGUMENT);
+  o.push_tasks_min_vertices = -1;
+  assert_int_equal(anitet_layers_run(s, &o, &t1_one_by_one), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "push_tasks_min_vertices"));
+  assert_null(t1_one_by_one);
+  anitet_mesh_destroy(t1);
+  anitet_surface_destroy(s);
+  assert_int_equal(anitet_surface_create(kCubeXyz, 8, kCubeTri, 11, NULL, 0, &s), ANITET_OK);
+  assert_int_equal(anitet_layers_run(s, NULL, &t1), ANITET_ERR_OPEN_BOUNDARY);
+  assert_null(t1);
+  anitet_surface_destroy(s);
+}
+
+static void test_bl_first_height(void** state) {
+  double h0 = 0.0;
+  (void)state;
+  /* Re = 1e6, L = 1, y+ = 1: Cf = 0.026 * 1e6^(-1/7), h0 = 1 / (1e6 sqrt(Cf / 2)). */
+  assert_int_equal(anitet_bl_first_height(1.0, 1e6, 1.0, &h0), ANITET_OK);
+  assert_true(fabs(h0 - 1.0 / (1e6 * sqrt(0.026 * pow(1e6, -1.0 / 7.0) / 2.0))) < 1e-18);
+  assert_int_equal(anitet_bl_first_height(0.0, 1e6, 1.0, &h0), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_bl_first_height(1.0, NAN, 1.0, &h0), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_bl_first_height(1.0, 1e6, -1.0, &h0), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_bl_first_height(1.0, 1e6, 1.0, NULL), ANITET_ERR_INVALID_ARGUMENT);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_options_v3_defaults), cmocka_unit_test(test_options_v2_caller),
       cmocka_unit_test(test_options_v3_errors),   cmocka_unit_test(test_run_stats_plain),
       cmocka_unit_test(test_run_stats_errors),    cmocka_unit_test(test_boundary_layer),
       cmocka_unit_test(test_options_v3_used),     cmocka_unit_test(test_patch_names),
+      cmocka_unit_test(test_layers_run),          cmocka_unit_test(test_bl_first_height),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
