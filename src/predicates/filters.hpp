@@ -15,6 +15,10 @@
 //        fl(p*q): err(p)|q| + |p|err(q) + eps|pq|;  fl(p±q): err(p) + err(q) + eps(|p|+|q|).
 // orient2d  det = ux*vy - uy*vx.  (i) products eps*XY each, subtraction eps*2XY: 4 eps XY;
 //           (ii) 2 monomials of degree 2: 4 eps XY.  Total 8 eps XY.
+// incircle  det = (La*m_bc + Lb*m_ca) + Lc*m_ab, rows p-d, L = |p-d|^2 (3 eps L each), m = 2x2
+//           minors (4 eps XY, size 2XY), Lmax = max L. (i) each L*m: 3 eps L*2XY + L*4 eps XY +
+//           eps 2LXY = 12 eps; three of them 36, the two additions eps(4 + 6).  Total (i) 46 eps
+//           Lmax XY. (ii) 12 monomials of degree 4, sum <= 6 Lmax XY: 24 eps.  Total 70 eps Lmax XY.
 // orient3d  det = zu*m_vw - zv*m_uw + zw*m_uv, m = xy 2x2 minors.  (i) minor: 4 eps XY,
 //           |minor| <= 2XY; each z*minor: 4 eps XYZ + eps 2XYZ = 6 eps XYZ, size 2XYZ; the two
 //           additions: eps 4XYZ + eps 6XYZ. Total (i) 3*6 + 10 = 28 eps XYZ.
@@ -56,6 +60,7 @@ namespace detail {
 constexpr double kEps = 0x1p-53;
 constexpr double filter_constant(int eps_multiple) { return eps_multiple * kEps * (1.0 + 0x1p-40); }
 constexpr double kOrient2dBound = filter_constant(8);
+constexpr double kIncircleBound = filter_constant(70);
 constexpr double kOrient3dBound = filter_constant(46);
 constexpr double kInsphereBound = filter_constant(376);
 constexpr double kOrient4dBound = filter_constant(280);
@@ -110,6 +115,7 @@ inline double insphere_det(double ax, double ay, double az, double bx, double by
 
 // Out of line: exact evaluation (counted as an exact call) and the SoS tie break.
 int orient2d_exact(const double* a, const double* b, const double* c);
+int incircle_exact(const double* a, const double* b, const double* c, const double* d);
 int orient3d_exact(const double* a, const double* b, const double* c, const double* d);
 int insphere_exact(const double* a, const double* b, const double* c, const double* d,
                    const double* e);
@@ -134,6 +140,25 @@ inline int orient2d(const double* a, const double* b, const double* c) {
     if (det < -bound) return -1;
   }
   return detail::orient2d_exact(a, b, c);
+}
+
+// The lifts stay within insphere's range (degree 4 here, 5 there): the same column range.
+inline int incircle(const double* a, const double* b, const double* c, const double* d) {
+  ++detail::tls_counters.incircle_calls;
+  const double ax = a[0] - d[0], ay = a[1] - d[1];
+  const double bx = b[0] - d[0], by = b[1] - d[1];
+  const double cx = c[0] - d[0], cy = c[1] - d[1];
+  const double la = ax * ax + ay * ay, lb = bx * bx + by * by, lc = cx * cx + cy * cy;
+  const double det = (la * (bx * cy - cx * by) + lb * (cx * ay - ax * cy)) + lc * (ax * by - bx * ay);
+  const double mx = detail::absmax3(ax, bx, cx);
+  const double my = detail::absmax3(ay, by, cy);
+  const double lmax = detail::max3(la, lb, lc);
+  if (detail::kInsphereMin <= std::min(mx, my) && std::max(mx, my) <= detail::kInsphereMax) {
+    const double bound = detail::kIncircleBound * mx * my * lmax;
+    if (det > bound) return 1;
+    if (det < -bound) return -1;
+  }
+  return detail::incircle_exact(a, b, c, d);
 }
 
 namespace detail {

@@ -44,6 +44,18 @@ int orient2d_exact(const double* a, const double* b, const double* c) {
   return orient2d_gmp(a, b, c);
 }
 
+// det[x y x^2+y^2 1] of a..d is, up to sign, insphere's 5x5 determinant of the same points at
+// z = 0 and a fifth point (0, 0, 1): expanding along the z column leaves this 4x4 determinant
+// (insphere = -det[x y z L 1] = -det[x y L 1]). Its exact stages then decide.
+int incircle_exact(const double* a, const double* b, const double* c, const double* d) {
+  ++tls_counters.incircle_exact;
+  const double* const p[4] = {a, b, c, d};
+  if (!finite(p, 4, 2)) return 0;
+  const double a3[3] = {a[0], a[1], 0.0}, b3[3] = {b[0], b[1], 0.0}, c3[3] = {c[0], c[1], 0.0},
+               d3[3] = {d[0], d[1], 0.0}, up[3] = {0.0, 0.0, 1.0};
+  return -insphere_exact(a3, b3, c3, d3, up);
+}
+
 int orient3d_exact(const double* a, const double* b, const double* c, const double* d) {
   ++tls_counters.orient3d_exact;
   const double* const p[4] = {a, b, c, d};

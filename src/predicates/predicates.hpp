@@ -4,6 +4,9 @@
 //
 // Sign conventions (chosen so that positive means "positively oriented tet" everywhere):
 //   orient2d(a,b,c)     > 0  when a, b, c turn counter-clockwise.
+//   incircle(a,b,c,d)   > 0  when d lies strictly inside the circle through a, b, c, given
+//                            orient2d(a,b,c) > 0 (2D points: only [0] and [1] are read); 0 when
+//                            cocircular. Precisely: sign det[x y x^2+y^2 1] of rows a, b, c, d.
 //   orient3d(a,b,c,d)   > 0  when (b-a) x (c-a) . (d-a) > 0 (d on the side the right-hand normal
 //                            of triangle abc points to). Note: the opposite sign of Shewchuk's.
 //   insphere(a,b,c,d,e) > 0  when e lies strictly inside the sphere through a,b,c,d, given
@@ -48,6 +51,7 @@
 namespace anitet::predicates {
 
 inline int orient2d(const double* a, const double* b, const double* c);
+inline int incircle(const double* a, const double* b, const double* c, const double* d);
 inline int orient3d(const double* a, const double* b, const double* c, const double* d);
 inline int insphere(const double* a, const double* b, const double* c, const double* d,
                     const double* e);
@@ -66,6 +70,7 @@ inline int orient3d_certified(const double* a, const double* b, const double* c,
 // How often each level was reached, counted per thread (no shared writes on the hot path).
 struct PredicateCounters {
   uint64_t orient2d_calls = 0, orient2d_exact = 0;
+  uint64_t incircle_calls = 0, incircle_exact = 0;
   uint64_t orient3d_calls = 0, orient3d_exact = 0;
   uint64_t insphere_calls = 0, insphere_exact = 0;
   uint64_t orient4d_calls = 0, orient4d_exact = 0;

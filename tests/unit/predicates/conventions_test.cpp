@@ -45,6 +45,19 @@ TEST(PredicatesConventions, Insphere) {
   EXPECT_EQ(orient4d(kO, kX, kY, kZ, inside, 0, 0, 0, 0, -1), -1);
 }
 
+TEST(PredicatesConventions, Incircle) {
+  // Circle of the counter-clockwise O, X, Y: centre (1/2, 1/2), radius^2 1/2.
+  const double inside[2] = {0.5, 0.5}, outside[2] = {2, 2}, on[2] = {1, 1};
+  EXPECT_EQ(incircle(kO, kX, kY, inside), 1);
+  EXPECT_EQ(incircle(kO, kX, kY, outside), -1);
+  EXPECT_EQ(incircle(kO, kX, kY, on), 0);
+  EXPECT_EQ(incircle(kO, kY, kX, inside), -1);  // clockwise flips the answer
+  EXPECT_EQ(detail::incircle_exact(kO, kX, kY, inside), 1);
+  EXPECT_EQ(detail::incircle_exact(kO, kX, kY, outside), -1);
+  const double nan[2] = {std::numeric_limits<double>::quiet_NaN(), 0};
+  EXPECT_EQ(incircle(kO, kX, kY, nan), 0);
+}
+
 int permutation_parity(const std::array<int, 5>& p) {
   int inversions = 0;
   for (int i = 0; i < 5; ++i)

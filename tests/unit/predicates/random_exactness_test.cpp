@@ -78,6 +78,63 @@ TEST(PredicatesRandom, Orient2dMatchesExact) {
   report_fraction("orient2d near-degenerate", k.orient2d_exact, k.orient2d_calls);
 }
 
+// Four near-cocircular 2D points: on a rounded circle, on an exact integer circle (maybe a few
+// ulps off), three collinear, or generic; then a random frame.
+std::array<P3, 4> cocircular_case(Rng& rng) {
+  static const int kRadii2[] = {25, 50, 65, 85};
+  std::array<P3, 4> p;
+  const int kind = rng.integer(0, 9);
+  if (kind <= 2) {
+    const P3 c = random_point(rng, -1, 1);
+    const double r = rng.uniform(0.1, 10);
+    for (auto& q : p) {
+      const double th = rng.uniform(0, 6.283185307179586);
+      q = {c[0] + r * std::cos(th), c[1] + r * std::sin(th), 0};
+    }
+  } else if (kind <= 6) {
+    std::vector<P3> circle;
+    const int r2 = kRadii2[rng.integer(0, 3)];
+    for (int x = -10; x <= 10; ++x)
+      for (int y = -10; y <= 10; ++y)
+        if (x * x + y * y == r2) circle.push_back({double(x), double(y), 0});
+    const P3 c = lattice_point(rng, -5, 5);
+    for (auto& q : p) {
+      const P3& s = circle[size_t(rng.integer(0, int(circle.size()) - 1))];
+      q = {s[0] + c[0], s[1] + c[1], 0};
+    }
+  } else if (kind == 7) {
+    const P3 a = lattice_point(rng, -8, 8), b = lattice_point(rng, -8, 8);
+    p = {a, b, combo(a, b, b, rng.integer(-3, 3), 0), lattice_point(rng, -8, 8)};
+  } else {
+    for (auto& q : p) q = random_point(rng, -1, 1);
+  }
+  const Frame f = random_frame(rng);
+  for (auto& q : p) q = f.apply(q);
+  if (kind == 6) p[3][size_t(rng.integer(0, 1))] = nudge(p[3][0], rng);
+  return p;
+}
+
+TEST(PredicatesRandom, IncircleMatchesExact) {
+  Rng rng(6);
+  Mismatches bad;
+  reset_thread_counters();
+  const int n = 200000 / kCaseDivisor;
+  for (int i = 0; i < n; ++i) {
+    const auto p = cocircular_case(rng);
+    const double v[8] = {p[0][0], p[0][1], p[1][0], p[1][1], p[2][0], p[2][1], p[3][0], p[3][1]};
+    const int want = ref_incircle(p[0].data(), p[1].data(), p[2].data(), p[3].data());
+    bad.check(incircle(p[0].data(), p[1].data(), p[2].data(), p[3].data()), want, "incircle", v, 8);
+    if (i % 4 == 0)
+      bad.check(detail::incircle_exact(p[0].data(), p[1].data(), p[2].data(), p[3].data()), want,
+                "incircle exact", v, 8);
+  }
+  EXPECT_EQ(bad.count(), 0);
+  const PredicateCounters& k = thread_counters();
+  EXPECT_EQ(k.incircle_calls, uint64_t(n));
+  EXPECT_GT(k.incircle_exact, uint64_t(n / 5));
+  report_fraction("incircle near-cocircular", k.incircle_exact, k.incircle_calls);
+}
+
 TEST(PredicatesRandom, Orient3dMatchesExact) {
   Rng rng(3);
   Mismatches bad;

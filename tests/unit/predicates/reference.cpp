@@ -131,6 +131,19 @@ int ref_orient2d(const double* a, const double* b, const double* c) {
   return bareiss_sign(w, 3);
 }
 
+int ref_incircle(const double* a, const double* b, const double* c, const double* d) {
+  Workspace& w = workspace();
+  const double* p[4] = {a, b, c, d};
+  fill_coordinates(w, p, 4, 2, 4);
+  for (int i = 0; i < 4; ++i) {
+    mpz_t& l = w.m[i * 4 + 2];
+    mpz_mul(l, w.m[i * 4], w.m[i * 4]);
+    mpz_mul(w.t, w.m[i * 4 + 1], w.m[i * 4 + 1]);
+    mpz_add(l, l, w.t);
+  }
+  return bareiss_sign(w, 4);
+}
+
 int ref_orient3d(const double* a, const double* b, const double* c, const double* d) {
   Workspace& w = workspace();
   const double* p[4] = {a, b, c, d};

@@ -17,9 +17,11 @@ int det_sign(std::vector<mpz_class> m, int n);
 std::vector<mpz_class> to_scaled_integers(const std::vector<double>& values);
 
 // The predicates' definitions as determinants of the raw coordinates:
-//   orient2d =  sign det[x y 1],  orient3d = -sign det[x y z 1],
+//   orient2d =  sign det[x y 1],  incircle = sign det[x y x^2+y^2 1],  orient3d = -sign det[x y z 1],
 //   insphere = -sign det[x y z x^2+y^2+z^2 1],  orient4d = sign det[x y z h 1].
 int ref_orient2d(const double* a, const double* b, const double* c);
+// incircle = sign det[x y x^2+y^2 1] (2D points).
+int ref_incircle(const double* a, const double* b, const double* c, const double* d);
 int ref_orient3d(const double* a, const double* b, const double* c, const double* d);
 int ref_insphere(const double* a, const double* b, const double* c, const double* d,
                  const double* e);
