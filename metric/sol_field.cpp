@@ -24,7 +24,8 @@ Result<SolField> metric_sol(Result<VertexFields> read, const std::string& name) 
                                                    "(type 3); this file has " + kinds);
   }
   SolField out;
-  out.components = field_components(f.kinds[0]);
+  out.dimension = f.dimension;
+  out.components = field_components(f.kinds[0], f.dimension);
   out.values = std::move(read.value().values);
   return out;
 }
@@ -68,6 +69,8 @@ Result<BackgroundMeshField> BackgroundMeshField::create(const VolumeMesh& mesh,
                                                         const SolField& field) {
   const size_t nv = mesh.num_vertices();
   if (mesh.num_tets() == 0) return Status(Error::EmptyInput, "the background mesh has no tetrahedron");
+  if (field.dimension != 3)
+    return Status(Error::InvalidArgument, "the .sol is two-dimensional (Dimension 2): it is for `anitet mesh2d`");
   if ((field.components != 1 && field.components != 6) || field.num_vertices() != nv ||
       field.values.size() != nv * size_t(field.components))
     return Status(Error::InvalidArgument,

@@ -17,15 +17,18 @@ namespace anitet {
 namespace metric {
 
 struct SolField {
-  int components = 0;          // 1 (size h, Medit type 1) or 6 (metric xx xy yy xz yz zz, type 3)
+  int dimension = 3;           // Medit's Dimension: 3, or 2 (the 2D mesher's fields)
+  // 1 (size h, Medit type 1) or, for type 3, the tensor: 6 in 3D (xx xy yy xz yz zz), 3 in 2D
+  // (xx xy yy).
+  int components = 0;
   std::vector<double> values;  // components per vertex
   size_t num_vertices() const { return components ? values.size() / size_t(components) : 0; }
 };
 
-// A metric as a Medit .sol (ASCII, read_medit_sol) or, for a path ending in .solb, a binary GMF
-// .solb (read_solb): one SolAtVertices field of type 1 or 3. Error::Parse naming the line or
-// byte offset for malformed or truncated input, Error::UnsupportedFormat for other fields
-// (vectors, several fields, 2D).
+// A metric as a Medit .sol (ASCII, read_medit_sol; Dimension 3, or 2 for the 2D mesher) or, for
+// a path ending in .solb, a binary GMF .solb (read_solb, 3D): one SolAtVertices field of type 1
+// or 3. Error::Parse naming the line or byte offset for malformed or truncated input,
+// Error::UnsupportedFormat for other fields (vectors, several fields).
 Result<SolField> parse_sol(std::string_view data, const std::string& name);
 Result<SolField> read_sol(const std::string& path);
 
@@ -43,8 +46,8 @@ void sample_sizes_or_tensors(const SizingField& field, VolumeMesh& mesh);
 class BackgroundMeshField final : public SizingField {
  public:
   // Error::InvalidArgument unless there is one value set per mesh vertex, sizes > 0 and metrics
-  // SPD; the errors of TetLocator::create (Error::EmptyInput without tets, Error::BadIndex,
-  // Error::InvalidMesh for a face of three tets).
+  // SPD, and the field is three-dimensional; the errors of TetLocator::create (Error::EmptyInput
+  // without tets, Error::BadIndex, Error::InvalidMesh for a face of three tets).
   static Result<BackgroundMeshField> create(const VolumeMesh& mesh, const SolField& field);
 
   void metric(const double p[3], double m[6]) const override;

@@ -1,6 +1,7 @@
 // Per-vertex solution fields, as a Medit/GMF SolAtVertices block holds them (.sol, .solb): any
-// number of fields, each a scalar, a 3D vector or a symmetric 3x3 tensor, stored vertex by
-// vertex (one record per vertex: every field's components in field order).
+// number of fields, each a scalar, a vector or a symmetric tensor, stored vertex by vertex (one
+// record per vertex: every field's components in field order). 3D unless `dimension` is 2 (an
+// ASCII .sol of the 2D mesher).
 #pragma once
 
 #include <cstddef>
@@ -18,6 +19,10 @@ enum class FieldKind : int32_t { Scalar = 1, Vector = 2, SymTensor = 3 };
 constexpr int field_components(FieldKind kind) {
   return kind == FieldKind::Scalar ? 1 : kind == FieldKind::Vector ? 3 : 6;
 }
+// In 2D: 1, 2 (x y) or 3 (xx xy yy).
+constexpr int field_components(FieldKind kind, int dimension) {
+  return dimension == 2 ? (kind == FieldKind::Scalar ? 1 : kind == FieldKind::Vector ? 2 : 3) : field_components(kind);
+}
 
 constexpr const char* field_kind_name(FieldKind kind) {
   return kind == FieldKind::Scalar ? "scalar" : kind == FieldKind::Vector ? "vector" : "symmetric tensor";
@@ -26,11 +31,12 @@ constexpr const char* field_kind_name(FieldKind kind) {
 struct VertexFields {
   std::vector<FieldKind> kinds;  // one per field, in file order
   std::vector<double> values;    // record_size() per vertex
+  int dimension = 3;             // 3, or 2 for a 2D .sol
 
   // Components per vertex: the sum over the fields.
   size_t record_size() const {
     size_t n = 0;
-    for (FieldKind k : kinds) n += size_t(field_components(k));
+    for (FieldKind k : kinds) n += size_t(field_components(k, dimension));
     return n;
   }
   size_t num_vertices() const {
@@ -40,7 +46,7 @@ struct VertexFields {
   // Where field f starts in a vertex's record.
   size_t offset(size_t field) const {
     size_t n = 0;
-    for (size_t f = 0; f < field; ++f) n += size_t(field_components(kinds[f]));
+    for (size_t f = 0; f < field; ++f) n += size_t(field_components(kinds[f], dimension));
     return n;
   }
   // One field of `kind` with `values` (field_components(kind) per vertex).

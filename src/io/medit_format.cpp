@@ -370,7 +370,9 @@ Result<VertexFields> parse_medit_sol(std::string_view data, const std::string& n
     } else if (iequals(key, "Dimension")) {
       int64_t dim = 0;
       if (!in.read_int(dim)) return in.expected("the dimension");
-      if (dim != 3) return in.error(Error::UnsupportedFormat, "only Dimension 3 is supported");
+      if (dim != 3 && dim != 2) return in.error(Error::UnsupportedFormat, "only Dimension 3 or 2 is supported");
+      if (have_field) return in.error(Error::Parse, "Dimension after SolAtVertices");
+      out.dimension = int(dim);
     } else if (iequals(key, "SolAtVertices")) {
       if (have_field) return in.error(Error::Parse, "a second SolAtVertices section");
       have_field = true;
@@ -398,7 +400,7 @@ Result<std::string> to_sol(const VertexFields& fields) {
                                               " values are not a whole number of records of " + std::to_string(record));
   }
   const size_t nv = fields.values.size() / record;
-  std::string out = kMeditHeader;
+  std::string out = fields.dimension == 2 ? "MeshVersionFormatted 2\n\nDimension 2\n" : kMeditHeader;
   out += "\nSolAtVertices\n";
   append_line(out, nv);
   append_int(out, int64_t(fields.kinds.size()));

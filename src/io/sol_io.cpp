@@ -36,7 +36,11 @@ Result<VertexFields> read_vertex_fields(const std::string& path, GmfFileInfo* in
   Result<std::string> bytes = read_file_bytes(path);
   if (!bytes.ok()) return bytes.status();
   if (ext == "solb") return read_solb(bytes.value(), path, info);
-  return read_medit_sol(bytes.value(), path);
+  Result<VertexFields> fields = read_medit_sol(bytes.value(), path);
+  if (fields.ok() && fields.value().dimension != 3) {
+    return Status(Error::UnsupportedFormat, path + ": a Dimension 2 .sol is for `anitet mesh2d`, not a 3D mesh");
+  }
+  return fields;
 }
 
 Status write_vertex_fields(const VertexFields& fields, const std::string& path, int gmf_version) {

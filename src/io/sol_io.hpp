@@ -12,7 +12,8 @@
 namespace anitet {
 
 // ASCII Medit .sol: "MeshVersionFormatted v", "Dimension 3", "SolAtVertices / n / k t1 .. tk /
-// n lines of values", "End"; '#' comments; other keywords skipped up to the next keyword.
+// n lines of values", "End", or Dimension 2 (VertexFields::dimension 2, the 2D mesher's fields);
+// '#' comments; other keywords skipped up to the next keyword.
 // Error::Parse naming the line for malformed or truncated input, Error::UnsupportedFormat for
 // another dimension, a full-matrix field (type 4) or binary bytes, Error::EmptyInput without
 // SolAtVertices.
@@ -22,8 +23,9 @@ Result<VertexFields> read_medit_sol(std::string_view data, const std::string& na
 // field or values that are not a whole number of records.
 Result<std::string> to_sol(const VertexFields& fields);
 
-// By extension: .sol (ASCII) or .solb (binary; `info` receives its version and byte order).
-// Error::UnsupportedFormat for another extension, Error::FileNotFound when it cannot be read.
+// By extension: .sol (ASCII) or .solb (binary; `info` receives its version and byte order), 3D
+// only. Error::UnsupportedFormat for another extension or a 2D file, Error::FileNotFound when it
+// cannot be read.
 Result<VertexFields> read_vertex_fields(const std::string& path, GmfFileInfo* info = nullptr);
 // By extension: .sol, or .solb in `gmf_version` (0: automatic, see to_gmf_mesh).
 Status write_vertex_fields(const VertexFields& fields, const std::string& path, int gmf_version = 0);

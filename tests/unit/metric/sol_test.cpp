@@ -29,6 +29,12 @@ TEST(Sol, ParsesScalarAndTensorFields) {
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->components, 6);
   EXPECT_EQ(s->values[5], 3.0);
+  // 2D (the 2D mesher's): tensors xx xy yy.
+  s = parse_sol("MeshVersionFormatted 2 Dimension 2 SolAtVertices 1 1 3 1 0.5 2 End", "c.sol");
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  EXPECT_EQ(s->dimension, 2);
+  EXPECT_EQ(s->components, 3);
+  EXPECT_EQ(s->values[2], 2.0);
 }
 
 TEST(Sol, ReportsBadInput) {
@@ -37,7 +43,7 @@ TEST(Sol, ReportsBadInput) {
   EXPECT_EQ(parse_sol("SolAtVertices\n1\n1 1\nabc\n", "t.sol").status().code(), Error::Parse);
   EXPECT_EQ(parse_sol("SolAtVertices\n1\n1 2\n1 2 3\n", "t.sol").status().code(),
             Error::UnsupportedFormat);  // vector field
-  EXPECT_EQ(parse_sol("Dimension 2\n", "t.sol").status().code(), Error::UnsupportedFormat);
+  EXPECT_EQ(parse_sol("Dimension 4\n", "t.sol").status().code(), Error::UnsupportedFormat);
   EXPECT_EQ(parse_sol("MeshVersionFormatted 2\nEnd\n", "t.sol").status().code(), Error::EmptyInput);
   EXPECT_EQ(read_sol(temp_path("missing.sol")).status().code(), Error::FileNotFound);
 }
