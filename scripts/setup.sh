@@ -9,6 +9,7 @@ packages=(
   libgmp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libcmocka-dev libbenchmark-dev
   python3 python3-numpy python3-meshio
+  python3-geographiclib  # geodesic edge lengths in the 2D checker (tests/tools/check2d.py)
   libcgns-dev libexodusii-dev  # the .cgns and Exodus II writers (optional at build time)
   cgns-convert openfoam python3-h5py python3-netcdf4  # their consumers in the `solver` tests
   doxygen  # renders the C API reference; its test fails on an undocumented declaration

@@ -465,6 +465,98 @@ bool Kernel::flip(uint32_t t, int k) {
   return true;
 }
 
+bool Kernel::can_collapse(uint32_t v, uint32_t w) {
+  const bool closed = m_.star(v, fan_);
+  if (fan_.empty()) return false;
+  int constrained = 0, along = 0;
+  int32_t tag = kFree;
+  size_t shared = 0;
+  // Neighbours of v; those of w; the edge's opposite vertices.
+  m_.neighbours(v, nv_);
+  m_.neighbours(w, nw_);
+  if (std::find(nv_.begin(), nv_.end(), w) == nv_.end()) return false;
+  for (uint32_t t : fan_) {
+    const int i = m_.index_of(t, v);
+    // The edge (v, next) is edge (i + 2) % 3 of t; count each of v's edges once (the one
+    // leaving v counter-clockwise in t), plus the last edge of an open fan.
+    const int e = (i + 2) % 3;
+    if (m_.constrained(t, e)) {
+      ++constrained;
+      if (tag != kFree && tag != m_.edge_tag(t, e)) return false;
+      tag = m_.edge_tag(t, e);
+      if (m_.edge_b(t, e) == w) ++along;
+    }
+    if (m_.index_of(t, w) >= 0) ++shared;
+  }
+  if (!closed) {
+    const uint32_t last = fan_.back();
+    const int i = m_.index_of(last, v), e = (i + 1) % 3;  // the edge (prev, v) on the boundary
+    if (m_.constrained(last, e)) {
+      ++constrained;
+      if (tag != kFree && tag != m_.edge_tag(last, e)) return false;
+      tag = m_.edge_tag(last, e);
+      if (m_.edge_a(last, e) == w) ++along;
+    }
+  }
+  if (constrained == 0 && !closed) return false;
+  if (constrained != 0 && (constrained != 2 || along != 1)) return false;
+  // Link condition: the common neighbours are the opposite vertices of the shared triangles.
+  size_t common = 0;
+  for (uint32_t x : nv_)
+    if (x != w && std::find(nw_.begin(), nw_.end(), x) != nw_.end()) ++common;
+  if (common != shared) return false;
+  for (uint32_t t : fan_) {
+    if (m_.index_of(t, w) >= 0) continue;
+    const int i = m_.index_of(t, v);
+    const double* p[3] = {m_.point(m_.v(t, 0)), m_.point(m_.v(t, 1)), m_.point(m_.v(t, 2))};
+    p[i] = m_.point(w);
+    if (orient2d(p[0], p[1], p[2]) <= 0) return false;
+  }
+  return true;
+}
+
+void Kernel::collapse(uint32_t v, uint32_t w) {
+  m_.star(v, fan_);
+  struct Join {
+    uint32_t n1;
+    int k1;
+    uint32_t n2;
+    int k2;
+    int32_t tag;
+  };
+  std::vector<Join> joins;
+  for (uint32_t t : fan_) {
+    const int iv = m_.index_of(t, v), iw = m_.index_of(t, w);
+    if (iw < 0) continue;
+    // t = (v, w, x) in some rotation: its edges opposite v (w, x) and opposite w (x, v).
+    const uint32_t n1 = m_.across(t, iv), n2 = m_.across(t, iw);
+    const int32_t g1 = m_.edge_tag(t, iv), g2 = m_.edge_tag(t, iw);
+    joins.push_back({n1, m_.mirror(t, iv), n2, m_.mirror(t, iw), g1 != kFree ? g1 : g2});
+  }
+  for (uint32_t t : fan_) {
+    const int iv = m_.index_of(t, v);
+    if (m_.index_of(t, w) >= 0) {
+      m_.free_triangle(t);
+      continue;
+    }
+    m_.tri[3 * size_t(t) + size_t(iv)] = w;
+    for (int k = 0; k < 3; ++k) m_.vtri[m_.v(t, k)] = t;
+  }
+  for (const Join& j : joins) {
+    if (j.n1 != kNone) {
+      m_.nbr[3 * size_t(j.n1) + size_t(j.k1)] = j.n2;
+      m_.tag[3 * size_t(j.n1) + size_t(j.k1)] = j.tag;
+      for (int k = 0; k < 3; ++k) m_.vtri[m_.v(j.n1, k)] = j.n1;
+    }
+    if (j.n2 != kNone) {
+      m_.nbr[3 * size_t(j.n2) + size_t(j.k2)] = j.n1;
+      m_.tag[3 * size_t(j.n2) + size_t(j.k2)] = j.tag;
+      for (int k = 0; k < 3; ++k) m_.vtri[m_.v(j.n2, k)] = j.n2;
+    }
+  }
+  m_.vtri[v] = kNone;
+}
+
 void circumcenter(const double* a, const double* b, const double* c, double out[2]) {
   const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
   const double d = 2.0 * (bx * cy - by * cx);

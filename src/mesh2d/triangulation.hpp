@@ -106,6 +106,12 @@ class Kernel {
   // Flips edge k of t when it is unconstrained, interior and its quadrilateral strictly
   // convex. Afterwards t and its old neighbour hold the new edge.
   bool flip(uint32_t t, int k);
+  // Whether v can be collapsed onto its neighbour w (v removed, w taking its place in v's
+  // other triangles): the link condition, every changed triangle still positive (exact), and
+  // v's constrained edges: none (then v must be interior), or two of one tag, one of them vw.
+  bool can_collapse(uint32_t v, uint32_t w);
+  // Collapses v onto w (can_collapse must hold). v is left in no triangle.
+  void collapse(uint32_t v, uint32_t w);
   // The triangles of the last successful insert (the new vertex's star).
   const std::vector<uint32_t>& created() const { return created_; }
 
@@ -134,7 +140,7 @@ class Kernel {
   std::vector<uint32_t> vmark_;  // cavity boundary vertices (== vstamp_)
   std::vector<uint32_t> vslot_;  // the new triangle starting at a boundary vertex
   uint32_t cstamp_ = 0, vstamp_ = 0;
-  std::vector<uint32_t> cavity_, stack_, created_;
+  std::vector<uint32_t> cavity_, stack_, created_, fan_, nv_, nw_;
   std::vector<BoundaryEdge> boundary_;
   uint64_t rng_ = 0x9e3779b97f4a7c15ull;
 };

@@ -1,0 +1,286 @@
+#include "mesh2d/optimize2.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "predicates/predicates.hpp"
+
+namespace anitet::mesh2d {
+
+using predicates::orient2d;
+
+namespace {
+
+class Smoother {
+ public:
+  Smoother(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& vm) : m_(m), fixed_(fixed), vm_(vm) {}
+
+  // A point that may move: free, interior, on no constrained edge.
+  bool movable(uint32_t v) {
+    if (v >= fixed_.size() || fixed_[v] || m_.vtri[v] == kNone) return false;
+    if (!m_.star(v, fan_)) return false;
+    for (uint32_t t : fan_)
+      for (int k = 0; k < 3; ++k)  // edge k is opposite vertex k: v's edges are the other two
+        if (m_.v(t, k) != v && m_.constrained(t, k)) return false;
+    return true;
+  }
+
+  // The worst quality of v's triangles with v at p (-1 when one is not positive).
+  double star_quality(uint32_t v, const double* p) const {
+    double worst = 1e300;
+    for (uint32_t t : fan_) {
+      const double* q[3];
+      uint32_t id[3];
+      for (int k = 0; k < 3; ++k) {
+        id[k] = m_.v(t, k);
+        q[k] = id[k] == v ? p : m_.point(id[k]);
+      }
+      if (orient2d(q[0], q[1], q[2]) <= 0) return -1.0;
+      worst = std::min(worst, vm_.quality_at(q[0], q[1], q[2], id[0], id[1], id[2]));
+    }
+    return worst;
+  }
+
+  // The ODT/CVT target of v (fan_ must be v's star).
+  bool odt_target(uint32_t v, double out[2]) const {
+    const Metric2& mv = vm_.at[v];
+    double l00 = 1, l10 = 0, l11 = 1;
+    if (vm_.anisotropic) {
+      l00 = std::sqrt(mv.xx);
+      l10 = mv.xy / l00;
+      l11 = std::sqrt(std::max(mv.yy - l10 * l10, 1e-300));
+    }
+    const double* o = m_.point(v);
+    auto map = [&](const double* x, double* r) {  // L^T (x - o)
+      const double dx = x[0] - o[0], dy = x[1] - o[1];
+      r[0] = l00 * dx + l10 * dy;
+      r[1] = l11 * dy;
+    };
+    double sx = 0, sy = 0, sw = 0;
+    for (uint32_t t : fan_) {
+      const uint32_t a = m_.v(t, 0), b = m_.v(t, 1), c = m_.v(t, 2);
+      double pa[2], pb[2], pc[2], cc[2];
+      map(m_.point(a), pa);
+      map(m_.point(b), pb);
+      map(m_.point(c), pc);
+      const double ar = area(pa, pb, pc);
+      if (!(ar > 0)) return false;
+      circumcenter(pa, pb, pc, cc);
+      double w = ar;
+      if (vm_.anisotropic) {
+        w *= det(mean_metric(vm_.at[a], vm_.at[b], vm_.at[c])) / det(mv);
+      } else {
+        const double d = det(mean_metric(vm_.at[a], vm_.at[b], vm_.at[c]));
+        w *= d / det(mv);
+      }
+      sx += w * cc[0], sy += w * cc[1], sw += w;
+    }
+    if (!(sw > 0)) return false;
+    const double tx = sx / sw, ty = sy / sw;  // in the mapped frame: back with L^-T
+    const double y = ty / l11, x = (tx - l10 * y) / l00;
+    out[0] = o[0] + x;
+    out[1] = o[1] + y;
+    return std::isfinite(out[0]) && std::isfinite(out[1]);
+  }
+
+  // Moves v toward target (full, half, quarter step) when its worst triangle stays above
+  // min(old worst, floor); true when moved.
+  bool try_move(uint32_t v, const double target[2], double floor) {
+    const double old[2] = {m_.point(v)[0], m_.point(v)[1]};
+    const double before = star_quality(v, old);
+    for (double step : {1.0, 0.5, 0.25}) {
+      const double p[2] = {old[0] + step * (target[0] - old[0]), old[1] + step * (target[1] - old[1])};
+      const double after = star_quality(v, p);
+      if (after > 0 && after >= std::min(before, floor)) {
+        m_.xy[2 * size_t(v)] = p[0];
+        m_.xy[2 * size_t(v) + 1] = p[1];
+        vm_.at[v] = metric_at(vm_.field, p[0], p[1]);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  const std::vector<uint32_t>& fan() const { return fan_; }
+
+ private:
+  Triangulation& m_;
+  std::vector<uint8_t>& fixed_;
+  VertexMetrics& vm_;
+  std::vector<uint32_t> fan_;
+};
+
+bool bad(const Triangulation& m, const VertexMetrics& vm, uint32_t t, const OptimizeOptions2& o) {
+  if (vm.anisotropic) return vm.quality(m, m.v(t, 0), m.v(t, 1), m.v(t, 2)) < o.target_quality;
+  return min_angle(m.point(m.v(t, 0)), m.point(m.v(t, 1)), m.point(m.v(t, 2))) < o.target_angle_deg * M_PI / 180.0;
+}
+
+}  // namespace
+
+size_t quality_flips(Triangulation& m, const VertexMetrics& vm, int rounds) {
+  Kernel kernel(m);
+  size_t total = 0;
+  for (int r = 0; r < rounds; ++r) {
+    size_t flips = 0;
+    for (uint32_t t = 0; t < m.num_slots(); ++t) {
+      if (!m.alive(t)) continue;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t n = m.across(t, k);
+        if (n == kNone || n < t || m.constrained(t, k)) continue;
+        const int j = m.mirror(t, k);
+        const uint32_t x = m.v(t, k), a = m.edge_a(t, k), b = m.edge_b(t, k), y = m.v(n, j);
+        if (orient2d(m.point(x), m.point(a), m.point(y)) <= 0 || orient2d(m.point(y), m.point(b), m.point(x)) <= 0) continue;
+        const double before = std::min(vm.quality(m, x, a, b), vm.quality(m, y, b, a));
+        const double after = std::min(vm.quality(m, x, a, y), vm.quality(m, y, b, x));
+        if (after > before + 1e-9 && kernel.flip(t, k)) {
+          ++flips;
+          break;  // t changed: its other edges next sweep
+        }
+      }
+    }
+    total += flips;
+    if (flips == 0) break;
+  }
+  return total;
+}
+
+Status optimize2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& vm, const OptimizeOptions2& o,
+                 OptimizeStats2* stats) {
+  OptimizeStats2 local;
+  OptimizeStats2& st = stats ? *stats : local;
+  vm.update(m);
+  fixed.resize(m.num_vertices(), 0);
+  Smoother s(m, fixed, vm);
+  st.flips += quality_flips(m, vm);
+  for (int sweep = 0; sweep < o.sweeps; ++sweep) {
+    for (uint32_t v = 0; v < m.num_vertices(); ++v) {
+      if (!s.movable(v)) continue;
+      double target[2];
+      if (s.odt_target(v, target) && s.try_move(v, target, 0.5)) ++st.moves;
+    }
+    st.flips += quality_flips(m, vm);
+  }
+  if (!o.cleanup) return Status::success();
+  // Clean-up of the bad triangles with a free point.
+  Kernel kernel(m);
+  std::vector<uint32_t> ring;
+  for (int round = 0; round < o.cleanup_rounds; ++round) {
+    size_t changed = 0;
+    for (uint32_t t = 0; t < m.num_slots(); ++t) {
+      if (!m.alive(t) || !bad(m, vm, t, o)) continue;
+      bool done = false;
+      // 1. Move a point of t to the best of: its ODT target, its neighbours' centroid.
+      for (int k = 0; k < 3 && !done; ++k) {
+        const uint32_t v = m.v(t, k);
+        if (!s.movable(v)) continue;
+        const double before = s.star_quality(v, m.point(v));
+        double best_q = before, best[2] = {0, 0};
+        double cand[2][2];
+        const bool has_odt = s.odt_target(v, cand[0]);
+        m.neighbours(v, ring);
+        cand[1][0] = cand[1][1] = 0;
+        for (uint32_t x : ring) cand[1][0] += m.point(x)[0] / double(ring.size()), cand[1][1] += m.point(x)[1] / double(ring.size());
+        for (int c = has_odt ? 0 : 1; c < 2; ++c)
+          for (double step : {1.0, 0.5}) {
+            const double p[2] = {m.point(v)[0] + step * (cand[c][0] - m.point(v)[0]), m.point(v)[1] + step * (cand[c][1] - m.point(v)[1])};
+            const double q = s.star_quality(v, p);
+            if (q > best_q + 1e-9) best_q = q, best[0] = p[0], best[1] = p[1];
+          }
+        if (best_q > before + 1e-9) {
+          m.xy[2 * size_t(v)] = best[0];
+          m.xy[2 * size_t(v) + 1] = best[1];
+          vm.at[v] = metric_at(vm.field, best[0], best[1]);
+          ++st.cleanup_moves;
+          done = true;
+        }
+      }
+      if (done) {
+        ++changed;
+        continue;
+      }
+      // 2. Collapse its shortest edge (a free end onto the other) when the worst triangle
+      // around gets better.
+      int shortest = 0;
+      double len = 1e300;
+      for (int k = 0; k < 3; ++k) {
+        const double l = vm.length(m, m.edge_a(t, k), m.edge_b(t, k));
+        if (l < len) len = l, shortest = k;
+      }
+      const uint32_t ea = m.edge_a(t, shortest), eb = m.edge_b(t, shortest);
+      for (const auto& [v, w] : {std::pair{ea, eb}, std::pair{eb, ea}}) {
+        if (fixed[v] || !kernel.can_collapse(v, w)) continue;
+        std::vector<uint32_t> fan;
+        m.star(v, fan);
+        double before = 1e300, after = 1e300;
+        bool too_long = false;
+        for (uint32_t f : fan) {
+          uint32_t x[3] = {m.v(f, 0), m.v(f, 1), m.v(f, 2)};
+          before = std::min(before, vm.quality(m, x[0], x[1], x[2]));
+          if (m.index_of(f, w) >= 0) continue;
+          const int i = m.index_of(f, v);
+          x[i] = w;
+          after = std::min(after, vm.quality(m, x[0], x[1], x[2]));
+          for (int k = 1; k < 3; ++k) too_long |= vm.length(m, w, x[(i + k) % 3]) > 1.6;
+        }
+        if (too_long || after <= before + 1e-9) continue;
+        kernel.collapse(v, w);
+        ++st.cleanup_collapses;
+        done = true;
+        break;
+      }
+      if (done) {
+        ++changed;
+        continue;
+      }
+      // 3. Insert its circumcentre (in its metric) when it lies in the mesh and the cavity
+      // does not reach past a constraint to it.
+      if (!o.insert) continue;
+      const uint32_t a = m.v(t, 0), b = m.v(t, 1), c = m.v(t, 2);
+      double cc[2];
+      circumcenter(m.point(a), m.point(b), m.point(c), cc);
+      if (vm.anisotropic) {
+        const Metric2 mt = mean_metric(vm.at[a], vm.at[b], vm.at[c]);
+        const double l00 = std::sqrt(mt.xx), l10 = mt.xy / l00, l11 = std::sqrt(std::max(mt.yy - l10 * l10, 1e-300));
+        const double* o0 = m.point(a);
+        auto map = [&](const double* x, double* r) {
+          const double dx = x[0] - o0[0], dy = x[1] - o0[1];
+          r[0] = l00 * dx + l10 * dy;
+          r[1] = l11 * dy;
+        };
+        double pa[2], pb[2], pc[2], mc[2];
+        map(m.point(a), pa);
+        map(m.point(b), pb);
+        map(m.point(c), pc);
+        circumcenter(pa, pb, pc, mc);
+        const double y = mc[1] / l11, x = (mc[0] - l10 * y) / l00;
+        cc[0] = o0[0] + x, cc[1] = o0[1] + y;
+      }
+      if (!std::isfinite(cc[0]) || !std::isfinite(cc[1])) continue;
+      const Location loc = kernel.locate(cc, t);
+      if (loc.kind != Location::Inside && loc.kind != Location::OnEdge) continue;
+      const Metric2 mc = metric_at(vm.field, cc[0], cc[1]);
+      // Not too close to a vertex of the triangle it falls in.
+      bool close = false;
+      for (int k = 0; k < 3; ++k) close |= edge_length(mc, cc, vm.at[m.v(loc.t, k)], m.point(m.v(loc.t, k))) < 0.5;
+      if (close) continue;
+      const uint32_t nv = kernel.insert(cc, loc, vm.anisotropic ? &mc : nullptr, false);
+      if (nv == kNone) continue;
+      vm.at.push_back(mc);
+      fixed.push_back(0);
+      ++st.cleanup_inserts;
+      ++changed;
+    }
+    st.flips += quality_flips(m, vm);
+    if (changed == 0) break;
+  }
+  st.bad_left = 0;
+  for (uint32_t t = 0; t < m.num_slots(); ++t) {
+    if (!m.alive(t) || !bad(m, vm, t, o)) continue;
+    bool free_point = false;
+    for (int k = 0; k < 3; ++k) free_point |= !fixed[m.v(t, k)];
+    if (free_point) ++st.bad_left;
+  }
+  return Status::success();
+}
+
+}  // namespace anitet::mesh2d
