@@ -100,7 +100,7 @@ Result<TriMesh2> mesh_pslg(const Pslg& p, const Mesh2dOptions& o, Mesh2dStats* s
     if (o.optimize) {
       if (!stage(0.4 + 0.5 * (cycle + 0.5) / cycles, "optimize")) return cancelled;
       OptimizeOptions2 oo = o.optimize_options;
-      oo.cleanup = oo.cleanup && cycle + 1 == cycles;
+      oo.cleanup = oo.cleanup && cycle + 1 == cycles && !anisotropic;
       if (Status s = optimize2(m, fixed, vm, oo, &st.optimize); !s.ok()) return s;
     }
   }

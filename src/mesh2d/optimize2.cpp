@@ -83,6 +83,77 @@ class Smoother {
     return std::isfinite(out[0]) && std::isfinite(out[1]);
   }
 
+  // The length-based target of v (anisotropic fields): the mean over its neighbours x of the
+  // point at unit metric length from x toward v (fan_ must be v's star).
+  bool length_target(uint32_t v, double out[2]) {
+    m_.neighbours(v, ring_);
+    const double* p = m_.point(v);
+    double sx = 0, sy = 0;
+    for (uint32_t x : ring_) {
+      const double* q = m_.point(x);
+      const double l = vm_.length(m_, x, v);
+      if (!(l > 0)) return false;
+      sx += q[0] + (p[0] - q[0]) / l;
+      sy += q[1] + (p[1] - q[1]) / l;
+    }
+    if (ring_.empty()) return false;
+    out[0] = sx / double(ring_.size());
+    out[1] = sy / double(ring_.size());
+    return true;
+  }
+
+  // Sum over v's edges of log(length)^2 with v at p (anisotropic fields).
+  double length_energy(uint32_t v, const double* p) {
+    m_.neighbours(v, ring_);
+    const Metric2 mp = metric_at(vm_.field, p[0], p[1]);
+    double e = 0;
+    for (uint32_t x : ring_) {
+      const double l = std::log(edge_length(mp, p, vm_.at[x], m_.point(x)));
+      e += l * l;
+    }
+    return e;
+  }
+
+  // Pattern search on the length energy: the length target, then steps of 0.3, 0.1 and 0.03
+  // along the metric's axes (in units of its sizes); true when v moved.
+  bool energy_move(uint32_t v, double floor) {
+    const double old[2] = {m_.point(v)[0], m_.point(v)[1]};
+    const double q0 = star_quality(v, old);
+    double best[2] = {old[0], old[1]}, best_e = length_energy(v, old);
+    double cand[2];
+    auto consider = [&](const double* p) {
+      const double q = star_quality(v, p);
+      if (q <= 0 || q < std::min(q0, floor)) return;
+      const double e = length_energy(v, p);
+      if (e < best_e - 1e-12) best_e = e, best[0] = p[0], best[1] = p[1];
+    };
+    if (length_target(v, cand)) consider(cand);
+    const Metric2& mv = vm_.at[v];
+    // The metric's axes scaled to its sizes.
+    const double mean = 0.5 * (mv.xx + mv.yy), half = 0.5 * (mv.xx - mv.yy);
+    const double dev = std::sqrt(half * half + mv.xy * mv.xy);
+    const double th = 0.5 * std::atan2(2 * mv.xy, mv.xx - mv.yy);
+    const double h1 = 1 / std::sqrt(mean + dev), h2 = 1 / std::sqrt(std::max(mean - dev, 1e-300));
+    const double ax[2][2] = {{std::cos(th) * h1, std::sin(th) * h1}, {-std::sin(th) * h2, std::cos(th) * h2}};
+    const int dirs = 4;
+    for (double step : {0.3, 0.1, 0.03})
+      for (int it = 0; it < 3; ++it) {
+        const double from[2] = {best[0], best[1]};
+        for (int d = 0; d < dirs; ++d) {
+          const double ang = 2 * M_PI * d / dirs;
+          const double c = std::cos(ang), sn = std::sin(ang);
+          const double p[2] = {from[0] + step * (c * ax[0][0] + sn * ax[1][0]), from[1] + step * (c * ax[0][1] + sn * ax[1][1])};
+          consider(p);
+        }
+        if (best[0] == from[0] && best[1] == from[1]) break;
+      }
+    if (best[0] == old[0] && best[1] == old[1]) return false;
+    m_.xy[2 * size_t(v)] = best[0];
+    m_.xy[2 * size_t(v) + 1] = best[1];
+    vm_.at[v] = metric_at(vm_.field, best[0], best[1]);
+    return true;
+  }
+
   // Moves v toward target (full, half, quarter step) when its worst triangle stays above
   // min(old worst, floor); true when moved.
   bool try_move(uint32_t v, const double target[2], double floor) {
@@ -107,7 +178,7 @@ class Smoother {
   Triangulation& m_;
   std::vector<uint8_t>& fixed_;
   VertexMetrics& vm_;
-  std::vector<uint32_t> fan_;
+  std::vector<uint32_t> fan_, ring_;
 };
 
 bool bad(const Triangulation& m, const VertexMetrics& vm, uint32_t t, const OptimizeOptions2& o) {
@@ -116,6 +187,14 @@ bool bad(const Triangulation& m, const VertexMetrics& vm, uint32_t t, const Opti
 }
 
 }  // namespace
+
+size_t length_smoothing(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& vm, double floor) {
+  Smoother s(m, fixed, vm);
+  size_t moves = 0;
+  for (uint32_t v = 0; v < m.num_vertices(); ++v)
+    if (s.movable(v) && s.energy_move(v, floor)) ++moves;
+  return moves;
+}
 
 size_t quality_flips(Triangulation& m, const VertexMetrics& vm, int rounds) {
   Kernel kernel(m);
@@ -132,7 +211,8 @@ size_t quality_flips(Triangulation& m, const VertexMetrics& vm, int rounds) {
         if (orient2d(m.point(x), m.point(a), m.point(y)) <= 0 || orient2d(m.point(y), m.point(b), m.point(x)) <= 0) continue;
         const double before = std::min(vm.quality(m, x, a, b), vm.quality(m, y, b, a));
         const double after = std::min(vm.quality(m, x, a, y), vm.quality(m, y, b, x));
-        if (after > before + 1e-9 && kernel.flip(t, k)) {
+        const bool better = after > before + 1e-9;
+        if (better && kernel.flip(t, k)) {
           ++flips;
           break;  // t changed: its other edges next sweep
         }
@@ -155,6 +235,10 @@ Status optimize2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& v
   for (int sweep = 0; sweep < o.sweeps; ++sweep) {
     for (uint32_t v = 0; v < m.num_vertices(); ++v) {
       if (!s.movable(v)) continue;
+      if (vm.anisotropic) {
+        if (s.energy_move(v, o.anisotropic_floor)) ++st.moves;
+        continue;
+      }
       double target[2];
       if (s.odt_target(v, target) && s.try_move(v, target, 0.5)) ++st.moves;
     }

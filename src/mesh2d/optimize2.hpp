@@ -1,7 +1,8 @@
 // Stage 3c in 2D: CVT smoothing (the optimal-Delaunay-triangulation form of the 3D optimizer:
-// each free point moves to the mean of its triangles' circumcentres, in its metric, weighted by
-// area times the metric's density det(M), when the worst triangle around it stays above a
-// floor), quality flips (an edge flips when the worse of its two triangles gets better, quality
+// each free point moves to the mean of its triangles' circumcentres, weighted by area times the
+// metric's density det(M), when the worst triangle around it stays above a floor; in an
+// anisotropic field, where the metric's directions turn and sizes change within an element,
+// points move instead to lower the sum of log(metric length)^2 over their edges), quality flips (an edge flips when the worse of its two triangles gets better, quality
 // measured in the metric), then a clean-up of the triangles still below a target angle: their
 // points moved to the best of a few candidates, their shortest edge collapsed, or their
 // circumcentre inserted.
@@ -24,6 +25,9 @@ struct OptimizeOptions2 {
   double target_quality = 0.6;  // clean-up: anisotropic triangles below this metric quality
   int cleanup_rounds = 8;
   bool insert = true;           // the clean-up may insert circumcentres
+  // Anisotropic fields: smoothing lowers the edges' log(length)^2 (a pattern search), keeping
+  // triangles above min(their worst quality, this floor); no clean-up (it works on angles).
+  double anisotropic_floor = 0.0;
 };
 
 struct OptimizeStats2 {
@@ -33,6 +37,11 @@ struct OptimizeStats2 {
 
 Status optimize2(Triangulation& mesh, std::vector<uint8_t>& fixed, VertexMetrics& metrics,
                  const OptimizeOptions2& options, OptimizeStats2* stats = nullptr);
+
+// One sweep of metric-length smoothing (anisotropic fields): each free point moves by a pattern
+// search to lower the sum over its edges of log(length)^2, its triangles staying valid and above
+// min(their worst quality, floor). Returns the points moved.
+size_t length_smoothing(Triangulation& mesh, std::vector<uint8_t>& fixed, VertexMetrics& metrics, double floor);
 
 // Flips edges until no flip raises the worse quality of the two triangles (at most `rounds`
 // sweeps); returns the flips made.

@@ -1,5 +1,7 @@
 #include "mesh2d/refine2.hpp"
 
+#include "mesh2d/optimize2.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -27,6 +29,18 @@ void for_each_edge(const Triangulation& m, F&& f) {
   }
 }
 
+bool too_close(const Triangulation& m, const VertexMetrics& vm, const double* p, const Metric2& mp, uint32_t t,
+               double spacing) {
+  if (spacing <= 0) return false;
+  auto near = [&](uint32_t x) { return edge_length(mp, p, vm.at[x], m.point(x)) < spacing; };
+  for (int k = 0; k < 3; ++k) {
+    if (near(m.v(t, k))) return true;
+    const uint32_t n = m.across(t, k);
+    if (n != kNone && near(m.v(n, m.mirror(t, k)))) return true;
+  }
+  return false;
+}
+
 size_t split_pass(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& vm, const RefineOptions2& o,
                   std::vector<uint32_t>& touched, uint32_t stamp, RefineStats2& st) {
   std::vector<EdgeRef> edges;
@@ -43,7 +57,14 @@ size_t split_pass(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& 
     if (!m.alive(e.t) || m.edge_a(e.t, e.k) != e.a || m.edge_b(e.t, e.k) != e.b) continue;
     const uint32_t n = m.across(e.t, e.k);
     if (touched[e.t] == stamp || (n != kNone && touched[n] == stamp)) continue;
-    const double mid[2] = {0.5 * (m.point(e.a)[0] + m.point(e.b)[0]), 0.5 * (m.point(e.a)[1] + m.point(e.b)[1])};
+    // The metric midpoint: half the metric length on each side, the size varying geometrically
+    // from a to b (h(t) = h_a r^t, r = h_b / h_a: the length to t is proportional to 1 - r^-t).
+    const double* pa = m.point(e.a);
+    const double* pb = m.point(e.b);
+    const double la = norm(vm.at[e.a], pb[0] - pa[0], pb[1] - pa[1]), lb = norm(vm.at[e.b], pb[0] - pa[0], pb[1] - pa[1]);
+    const double r = la / lb;
+    const double f = std::fabs(r - 1.0) < 1e-6 ? 0.5 : std::clamp(-std::log(0.5 * (1.0 + 1.0 / r)) / std::log(r), 0.1, 0.9);
+    const double mid[2] = {pa[0] + f * (pb[0] - pa[0]), pa[1] + f * (pb[1] - pa[1])};
     const bool segment = m.constrained(e.t, e.k);
     Location loc;
     if (segment) {
@@ -53,6 +74,9 @@ size_t split_pass(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& 
       if (loc.kind != Location::Inside && loc.kind != Location::OnEdge) continue;
     }
     const Metric2 mm = metric_at(vm.field, mid[0], mid[1]);
+    // Not too close to the points around (a point of the triangle it falls in or of their
+    // neighbours): such a split would only make short edges to collapse again.
+    if (too_close(m, vm, mid, mm, loc.t, vm.anisotropic ? o.min_spacing_anisotropic : o.min_spacing)) continue;
     const uint32_t v = kernel.insert(mid, loc, vm.anisotropic ? &mm : nullptr, segment);
     if (v == kNone) continue;
     vm.at.push_back(mm);
@@ -101,7 +125,7 @@ size_t collapse_pass(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetric
         for (int k = 1; k < 3; ++k)
           if (vm.length(m, w, x[(i + k) % 3]) > o.split_length) ok = false;
       }
-      if (!ok || after < std::min(before, 0.3)) continue;
+      if (!ok || after < std::min(before, o.collapse_quality)) continue;
       m.neighbours(v, ring);
       kernel.collapse(v, w);
       vtouched[w] = stamp;
@@ -127,8 +151,15 @@ Status refine2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& vm,
   for (int pass = 0; pass < o.max_passes; ++pass) {
     ++stamp;
     const size_t splits = split_pass(m, fixed, vm, o, touched, stamp, st);
+    // In an anisotropic field the new points first settle (a point splitting a chord near a
+    // curved layer lands next to the layer inside it), then short edges are collapsed.
+    if (vm.anisotropic && splits)
+      for (int i = 0; i < o.anisotropic_smoothing; ++i) length_smoothing(m, fixed, vm, 0.0);
     vtouched.resize(m.num_vertices(), 0);
     const size_t collapses = collapse_pass(m, fixed, vm, o, vtouched, stamp, st);
+    // Flips between passes: a long edge of a flat triangle is often better flipped than split.
+    const size_t flips = o.flips ? quality_flips(m, vm, 4) : 0;
+    st.flips += flips;
     ++st.passes;
     if (splits == 0 && collapses == 0) break;
   }

@@ -1,5 +1,6 @@
-// Stage 3b in 2D: edges longer than sqrt(2) in the metric are split at their midpoints (inserted
-// through the kernel, in the metric when it is anisotropic: the metric Delaunay kernel), edges
+// Stage 3b in 2D: edges longer than sqrt(2) in the metric are split at their metric midpoints
+// (inserted through the kernel, in the metric when it is anisotropic: the metric Delaunay
+// kernel; not next to another point), quality flips after each pass, edges
 // shorter than 1/sqrt(2) collapsed (a free end onto the other, when the mesh stays valid, no new
 // edge gets longer than sqrt(2) and the worst triangle around does not get worse), longest
 // and shortest first, in passes until nothing changes. Input segments are never split (their
@@ -21,10 +22,15 @@ struct RefineOptions2 {
   int max_passes = 60;
   double split_length = 1.4142135623730951;
   double collapse_length = 0.7071067811865476;
+  // No split point closer than this to the points around it (metric lengths).
+  double min_spacing = 0.6, min_spacing_anisotropic = 0.45;
+  int anisotropic_smoothing = 2;  // length-smoothing sweeps after each split pass (anisotropic)
+  double collapse_quality = 0.3;  // a collapse may lower the worst quality around to this
+  bool flips = true;              // quality flips after each pass
 };
 
 struct RefineStats2 {
-  size_t splits = 0, segment_splits = 0, collapses = 0;
+  size_t splits = 0, segment_splits = 0, collapses = 0, flips = 0;
   int passes = 0;
 };
 
