@@ -57,9 +57,21 @@ TriMesh2 extract(const Triangulation& m, const Pslg& p, const Domain& d, const V
 
 }  // namespace
 
+namespace {
+Result<TriMesh2> run(const Pslg& p, const Mesh2dOptions& o, Mesh2dStats& st);
+}  // namespace
+
 Result<TriMesh2> mesh_pslg(const Pslg& p, const Mesh2dOptions& o, Mesh2dStats* stats) {
   Mesh2dStats local;
   Mesh2dStats& st = stats ? *stats : local;
+  Result<TriMesh2> out = run(p, o, st);
+  if (!out.ok() && !st.stage_seconds.empty()) st.failed_stage = st.stage_seconds.back().first;
+  return out;
+}
+
+namespace {
+
+Result<TriMesh2> run(const Pslg& p, const Mesh2dOptions& o, Mesh2dStats& st) {
   const Clock::time_point start = Clock::now();
   Clock::time_point last = start;
   auto stage = [&](double fraction, const char* name) {
@@ -111,5 +123,7 @@ Result<TriMesh2> mesh_pslg(const Pslg& p, const Mesh2dOptions& o, Mesh2dStats* s
   st.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return out;
 }
+
+}  // namespace
 
 }  // namespace anitet::mesh2d

@@ -52,6 +52,8 @@ struct Mesh2dStats {
   double in_range = 0;   // share of edges of metric length in [1/sqrt2, sqrt2]
   double seconds = 0;
   std::vector<std::pair<std::string, double>> stage_seconds;
+  // The stage an error came from ("validate": the input is invalid; "sizing": the options).
+  std::string failed_stage;
 };
 
 // Meshes the PSLG (already in a planar frame). Errors: the input's (naming elements, see
