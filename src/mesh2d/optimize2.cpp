@@ -181,6 +181,25 @@ class Smoother {
   std::vector<uint32_t> fan_, ring_;
 };
 
+// A walk from t toward p that stops at constrained edges: the triangle holding p (k = -1), or
+// the triangle and edge where a constraint blocks the way.
+std::pair<uint32_t, int> walk_to(const Triangulation& m, uint32_t t, const double* p) {
+  for (size_t steps = 0; steps < m.num_slots(); ++steps) {
+    int exit = -1;
+    for (int k = 0; k < 3 && exit < 0; ++k)
+      if (orient2d(m.point(m.edge_a(t, k)), m.point(m.edge_b(t, k)), p) < 0) exit = k;
+    if (exit < 0) return {t, -1};
+    if (m.constrained(t, exit) || m.across(t, exit) == kNone) return {t, exit};
+    t = m.across(t, exit);
+  }
+  return {kNone, -1};
+}
+
+// Whether p lies inside the circle on the edge (a, b) as diameter.
+bool encroaches(const double* a, const double* b, const double* p) {
+  return (a[0] - p[0]) * (b[0] - p[0]) + (a[1] - p[1]) * (b[1] - p[1]) < 0;
+}
+
 bool bad(const Triangulation& m, const VertexMetrics& vm, uint32_t t, const OptimizeOptions2& o) {
   if (vm.anisotropic) return vm.quality(m, m.v(t, 0), m.v(t, 1), m.v(t, 2)) < o.target_quality;
   return min_angle(m.point(m.v(t, 0)), m.point(m.v(t, 1)), m.point(m.v(t, 2))) < o.target_angle_deg * M_PI / 180.0;
@@ -340,8 +359,45 @@ Status optimize2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& v
         cc[0] = o0[0] + x, cc[1] = o0[1] + y;
       }
       if (!std::isfinite(cc[0]) || !std::isfinite(cc[1])) continue;
-      const Location loc = kernel.locate(cc, t);
-      if (loc.kind != Location::Inside && loc.kind != Location::OnEdge) continue;
+      Location loc;
+      if (o.split_segments) {
+        // Ruppert's rule: a circumcentre beyond a segment, or inside the diametral circle of a
+        // segment piece next to where it falls, splits that piece instead.
+        const auto [ct, ck] = walk_to(m, t, cc);
+        if (ct == kNone) continue;
+        uint32_t st_t = kNone;
+        int st_k = -1;
+        if (ck >= 0) {
+          if (m.constrained(ct, ck)) st_t = ct, st_k = ck;
+        } else {
+          for (int k = 0; k < 3 && st_t == kNone; ++k) {
+            const uint32_t cand[2] = {ct, m.across(ct, k)};
+            for (uint32_t x : cand) {
+              if (x == kNone) continue;
+              for (int j = 0; j < 3 && st_t == kNone; ++j)
+                if (m.constrained(x, j) && encroaches(m.point(m.edge_a(x, j)), m.point(m.edge_b(x, j)), cc)) st_t = x, st_k = j;
+            }
+          }
+        }
+        if (st_t != kNone) {
+          const double* a0 = m.point(m.edge_a(st_t, st_k));
+          const double* b0 = m.point(m.edge_b(st_t, st_k));
+          const double mid[2] = {0.5 * (a0[0] + b0[0]), 0.5 * (a0[1] + b0[1])};
+          Location on;
+          on.t = st_t, on.kind = Location::OnEdge, on.k = st_k;
+          const Metric2 mm = metric_at(vm.field, mid[0], mid[1]);
+          if (kernel.insert(mid, on, vm.anisotropic ? &mm : nullptr, true) == kNone) continue;
+          vm.at.push_back(mm);
+          fixed.push_back(0);
+          ++st.cleanup_inserts;
+          ++changed;
+          continue;
+        }
+        if (ck >= 0) continue;  // left the mesh
+        loc = kernel.locate(cc, ct);
+      } else {
+        loc = kernel.locate(cc, t);
+      }
       const Metric2 mc = metric_at(vm.field, cc[0], cc[1]);
       // Not too close to a vertex of the triangle it falls in.
       bool close = false;

@@ -25,6 +25,7 @@ struct OptimizeOptions2 {
   double target_quality = 0.6;  // clean-up: anisotropic triangles below this metric quality
   int cleanup_rounds = 8;
   bool insert = true;           // the clean-up may insert circumcentres
+  bool split_segments = false;  // and split segment pieces they encroach (Ruppert's rule)
   // Anisotropic fields: smoothing lowers the edges' log(length)^2 (a pattern search), keeping
   // triangles above min(their worst quality, this floor); no clean-up (it works on angles).
   double anisotropic_floor = 0.0;

@@ -91,9 +91,9 @@ Status check_segment_ends(const Pslg& p) {
       const uint32_t v = p.seg[2 * s + size_t(e)];
       if (degree[v] % 2 == 0) continue;
       return Status(Error::OpenBoundary,
-                    prefix(p) + "open loop: " + describe_point(p, v) + " ends " + std::to_string(degree[v]) +
-                        (degree[v] == 1 ? " segment (" + describe_segment(p, s) + ") that no other segment continues"
-                                        : " segments (" + describe_segment(p, s) + " among them): an odd number"));
+                    prefix(p) + "open loop: " + describe_segment(p, s) + " ends at " + describe_point(p, v) +
+                        (degree[v] == 1 ? ", which no other segment continues"
+                                        : ", where " + std::to_string(degree[v]) + " segments end (an odd number)"));
     }
   return Status::success();
 }

@@ -21,6 +21,7 @@ the two ends, as /work/shared/tools/ugawg.py's edge_lengths).
 Options:
   --split              points on segments are allowed (the mesher's --split-segments)
   --min-angle A        require the min angle over triangles with no input point >= A degrees
+  --min-angle-all A    require the min angle over all triangles >= A degrees
   --mean-rr R          require the mean radius ratio >= R
   --metric polar:R0    the anisotropic test metric about (0.5, 0.5): h_r = 0.001 + 2 (0.1 - 0.001)
                        |r - R0| radially, 0.1 tangentially
@@ -185,7 +186,7 @@ def main(argv):
     while i < len(args):
         a = args[i]
         if a in ('--split', '--json'): opts[a[2:]] = True; i += 1
-        elif a in ('--min-angle', '--mean-rr', '--in-range', '--geodesic'): opts[a[2:]] = float(args[i + 1]); i += 2
+        elif a in ('--min-angle', '--min-angle-all', '--mean-rr', '--in-range', '--geodesic'): opts[a[2:]] = float(args[i + 1]); i += 2
         elif a == '--metric': opts['metric'] = args[i + 1]; i += 2
         else: pos.append(a); i += 1
     if len(pos) != 2:
@@ -281,8 +282,14 @@ def main(argv):
         # subtracted when outside (a hole's or an island's border), not counted when on both
         # sides (an interface between regions).
         dom_area = 0.0
+        seg_index = {(int(min(x, y)), int(max(x, y))): k for k, (x, y) in enumerate(S)}
         for l in loops:
-            u, w = qid[l[0]], qid[l[1]]
+            # The loop's first mesh edge: from its first point to the next point on its first
+            # segment (that segment's far end, or the nearest point added on it).
+            k = seg_index[(min(l[0], l[1]), max(l[0], l[1]))]
+            inner = sorted(on_seg.get(k, []))
+            if inner and S[k][0] != l[0]: inner = [(1 - t, v) for t, v in inner][::-1]
+            u, w = qid[l[0]], (inner[0][1] if inner else qid[l[1]])
             left, right = (u, w) in directed, (w, u) in directed
             ar = ring_area(Q, l)
             if left != right: dom_area += abs(ar) * (1 if left == (ar > 0) else -1)
@@ -312,6 +319,8 @@ def main(argv):
                mean_radius_ratio=round(float(rr.mean()), 4), min_radius_ratio=round(float(rr.min()), 4))
     if 'min-angle' in opts and fig['min_angle_no_input_point'] < opts['min-angle']:
         fails.append('quality: min angle %.3f < %g over the triangles with no input point' % (fig['min_angle_no_input_point'], opts['min-angle']))
+    if 'min-angle-all' in opts and fig['min_angle'] < opts['min-angle-all']:
+        fails.append('quality: min angle %.3f < %g' % (fig['min_angle'], opts['min-angle-all']))
     if 'mean-rr' in opts and fig['mean_radius_ratio'] < opts['mean-rr']:
         fails.append('quality: mean radius ratio %.4f < %g' % (fig['mean_radius_ratio'], opts['mean-rr']))
     # --- edge lengths
