@@ -18,6 +18,7 @@
 #include "exit_codes.hpp"
 #include "geo/geodetic.hpp"
 #include "io/file_bytes.hpp"
+#include "mesh2d/geodetic2.hpp"
 #include "mesh2d/mesh2d_io.hpp"
 #include "mesh2d/mesher2.hpp"
 #include "mesh2d/pslg_io.hpp"
@@ -82,37 +83,6 @@ int exit_code_of(const Status& s, const std::string& stage) {
 int fail(const Status& s, int code) {
   std::cerr << kCmd << ": " << s.message() << "\n";
   return code;
-}
-
-// (lon, lat) pairs <-> local (x, y) in the frame, through geo/ (heights 0).
-Status convert(const geo::GeoFrame& frame, std::vector<double>& xy, bool to_local) {
-  std::vector<double> xyz(xy.size() / 2 * 3, 0.0);
-  for (size_t i = 0; i < xy.size() / 2; ++i) xyz[3 * i] = xy[2 * i], xyz[3 * i + 1] = xy[2 * i + 1];
-  Status s = to_local ? geo::to_local(frame, xyz) : geo::to_geodetic(frame, xyz);
-  if (!s.ok()) return s;
-  for (size_t i = 0; i < xy.size() / 2; ++i) xy[2 * i] = xyz[3 * i], xy[2 * i + 1] = xyz[3 * i + 1];
-  return Status::success();
-}
-
-// The PSLG's coordinates (points, holes, regions) to the local frame.
-Result<geo::GeoFrame> to_local_frame(const Mesh2dCommand::Args& a, mesh2d::Pslg& p) {
-  const geo::FrameKind kind = a.geo_frame == "utm" ? geo::FrameKind::Utm : geo::FrameKind::Enu;
-  Result<geo::GeoFrame> frame = Status(Error::Internal, "");
-  if (a.origin.size() == 2) {
-    frame = geo::make_frame(kind, a.origin[0], a.origin[1]);
-  } else {
-    std::vector<double> xyz(p.num_points() * 3, 0.0);
-    for (size_t i = 0; i < p.num_points(); ++i) xyz[3 * i] = p.xy[2 * i], xyz[3 * i + 1] = p.xy[2 * i + 1];
-    frame = geo::centred_frame(kind, xyz);
-  }
-  if (!frame.ok()) return frame.status();
-  if (Status s = convert(frame.value(), p.xy, true); !s.ok()) return s;
-  if (Status s = convert(frame.value(), p.holes, true); !s.ok()) return s;
-  std::vector<double> r;
-  for (const mesh2d::Region& g : p.regions) r.insert(r.end(), {g.x, g.y});
-  if (Status s = convert(frame.value(), r, true); !s.ok()) return s;
-  for (size_t i = 0; i < p.regions.size(); ++i) p.regions[i].x = r[2 * i], p.regions[i].y = r[2 * i + 1];
-  return frame;
 }
 
 // The user's metric: a Dimension 2 .sol on its --background, or a .vdb (read at z = 0).
@@ -189,7 +159,7 @@ int run(Mesh2dCommand::Args& a) {
   const std::vector<double> input_xy = pslg.xy;
   std::optional<geo::GeoFrame> frame;
   if (geodetic) {
-    Result<geo::GeoFrame> f = to_local_frame(a, pslg);
+    Result<geo::GeoFrame> f = mesh2d::pslg_to_local(pslg, a.geo_frame == "utm" ? geo::FrameKind::Utm : geo::FrameKind::Enu, a.origin);
     if (!f.ok()) return fail(Status(f.status().code(), a.input + ": " + f.status().message()), kExitInvalidInput);
     frame = f.value();
     if (!a.quiet && !a.json)
@@ -233,7 +203,7 @@ int run(Mesh2dCommand::Args& a) {
     so.bathymetry = &*raster;
     so.wave_period = a.wave_period, so.points_per_wavelength = a.points_per_wavelength, so.min_depth = a.min_depth;
     so.elevation = a.elevation;
-    if (frame) so.to_raster_frame = [&](std::vector<double>& xy) { return convert(*frame, xy, false); };
+    if (frame) so.to_raster_frame = [&](std::vector<double>& xy) { return mesh2d::convert_pairs(*frame, xy, false); };
   }
   ProgressBar bar(!a.quiet && !a.json && isatty(STDERR_FILENO));
   o.progress = [&](double fraction, const char* stage) { return bar.update(stage, fraction); };
@@ -254,17 +224,14 @@ int run(Mesh2dCommand::Args& a) {
   if (raster) {
     std::vector<double> at = mesh.xy;
     if (frame)
-      if (Status s = convert(*frame, at, false); !s.ok()) return fail(s, kExitInternal);
+      if (Status s = mesh2d::convert_pairs(*frame, at, false); !s.ok()) return fail(s, kExitInternal);
     for (size_t v = 0; v < mesh.num_vertices(); ++v) {
       const double value = raster->value(at[2 * v], at[2 * v + 1]);
       fort.depth.push_back(std::isfinite(value) ? (a.elevation ? -value : value) : 0.0);
     }
   }
-  if (a.geodetic_output) {
-    if (Status s = convert(*frame, mesh.xy, false); !s.ok()) return fail(s, kExitInternal);
-    // The input's points exactly as given (the round trip alone is not exact).
-    std::copy(input_xy.begin(), input_xy.end(), mesh.xy.begin());
-  }
+  if (a.geodetic_output)
+    if (Status s = mesh2d::mesh_to_geodetic(*frame, mesh, input_xy); !s.ok()) return fail(s, kExitInternal);
   for (const std::string& path : outputs)
     if (Status s = mesh2d::write_mesh2d(path, mesh, fort); !s.ok()) return fail(s, kExitReadError);
 
