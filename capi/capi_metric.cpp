@@ -11,6 +11,7 @@
 #include "handles.hpp"
 #include "io/volume_io.hpp"
 #include "metric/bounded_sizing.hpp"
+#include "mesh2d/sizing2.hpp"
 #include "metric/metric_field.hpp"
 #include "metric/sol_field.hpp"
 #include "shim.hpp"
@@ -43,6 +44,16 @@ int sol_metric_on(const char* fn, const std::string& path, const anitet::VolumeM
                   const std::string& background_name, anitet_metric** out) {
   anitet::Result<anitet::metric::SolField> sol = anitet::metric::read_sol(path);
   if (!sol.ok()) return set_status(fn, sol.status());
+  if (sol->dimension == 2) {  // a 2D field on a 2D .mesh, for anitet_mesh2d_run
+    if (background != nullptr) {
+      return set_error(ANITET_ERR_INVALID_ARGUMENT, std::string(fn) + ": " + path +
+                                                         " is two-dimensional (Dimension 2): it goes on a 2D .mesh file, not on a volume mesh");
+    }
+    anitet::Result<std::unique_ptr<anitet::SizingField>> f2 = anitet::mesh2d::read_background_field(path, background_name);
+    if (!f2.ok()) return set_status(fn, f2.status());
+    *out = new_field_metric(std::shared_ptr<const anitet::SizingField>(std::move(f2.value())));
+    return ok();
+  }
   anitet::Result<anitet::VolumeMesh> read = anitet::VolumeMesh();
   if (background == nullptr) {
     read = anitet::read_volume_mesh(background_name);

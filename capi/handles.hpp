@@ -13,6 +13,9 @@
 #include "io/patch_names.hpp"
 #include "partition/partition.hpp"
 #include "pipeline/mesher.hpp"
+#include "mesh2d/mesher2.hpp"
+#include "mesh2d/pslg.hpp"
+#include "mesh2d/quality2.hpp"
 #include "validate/validate.hpp"
 
 struct anitet_surface {
@@ -51,4 +54,13 @@ struct anitet_partition {
   anitet::partition::PartitionQuality quality;
   int32_t ghost_layers = 0;
   std::vector<anitet_part> parts;
+};
+
+struct anitet_pslg {
+  anitet::mesh2d::Pslg pslg;
+};
+
+struct anitet_mesh2d {
+  anitet::mesh2d::TriMesh2 mesh;
+  anitet::mesh2d::Quality2 quality;  // measured in the planar frame (before a geodetic mesh goes back to lon/lat)
 };

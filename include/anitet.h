@@ -275,7 +275,9 @@ ANITET_API int anitet_metric_create_analytic(anitet_metric_fn callback, void* us
  *    the tetrahedral mesh at background_mesh_path (.mesh .meshb .msh .node/.ele .vtu, as
  *    anitet_mesh_read), one value set per vertex of it, in its vertex order. Inside a tet sizes
  *    are interpolated linearly (barycentric), tensors in log space; points outside the mesh take
- *    the value at the closest point of its boundary.
+ *    the value at the closest point of its boundary. A Dimension 2 .sol (sizes, or xx xy yy
+ *    tensors) on a 2D Medit .mesh background (triangles) gives a 2D field, for
+ *    anitet_mesh2d_run.
  *
  * Units: sizes are edge lengths in the coordinates' unit; a tensor M measures a vector e as
  * sqrt(e^T M e), so M = I/h^2 for the size h (unit: 1/length^2). The file is read and closed by
@@ -851,6 +853,116 @@ ANITET_API int anitet_part_deserialize(const void* bytes, int64_t size, anitet_p
  * "") and returns `code` unchanged, so that a layered library reports its errors where the
  * caller of anitet looks for them: `return anitet_set_last_error(ANITET_ERR_..., "...");`. */
 ANITET_API int anitet_set_last_error(int32_t code, const char* message);
+
+/* ---------------------------------------------------------------------------------------------
+ * 2D meshes: planar straight-line graphs (PSLGs) and coastlines, meshed by the paper's stages in
+ * 2D (a front layer on the segments, conforming Delaunay recovery of the new front, coupling,
+ * metric refinement, CVT and flips). docs/mesh2d.md has the method and the formats.
+ * ------------------------------------------------------------------------------------------- */
+typedef struct anitet_pslg anitet_pslg;     /**< a planar straight-line graph (the 2D input) */
+typedef struct anitet_mesh2d anitet_mesh2d; /**< a triangle mesh of the 2D mesher */
+
+/** A PSLG from caller arrays, copied: xy (2*num_points), segments (2*num_segments point indices
+ * counted from index_base), labels (num_segments, or NULL for all 0), holes (2*num_holes points
+ * whose face is not meshed, or NULL when num_holes is 0). The unbounded face and the faces
+ * holding a hole point are outside; every other face of the segments is meshed. Points on no
+ * segment become mesh vertices. The checks (crossing segments, open loops, holes outside) run
+ * in anitet_mesh2d_run. Errors: INVALID_ARGUMENT, EMPTY_INPUT (fewer than 3 segments),
+ * BAD_INDEX. */
+ANITET_API int anitet_pslg_create(const double* xy, int64_t num_points, const int32_t* segments,
+                                  int64_t num_segments, const int32_t* labels, const double* holes,
+                                  int64_t num_holes, int32_t index_base, anitet_pslg** out);
+/** A PSLG from a file, by extension: Triangle .poly (with its .node when it lists 0 points; holes
+ * and regional attributes read), 2D Medit .mesh (its Edges, with their references as labels), or
+ * GeoJSON .geojson/.json (Polygon and MultiPolygon geometries in longitude, latitude; set
+ * anitet_mesh2d_options.geodetic to mesh them in metres). Errors: INVALID_ARGUMENT, FILE_NOT_FOUND,
+ * PARSE, UNSUPPORTED_FORMAT, EMPTY_INPUT, BAD_INDEX (messages name the file, line and element). */
+ANITET_API int anitet_pslg_read(const char* path, anitet_pslg** out);
+/** Frees a PSLG; NULL is accepted. */
+ANITET_API void anitet_pslg_destroy(anitet_pslg* pslg);
+/** Numbers of points, segments and hole points; any output pointer may be NULL. */
+ANITET_API int anitet_pslg_get_counts(const anitet_pslg* pslg, int64_t* num_points,
+                                      int64_t* num_segments, int64_t* num_holes);
+
+/** The newest version of anitet_mesh2d_options this header declares. */
+#define ANITET_MESH2D_OPTIONS_VERSION 1
+
+/** Options of the 2D mesher, a versioned struct: set it with ANITET_MESH2D_OPTIONS_INIT or
+ * anitet_mesh2d_options_init(), then change fields. */
+typedef struct anitet_mesh2d_options {
+  int32_t version;            /**< ANITET_MESH2D_OPTIONS_VERSION */
+  int32_t split_segments;     /**< 0 (default): every segment stays whole, no point on it; 1:
+                                 points may be added on segments (better triangles at small
+                                 input angles) */
+  int32_t layers;             /**< front layers of stage 1, 1..20 (default 1) */
+  int32_t refine;             /**< 1: refine to the sizes (default), 0: skip */
+  int32_t optimize;           /**< 1: CVT, flips and clean-up (default), 0: skip */
+  int32_t geodetic;           /**< 1: the PSLG's x, y are longitude, latitude (degrees, WGS84):
+                                 meshed in a local frame in metres (sizes in metres), the mesh
+                                 returned in longitude, latitude with the input's points exactly
+                                 as given; 0 (default): planar */
+  int32_t geo_frame;          /**< ANITET_GEO_ENU (default) or ANITET_GEO_UTM (geodetic only), at the input's centre */
+  int32_t reserved0;          /**< keep 0 */
+  double hsize;               /**< a constant target edge length; 0 (default): from the input's
+                                 segment lengths, smoothed inside (or the metric's) */
+  double size_scale;          /**< every target length times this (> 0; default 1) */
+  double hmin;                /**< smallest target length (0: none) */
+  double hmax;                /**< largest target length (0: none) */
+  double hgrad;               /**< gradation > 1 (0: none) */
+  anitet_progress_fn progress; /**< may be NULL; stages "validate", "sizing", "front", "refine",
+                                  "optimize", "done" */
+  void* progress_user_data;   /**< passed to progress untouched */
+  /* Version 2 and later append fields here. */
+} anitet_mesh2d_options;
+
+/** Initializer of an anitet_mesh2d_options of version ANITET_MESH2D_OPTIONS_VERSION. */
+#define ANITET_MESH2D_OPTIONS_INIT \
+  { ANITET_MESH2D_OPTIONS_VERSION, 0, 1, 1, 1, 0, ANITET_GEO_ENU, 0, 0.0, 1.0, 0.0, 0.0, 0.0, 0, 0 }
+
+/** Fills *options with the defaults of `version` (1 .. ANITET_MESH2D_OPTIONS_VERSION).
+ * Errors: INVALID_ARGUMENT (NULL options, unknown version). */
+ANITET_API int anitet_mesh2d_options_init(anitet_mesh2d_options* options, int32_t version);
+
+/** Meshes the PSLG into a new triangle mesh *out (*out is NULL after any error). metric: NULL
+ * for the options' sizes, or a metric evaluated at z = 0 (a 2D tensor is its xx xy yy block;
+ * an analytic callback gets z = 0), intersected with hsize when both are given; geodetic
+ * inputs take the metric in the local frame's metres. The mesh: the PSLG's points first and in
+ * order, counter-clockwise triangles, a region attribute per triangle (a .poly's regional
+ * attribute, a GeoJSON polygon's number), and the pieces of the segments as edges with their
+ * labels. Errors: the input's (SELF_INTERSECTION: crossing segments; OPEN_BOUNDARY: an open
+ * loop; DUPLICATE_POINT; INVALID_ARGUMENT: a hole or region outside the domain, bad options;
+ * each message names the elements), CANCELLED, RECOVERY_FAILED, INTERNAL, OUT_OF_MEMORY. */
+ANITET_API int anitet_mesh2d_run(const anitet_pslg* pslg, const anitet_metric* metric,
+                                 const anitet_mesh2d_options* options, anitet_mesh2d** out);
+/** Frees a triangle mesh; NULL is accepted. */
+ANITET_API void anitet_mesh2d_destroy(anitet_mesh2d* mesh);
+/** Numbers of points, triangles and edges (the segments' pieces); any pointer may be NULL. */
+ANITET_API int anitet_mesh2d_get_counts(const anitet_mesh2d* mesh, int64_t* num_points,
+                                        int64_t* num_triangles, int64_t* num_edges);
+/** Fills xy (xy_len >= 2*num_points). */
+ANITET_API int anitet_mesh2d_get_points(const anitet_mesh2d* mesh, double* xy, int64_t xy_len);
+/** Fills tri (tri_len >= 3*num_triangles) with indices counted from index_base. */
+ANITET_API int anitet_mesh2d_get_triangles(const anitet_mesh2d* mesh, int32_t* tri,
+                                           int64_t tri_len, int32_t index_base);
+/** Fills attributes (attributes_len >= num_triangles) with each triangle's region attribute. */
+ANITET_API int anitet_mesh2d_get_attributes(const anitet_mesh2d* mesh, double* attributes,
+                                            int64_t attributes_len);
+/** Fills edges (edges_len >= 2*num_edges) with indices counted from index_base. */
+ANITET_API int anitet_mesh2d_get_edges(const anitet_mesh2d* mesh, int32_t* edges,
+                                       int64_t edges_len, int32_t index_base);
+/** Fills labels (labels_len >= num_edges) with each edge's segment label. */
+ANITET_API int anitet_mesh2d_get_edge_labels(const anitet_mesh2d* mesh, int32_t* labels,
+                                             int64_t labels_len);
+/** Writes by extension: .mesh (Medit, Dimension 2), .msh (Gmsh 4.1), .vtu, or .14 / fort.14
+ * (ADCIRC, every labelled boundary a land boundary). */
+ANITET_API int anitet_mesh2d_write(const anitet_mesh2d* mesh, const char* path);
+/** Quality figures (any pointer may be NULL): the smallest angle in degrees, the smallest over
+ * the triangles with no vertex among the input's points, the mean radius ratio 2r/R (1 for an
+ * equilateral triangle) and the share of edges whose length in the sizing field's metric lies in
+ * [1/sqrt2, sqrt2] (measured in the local frame for geodetic inputs). */
+ANITET_API int anitet_mesh2d_quality(const anitet_mesh2d* mesh, double* min_angle_deg,
+                                     double* min_angle_off_input_deg, double* mean_radius_ratio,
+                                     double* edges_in_range);
 
 #ifdef __cplusplus
 }
