@@ -75,6 +75,9 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_PART_TET_SEND = 17
   integer(c_int32_t), parameter, public :: ANITET_PART_TET_RECV_OFFSETS = 18
   integer(c_int32_t), parameter, public :: ANITET_PART_TET_RECV = 19
+  integer(c_int32_t), parameter, public :: ANITET_MESH2D_OPTIONS_VERSION = 1
+  integer(c_int32_t), parameter, public :: ANITET_GEO_ENU = 0
+  integer(c_int32_t), parameter, public :: ANITET_GEO_UTM = 1
 
   ! ---- versioned structs (same layout as the C structs) -----------------------------------------
   ! Set callbacks with c_funloc of a bind(c) procedure and user data with c_loc.
@@ -137,6 +140,23 @@ module anitet
     real(c_double) :: imbalance
     real(c_double) :: total_weight
     real(c_double) :: max_part_weight
+  ! The 2D mesher's options (anitet_mesh2d_options); anitet_mesh2d_options_init sets the defaults.
+  type, bind(c), public :: anitet_mesh2d_options_t
+    integer(c_int32_t) :: version
+    integer(c_int32_t) :: split_segments
+    integer(c_int32_t) :: layers
+    integer(c_int32_t) :: refine
+    integer(c_int32_t) :: optimize
+    integer(c_int32_t) :: geodetic
+    integer(c_int32_t) :: geo_frame
+    integer(c_int32_t) :: reserved0
+    real(c_double) :: hsize
+    real(c_double) :: size_scale
+    real(c_double) :: hmin
+    real(c_double) :: hmax
+    real(c_double) :: hgrad
+    type(c_funptr) :: progress
+    type(c_ptr) :: progress_user_data
   end type
 
   ! ---- raw C interfaces ---------------------------------------------------------------------------
@@ -166,6 +186,11 @@ module anitet
   public :: c_anitet_part_get_boundary_global_ids, c_anitet_part_get_neighbours
   public :: c_anitet_part_get_halo_size, c_anitet_part_get_halo, c_anitet_part_get_array
   public :: c_anitet_part_serialize, c_anitet_part_deserialize, c_anitet_set_last_error
+  public :: c_anitet_pslg_create, c_anitet_pslg_read, c_anitet_pslg_destroy, c_anitet_pslg_get_counts
+  public :: c_anitet_mesh2d_options_init, c_anitet_mesh2d_run, c_anitet_mesh2d_destroy
+  public :: c_anitet_mesh2d_get_counts, c_anitet_mesh2d_get_points, c_anitet_mesh2d_get_triangles
+  public :: c_anitet_mesh2d_get_attributes, c_anitet_mesh2d_get_edges, c_anitet_mesh2d_get_edge_labels
+  public :: c_anitet_mesh2d_write, c_anitet_mesh2d_quality
 
   interface
     integer(c_int) function c_anitet_options_init(options, version) &
@@ -593,6 +618,76 @@ module anitet
         bind(c, name="anitet_part_get_boundary_triangles")
       import :: c_int, c_int32_t, c_int64_t, c_ptr
       type(c_ptr), value :: part
+    ! ---- 2D meshes ----
+    integer(c_int) function c_anitet_pslg_create(xy, num_points, segments, num_segments, labels, &
+        holes, num_holes, index_base, out) bind(c, name="anitet_pslg_create")
+      import :: c_int, c_int32_t, c_int64_t, c_double, c_ptr
+      real(c_double), intent(in) :: xy(*)
+      integer(c_int64_t), value :: num_points
+      integer(c_int32_t), intent(in) :: segments(*)
+      integer(c_int64_t), value :: num_segments
+      type(c_ptr), value :: labels, holes
+      integer(c_int64_t), value :: num_holes
+      integer(c_int32_t), value :: index_base
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_pslg_read(path, out) bind(c, name="anitet_pslg_read")
+      import :: c_int, c_char, c_ptr
+      character(kind=c_char), intent(in) :: path(*)
+      type(c_ptr), intent(out) :: out
+    end function
+
+    subroutine c_anitet_pslg_destroy(pslg) bind(c, name="anitet_pslg_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: pslg
+    end subroutine
+
+    integer(c_int) function c_anitet_pslg_get_counts(pslg, num_points, num_segments, num_holes) &
+        bind(c, name="anitet_pslg_get_counts")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: pslg
+      integer(c_int64_t), intent(out) :: num_points, num_segments, num_holes
+    end function
+
+    integer(c_int) function c_anitet_mesh2d_options_init(options, version) &
+        bind(c, name="anitet_mesh2d_options_init")
+      import :: c_int, c_int32_t, anitet_mesh2d_options_t
+      type(anitet_mesh2d_options_t), intent(out) :: options
+      integer(c_int32_t), value :: version
+    end function
+
+    integer(c_int) function c_anitet_mesh2d_run(pslg, metric, options, out) &
+        bind(c, name="anitet_mesh2d_run")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: pslg, metric, options
+      type(c_ptr), intent(out) :: out
+    end function
+
+    subroutine c_anitet_mesh2d_destroy(mesh) bind(c, name="anitet_mesh2d_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: mesh
+    end subroutine
+
+    integer(c_int) function c_anitet_mesh2d_get_counts(mesh, num_points, num_triangles, num_edges) &
+        bind(c, name="anitet_mesh2d_get_counts")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int64_t), intent(out) :: num_points, num_triangles, num_edges
+    end function
+
+    integer(c_int) function c_anitet_mesh2d_get_points(mesh, xy, xy_len) &
+        bind(c, name="anitet_mesh2d_get_points")
+      import :: c_int, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: mesh
+      real(c_double), intent(out) :: xy(*)
+      integer(c_int64_t), value :: xy_len
+    end function
+
+    integer(c_int) function c_anitet_mesh2d_get_triangles(mesh, tri, tri_len, index_base) &
+        bind(c, name="anitet_mesh2d_get_triangles")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
       integer(c_int32_t), intent(out) :: tri(*)
       integer(c_int64_t), value :: tri_len
       integer(c_int32_t), value :: index_base
@@ -678,6 +773,43 @@ module anitet
       import :: c_int, c_int32_t, c_char
       integer(c_int32_t), value :: code
       character(kind=c_char), intent(in) :: message(*)
+    integer(c_int) function c_anitet_mesh2d_get_attributes(mesh, attributes, attributes_len) &
+        bind(c, name="anitet_mesh2d_get_attributes")
+      import :: c_int, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: mesh
+      real(c_double), intent(out) :: attributes(*)
+      integer(c_int64_t), value :: attributes_len
+    end function
+
+    integer(c_int) function c_anitet_mesh2d_get_edges(mesh, edges, edges_len, index_base) &
+        bind(c, name="anitet_mesh2d_get_edges")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), intent(out) :: edges(*)
+      integer(c_int64_t), value :: edges_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    integer(c_int) function c_anitet_mesh2d_get_edge_labels(mesh, labels, labels_len) &
+        bind(c, name="anitet_mesh2d_get_edge_labels")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), intent(out) :: labels(*)
+      integer(c_int64_t), value :: labels_len
+    end function
+
+    integer(c_int) function c_anitet_mesh2d_write(mesh, path) bind(c, name="anitet_mesh2d_write")
+      import :: c_int, c_char, c_ptr
+      type(c_ptr), value :: mesh
+      character(kind=c_char), intent(in) :: path(*)
+    end function
+
+    integer(c_int) function c_anitet_mesh2d_quality(mesh, min_angle_deg, min_angle_off_input_deg, &
+        mean_radius_ratio, edges_in_range) bind(c, name="anitet_mesh2d_quality")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: mesh
+      real(c_double), intent(out) :: min_angle_deg, min_angle_off_input_deg, mean_radius_ratio
+      real(c_double), intent(out) :: edges_in_range
     end function
 
     ! From the C library, to measure returned strings.
@@ -703,6 +835,11 @@ module anitet
   public :: anitet_mesh_get_boundary_patches, anitet_mesh_get_metric_components
   public :: anitet_mesh_get_metric, anitet_mesh_set_metric, anitet_mesh_quality
   public :: anitet_mesh_quality_json
+  public :: anitet_pslg_create, anitet_pslg_read, anitet_pslg_destroy, anitet_pslg_get_counts
+  public :: anitet_mesh2d_options_init, anitet_mesh2d_run, anitet_mesh2d_destroy
+  public :: anitet_mesh2d_get_counts, anitet_mesh2d_get_points, anitet_mesh2d_get_triangles
+  public :: anitet_mesh2d_get_attributes, anitet_mesh2d_get_edges, anitet_mesh2d_get_edge_labels
+  public :: anitet_mesh2d_write, anitet_mesh2d_quality
 
   public :: anitet_partition_options_init, anitet_mesh_partition, anitet_partition_destroy
   public :: anitet_partition_get_info, anitet_partition_get_tet_parts, anitet_partition_get_part
@@ -1414,6 +1551,160 @@ contains
     integer(c_int8_t), intent(in) :: bytes(:)
     type(c_ptr), intent(out) :: part
     rc = c_anitet_part_deserialize(bytes, size(bytes, kind=c_int64_t), part)
+  ! ---- 2D meshes ----------------------------------------------------------------------------------
+
+  ! xy(2, np), segments(2, ns), labels(ns), holes(2, nh); index_base default 1.
+  integer function anitet_pslg_create(xy, segments, pslg, labels, holes, index_base) result(rc)
+    real(c_double), intent(in) :: xy(:, :)
+    integer(c_int32_t), intent(in) :: segments(:, :)
+    type(c_ptr), intent(out) :: pslg
+    integer(c_int32_t), intent(in), optional :: labels(:)
+    real(c_double), intent(in), optional :: holes(:, :)
+    integer, intent(in), optional :: index_base
+    integer(c_int32_t), allocatable, target :: l(:)
+    real(c_double), allocatable, target :: h(:, :)
+    type(c_ptr) :: lp, hp
+    integer(c_int64_t) :: nh
+    ! Wrong shapes would be misread silently by C (Fortran-only check: no last error message).
+    pslg = c_null_ptr
+    rc = ANITET_ERR_INVALID_ARGUMENT
+    if (size(xy, 1) /= 2 .or. size(segments, 1) /= 2) return
+    lp = c_null_ptr
+    hp = c_null_ptr
+    nh = 0
+    if (present(labels)) then
+      if (size(labels) /= size(segments, 2)) return
+      allocate(l(size(labels)))
+      l(:) = labels
+      lp = c_loc(l)
+    end if
+    if (present(holes)) then
+      if (size(holes, 1) /= 2) return
+      allocate(h(2, size(holes, 2)))
+      h(:, :) = holes
+      hp = c_loc(h)
+      nh = size(holes, 2, c_int64_t)
+    end if
+    rc = c_anitet_pslg_create(xy, size(xy, 2, c_int64_t), segments, size(segments, 2, c_int64_t), lp, &
+                              hp, nh, base_of(index_base), pslg)
+  end function
+
+  integer function anitet_pslg_read(path, pslg) result(rc)
+    character(len=*), intent(in) :: path
+    type(c_ptr), intent(out) :: pslg
+    rc = c_anitet_pslg_read(to_c_string(path), pslg)
+  end function
+
+  subroutine anitet_pslg_destroy(pslg)
+    type(c_ptr), intent(inout) :: pslg
+    call c_anitet_pslg_destroy(pslg)
+    pslg = c_null_ptr
+  end subroutine
+
+  integer function anitet_pslg_get_counts(pslg, num_points, num_segments, num_holes) result(rc)
+    type(c_ptr), intent(in) :: pslg
+    integer(c_int64_t), intent(out) :: num_points, num_segments, num_holes
+    rc = c_anitet_pslg_get_counts(pslg, num_points, num_segments, num_holes)
+  end function
+
+  integer function anitet_mesh2d_options_init(options, version) result(rc)
+    type(anitet_mesh2d_options_t), intent(out) :: options
+    integer, intent(in), optional :: version
+    integer(c_int32_t) :: v
+    v = ANITET_MESH2D_OPTIONS_VERSION
+    if (present(version)) v = int(version, c_int32_t)
+    rc = c_anitet_mesh2d_options_init(options, v)
+  end function
+
+  integer function anitet_mesh2d_run(pslg, mesh, metric, options) result(rc)
+    type(c_ptr), intent(in) :: pslg
+    type(c_ptr), intent(out) :: mesh
+    type(c_ptr), intent(in), optional :: metric
+    type(anitet_mesh2d_options_t), intent(in), optional, target :: options
+    if (present(options)) then
+      rc = c_anitet_mesh2d_run(pslg, opt_ptr(metric), c_loc(options), mesh)
+    else
+      rc = c_anitet_mesh2d_run(pslg, opt_ptr(metric), c_null_ptr, mesh)
+    end if
+  end function
+
+  subroutine anitet_mesh2d_destroy(mesh)
+    type(c_ptr), intent(inout) :: mesh
+    call c_anitet_mesh2d_destroy(mesh)
+    mesh = c_null_ptr
+  end subroutine
+
+  integer function anitet_mesh2d_get_counts(mesh, num_points, num_triangles, num_edges) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int64_t), intent(out) :: num_points, num_triangles, num_edges
+    rc = c_anitet_mesh2d_get_counts(mesh, num_points, num_triangles, num_edges)
+  end function
+
+  integer function anitet_mesh2d_get_points(mesh, xy) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    real(c_double), allocatable, intent(out) :: xy(:, :)
+    integer(c_int64_t) :: np, nt, ne
+    rc = c_anitet_mesh2d_get_counts(mesh, np, nt, ne)
+    if (rc /= ANITET_OK) return
+    allocate(xy(2, np))
+    rc = c_anitet_mesh2d_get_points(mesh, xy, size(xy, kind=c_int64_t))
+  end function
+
+  integer function anitet_mesh2d_get_triangles(mesh, tri, index_base) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: tri(:, :)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: np, nt, ne
+    rc = c_anitet_mesh2d_get_counts(mesh, np, nt, ne)
+    if (rc /= ANITET_OK) return
+    allocate(tri(3, nt))
+    rc = c_anitet_mesh2d_get_triangles(mesh, tri, size(tri, kind=c_int64_t), base_of(index_base))
+  end function
+
+  integer function anitet_mesh2d_get_attributes(mesh, attributes) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    real(c_double), allocatable, intent(out) :: attributes(:)
+    integer(c_int64_t) :: np, nt, ne
+    rc = c_anitet_mesh2d_get_counts(mesh, np, nt, ne)
+    if (rc /= ANITET_OK) return
+    allocate(attributes(nt))
+    rc = c_anitet_mesh2d_get_attributes(mesh, attributes, size(attributes, kind=c_int64_t))
+  end function
+
+  integer function anitet_mesh2d_get_edges(mesh, edges, index_base) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: edges(:, :)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: np, nt, ne
+    rc = c_anitet_mesh2d_get_counts(mesh, np, nt, ne)
+    if (rc /= ANITET_OK) return
+    allocate(edges(2, ne))
+    rc = c_anitet_mesh2d_get_edges(mesh, edges, size(edges, kind=c_int64_t), base_of(index_base))
+  end function
+
+  integer function anitet_mesh2d_get_edge_labels(mesh, labels) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: labels(:)
+    integer(c_int64_t) :: np, nt, ne
+    rc = c_anitet_mesh2d_get_counts(mesh, np, nt, ne)
+    if (rc /= ANITET_OK) return
+    allocate(labels(ne))
+    rc = c_anitet_mesh2d_get_edge_labels(mesh, labels, size(labels, kind=c_int64_t))
+  end function
+
+  integer function anitet_mesh2d_write(mesh, path) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    character(len=*), intent(in) :: path
+    rc = c_anitet_mesh2d_write(mesh, to_c_string(path))
+  end function
+
+  integer function anitet_mesh2d_quality(mesh, min_angle_deg, min_angle_off_input_deg, &
+                                         mean_radius_ratio, edges_in_range) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    real(c_double), intent(out) :: min_angle_deg, min_angle_off_input_deg, mean_radius_ratio
+    real(c_double), intent(out) :: edges_in_range
+    rc = c_anitet_mesh2d_quality(mesh, min_angle_deg, min_angle_off_input_deg, mean_radius_ratio, &
+                                 edges_in_range)
   end function
 
 end module anitet

@@ -22,6 +22,7 @@ program test_fortran
   call check_metric_and_mesher()
   call check_metric_on_background(trim(data_dir) // "/io/box.mesh")
   call check_partition(trim(data_dir) // "/io/box.mesh")
+  call check_mesh2d(trim(data_dir) // "/mesh2d")
 
   if (failures > 0) then
     print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
@@ -364,6 +365,66 @@ contains
                "unknown options version")
     call check(index(anitet_last_error_message(), "version 99") > 0, "version error message")
     call anitet_mesh_destroy(mesh)
+  ! The 2D mesher: a square with a square hole from arrays (1-based), meshed with points allowed
+  ! on its long sides; the input's points come first and exactly; the segments' labels come
+  ! back on their pieces; a bad input is refused with its element named.
+  subroutine check_mesh2d(dir)
+    character(len=*), intent(in) :: dir
+    real(c_double) :: xy(2, 8), holes(2, 1)
+    integer(c_int32_t) :: seg(2, 8), labels(8)
+    real(c_double), allocatable :: xy_back(:, :), attributes(:)
+    integer(c_int32_t), allocatable :: tri(:, :), edges(:, :), edge_labels(:)
+    type(c_ptr) :: pslg, mesh
+    type(anitet_mesh2d_options_t) :: options
+    integer(c_int64_t) :: np, ns, nh, nt, ne
+    real(c_double) :: min_angle, off_input, mean_rr, in_range, area
+    integer :: t, e
+    xy = reshape([0d0, 0d0, 4d0, 0d0, 4d0, 4d0, 0d0, 4d0, 1.5d0, 1.5d0, 2.5d0, 1.5d0, 2.5d0, 2.5d0, &
+                  1.5d0, 2.5d0], [2, 8])
+    seg = reshape([1, 2, 2, 3, 3, 4, 4, 1, 5, 6, 6, 7, 7, 8, 8, 5], [2, 8])
+    labels = [1, 1, 1, 1, 2, 2, 2, 2]
+    holes(:, 1) = [2d0, 2d0]
+    call check(anitet_pslg_create(xy, seg, pslg, labels, holes) == ANITET_OK, "pslg create")
+    call check(anitet_pslg_get_counts(pslg, np, ns, nh) == ANITET_OK, "pslg counts")
+    call check(np == 8 .and. ns == 8 .and. nh == 1, "pslg counts' values")
+    call check(anitet_mesh2d_options_init(options) == ANITET_OK, "mesh2d options")
+    call check(options%layers == 1 .and. options%size_scale == 1d0, "mesh2d options' defaults")
+    options%split_segments = 1
+    options%hsize = 0.25d0
+    call check(anitet_mesh2d_run(pslg, mesh, options=options) == ANITET_OK, "mesh2d run")
+    call check(anitet_mesh2d_get_counts(mesh, np, nt, ne) == ANITET_OK, "mesh2d counts")
+    call check(nt > 100 .and. ne > 8, "mesh2d counts' values")
+    call check(anitet_mesh2d_get_points(mesh, xy_back) == ANITET_OK, "mesh2d points")
+    call check(all(xy_back(:, 1:8) == xy), "the input's points first")
+    call check(anitet_mesh2d_get_triangles(mesh, tri) == ANITET_OK, "mesh2d triangles")
+    call check(minval(tri) == 1 .and. maxval(tri) == np, "mesh2d triangles, 1-based")
+    area = 0
+    do t = 1, int(nt)
+      area = area + 0.5d0 * ((xy_back(1, tri(2, t)) - xy_back(1, tri(1, t))) * &
+                             (xy_back(2, tri(3, t)) - xy_back(2, tri(1, t))) - &
+                             (xy_back(2, tri(2, t)) - xy_back(2, tri(1, t))) * &
+                             (xy_back(1, tri(3, t)) - xy_back(1, tri(1, t))))
+    end do
+    call check(abs(area - 15d0) < 1d-9, "mesh2d area: the square less its hole")
+    call check(anitet_mesh2d_get_attributes(mesh, attributes) == ANITET_OK, "mesh2d attributes")
+    call check(size(attributes) == nt, "mesh2d attributes' size")
+    call check(anitet_mesh2d_get_edges(mesh, edges) == ANITET_OK, "mesh2d edges")
+    call check(anitet_mesh2d_get_edge_labels(mesh, edge_labels) == ANITET_OK, "mesh2d edge labels")
+    do e = 1, int(ne)  ! the outer square's pieces have label 1, the hole's 2
+      call check(edge_labels(e) == merge(1, 2, maxval(abs(xy_back(:, edges(1, e)) - 2d0)) > 1.9d0), &
+                 "mesh2d edge label")
+    end do
+    call check(anitet_mesh2d_quality(mesh, min_angle, off_input, mean_rr, in_range) == ANITET_OK, &
+               "mesh2d quality")
+    call check(min_angle >= 25d0 .and. mean_rr >= 0.9d0, "mesh2d quality figures")
+    call check(anitet_mesh2d_write(mesh, "fortran_mesh2d.mesh") == ANITET_OK, "mesh2d write")
+    call anitet_mesh2d_destroy(mesh)
+    call check(.not. c_associated(mesh), "mesh2d destroy")
+    call anitet_pslg_destroy(pslg)
+    call check(anitet_pslg_read(dir // "/crossing.poly", pslg) == ANITET_OK, "pslg read")
+    call check(anitet_mesh2d_run(pslg, mesh) == ANITET_ERR_SELF_INTERSECTION, "crossing refused")
+    call check(index(anitet_last_error_message(), "segment 2 (line 9)") > 0, "crossing named")
+    call anitet_pslg_destroy(pslg)
   end subroutine
 
 end program test_fortran
