@@ -55,7 +55,7 @@ class HeaderDrift(unittest.TestCase):
     def test_constants(self):
         pattern = (r"#define ANITET_((?:ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|VERSION_MAJOR|"
                    r"VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|PARTITION_[A-Z]+_VERSION|"
-                   r"HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+)) \(?(-?\d+)\)?")
+                   r"HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+)) \(?(-?\d+)\)?")
         found = re.findall(pattern, self.header)
         self.assertGreater(len(found), 25)
         for name, value in found:
@@ -75,6 +75,7 @@ class HeaderDrift(unittest.TestCase):
                          self.struct_fields("anitet_partition_info"))
         self.assertEqual(ctypes.sizeof(_capi.CPartitionOptions), 24 + ctypes.sizeof(ctypes.c_void_p) + 8)
         self.assertEqual(ctypes.sizeof(_capi.CPartitionInfo), 64)
+        self.assertEqual([f[0] for f in _capi.CMesh2dOptions._fields_], self.struct_fields("anitet_mesh2d_options"))
         # Version 1 ends after the four pointers; version 2 adds 32 bytes.
         self.assertEqual(_capi.COptions.layers.offset, 24 + 4 * ctypes.sizeof(ctypes.c_void_p))
         self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.layers.offset + 32)
@@ -486,6 +487,89 @@ class Partitions(unittest.TestCase):
             self.mesh.partition(2)[2]
         with self.assertRaises(TypeError):
             anitet.partition_mesh("mesh", 2)
+
+class Meshes2d(unittest.TestCase):
+    """The 2D mesher: arrays and files in, the mesh's arrays out, an analytic anisotropic metric,
+    longitude/latitude input, cancellation and the errors on bad input."""
+
+    SQUARE = [(0, 0), (4, 0), (4, 4), (0, 4), (1.5, 1.5), (2.5, 1.5), (2.5, 2.5), (1.5, 2.5)]
+    SEGMENTS = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4)]
+
+    def square(self):
+        return anitet.Pslg.from_arrays(self.SQUARE, self.SEGMENTS, labels=[1] * 4 + [2] * 4, holes=[(2, 2)])
+
+    def test_square_with_hole(self):
+        p = self.square()
+        self.assertEqual(p.counts(), (8, 8, 1))
+        m = anitet.mesh2d(p, split_segments=True, hsize=0.25)
+        n, t, e = m.counts()
+        self.assertGreater(t, 100)
+        self.assertEqual(rows(m.points())[:8], [tuple(float(c) for c in q) for q in self.SQUARE])
+        pts, tris = rows(m.points()), rows(m.triangles())
+        area = sum(0.5 * ((pts[b][0] - pts[a][0]) * (pts[c][1] - pts[a][1]) -
+                          (pts[b][1] - pts[a][1]) * (pts[c][0] - pts[a][0])) for a, b, c in tris)
+        self.assertAlmostEqual(area, 15.0, places=9)
+        self.assertEqual(len(rows(m.edges())), e)
+        self.assertEqual(sorted(set(rows(m.edge_labels()))), [1, 2])
+        self.assertEqual(min(min(x) for x in rows(m.triangles(index_base=1))), 1)
+        q = m.quality()
+        self.assertGreaterEqual(q["min_angle_deg"], 25.0)
+        self.assertGreaterEqual(q["mean_radius_ratio"], 0.9)
+        with tempfile.TemporaryDirectory() as d:
+            for ext in ("mesh", "msh", "vtu", "14"):
+                m.write(os.path.join(d, "square." + ext))
+                self.assertTrue(os.path.exists(os.path.join(d, "square." + ext)))
+        # Kept whole (the default): 8 edges, the input's 8 segments.
+        self.assertEqual(p.mesh().counts()[2], 8)
+
+    def test_anisotropic_metric_callback(self):
+        """The case of docs/mesh2d.md through an analytic metric: >= 97% of the edges in range."""
+        import math
+
+        def polar(x, y, z):
+            dx, dy = x - 0.5, y - 0.5
+            r = math.hypot(dx, dy)
+            nx, ny = (dx / r, dy / r) if r > 0 else (1.0, 0.0)
+            hr = 0.001 + 2 * (0.1 - 0.001) * abs(r - 0.25)
+            a, b = hr ** -2, 100.0
+            return (a * nx * nx + b * ny * ny, (a - b) * nx * ny, a * ny * ny + b * nx * nx)
+
+        p = anitet.Pslg.read(os.path.join(DATA, "mesh2d", "square_minus_disk.poly"))
+        m = anitet.mesh2d(p, anitet.Metric.analytic(polar))
+        self.assertGreaterEqual(m.quality()["edges_in_range"], 0.97)
+
+    def test_geodetic(self):
+        p = anitet.Pslg.read(os.path.join(DATA, "mesh2d", "coast45.geojson"))
+        n_input = p.counts()[0]
+        m = anitet.mesh2d(p, geodetic=True, hsize=5000.0)  # the coast's spacing
+        pts = rows(m.points())
+        with open(os.path.join(DATA, "mesh2d", "coast45.geojson")) as f:
+            import json
+            first = json.load(f)["features"][0]["geometry"]["coordinates"][0][0]
+        self.assertEqual(pts[0], tuple(first))  # the input's points, exactly
+        self.assertTrue(all(-64.5 < x < -61.5 and 43.9 < y < 46.1 for x, y in pts[n_input:]))
+        self.assertGreaterEqual(m.quality()["edges_in_range"], 0.95)
+
+    def test_progress_and_cancel(self):
+        stages = []
+        anitet.mesh2d(self.square(), progress=lambda stage, f: stages.append(stage))
+        self.assertEqual(stages[:3], ["validate", "sizing", "front"])
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.mesh2d(self.square(), progress=lambda stage, f: stage != "refine")
+        self.assertEqual(e.exception.code, anitet.ERR_CANCELLED)
+
+    def test_bad_input_named(self):
+        p = anitet.Pslg.read(os.path.join(DATA, "mesh2d", "crossing.poly"))
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.mesh2d(p)
+        self.assertEqual(e.exception.code, anitet.ERR_SELF_INTERSECTION)
+        self.assertIn("segment 2 (line 9) and segment 4 (line 11)", e.exception.message)
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.Pslg.from_arrays(self.SQUARE, [(0, 1), (1, 2), (2, 9)])
+        self.assertEqual(e.exception.code, anitet.ERR_BAD_INDEX)
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.mesh2d(self.square(), hgrad=0.5)
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
 
 
 if __name__ == "__main__":

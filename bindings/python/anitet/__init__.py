@@ -10,6 +10,10 @@ of this package, then the system's loader (libanitet.so.0). NumPy is optional.
     print(mesh.counts(), mesh.quality(surface))
     mesh.write("fandisk.mesh")
     partition = mesh.partition(4)                          # parts for 4 ranks, NumPy views
+
+    lake = anitet.Pslg.read("superior.poly")               # 2D: or Pslg.from_arrays(xy, segments)
+    tri = anitet.mesh2d(lake, hsize=0.01)                  # every segment kept whole
+    print(tri.counts(), tri.quality())
 """
 from ._capi import (ERR_BAD_INDEX, ERR_BUFFER_TOO_SMALL, ERR_CANCELLED, ERR_DEGENERATE_TRIANGLE,
                     ERR_DUPLICATE_POINT, ERR_DUPLICATE_TRIANGLE, ERR_EMPTY_INPUT,
@@ -22,7 +26,7 @@ from ._capi import (ERR_BAD_INDEX, ERR_BUFFER_TOO_SMALL, ERR_CANCELLED, ERR_DEGE
                     OPTIONS_VERSION, QUALITY_VERSION, VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH,
                     HALO_TET_RECV, HALO_TET_SEND, HALO_VERTEX_RECV, HALO_VERTEX_SEND,
                     PARTITION_INFO_VERSION, PARTITION_OPTIONS_VERSION, TYPE_DOUBLE, TYPE_INT32,
-                    TYPE_INT64)
+                    TYPE_INT64, MESH2D_OPTIONS_VERSION, GEO_ENU, GEO_UTM)
 from ._capi import (PART_BOUNDARY_GLOBAL_IDS, PART_BOUNDARY_PATCHES, PART_BOUNDARY_TRIANGLES,  # noqa: F401
                     PART_NEIGHBOURS, PART_POINTS, PART_REGIONS, PART_TET_GLOBAL_IDS, PART_TET_LAYERS,
                     PART_TET_OWNERS, PART_TET_RECV, PART_TET_RECV_OFFSETS, PART_TET_SEND,
@@ -30,7 +34,7 @@ from ._capi import (PART_BOUNDARY_GLOBAL_IDS, PART_BOUNDARY_PATCHES, PART_BOUNDA
                     PART_VERTEX_RECV, PART_VERTEX_RECV_OFFSETS, PART_VERTEX_SEND,
                     PART_VERTEX_SEND_OFFSETS)
 from ._api import (HAVE_NUMPY, AnitetError, Mesh, Metric, Options, Quality, Surface, error_name,
-                   mesh_surface, version, version_number)
+                   mesh_surface, version, version_number, Pslg, Mesh2d, mesh2d)
 from ._partition import Part, Partition, PartitionInfo, partition_mesh
 
 __version__ = "%d.%d.%d" % (VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH)

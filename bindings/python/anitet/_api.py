@@ -1,4 +1,5 @@
-"""The Python face of the C ABI: Surface, Metric, Mesh, Options, Quality and AnitetError.
+"""The Python face of the C ABI: Surface, Metric, Mesh, Options, Quality and AnitetError; and for
+2D meshes Pslg, Mesh2d and mesh2d().
 
 Arrays: with NumPy importable (and ANITET_PYTHON_NUMPY not "0"), outputs are NumPy arrays shaped
 (n, 3) / (n, 4) / (n,) and inputs may be any array-like; without it, outputs are lists of tuples
@@ -355,15 +356,18 @@ class Metric(_Handle):
 
     @classmethod
     def analytic(cls, function):
-        """function(x, y, z) -> the 6 values xx xy yy xz yz zz; an exception marks the point as
-        not evaluable (evaluate raises it again)."""
+        """function(x, y, z) -> the 6 values xx xy yy xz yz zz (or, for 2D meshes, which evaluate
+        it at z = 0, the 3 values xx xy yy); an exception marks the point as not evaluable
+        (evaluate raises it again)."""
         holder = {"error": None}
 
         def callback(x, y, z, m, _):
             try:
                 values = function(x, y, z)
+                if len(values) == 3:  # a 2D tensor: zz (unused in 2D) their mean
+                    values = (values[0], values[1], values[2], 0.0, 0.0, 0.5 * (values[0] + values[2]))
                 if len(values) != 6:
-                    raise ValueError("the metric function returned %d values, 6 expected" % len(values))
+                    raise ValueError("the metric function returned %d values, 6 (or 3) expected" % len(values))
                 for i in range(6):
                     m[i] = float(values[i])
                 return 0
@@ -567,3 +571,131 @@ def mesh_surface(surface, metric=None, options=None, **kwargs):
     out = c_void_p()
     scope.call(lib.anitet_mesher_run, surface, metric, byref(scope.struct), byref(out))
     return Mesh(out.value)
+
+
+# ---- 2D meshes ---------------------------------------------------------------------------------
+
+class Pslg(_Handle):
+    """A planar straight-line graph: the 2D mesher's input (points, segments with labels, hole
+    points). The unbounded face and the faces holding a hole point are outside."""
+
+    _destroy = lib.anitet_pslg_destroy
+
+    @classmethod
+    def from_arrays(cls, points, segments, labels=None, holes=None, index_base=0):
+        """points (n, 2), segments (m, 2) point indices, labels (m,), holes (h, 2)."""
+        base = _base(index_base)
+        pk, pp, n = _flat_input(points, 2, c_double, "points")
+        sk, sp, m = _flat_input(segments, 2, c_int32, "segments")
+        lk, lp = None, None
+        if labels is not None:
+            lk, lp, count = _flat_input([(v,) for v in labels], 1, c_int32, "labels")
+            if count != m:
+                raise ValueError("one label per segment is needed (%d for %d)" % (count, m))
+        hk, hp, h = None, None, 0
+        if holes is not None and len(holes):
+            hk, hp, h = _flat_input(holes, 2, c_double, "holes")
+        return _create(cls, lib.anitet_pslg_create, pp, n, sp, m, lp, hp, h, base)
+
+    @classmethod
+    def read(cls, path):
+        """A PSLG from a .poly (Triangle), a 2D .mesh (Medit, its Edges) or a .geojson (lon/lat
+        polygons: mesh them with geodetic=True)."""
+        return _create(cls, lib.anitet_pslg_read, _path(path))
+
+    def counts(self):
+        """(points, segments, hole points)."""
+        n, m, h = c_int64(), c_int64(), c_int64()
+        _check(lib.anitet_pslg_get_counts(self, byref(n), byref(m), byref(h)))
+        return n.value, m.value, h.value
+
+    def mesh(self, metric=None, **kwargs):
+        """Meshes the PSLG: see mesh2d."""
+        return mesh2d(self, metric, **kwargs)
+
+
+class Mesh2d(_Handle):
+    """A triangle mesh of the 2D mesher: the input's points first and in order, counter-clockwise
+    triangles with their region attributes, and the segments' pieces as edges with labels."""
+
+    _destroy = lib.anitet_mesh2d_destroy
+
+    def counts(self):
+        """(points, triangles, edges)."""
+        n, t, e = c_int64(), c_int64(), c_int64()
+        _check(lib.anitet_mesh2d_get_counts(self, byref(n), byref(t), byref(e)))
+        return n.value, t.value, e.value
+
+    def points(self):
+        return _output(self.counts()[0], 2, c_double, lambda p, n: lib.anitet_mesh2d_get_points(self, p, n))
+
+    def triangles(self, index_base=0):
+        base = _base(index_base)
+        return _output(self.counts()[1], 3, c_int32,
+                       lambda p, n: lib.anitet_mesh2d_get_triangles(self, p, n, base))
+
+    def attributes(self):
+        return _output(self.counts()[1], 1, c_double, lambda p, n: lib.anitet_mesh2d_get_attributes(self, p, n))
+
+    def edges(self, index_base=0):
+        base = _base(index_base)
+        return _output(self.counts()[2], 2, c_int32, lambda p, n: lib.anitet_mesh2d_get_edges(self, p, n, base))
+
+    def edge_labels(self):
+        return _output(self.counts()[2], 1, c_int32, lambda p, n: lib.anitet_mesh2d_get_edge_labels(self, p, n))
+
+    def write(self, path):
+        """Writes by extension: .mesh, .msh, .vtu, or .14 / fort.14 (ADCIRC)."""
+        _check(lib.anitet_mesh2d_write(self, _path(path)))
+
+    def quality(self):
+        """A dict: min_angle_deg, min_angle_off_input_deg (over the triangles with no input point),
+        mean_radius_ratio (2r/R) and edges_in_range (share of metric lengths in [1/sqrt2, sqrt2])."""
+        v = [c_double() for _ in range(4)]
+        _check(lib.anitet_mesh2d_quality(self, *(byref(x) for x in v)))
+        names = ("min_angle_deg", "min_angle_off_input_deg", "mean_radius_ratio", "edges_in_range")
+        return {k: x.value for k, x in zip(names, v)}
+
+
+def mesh2d(pslg, metric=None, split_segments=False, layers=1, refine=True, optimize=True,
+           geodetic=False, geo_frame=_capi.GEO_ENU, hsize=0.0, size_scale=1.0, hmin=0.0, hmax=0.0,
+           hgrad=0.0, progress=None):
+    """Meshes a Pslg into a new Mesh2d (the fields are anitet_mesh2d_options'): every segment
+    stays whole unless split_segments; sizes from hsize (0: the segments' lengths), or a Metric
+    evaluated at z = 0; geodetic: the points are longitude, latitude, meshed in metres and
+    returned in degrees (the input's points exactly). progress(stage, fraction): return False
+    to cancel (AnitetError with ERR_CANCELLED)."""
+    if not isinstance(pslg, Pslg):
+        raise TypeError("pslg must be an anitet.Pslg, not %s" % type(pslg).__name__)
+    if metric is not None and not isinstance(metric, Metric):
+        raise TypeError("metric must be an anitet.Metric or None, not %s" % type(metric).__name__)
+    o = _capi.CMesh2dOptions()
+    _check(lib.anitet_mesh2d_options_init(byref(o), _capi.MESH2D_OPTIONS_VERSION))
+    o.split_segments = int(bool(split_segments))
+    o.layers = layers
+    o.refine = int(bool(refine))
+    o.optimize = int(bool(optimize))
+    o.geodetic = int(bool(geodetic))
+    o.geo_frame = geo_frame
+    o.hsize, o.size_scale, o.hmin, o.hmax, o.hgrad = float(hsize), float(size_scale), float(hmin), float(hmax), float(hgrad)
+    error = []
+    if progress is not None:
+        def c_progress(fraction, stage, _):
+            try:
+                return 1 if progress(stage.decode(), fraction) is False else 0
+            except BaseException as e:  # noqa: B902 - re-raised after the call
+                error.append(e)
+                return 1
+
+        keep = _capi.PROGRESS_FN(c_progress)  # alive until the call returns
+        o.progress = keep
+    out = c_void_p()
+    rc = lib.anitet_mesh2d_run(pslg, metric, byref(o), byref(out))
+    if error:
+        raise error[0]
+    holder = getattr(metric, "_holder", None) if metric is not None else None
+    if rc != _capi.OK and holder is not None and holder["error"] is not None:
+        cause, holder["error"] = holder["error"], None
+        raise AnitetError(rc, lib.anitet_last_error_message().decode()) from cause
+    _check(rc)
+    return Mesh2d(out.value)

@@ -76,6 +76,9 @@ PART_TET_SEND_OFFSETS = 16
 PART_TET_SEND = 17
 PART_TET_RECV_OFFSETS = 18
 PART_TET_RECV = 19
+MESH2D_OPTIONS_VERSION = 1
+GEO_ENU = 0
+GEO_UTM = 1
 
 # ---- callbacks and structs ----------------------------------------------------------------------
 PROGRESS_FN = CFUNCTYPE(c_int, c_double, c_char_p, c_void_p)
@@ -149,6 +152,26 @@ class CPartitionInfo(Structure):
         ("imbalance", c_double),
         ("total_weight", c_double),
         ("max_part_weight", c_double),
+    ]
+
+
+class CMesh2dOptions(Structure):
+    _fields_ = [
+        ("version", c_int32),
+        ("split_segments", c_int32),
+        ("layers", c_int32),
+        ("refine", c_int32),
+        ("optimize", c_int32),
+        ("geodetic", c_int32),
+        ("geo_frame", c_int32),
+        ("reserved0", c_int32),
+        ("hsize", c_double),
+        ("size_scale", c_double),
+        ("hmin", c_double),
+        ("hmax", c_double),
+        ("hgrad", c_double),
+        ("progress", PROGRESS_FN),
+        ("progress_user_data", c_void_p),
     ]
 
 
@@ -226,6 +249,21 @@ _PROTOTYPES = {
     "anitet_part_serialize": (c_int, [_P, c_void_p, c_int64, _I64]),
     "anitet_part_deserialize": (c_int, [c_void_p, c_int64, _PP]),
     "anitet_set_last_error": (c_int, [c_int32, c_char_p]),
+    "anitet_pslg_create": (c_int, [_D, c_int64, _I32, c_int64, _I32, _D, c_int64, c_int32, _PP]),
+    "anitet_pslg_read": (c_int, [c_char_p, _PP]),
+    "anitet_pslg_destroy": (None, [_P]),
+    "anitet_pslg_get_counts": (c_int, [_P, _I64, _I64, _I64]),
+    "anitet_mesh2d_options_init": (c_int, [POINTER(CMesh2dOptions), c_int32]),
+    "anitet_mesh2d_run": (c_int, [_P, _P, POINTER(CMesh2dOptions), _PP]),
+    "anitet_mesh2d_destroy": (None, [_P]),
+    "anitet_mesh2d_get_counts": (c_int, [_P, _I64, _I64, _I64]),
+    "anitet_mesh2d_get_points": (c_int, [_P, _D, c_int64]),
+    "anitet_mesh2d_get_triangles": (c_int, [_P, _I32, c_int64, c_int32]),
+    "anitet_mesh2d_get_attributes": (c_int, [_P, _D, c_int64]),
+    "anitet_mesh2d_get_edges": (c_int, [_P, _I32, c_int64, c_int32]),
+    "anitet_mesh2d_get_edge_labels": (c_int, [_P, _I32, c_int64]),
+    "anitet_mesh2d_write": (c_int, [_P, c_char_p]),
+    "anitet_mesh2d_quality": (c_int, [_P, _D, _D, _D, _D]),
 }
 
 
