@@ -38,7 +38,8 @@ uint32_t Domain::face_at(const double p[2], uint32_t& hint) const {
   }
   Kernel kernel(const_cast<Triangulation&>(mesh));  // locate only reads
   const Location loc = kernel.locate(p, hint);
-  if (loc.t == kNone || loc.kind == Location::Outside) return kNone;
+  if (loc.t == kNone) return kNone;
+  if (loc.kind == Location::Outside) return outer_face;
   hint = loc.t;
   if (loc.kind == Location::OnVertex) return kNone;
   if (loc.kind == Location::OnEdge && mesh.constrained(loc.t, loc.k)) return kNone;
@@ -61,7 +62,7 @@ Result<Domain> analyse_domain(const Pslg& p) {
   d.face_inside.assign(faces, 1);
   d.face_attribute.assign(faces, 0.0);
   d.face_max_area.assign(faces, -1.0);
-  const uint32_t outer = d.face[d.mesh.vtri[corner]];
+  const uint32_t outer = d.outer_face = d.face[d.mesh.vtri[corner]];
   d.face_inside[outer] = 0;
   uint32_t hint = kNone;
   if (!p.polygons.empty()) {
@@ -111,26 +112,31 @@ Result<Domain> analyse_domain(const Pslg& p) {
   }
   if (std::find(d.face_inside.begin(), d.face_inside.end(), uint8_t(1)) == d.face_inside.end())
     return Status(Error::EmptyInput, prefix(p) + "no domain is left: every face of the segments is a hole or outside");
-  // Each segment's sides.
-  d.sides.assign(p.num_segments(), 0);
+  // Each segment's faces on its left and right (from seg[2i] to seg[2i+1]). A segment with one
+  // face on both sides is on no closed loop: a dangling chain.
+  std::vector<uint32_t> side_face(2 * p.num_segments(), kNone);
   for (uint32_t t = 0; t < d.mesh.num_slots(); ++t) {
     if (!d.mesh.alive(t)) continue;
     for (int k = 0; k < 3; ++k) {
       const int32_t s = d.mesh.edge_tag(t, k);
-      if (s < 0 || !d.face_inside[d.face[t]]) continue;
-      // t lies left of its edge (a, b): on the segment's left when the segment runs the same way.
-      const uint32_t a = d.mesh.edge_a(t, k);
-      const uint32_t sa = p.seg[2 * size_t(s)], sb = p.seg[2 * size_t(s) + 1];
-      // Pieces run along the segment from sa to sb: compare directions by the piece's ends'
-      // order along it.
-      const uint32_t b = d.mesh.edge_b(t, k);
-      const double* pa = d.mesh.point(a);
-      const double* pb = d.mesh.point(b);
-      const double* qa = p.point(sa);
-      const double* qb = p.point(sb);
+      if (s < 0) continue;
+      // t lies left of its edge (a, b): on the segment's left when the piece runs the same way
+      // (pieces are collinear with the segment: the sign of the dot product is robust).
+      const double* pa = d.mesh.point(d.mesh.edge_a(t, k));
+      const double* pb = d.mesh.point(d.mesh.edge_b(t, k));
+      const double* qa = p.point(p.seg[2 * size_t(s)]);
+      const double* qb = p.point(p.seg[2 * size_t(s) + 1]);
       const double along = (pb[0] - pa[0]) * (qb[0] - qa[0]) + (pb[1] - pa[1]) * (qb[1] - qa[1]);
-      d.sides[size_t(s)] |= along > 0 ? 1 : 2;
+      side_face[2 * size_t(s) + (along > 0 ? 0 : 1)] = d.face[t];
     }
+  }
+  d.sides.assign(p.num_segments(), 0);
+  for (size_t s = 0; s < p.num_segments(); ++s) {
+    if (side_face[2 * s] == side_face[2 * s + 1])
+      return Status(Error::OpenBoundary, prefix(p) + "open loop: " + describe_segment(p, s) +
+                                             " has the same face on both sides: it closes no loop");
+    if (side_face[2 * s] != kNone && d.face_inside[side_face[2 * s]]) d.sides[s] |= 1;
+    if (side_face[2 * s + 1] != kNone && d.face_inside[side_face[2 * s + 1]]) d.sides[s] |= 2;
   }
   for (size_t s = 0; s < p.num_segments(); ++s)
     if (!d.sides[s])

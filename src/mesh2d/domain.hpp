@@ -25,9 +25,10 @@ struct Domain {
   // when the face on its right is.
   std::vector<uint8_t> sides;
   std::vector<uint32_t> free_points;   // input points on no segment (all inside)
+  uint32_t outer_face = kNone;         // the unbounded face
 
-  // The face holding p, kNone when p lies on a segment or outside the box; `hint`: a triangle
-  // to start the walk from (updated).
+  // The face holding p (outer_face beyond the triangulation's box), kNone when p lies on a
+  // segment or a point; `hint`: a triangle to start the walk from (updated).
   uint32_t face_at(const double p[2], uint32_t& hint) const;
 };
 

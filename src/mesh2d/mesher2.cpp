@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "mesh2d/conforming.hpp"
+#include "mesh2d/corners.hpp"
 #include "mesh2d/domain.hpp"
 
 namespace anitet::mesh2d {
@@ -12,61 +13,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// With points allowed on segments: at each input point whose angle between two segments (on the
-// domain's side) is below 60 degrees, the segments there are split at one distance from it (half
-// the shortest of them, at most the size there), so that the triangle in the corner is isosceles
-// and the mesh around it can be good (the corner's own angle cannot be improved).
-size_t split_at_small_angles(Triangulation& m, const Pslg& p, VertexMetrics& vm, std::vector<uint8_t>& fixed) {
-  Kernel kernel(m);
-  std::vector<uint32_t> fan;
-  size_t splits = 0;
-  for (uint32_t v = 0; v < p.num_points(); ++v) {
-    if (m.vtri[v] == kNone) continue;
-    m.star(v, fan);
-    // The constrained edges at v, in the fan's order, and the angle between consecutive ones.
-    std::vector<uint32_t> ends;
-    for (uint32_t t : fan) {
-      const int i = m.index_of(t, v);
-      if (m.constrained(t, (i + 2) % 3)) ends.push_back(m.v(t, (i + 1) % 3));
-    }
-    if (!fan.empty()) {
-      const uint32_t t = fan.back();
-      const int i = m.index_of(t, v);
-      if (m.constrained(t, (i + 1) % 3)) ends.push_back(m.v(t, (i + 2) % 3));
-    }
-    if (ends.size() < 2) continue;
-    const double* o = m.point(v);
-    double smallest = M_PI, shortest = 1e300;
-    for (size_t k = 0; k < ends.size(); ++k) {
-      const double* a = m.point(ends[k]);
-      shortest = std::min(shortest, std::hypot(a[0] - o[0], a[1] - o[1]));
-      const double* b = m.point(ends[(k + 1) % ends.size()]);
-      const double ang = std::atan2((a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]),
-                                    (a[0] - o[0]) * (b[0] - o[0]) + (a[1] - o[1]) * (b[1] - o[1]));
-      if (ang > 0) smallest = std::min(smallest, ang);
-    }
-    if (smallest >= M_PI / 3) continue;
-    const double h = 1.0 / std::sqrt(std::max(vm.at[v].xx, vm.at[v].yy));
-    const double d = std::min(0.5 * shortest, h);
-    for (uint32_t e : ends) {
-      const double* a = m.point(e);
-      const double len = std::hypot(a[0] - o[0], a[1] - o[1]);
-      if (len < 1.5 * d) continue;
-      uint32_t t;
-      int k;
-      if (!m.find_edge(v, e, t, k) && !m.find_edge(e, v, t, k)) continue;
-      const double q[2] = {o[0] + d / len * (a[0] - o[0]), o[1] + d / len * (a[1] - o[1])};
-      Location loc;
-      loc.t = t, loc.kind = Location::OnEdge, loc.k = k;
-      const Metric2 mq = metric_at(vm.field, q[0], q[1]);
-      if (kernel.insert(q, loc, vm.anisotropic ? &mq : nullptr, true) == kNone) continue;
-      vm.at.push_back(mq);
-      fixed.push_back(1);  // the corner's shell stays put
-      ++splits;
-    }
-  }
-  return splits;
-}
 
 // The output: vertices in no triangle (collapsed) dropped, the input's points first; each
 // triangle's attribute from its face in the input's classification.
@@ -157,7 +103,7 @@ Result<TriMesh2> run(const Pslg& p, const Mesh2dOptions& o, Mesh2dStats& st) {
   std::fill(fixed.begin(), fixed.begin() + long(p.num_points()), uint8_t(1));
   VertexMetrics vm(*field.value(), anisotropic);
   vm.update(m);
-  if (o.split_segments) st.refine.segment_splits += split_at_small_angles(m, p, vm, fixed);
+  if (o.split_segments) st.refine.segment_splits += split_sharp_corners(m, vm, fixed, uint32_t(p.num_points()));
   RefineOptions2 ro;
   ro.split_segments = o.split_segments;
   const int cycles = 1 + (anisotropic ? std::max(o.anisotropic_cycles, 0) : 0);

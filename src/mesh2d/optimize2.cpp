@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh2d/corners.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet::mesh2d {
@@ -380,16 +381,9 @@ Status optimize2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& v
           }
         }
         if (st_t != kNone) {
-          const double* a0 = m.point(m.edge_a(st_t, st_k));
-          const double* b0 = m.point(m.edge_b(st_t, st_k));
-          const double mid[2] = {0.5 * (a0[0] + b0[0]), 0.5 * (a0[1] + b0[1])};
-          Location on;
-          on.t = st_t, on.kind = Location::OnEdge, on.k = st_k;
-          const Metric2 mm = metric_at(vm.field, mid[0], mid[1]);
-          if (kernel.insert(mid, on, vm.anisotropic ? &mm : nullptr, true) == kNone) continue;
-          vm.at.push_back(mm);
-          fixed.push_back(0);
-          ++st.cleanup_inserts;
+          const size_t made = split_segment_piece(m, vm, fixed, st_t, st_k);
+          if (made == 0) continue;
+          st.cleanup_inserts += made;
           ++changed;
           continue;
         }

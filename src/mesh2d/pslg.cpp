@@ -89,11 +89,9 @@ Status check_segment_ends(const Pslg& p) {
   for (size_t s = 0; s < m; ++s)
     for (int e = 0; e < 2; ++e) {
       const uint32_t v = p.seg[2 * s + size_t(e)];
-      if (degree[v] % 2 == 0) continue;
-      return Status(Error::OpenBoundary,
-                    prefix(p) + "open loop: " + describe_segment(p, s) + " ends at " + describe_point(p, v) +
-                        (degree[v] == 1 ? ", which no other segment continues"
-                                        : ", where " + std::to_string(degree[v]) + " segments end (an odd number)"));
+      if (degree[v] != 1) continue;
+      return Status(Error::OpenBoundary, prefix(p) + "open loop: " + describe_segment(p, s) + " ends at " +
+                                             describe_point(p, v) + ", which no other segment continues");
     }
   return Status::success();
 }

@@ -67,8 +67,9 @@ std::string describe_region(const Pslg& pslg, size_t i);
 // The checks that need no triangulation, each naming the first offending elements (prefixed
 // with the file's name): finite coordinates (NonFiniteCoordinate), segment ends (BadIndex), a
 // segment from a point to itself (InvalidArgument), two points at one place (DuplicatePoint),
-// two segments on the same two points (InvalidArgument), an open loop: a point ending an odd
-// number of segments (OpenBoundary), two segments crossing or touching anywhere but at a shared
+// two segments on the same two points (InvalidArgument), an open loop: a point ending one
+// segment only (OpenBoundary; analyse_domain finds the other dangling segments), two segments
+// crossing or touching anywhere but at a shared
 // end, or a point on a segment (SelfIntersection; exact tests). EmptyInput without 3 segments.
 Status check_pslg(const Pslg& pslg);
 

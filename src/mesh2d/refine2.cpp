@@ -1,5 +1,6 @@
 #include "mesh2d/refine2.hpp"
 
+#include "mesh2d/corners.hpp"
 #include "mesh2d/optimize2.hpp"
 
 #include <algorithm>
@@ -73,6 +74,16 @@ size_t split_pass(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& 
       loc = kernel.locate(mid, e.t);
       if (loc.kind != Location::Inside && loc.kind != Location::OnEdge) continue;
     }
+    if (segment) {  // at a shell when next to a sharp corner
+      const size_t made = split_segment_piece(m, vm, fixed, e.t, e.k);
+      if (touched.size() < m.num_slots()) touched.resize(m.num_slots() + m.num_slots() / 2, 0);
+      // The pieces' new triangles are not known here: mark the two old ones' slots.
+      touched[e.t] = stamp;
+      if (n != kNone) touched[n] = stamp;
+      done += made;
+      st.segment_splits += made;
+      continue;
+    }
     const Metric2 mm = metric_at(vm.field, mid[0], mid[1]);
     // Not too close to the points around (a point of the triangle it falls in or of their
     // neighbours): such a split would only make short edges to collapse again.
@@ -84,7 +95,6 @@ size_t split_pass(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& 
     if (touched.size() < m.num_slots()) touched.resize(m.num_slots() + m.num_slots() / 2, 0);
     for (uint32_t t : kernel.created()) touched[t] = stamp;
     ++done;
-    if (segment) ++st.segment_splits;
   }
   st.splits += done;
   return done;

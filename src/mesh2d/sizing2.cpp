@@ -286,9 +286,9 @@ struct Grid {
   size_t node(int i, int j) const { return size_t(j) * size_t(nx) + size_t(i); }
 };
 
-// The paper's grid in 2D: nodes near a segment take its length (pinned); the domain's other
-// nodes are smoothed from them.
-int boundary_sizes(const Pslg& p, const Grid& g, std::vector<double>& h) {
+// The paper's grid in 2D: nodes near a segment take its length (pinned, marked in `known`); the
+// domain's other nodes are smoothed from them.
+int boundary_sizes(const Pslg& p, const Grid& g, std::vector<double>& h, std::vector<uint8_t>& known) {
   const size_t n = size_t(g.nx) * size_t(g.ny);
   const double sp = g.lattice.spacing, reach = 0.5 * std::sqrt(2.0) * sp;
   std::vector<double> pinned(n, kInf);
@@ -314,7 +314,7 @@ int boundary_sizes(const Pslg& p, const Grid& g, std::vector<double>& h) {
   mean = count ? mean / double(count) : sp;
   h.assign(n, mean);
   for (size_t i = 0; i < n; ++i)
-    if (pinned[i] < kInf) h[i] = pinned[i];
+    if (pinned[i] < kInf) h[i] = pinned[i], known[i] = 1;
   // Over-relaxed Gauss-Seidel on the free inside nodes, over their inside or pinned neighbours.
   int it = 0;
   for (; it < 20000; ++it) {
@@ -384,11 +384,11 @@ std::vector<double> segment_distances(const Pslg& p, const Grid& g) {
   return d;
 }
 
-// Outside nodes take the value of the nearest inside one (breadth first), so that bilinear
-// interpolation next to the boundary reads domain values only.
-void fill_outside(Grid& g, int components) {
+// The nodes not `known` (outside the domain, not on a segment, not pinned) take the value of the
+// nearest known one (breadth first), so that bilinear interpolation next to the boundary reads
+// domain values only.
+void fill_outside(Grid& g, int components, std::vector<uint8_t> done) {
   const size_t n = size_t(g.nx) * size_t(g.ny);
-  std::vector<uint8_t> done(g.inside);
   std::deque<size_t> queue;
   for (size_t c = 0; c < n; ++c)
     if (done[c]) queue.push_back(c);
@@ -422,6 +422,10 @@ double smallest_size(const SizingField& f, const Pslg& p, const double lo[2], co
     for (int i = 0; i <= 32; ++i) probe(lo[0] + (hi[0] - lo[0]) * i / 32.0, lo[1] + (hi[1] - lo[1]) * j / 32.0);
   return best;
 }
+
+// The size for a regional area bound A: edges up to sqrt(2) h enclose at most the equilateral
+// triangle of side sqrt(2) h, whose area is A for h = sqrt(2 A / sqrt(3)).
+double area_size(double max_area) { return std::sqrt(2.0 * max_area / std::sqrt(3.0)); }
 
 double wavelength_size(const SizingOptions2& o, double value) {
   double depth = o.elevation ? -value : value;
@@ -473,7 +477,7 @@ Result<std::unique_ptr<SizingField>> build_sizing2(const Pslg& p, const Domain& 
   if (o.distance_h0 > 0) natural = std::min(natural, o.distance_h0);
   if (o.metric) natural = std::min(natural, smallest_size(*o.metric, p, lo, hi));
   for (size_t f = 0; f < domain.face_max_area.size(); ++f)
-    if (domain.face_max_area[f] > 0) natural = std::min(natural, std::sqrt(4.0 * domain.face_max_area[f] / std::sqrt(3.0)));
+    if (domain.face_max_area[f] > 0) natural = std::min(natural, area_size(domain.face_max_area[f]));
   if (o.bathymetry) natural = std::min(natural, std::max(hi[0] - lo[0], hi[1] - lo[1]) / 256.0);
   double sp = o.spacing > 0 ? o.spacing : natural * o.scale;
   if (o.hmin > 0) sp = std::max(sp, 0.5 * o.hmin);
@@ -492,8 +496,10 @@ Result<std::unique_ptr<SizingField>> build_sizing2(const Pslg& p, const Domain& 
   st.lattice = true;
   st.nx = g.nx, st.ny = g.ny, st.spacing = sp;
   const size_t n = size_t(g.nx) * size_t(g.ny);
-  // Which nodes are inside, and their faces (for regional area bounds).
+  // Which nodes are inside, and their faces (for regional area bounds). Nodes on a segment are
+  // known too (their values are the boundary's).
   g.inside.assign(n, 0);
+  std::vector<uint8_t> known(n, 0);
   std::vector<uint32_t> face(n, kNone);
   uint32_t hint = kNone;
   for (int j = 0; j < g.ny; ++j)
@@ -503,19 +509,34 @@ Result<std::unique_ptr<SizingField>> build_sizing2(const Pslg& p, const Domain& 
       const uint32_t f = domain.face_at(q, hint);
       face[g.node(i, j)] = f;
       g.inside[g.node(i, j)] = f != kNone && domain.face_inside[f];
+      known[g.node(i, j)] = f == kNone || g.inside[g.node(i, j)];
     }
   // Isotropic sizes of every source but the metric.
   std::vector<double> h(n, kInf);
-  if (!has_source) st.smoothing_iterations = boundary_sizes(p, g, h);
+  if (!has_source) st.smoothing_iterations = boundary_sizes(p, g, h, known);
   if (o.hsize > 0)
     for (double& x : h) x = std::min(x, o.hsize);
   if (o.distance_h0 > 0) {
     const std::vector<double> d = segment_distances(p, g);
     for (size_t c = 0; c < n; ++c) h[c] = std::min(h[c], o.distance_h0 + o.distance_rate * d[c]);
   }
-  for (size_t c = 0; c < n; ++c)
-    if (face[c] != kNone && domain.face_max_area[face[c]] > 0)
-      h[c] = std::min(h[c], std::sqrt(4.0 * domain.face_max_area[face[c]] / std::sqrt(3.0)));
+  // Regional area bounds, spread to the nodes around their faces too: a cell across a face's
+  // border then interpolates the bound, not the larger size outside.
+  if (area_bound) {
+    std::vector<double> bound(n, kInf);
+    for (size_t c = 0; c < n; ++c)
+      if (face[c] != kNone && domain.face_max_area[face[c]] > 0) bound[c] = area_size(domain.face_max_area[face[c]]);
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        double b = kInf;
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            const int x = i + di, y = j + dj;
+            if (x >= 0 && y >= 0 && x < g.nx && y < g.ny) b = std::min(b, bound[g.node(x, y)]);
+          }
+        h[g.node(i, j)] = std::min(h[g.node(i, j)], b);
+      }
+  }
   if (o.bathymetry) {
     std::vector<double> q(2 * n);
     for (int j = 0; j < g.ny; ++j)
@@ -561,7 +582,7 @@ Result<std::unique_ptr<SizingField>> build_sizing2(const Pslg& p, const Domain& 
     double* out = &l.values[6 * c];
     out[0] = lg.xx, out[1] = lg.xy, out[2] = lg.yy, out[3] = 0, out[4] = 0, out[5] = 0.5 * (lg.xx + lg.yy);
   }
-  fill_outside(g, l.components);
+  fill_outside(g, l.components, std::move(known));
   if (o.scale != 1.0) {
     if (!tensors) {
       for (double& v : l.values) v *= o.scale;
