@@ -216,30 +216,38 @@ size_t length_smoothing(Triangulation& m, std::vector<uint8_t>& fixed, VertexMet
   return moves;
 }
 
-size_t quality_flips(Triangulation& m, const VertexMetrics& vm, int rounds) {
+size_t quality_flips(Triangulation& m, const VertexMetrics& vm, int rounds, const std::vector<uint32_t>* seeds) {
+  // A work list: the seed triangles (or all), and both triangles of every flip made.
   Kernel kernel(m);
-  size_t total = 0;
-  for (int r = 0; r < rounds; ++r) {
-    size_t flips = 0;
-    for (uint32_t t = 0; t < m.num_slots(); ++t) {
-      if (!m.alive(t)) continue;
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t n = m.across(t, k);
-        if (n == kNone || n < t || m.constrained(t, k)) continue;
-        const int j = m.mirror(t, k);
-        const uint32_t x = m.v(t, k), a = m.edge_a(t, k), b = m.edge_b(t, k), y = m.v(n, j);
-        if (orient2d(m.point(x), m.point(a), m.point(y)) <= 0 || orient2d(m.point(y), m.point(b), m.point(x)) <= 0) continue;
-        const double before = std::min(vm.quality(m, x, a, b), vm.quality(m, y, b, a));
-        const double after = std::min(vm.quality(m, x, a, y), vm.quality(m, y, b, x));
-        const bool better = after > before + 1e-9;
-        if (better && kernel.flip(t, k)) {
-          ++flips;
-          break;  // t changed: its other edges next sweep
-        }
+  std::vector<uint32_t> work;
+  if (seeds) {
+    for (uint32_t t : *seeds)
+      if (t < m.num_slots() && m.alive(t)) work.push_back(t);
+  } else {
+    for (uint32_t t = 0; t < m.num_slots(); ++t)
+      if (m.alive(t)) work.push_back(t);
+  }
+  const size_t budget = size_t(std::max(rounds, 1)) * (work.size() + 16);
+  size_t total = 0, visits = 0;
+  while (!work.empty() && visits++ < budget) {
+    const uint32_t t = work.back();
+    work.pop_back();
+    if (!m.alive(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t n = m.across(t, k);
+      if (n == kNone || m.constrained(t, k)) continue;
+      const int j = m.mirror(t, k);
+      const uint32_t x = m.v(t, k), a = m.edge_a(t, k), b = m.edge_b(t, k), y = m.v(n, j);
+      if (orient2d(m.point(x), m.point(a), m.point(y)) <= 0 || orient2d(m.point(y), m.point(b), m.point(x)) <= 0) continue;
+      const double before = std::min(vm.quality(m, x, a, b), vm.quality(m, y, b, a));
+      const double after = std::min(vm.quality(m, x, a, y), vm.quality(m, y, b, x));
+      if (after > before + 1e-9 && kernel.flip(t, k)) {
+        ++total;
+        work.push_back(n);
+        work.push_back(t);
+        break;  // t changed: its edges again from the list
       }
     }
-    total += flips;
-    if (flips == 0) break;
   }
   return total;
 }
@@ -252,17 +260,21 @@ Status optimize2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& v
   fixed.resize(m.num_vertices(), 0);
   Smoother s(m, fixed, vm);
   st.flips += quality_flips(m, vm);
+  std::vector<uint32_t> moved;
   for (int sweep = 0; sweep < o.sweeps; ++sweep) {
+    moved.clear();
     for (uint32_t v = 0; v < m.num_vertices(); ++v) {
-      if (!s.movable(v)) continue;
-      if (vm.anisotropic) {
-        if (s.energy_move(v, o.anisotropic_floor)) ++st.moves;
-        continue;
-      }
+      if (!s.movable(v)) continue;  // (leaves v's star in s.fan())
       double target[2];
-      if (s.odt_target(v, target) && s.try_move(v, target, 0.5)) ++st.moves;
+      const bool move = vm.anisotropic ? s.energy_move(v, o.anisotropic_floor)
+                                       : s.odt_target(v, target) && s.try_move(v, target, 0.5);
+      if (!move) continue;
+      ++st.moves;
+      moved.insert(moved.end(), s.fan().begin(), s.fan().end());
     }
-    st.flips += quality_flips(m, vm);
+    std::sort(moved.begin(), moved.end());
+    moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+    st.flips += quality_flips(m, vm, 20, &moved);  // around the points that moved
   }
   if (!o.cleanup) return Status::success();
   // Clean-up of the bad triangles with a free point.

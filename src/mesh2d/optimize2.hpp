@@ -44,8 +44,10 @@ Status optimize2(Triangulation& mesh, std::vector<uint8_t>& fixed, VertexMetrics
 // min(their worst quality, floor). Returns the points moved.
 size_t length_smoothing(Triangulation& mesh, std::vector<uint8_t>& fixed, VertexMetrics& metrics, double floor);
 
-// Flips edges until no flip raises the worse quality of the two triangles (at most `rounds`
-// sweeps); returns the flips made.
-size_t quality_flips(Triangulation& mesh, const VertexMetrics& metrics, int rounds = 20);
+// Flips edges until no flip raises the worse quality of the two triangles, from a work list of
+// the `seeds` triangles (null: all) and the triangles of each flip made (at most `rounds` visits
+// per triangle of the list on average); returns the flips made.
+size_t quality_flips(Triangulation& mesh, const VertexMetrics& metrics, int rounds = 20,
+                     const std::vector<uint32_t>* seeds = nullptr);
 
 }  // namespace anitet::mesh2d

@@ -158,6 +158,7 @@ Status refine2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& vm,
   fixed.resize(m.num_vertices(), 0);
   std::vector<uint32_t> touched(m.num_slots(), 0), vtouched;
   uint32_t stamp = 0;
+  int quiet = 0;
   for (int pass = 0; pass < o.max_passes; ++pass) {
     ++stamp;
     const size_t splits = split_pass(m, fixed, vm, o, touched, stamp, st);
@@ -167,11 +168,26 @@ Status refine2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& vm,
       for (int i = 0; i < o.anisotropic_smoothing; ++i) length_smoothing(m, fixed, vm, 0.0);
     vtouched.resize(m.num_vertices(), 0);
     const size_t collapses = collapse_pass(m, fixed, vm, o, vtouched, stamp, st);
-    // Flips between passes: a long edge of a flat triangle is often better flipped than split.
-    const size_t flips = o.flips ? quality_flips(m, vm, 4) : 0;
+    // Flips between passes, around what the pass changed: a long edge of a flat triangle is
+    // often better flipped than split.
+    size_t flips = 0;
+    if (o.flips) {
+      std::vector<uint32_t> seeds;
+      for (uint32_t t = 0; t < m.num_slots(); ++t) {
+        if (!m.alive(t)) continue;
+        bool changed = t < touched.size() && touched[t] == stamp;
+        for (int k = 0; k < 3 && !changed; ++k) changed = vtouched[m.v(t, k)] == stamp;
+        if (changed) seeds.push_back(t);
+      }
+      flips = quality_flips(m, vm, 4, &seeds);
+    }
     st.flips += flips;
     ++st.passes;
     if (splits == 0 && collapses == 0) break;
+    // Near the end a few edges may cycle (split, then collapsed again, where fixed segments
+    // force sizes): stop after two passes that changed fewer than 1% of the points.
+    quiet = double(splits + collapses) < 0.01 * double(m.num_vertices()) ? quiet + 1 : 0;
+    if (quiet >= 2) break;
   }
   return Status::success();
 }
