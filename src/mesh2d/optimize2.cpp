@@ -201,6 +201,30 @@ bool encroaches(const double* a, const double* b, const double* p) {
   return (a[0] - p[0]) * (b[0] - p[0]) + (a[1] - p[1]) * (b[1] - p[1]) < 0;
 }
 
+// Shewchuk's rule against endless refinement at small input angles: a triangle whose shortest
+// edge joins two points on the segments of one sharp corner, at one distance from it (a
+// "seditious" edge), or that has the corner itself, is left as it is.
+bool near_sharp_corner(const Triangulation& m, uint32_t t, const std::vector<uint32_t>& corners) {
+  int shortest = 0;
+  double len = 1e300;
+  for (int k = 0; k < 3; ++k) {
+    const double l = std::hypot(m.point(m.edge_b(t, k))[0] - m.point(m.edge_a(t, k))[0],
+                                m.point(m.edge_b(t, k))[1] - m.point(m.edge_a(t, k))[1]);
+    if (l < len) len = l, shortest = k;
+  }
+  const double* a = m.point(m.edge_a(t, shortest));
+  const double* b = m.point(m.edge_b(t, shortest));
+  for (uint32_t v : corners) {
+    if (m.index_of(t, v) >= 0) return true;
+    const double* o = m.point(v);
+    const double da = std::hypot(a[0] - o[0], a[1] - o[1]), db = std::hypot(b[0] - o[0], b[1] - o[1]);
+    if (std::fabs(da - db) > 1e-6 * std::max(da, db)) continue;
+    const double cosine = ((a[0] - o[0]) * (b[0] - o[0]) + (a[1] - o[1]) * (b[1] - o[1])) / (da * db);
+    if (cosine > 0.5) return true;  // under 60 degrees apart, seen from the corner
+  }
+  return false;
+}
+
 bool bad(const Triangulation& m, const VertexMetrics& vm, uint32_t t, const OptimizeOptions2& o) {
   if (vm.anisotropic) return vm.quality(m, m.v(t, 0), m.v(t, 1), m.v(t, 2)) < o.target_quality;
   return min_angle(m.point(m.v(t, 0)), m.point(m.v(t, 1)), m.point(m.v(t, 2))) < o.target_angle_deg * M_PI / 180.0;
@@ -279,11 +303,17 @@ Status optimize2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& v
   if (!o.cleanup) return Status::success();
   // Clean-up of the bad triangles with a free point.
   Kernel kernel(m);
-  std::vector<uint32_t> ring;
+  std::vector<uint32_t> ring, corners, ends;
+  if (o.split_segments)
+    for (uint32_t v = 0; v < m.num_vertices(); ++v) {
+      double shortest;
+      if (fixed[v] && sharp_corner(m, v, ends, shortest)) corners.push_back(v);
+    }
   for (int round = 0; round < o.cleanup_rounds; ++round) {
     size_t changed = 0;
     for (uint32_t t = 0; t < m.num_slots(); ++t) {
       if (!m.alive(t) || !bad(m, vm, t, o)) continue;
+      if (o.split_segments && near_sharp_corner(m, t, corners)) continue;
       bool done = false;
       // 1. Move a point of t to the best of: its ODT target, its neighbours' centroid.
       for (int k = 0; k < 3 && !done; ++k) {

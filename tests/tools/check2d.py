@@ -219,6 +219,7 @@ def main(argv):
     # --- input points in the mesh (exact coordinates)
     where = {(float(x), float(y)): k for k, (x, y) in enumerate(P)}
     qid = np.array([where.get((float(x), float(y)), -1) for x, y in Q])
+    fig['input_points_found_exactly'] = '%d of %d' % (int((qid >= 0).sum()), len(Q))
     if (qid[np.unique(S.ravel())] < 0).any():
         fails.append('segments: %d input points (on segments) are not mesh points' % int((qid[np.unique(S.ravel())] < 0).sum()))
     edges = set(map(tuple, np.sort(half, axis=1).tolist()))
