@@ -16,22 +16,7 @@ using namespace anitet::capi;
 
 namespace {
 
-// Converts count*arity caller indices counted from base into 0-based ones; BAD_INDEX otherwise.
-int convert_indices(const char* function, const char* element, const int32_t* in, int64_t count,
-                    int arity, int64_t num_points, int32_t base, std::vector<uint32_t>& out) {
-  out.resize(static_cast<size_t>(count * arity));
-  for (int64_t i = 0; i < count * arity; ++i) {
-    const int64_t v = int64_t(in[i]) - base;
-    if (v < 0 || v >= num_points) {
-      return set_error(ANITET_ERR_BAD_INDEX,
-                       std::string(function) + ": " + element + " " + std::to_string(i / arity + base) +
-                           " refers to vertex " + std::to_string(in[i]) + ", not in [" +
-                           std::to_string(base) + ", " + std::to_string(num_points - 1 + base) + "]");
-    }
-    out[size_t(i)] = static_cast<uint32_t>(v);
-  }
-  return ANITET_OK;
-}
+const auto kSame = [](auto v) { return v; };
 
 anitet::Result<anitet::QualityReport> measure(const anitet_mesh* mesh, const anitet_surface* input) {
   anitet::QualityOptions options;

@@ -60,30 +60,6 @@ int to_options(const char* function, const anitet_mesh2d_options& o, anitet::mes
   return ANITET_OK;
 }
 
-// 2 values per item counted from base -> 0-based; BAD_INDEX otherwise.
-int convert_pairs(const char* function, const int32_t* in, int64_t count, int64_t num_points, int32_t base,
-                  std::vector<uint32_t>& out) {
-  out.resize(size_t(count) * 2);
-  for (int64_t i = 0; i < 2 * count; ++i) {
-    const int64_t v = int64_t(in[i]) - base;
-    if (v < 0 || v >= num_points)
-      return set_error(ANITET_ERR_BAD_INDEX, std::string(function) + ": segment " + std::to_string(i / 2 + base) +
-                                                 " refers to point " + std::to_string(in[i]) + ", not in [" +
-                                                 std::to_string(base) + ", " + std::to_string(num_points - 1 + base) + "]");
-    out[size_t(i)] = uint32_t(v);
-  }
-  return ANITET_OK;
-}
-
-template <class T, class U, class F>
-int fill(const char* function, const char* argument, const std::vector<T>& values, U* buf, int64_t buf_len, F&& f) {
-  if (values.empty()) return ok();
-  if (buf == nullptr) return null_argument(function, argument);
-  if (buf_len < 0 || uint64_t(buf_len) < values.size()) return too_small(function, argument, buf_len, values.size());
-  std::transform(values.begin(), values.end(), buf, f);
-  return ok();
-}
-
 }  // namespace
 
 extern "C" {
@@ -106,7 +82,8 @@ int anitet_pslg_create(const double* xy, int64_t num_points, const int32_t* segm
     anitet::mesh2d::Pslg& g = p->pslg;
     g.first_index = index_base;
     g.xy.assign(xy, xy + 2 * num_points);
-    if (const int code = convert_pairs(fn, segments, num_segments, num_points, index_base, g.seg); code != ANITET_OK)
+    if (const int code = convert_indices(fn, "segment", segments, num_segments, 2, num_points, index_base, g.seg);
+        code != ANITET_OK)
       return code;
     g.label.assign(size_t(num_segments), 0);
     if (labels) g.label.assign(labels, labels + num_segments);

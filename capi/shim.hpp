@@ -67,4 +67,32 @@ const auto kSame = [](auto v) { return v; };
 int copy_text(const char* function, const std::string& text, char* buf, int64_t buf_len,
               int64_t* needed);
 
+// Converts count*arity caller indices counted from base into 0-based ones; BAD_INDEX otherwise.
+inline int convert_indices(const char* function, const char* element, const int32_t* in, int64_t count,
+                           int arity, int64_t num_points, int32_t base, std::vector<uint32_t>& out) {
+  out.resize(static_cast<size_t>(count * arity));
+  for (int64_t i = 0; i < count * arity; ++i) {
+    const int64_t v = int64_t(in[i]) - base;
+    if (v < 0 || v >= num_points) {
+      return set_error(ANITET_ERR_BAD_INDEX,
+                       std::string(function) + ": " + element + " " + std::to_string(i / arity + base) +
+                           " refers to vertex " + std::to_string(in[i]) + ", not in [" +
+                           std::to_string(base) + ", " + std::to_string(num_points - 1 + base) + "]");
+    }
+    out[size_t(i)] = static_cast<uint32_t>(v);
+  }
+  return ANITET_OK;
+}
+
+// Copies `values` (converted by f) into a caller buffer after the length check.
+template <class T, class U, class F>
+int fill(const char* function, const char* argument, const std::vector<T>& values, U* buf,
+         int64_t buf_len, F&& f) {
+  if (values.empty()) return ok();  // nothing to write: a NULL buffer is fine
+  if (buf == nullptr) return null_argument(function, argument);
+  if (buf_len < 0 || uint64_t(buf_len) < values.size()) return too_small(function, argument, buf_len, values.size());
+  std::transform(values.begin(), values.end(), buf, f);
+  return ok();
+}
+
 }  // namespace anitet::capi

@@ -5,7 +5,9 @@
 #include <limits>
 #include <string>
 
+#include "mesh2d/metric2.hpp"
 #include "mesh2d/segment_grid.hpp"
+#include "mesh2d/segments2.hpp"
 #include "mesh2d/triangulation.hpp"
 #include "predicates/predicates.hpp"
 
@@ -27,33 +29,6 @@ bool in_sector(const double* o, const double* p1, const double* p2, const double
 }
 
 namespace {
-
-// Segments pq, rs (no shared end) meet anywhere (exact).
-bool meet(const double* p, const double* q, const double* r, const double* s) {
-  const int o1 = orient2d(p, q, r), o2 = orient2d(p, q, s);
-  if (o1 * o2 > 0) return false;
-  const int o3 = orient2d(r, s, p), o4 = orient2d(r, s, q);
-  if (o3 * o4 > 0) return false;
-  if (o1 != 0 || o2 != 0 || o3 != 0 || o4 != 0) return true;
-  const int k = (p[0] != q[0] || r[0] != s[0]) ? 0 : 1;
-  return std::min(p[k], q[k]) <= std::max(r[k], s[k]) && std::min(r[k], s[k]) <= std::max(p[k], q[k]);
-}
-
-// Segments from the shared end o to a and to b overlap.
-bool overlap_from(const double* o, const double* a, const double* b) {
-  if (orient2d(o, a, b) != 0) return false;
-  for (int k = 0; k < 2; ++k)
-    if (a[k] != o[k]) return (a[k] > o[k]) == (b[k] > o[k]);
-  return false;
-}
-
-double min_angle(const double* a, const double* b, const double* c) {
-  auto ang = [](const double* o, const double* p, const double* q) {
-    const double ux = p[0] - o[0], uy = p[1] - o[1], vx = q[0] - o[0], vy = q[1] - o[1];
-    return std::atan2(std::fabs(ux * vy - uy * vx), ux * vx + uy * vy);
-  };
-  return std::min({ang(a, b, c), ang(b, c, a), ang(c, a, b)});
-}
 
 class Front {
  public:
@@ -262,7 +237,7 @@ class Front {
           const uint32_t other = o == s ? t : s;
           const uint32_t f_other = o == fa ? fb : fa;
           if (overlap_from(p(o), p(other), p(f_other))) return false;
-        } else if (meet(p(s), p(t), p(fa), p(fb))) {
+        } else if (segments_meet(p(s), p(t), p(fa), p(fb))) {
           return false;
         }
       }

@@ -48,6 +48,39 @@ inline Metric2 exp2x2(const Metric2& l) {
   return Metric2{c + s_over * half, s_over * l.xy, c - s_over * half};
 }
 
+// The frame in which a metric is Euclidean: to(x) = L^T (x - origin) with M = L L^T (Cholesky),
+// so that |to(x)| = |x - origin|_M; from() maps back.
+struct MetricFrame {
+  double l00 = 1, l10 = 0, l11 = 1;
+  double ox = 0, oy = 0;
+  MetricFrame(const Metric2& m, const double* origin) : ox(origin[0]), oy(origin[1]) {
+    l00 = std::sqrt(m.xx);
+    l10 = m.xy / l00;
+    l11 = std::sqrt(std::max(m.yy - l10 * l10, 1e-300 * m.yy));
+  }
+  void to(const double* x, double out[2]) const {
+    const double dx = x[0] - ox, dy = x[1] - oy;
+    out[0] = l00 * dx + l10 * dy;
+    out[1] = l11 * dy;
+  }
+  void from(const double* y, double out[2]) const {
+    const double dy = y[1] / l11;
+    out[0] = ox + (y[0] - l10 * dy) / l00;
+    out[1] = oy + dy;
+  }
+};
+
+// The circumcentre of a b c in the metric m (the centre of the ellipse of m through them).
+inline void metric_circumcenter(const double* a, const double* b, const double* c, const Metric2& m, double out[2]) {
+  const MetricFrame f(m, a);
+  double pa[2], pb[2], pc[2], cc[2];
+  f.to(a, pa);
+  f.to(b, pb);
+  f.to(c, pc);
+  circumcenter(pa, pb, pc, cc);
+  f.from(cc, out);
+}
+
 // The metric of size h.
 inline Metric2 iso_metric(double h) { return Metric2{1.0 / (h * h), 0.0, 1.0 / (h * h)}; }
 

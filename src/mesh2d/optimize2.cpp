@@ -42,45 +42,27 @@ class Smoother {
     return worst;
   }
 
-  // The ODT/CVT target of v (fan_ must be v's star).
+  // The ODT/CVT target of v (fan_ must be v's star): circumcentres in v's metric, weighted by
+  // area (in that metric) times the density det(M) of each triangle relative to v's.
   bool odt_target(uint32_t v, double out[2]) const {
     const Metric2& mv = vm_.at[v];
-    double l00 = 1, l10 = 0, l11 = 1;
-    if (vm_.anisotropic) {
-      l00 = std::sqrt(mv.xx);
-      l10 = mv.xy / l00;
-      l11 = std::sqrt(std::max(mv.yy - l10 * l10, 1e-300));
-    }
-    const double* o = m_.point(v);
-    auto map = [&](const double* x, double* r) {  // L^T (x - o)
-      const double dx = x[0] - o[0], dy = x[1] - o[1];
-      r[0] = l00 * dx + l10 * dy;
-      r[1] = l11 * dy;
-    };
+    const MetricFrame frame(vm_.anisotropic ? mv : Metric2{}, m_.point(v));
     double sx = 0, sy = 0, sw = 0;
     for (uint32_t t : fan_) {
       const uint32_t a = m_.v(t, 0), b = m_.v(t, 1), c = m_.v(t, 2);
       double pa[2], pb[2], pc[2], cc[2];
-      map(m_.point(a), pa);
-      map(m_.point(b), pb);
-      map(m_.point(c), pc);
+      frame.to(m_.point(a), pa);
+      frame.to(m_.point(b), pb);
+      frame.to(m_.point(c), pc);
       const double ar = area(pa, pb, pc);
       if (!(ar > 0)) return false;
       circumcenter(pa, pb, pc, cc);
-      double w = ar;
-      if (vm_.anisotropic) {
-        w *= det(mean_metric(vm_.at[a], vm_.at[b], vm_.at[c])) / det(mv);
-      } else {
-        const double d = det(mean_metric(vm_.at[a], vm_.at[b], vm_.at[c]));
-        w *= d / det(mv);
-      }
+      const double w = ar * (det(mean_metric(vm_.at[a], vm_.at[b], vm_.at[c])) / det(mv));
       sx += w * cc[0], sy += w * cc[1], sw += w;
     }
     if (!(sw > 0)) return false;
-    const double tx = sx / sw, ty = sy / sw;  // in the mapped frame: back with L^-T
-    const double y = ty / l11, x = (tx - l10 * y) / l00;
-    out[0] = o[0] + x;
-    out[1] = o[1] + y;
+    const double target[2] = {sx / sw, sy / sw};
+    frame.from(target, out);
     return std::isfinite(out[0]) && std::isfinite(out[1]);
   }
 
@@ -383,24 +365,8 @@ Status optimize2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& v
       if (!o.insert) continue;
       const uint32_t a = m.v(t, 0), b = m.v(t, 1), c = m.v(t, 2);
       double cc[2];
-      circumcenter(m.point(a), m.point(b), m.point(c), cc);
-      if (vm.anisotropic) {
-        const Metric2 mt = mean_metric(vm.at[a], vm.at[b], vm.at[c]);
-        const double l00 = std::sqrt(mt.xx), l10 = mt.xy / l00, l11 = std::sqrt(std::max(mt.yy - l10 * l10, 1e-300));
-        const double* o0 = m.point(a);
-        auto map = [&](const double* x, double* r) {
-          const double dx = x[0] - o0[0], dy = x[1] - o0[1];
-          r[0] = l00 * dx + l10 * dy;
-          r[1] = l11 * dy;
-        };
-        double pa[2], pb[2], pc[2], mc[2];
-        map(m.point(a), pa);
-        map(m.point(b), pb);
-        map(m.point(c), pc);
-        circumcenter(pa, pb, pc, mc);
-        const double y = mc[1] / l11, x = (mc[0] - l10 * y) / l00;
-        cc[0] = o0[0] + x, cc[1] = o0[1] + y;
-      }
+      if (vm.anisotropic) metric_circumcenter(m.point(a), m.point(b), m.point(c), mean_metric(vm.at[a], vm.at[b], vm.at[c]), cc);
+      else circumcenter(m.point(a), m.point(b), m.point(c), cc);
       if (!std::isfinite(cc[0]) || !std::isfinite(cc[1])) continue;
       Location loc;
       if (o.split_segments) {

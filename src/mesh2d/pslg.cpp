@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "mesh2d/segment_grid.hpp"
-#include "predicates/predicates.hpp"
+#include "mesh2d/segments2.hpp"
 
 namespace anitet::mesh2d {
 
@@ -96,36 +96,6 @@ Status check_segment_ends(const Pslg& p) {
   return Status::success();
 }
 
-// Whether the segments pq and rs, which share no end, meet (cross, touch or overlap); exact.
-bool segments_meet(const double* p, const double* q, const double* r, const double* s) {
-  using predicates::orient2d;
-  const int o1 = orient2d(p, q, r), o2 = orient2d(p, q, s);
-  if (o1 * o2 > 0) return false;
-  const int o3 = orient2d(r, s, p), o4 = orient2d(r, s, q);
-  if (o3 * o4 > 0) return false;
-  if (o1 != 0 || o2 != 0 || o3 != 0 || o4 != 0) return true;
-  // Collinear: overlap of the projections on an axis along which they are not constant.
-  const int k = (p[0] != q[0] || r[0] != s[0]) ? 0 : 1;
-  const double lo1 = std::min(p[k], q[k]), hi1 = std::max(p[k], q[k]);
-  const double lo2 = std::min(r[k], s[k]), hi2 = std::max(r[k], s[k]);
-  return lo1 <= hi2 && lo2 <= hi1;
-}
-
-// Segments sharing the end o: they overlap when collinear and on the same side of o.
-bool overlap_at_shared_end(const double* o, const double* a, const double* b) {
-  if (predicates::orient2d(o, a, b) != 0) return false;
-  for (int k = 0; k < 2; ++k)
-    if (a[k] != o[k]) return (a[k] > o[k]) == (b[k] > o[k]);
-  return false;
-}
-
-// On segment ab (collinear, strictly between its ends).
-bool point_on_segment(const double* a, const double* b, const double* p) {
-  if (predicates::orient2d(a, b, p) != 0) return false;
-  const int k = a[0] != b[0] ? 0 : 1;
-  return std::min(a[k], b[k]) < p[k] && p[k] < std::max(a[k], b[k]);
-}
-
 Status check_crossings(const Pslg& p) {
   const size_t m = p.num_segments();
   SegmentGrid grid(p.xy, p.seg);
@@ -133,10 +103,10 @@ Status check_crossings(const Pslg& p) {
   grid.for_each_pair([&](uint32_t s, uint32_t t) {
     const uint32_t a = p.seg[2 * s], b = p.seg[2 * s + 1], c = p.seg[2 * t], d = p.seg[2 * t + 1];
     bool meet;
-    if (a == c) meet = overlap_at_shared_end(p.point(a), p.point(b), p.point(d));
-    else if (a == d) meet = overlap_at_shared_end(p.point(a), p.point(b), p.point(c));
-    else if (b == c) meet = overlap_at_shared_end(p.point(b), p.point(a), p.point(d));
-    else if (b == d) meet = overlap_at_shared_end(p.point(b), p.point(a), p.point(c));
+    if (a == c) meet = overlap_from(p.point(a), p.point(b), p.point(d));
+    else if (a == d) meet = overlap_from(p.point(a), p.point(b), p.point(c));
+    else if (b == c) meet = overlap_from(p.point(b), p.point(a), p.point(d));
+    else if (b == d) meet = overlap_from(p.point(b), p.point(a), p.point(c));
     else meet = segments_meet(p.point(a), p.point(b), p.point(c), p.point(d));
     if (!meet) return true;
     const uint32_t lo = std::min(s, t), hi = std::max(s, t);

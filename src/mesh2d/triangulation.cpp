@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "mesh2d/metric2.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet::mesh2d {
@@ -269,18 +270,12 @@ bool Kernel::conflict(uint32_t t, const double p[2], const Metric2* metric) cons
   const double* b = m_.point(m_.v(t, 1));
   const double* c = m_.point(m_.v(t, 2));
   if (!metric) return incircle(a, b, c, p) > 0;
-  // In the metric's frame: x' = L^T (x - p) with M = L L^T (Cholesky), |x'| = |x - p|_M.
-  const double l00 = std::sqrt(metric->xx), l10 = metric->xy / l00;
-  const double l11 = std::sqrt(std::max(metric->yy - l10 * l10, 0.0));
-  auto map = [&](const double* x, double* out) {
-    const double dx = x[0] - p[0], dy = x[1] - p[1];
-    out[0] = l00 * dx + l10 * dy;
-    out[1] = l11 * dy;
-  };
+  // In the metric's frame (mesh2d/metric2.hpp), where its unit circle is a circle.
+  const MetricFrame frame(*metric, p);
   double ta[2], tb[2], tc[2];
-  map(a, ta);
-  map(b, tb);
-  map(c, tc);
+  frame.to(a, ta);
+  frame.to(b, tb);
+  frame.to(c, tc);
   const double origin[2] = {0.0, 0.0};
   return incircle(ta, tb, tc, origin) > 0;
 }
