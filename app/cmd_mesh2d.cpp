@@ -76,7 +76,8 @@ int exit_code_of(const Status& s, const std::string& stage) {
     case Error::Cancelled: return kExitInternal;
     default: break;
   }
-  if (stage == "validate" || stage == "front") return kExitInvalidInput;
+  // A file read but not a valid PSLG (a ring of 2 points, no edges), or refused by the checks.
+  if (stage == "read" || stage == "validate") return kExitInvalidInput;
   return s.code() == Error::InvalidArgument ? kExitUsage : kExitInternal;
 }
 
@@ -151,8 +152,9 @@ int run(Mesh2dCommand::Args& a) {
   Result<mesh2d::Pslg> read = mesh2d::read_pslg(a.input);
   if (!read.ok()) return fail(read.status(), exit_code_of(read.status(), "read"));
   mesh2d::Pslg& pslg = read.value();
+  // --hole points: named "hole N" after the file's own (no line).
   for (const std::vector<double>& h : a.holes) pslg.holes.insert(pslg.holes.end(), {h[0], h[1]});
-  for (size_t i = 0; i < a.holes.size(); ++i) pslg.hole_origin.resize(pslg.num_holes());
+  if (!pslg.hole_origin.empty()) pslg.hole_origin.resize(pslg.num_holes());
 
   // Longitude and latitude: mesh in a local frame in metres.
   const bool geodetic = a.geodetic || (is_geojson(a.input) && !a.planar);

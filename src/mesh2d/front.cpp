@@ -71,7 +71,7 @@ class Front {
   // reaches first.
   uint32_t prev(uint32_t e) {
     const Edge& ed = edges_[e];
-    return first_ccw(ed.a, ed.b, /*incoming=*/true, e);
+    return first_incoming_ccw(ed.a, ed.b, e);
   }
   // The outgoing edge of e's corner at its end: the one reached first going clockwise from b->a.
   uint32_t next(uint32_t e) {
@@ -166,14 +166,13 @@ class Front {
     return d;
   }
 
-  uint32_t first_ccw(uint32_t o, uint32_t x, bool incoming, uint32_t skip) {
+  // The incoming edge at o (other than skip) reached first going counter-clockwise from o->x.
+  uint32_t first_incoming_ccw(uint32_t o, uint32_t x, uint32_t skip) {
     uint32_t best = kNone;
     double best_angle = 10.0;
     for (uint32_t f : at_vertex(o)) {
-      if (f == skip) continue;
-      const Edge& ef = edges_[f];
-      if (incoming ? ef.b != o : ef.a != o) continue;
-      const double d = corner_angle(o, x, incoming ? ef.a : ef.b);
+      if (f == skip || edges_[f].b != o) continue;
+      const double d = corner_angle(o, x, edges_[f].a);
       if (d < best_angle) best_angle = d, best = f;
     }
     return best;

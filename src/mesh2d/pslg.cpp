@@ -97,7 +97,6 @@ Status check_segment_ends(const Pslg& p) {
 }
 
 Status check_crossings(const Pslg& p) {
-  const size_t m = p.num_segments();
   SegmentGrid grid(p.xy, p.seg);
   Status found;
   grid.for_each_pair([&](uint32_t s, uint32_t t) {
@@ -128,7 +127,6 @@ Status check_crossings(const Pslg& p) {
     });
     if (!ok) return found;
   }
-  (void)m;
   return Status::success();
 }
 
