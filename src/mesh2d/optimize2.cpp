@@ -244,10 +244,18 @@ size_t quality_flips(Triangulation& m, const VertexMetrics& vm, int rounds, cons
       if (n == kNone || m.constrained(t, k)) continue;
       const int j = m.mirror(t, k);
       const uint32_t x = m.v(t, k), a = m.edge_a(t, k), b = m.edge_b(t, k), y = m.v(n, j);
-      if (orient2d(m.point(x), m.point(a), m.point(y)) <= 0 || orient2d(m.point(y), m.point(b), m.point(x)) <= 0) continue;
-      const double before = std::min(vm.quality(m, x, a, b), vm.quality(m, y, b, a));
-      const double after = std::min(vm.quality(m, x, a, y), vm.quality(m, y, b, x));
-      if (after > before + 1e-9 && kernel.flip(t, k)) {
+      // Isotropic: the Delaunay flip (the triangulation of the four points with the larger
+      // smallest angle; exact). Anisotropic: the worse quality in the metric must rise.
+      bool better;
+      if (!vm.anisotropic) {
+        better = predicates::incircle(m.point(x), m.point(a), m.point(b), m.point(y)) > 0;
+      } else {
+        if (orient2d(m.point(x), m.point(a), m.point(y)) <= 0 || orient2d(m.point(y), m.point(b), m.point(x)) <= 0) continue;
+        const double before = std::min(vm.quality(m, x, a, b), vm.quality(m, y, b, a));
+        const double after = std::min(vm.quality(m, x, a, y), vm.quality(m, y, b, x));
+        better = after > before + 1e-9;
+      }
+      if (better && kernel.flip(t, k)) {
         ++total;
         work.push_back(n);
         work.push_back(t);
@@ -266,9 +274,10 @@ Status optimize2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& v
   fixed.resize(m.num_vertices(), 0);
   Smoother s(m, fixed, vm);
   st.flips += quality_flips(m, vm);
-  std::vector<uint32_t> moved;
+  std::vector<uint32_t> moved, mark;
   for (int sweep = 0; sweep < o.sweeps; ++sweep) {
     moved.clear();
+    mark.assign(m.num_slots(), 0);
     for (uint32_t v = 0; v < m.num_vertices(); ++v) {
       if (!s.movable(v)) continue;  // (leaves v's star in s.fan())
       double target[2];
@@ -276,10 +285,9 @@ Status optimize2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& v
                                        : s.odt_target(v, target) && s.try_move(v, target, 0.5);
       if (!move) continue;
       ++st.moves;
-      moved.insert(moved.end(), s.fan().begin(), s.fan().end());
+      for (uint32_t t : s.fan())
+        if (!mark[t]) mark[t] = 1, moved.push_back(t);
     }
-    std::sort(moved.begin(), moved.end());
-    moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
     st.flips += quality_flips(m, vm, 20, &moved);  // around the points that moved
   }
   if (!o.cleanup) return Status::success();

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
+#include <vector>
 
 #include "mesh2d/metric2.hpp"
 
@@ -40,18 +40,22 @@ Quality2 measure_quality(const TriMesh2& m) {
     q.min_radius_ratio = std::min(q.min_radius_ratio, rr);
   }
   q.mean_radius_ratio = q.triangles ? rr_sum / double(q.triangles) : 0.0;
-  std::set<std::pair<uint32_t, uint32_t>> edges;
+  std::vector<uint64_t> edges;
+  edges.reserve(3 * q.triangles);
   for (size_t t = 0; t < q.triangles; ++t)
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = m.tri[3 * t + size_t(k)], b = m.tri[3 * t + size_t((k + 1) % 3)];
-      edges.insert({std::min(a, b), std::max(a, b)});
+      edges.push_back((uint64_t(std::min(a, b)) << 32) | std::max(a, b));
     }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   q.edges = edges.size();
   q.in_range = 1.0;
   if (m.metric.size() == 3 * q.vertices && q.edges) {
     size_t in = 0;
     q.length_min = 1e300;
-    for (const auto& [a, b] : edges) {
+    for (const uint64_t key : edges) {
+      const uint32_t a = uint32_t(key >> 32), b = uint32_t(key & 0xffffffffu);
       const Metric2 ma{m.metric[3 * size_t(a)], m.metric[3 * size_t(a) + 1], m.metric[3 * size_t(a) + 2]};
       const Metric2 mb{m.metric[3 * size_t(b)], m.metric[3 * size_t(b) + 1], m.metric[3 * size_t(b) + 2]};
       const double l = edge_length(ma, &m.xy[2 * size_t(a)], mb, &m.xy[2 * size_t(b)]);
