@@ -12,6 +12,9 @@
 #include "anitet.h"
 #include "io/gmf_format.hpp"
 #include "io/surface_io.hpp"
+#include "mesh2d/domain.hpp"
+#include "mesh2d/pslg_io.hpp"
+#include "mesh2d/stages.hpp"
 #include "io/volume_io.hpp"
 #include "metric/sol_field.hpp"
 #include "validate/validate.hpp"
@@ -307,6 +310,44 @@ void capi_surface(const uint8_t* data, size_t size) {
   anitet_surface_destroy(surface);
 }
 
+// A 2D reader's result (mesh2d/pslg_io.hpp); then, for small inputs, the input's checks and
+// stages 1-2 with the coupling: either a documented refusal naming the file, or a valid
+// triangulation in which every segment is an edge.
+void check_pslg(const char* target, Result<mesh2d::Pslg> read) {
+  if (!read.ok()) {
+    const Status& s = read.status();
+    if (!one_of(s.code(), {Error::Parse, Error::BadIndex, Error::EmptyInput, Error::UnsupportedFormat,
+                           Error::InvalidArgument, Error::OutOfMemory}))
+      broken(target, std::string("undocumented error ") + error_name(s.code()) + ": " + s.message());
+    if (s.message().find(kName) == std::string::npos) broken(target, "the message does not name the input: " + s.message());
+    return;
+  }
+  const mesh2d::Pslg& p = read.value();
+  if (p.label.size() != p.num_segments()) broken(target, "one label per segment");
+  for (uint32_t v : p.seg)
+    if (v >= p.num_points()) broken(target, "a segment refers to a missing point");
+  if (p.num_segments() > 64) return;
+  Result<mesh2d::Domain> d = mesh2d::analyse_domain(p);
+  if (!d.ok()) {
+    const Status& s = d.status();
+    if (!one_of(s.code(), {Error::NonFiniteCoordinate, Error::BadIndex, Error::InvalidArgument, Error::DuplicatePoint,
+                           Error::OpenBoundary, Error::SelfIntersection, Error::EmptyInput, Error::RecoveryFailed}))
+      broken(target, std::string("the checks answered ") + error_name(s.code()) + ": " + s.message());
+    if (s.message().find(kName) == std::string::npos) broken(target, "the check does not name the input: " + s.message());
+    return;
+  }
+  mesh2d::StageStats stats;
+  Result<mesh2d::Triangulation> m = mesh2d::boundary_constrained_triangulation(p, d.value(), mesh2d::FrontOptions{}, &stats);
+  if (!m.ok()) broken(target, "stages 1-2 failed on a checked input: " + m.status().message());
+  if (Status s = mesh2d::check_triangulation(m.value()); !s.ok()) broken(target, "stages 1-2: " + s.message());
+  for (size_t i = 0; i < p.num_segments(); ++i) {
+    uint32_t t;
+    int k;
+    if (!m->find_edge(p.seg[2 * i], p.seg[2 * i + 1], t, k) && !m->find_edge(p.seg[2 * i + 1], p.seg[2 * i], t, k))
+      broken(target, "segment " + std::to_string(i) + " is no edge after stages 1-2");
+  }
+}
+
 }  // namespace
 
 const std::vector<Target>& targets() {
@@ -356,6 +397,9 @@ const std::vector<Target>& targets() {
       {"sol", sol},
       {"gmf", gmf},
       {"capi_surface", capi_surface},
+      {"poly", [](const uint8_t* d, size_t n) { check_pslg("poly", mesh2d::parse_poly(text(d, n), kName)); }},
+      {"geojson", [](const uint8_t* d, size_t n) { check_pslg("geojson", mesh2d::parse_geojson(text(d, n), kName)); }},
+      {"medit2d", [](const uint8_t* d, size_t n) { check_pslg("medit2d", mesh2d::parse_medit2d_pslg(text(d, n), kName)); }},
   };
   return all;
 }
