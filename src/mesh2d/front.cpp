@@ -30,6 +30,13 @@ bool in_sector(const double* o, const double* p1, const double* p2, const double
 
 namespace {
 
+double point_segment_distance(const double* r, const double* s, const double* t) {
+  const double ex = t[0] - s[0], ey = t[1] - s[1];
+  const double l2 = ex * ex + ey * ey;
+  const double f = l2 > 0 ? std::clamp(((r[0] - s[0]) * ex + (r[1] - s[1]) * ey) / l2, 0.0, 1.0) : 0.0;
+  return std::hypot(s[0] + f * ex - r[0], s[1] + f * ey - r[1]);
+}
+
 class Front {
  public:
   Front(std::vector<double>& xy, const FrontOptions& options) : xy_(xy), options_(options), grid_(make_grid(xy)) {}
@@ -222,8 +229,10 @@ class Front {
       const uint32_t en2 = next(en);
       if (en2 == kNone || !in_sector(p(w), p(edges_[en2].b), p(b), p(a))) return false;
     }
-    const double lo[2] = {std::min({p(a)[0], p(b)[0], p(q)[0]}), std::min({p(a)[1], p(b)[1], p(q)[1]})};
-    const double hi[2] = {std::max({p(a)[0], p(b)[0], p(q)[0]}), std::max({p(a)[1], p(b)[1], p(q)[1]})};
+    const double clearance = 1e-9 * std::max(std::hypot(p(q)[0] - p(a)[0], p(q)[1] - p(a)[1]),
+                                             std::hypot(p(q)[0] - p(b)[0], p(q)[1] - p(b)[1]));
+    const double lo[2] = {std::min({p(a)[0], p(b)[0], p(q)[0]}) - clearance, std::min({p(a)[1], p(b)[1], p(q)[1]}) - clearance};
+    const double hi[2] = {std::max({p(a)[0], p(b)[0], p(q)[0]}) + clearance, std::max({p(a)[1], p(b)[1], p(q)[1]}) + clearance};
     return grid_.for_each_in_box(lo, hi, [&](uint32_t f) {
       if (f == e) return true;
       const uint32_t fa = edges_[f].a, fb = edges_[f].b;
@@ -243,7 +252,12 @@ class Front {
       for (uint32_t r : {fa, fb}) {
         if (r == a || r == b || r == q) continue;
         if (orient2d(p(a), p(b), p(r)) > 0 && orient2d(p(b), p(q), p(r)) > 0 && orient2d(p(q), p(a), p(r)) > 0) return false;
+        // Clearance: a front point within rounding of a new edge would let stage 2's rounded
+        // midpoints put it on the wrong side of that edge.
+        for (const auto& [s, t] : {std::pair{a, q}, std::pair{q, b}})
+          if (point_segment_distance(p(r), p(s), p(t)) < clearance) return false;
       }
+      if (q != fa && q != fb && point_segment_distance(p(q), p(fa), p(fb)) < clearance) return false;
       return true;
     });
   }

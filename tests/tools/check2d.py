@@ -25,6 +25,7 @@ Options:
   --mean-rr R          require the mean radius ratio >= R
   --metric polar:R0    the anisotropic test metric about (0.5, 0.5): h_r = 0.001 + 2 (0.1 - 0.001)
                        |r - R0| radially, 0.1 tangentially
+  --metric const:A,B,C the constant metric [[A, B], [B, C]]
   --geodesic H         the mesh is in lon/lat: edge lengths as WGS84 geodesics over H metres
   --in-range P         require that share (percent) >= P
   --json               print the figures as one JSON line
@@ -327,8 +328,15 @@ def main(argv):
     # --- edge lengths
     ME = np.array(sorted(edges), dtype=np.int64)
     if 'metric' in opts:
-        kind, r0 = opts['metric'].split(':')
-        L = ugawg_lengths(P, ME, polar_metric(P, float(r0)))
+        kind, arg = opts['metric'].split(':')
+        if kind == 'polar':
+            M = polar_metric(P, float(arg))
+        elif kind == 'const':
+            a, b, c = (float(v) for v in arg.split(','))
+            M = np.broadcast_to(np.array([[a, b], [b, c]]), (len(P), 2, 2))
+        else:
+            sys.exit('check2d.py: unknown --metric kind %r' % kind)
+        L = ugawg_lengths(P, ME, M)
         fig['edges'] = int(len(ME)); fig['in_range_percent'] = round(float(np.mean((L >= 2**-0.5) & (L <= 2**0.5)) * 100), 2)
         fig['length_min'] = round(float(L.min()), 3); fig['length_max'] = round(float(L.max()), 3)
     if 'geodesic' in opts:
