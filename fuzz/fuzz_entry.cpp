@@ -12,10 +12,10 @@
 #include "anitet.h"
 #include "io/gmf_format.hpp"
 #include "io/surface_io.hpp"
+#include "io/volume_io.hpp"
 #include "mesh2d/domain.hpp"
 #include "mesh2d/pslg_io.hpp"
 #include "mesh2d/stages.hpp"
-#include "io/volume_io.hpp"
 #include "metric/sol_field.hpp"
 #include "validate/validate.hpp"
 

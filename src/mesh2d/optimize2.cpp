@@ -212,6 +212,115 @@ bool bad(const Triangulation& m, const VertexMetrics& vm, uint32_t t, const Opti
   return min_angle(m.point(m.v(t, 0)), m.point(m.v(t, 1)), m.point(m.v(t, 2))) < o.target_angle_deg * M_PI / 180.0;
 }
 
+
+// The clean-up's actions on a bad triangle t, tried in this order.
+// 1. Moves a point of t to the best of its ODT target and its neighbours' centroid (full or
+// half step) when its star gets better.
+bool move_a_point(Triangulation& m, VertexMetrics& vm, Smoother& s, uint32_t t, std::vector<uint32_t>& ring) {
+  for (int k = 0; k < 3; ++k) {
+    const uint32_t v = m.v(t, k);
+    if (!s.movable(v)) continue;
+    const double before = s.star_quality(v, m.point(v));
+    double best_q = before, best[2] = {0, 0};
+    double cand[2][2];
+    const bool has_odt = s.odt_target(v, cand[0]);
+    m.neighbours(v, ring);
+    cand[1][0] = cand[1][1] = 0;
+    for (uint32_t x : ring) cand[1][0] += m.point(x)[0] / double(ring.size()), cand[1][1] += m.point(x)[1] / double(ring.size());
+    for (int c = has_odt ? 0 : 1; c < 2; ++c)
+      for (double step : {1.0, 0.5}) {
+        const double p[2] = {m.point(v)[0] + step * (cand[c][0] - m.point(v)[0]), m.point(v)[1] + step * (cand[c][1] - m.point(v)[1])};
+        const double q = s.star_quality(v, p);
+        if (q > best_q + 1e-9) best_q = q, best[0] = p[0], best[1] = p[1];
+      }
+    if (best_q > before + 1e-9) {
+      m.xy[2 * size_t(v)] = best[0];
+      m.xy[2 * size_t(v) + 1] = best[1];
+      vm.at[v] = metric_at(vm.field, best[0], best[1]);
+      return true;
+    }
+  }
+  return false;
+}
+
+// 2. Collapses t's shortest edge (a free end onto the other) when the worst triangle around
+// gets better and no edge grows past 1.6.
+bool collapse_shortest_edge(Triangulation& m, const VertexMetrics& vm, const std::vector<uint8_t>& fixed,
+                            Kernel& kernel, uint32_t t) {
+  int shortest = 0;
+  double len = 1e300;
+  for (int k = 0; k < 3; ++k) {
+    const double l = vm.length(m, m.edge_a(t, k), m.edge_b(t, k));
+    if (l < len) len = l, shortest = k;
+  }
+  const uint32_t ea = m.edge_a(t, shortest), eb = m.edge_b(t, shortest);
+  std::vector<uint32_t> fan;
+  for (const auto& [v, w] : {std::pair{ea, eb}, std::pair{eb, ea}}) {
+    if (fixed[v] || !kernel.can_collapse(v, w)) continue;
+    m.star(v, fan);
+    double before = 1e300, after = 1e300;
+    bool too_long = false;
+    for (uint32_t f : fan) {
+      uint32_t x[3] = {m.v(f, 0), m.v(f, 1), m.v(f, 2)};
+      before = std::min(before, vm.quality(m, x[0], x[1], x[2]));
+      if (m.index_of(f, w) >= 0) continue;
+      const int i = m.index_of(f, v);
+      x[i] = w;
+      after = std::min(after, vm.quality(m, x[0], x[1], x[2]));
+      for (int k = 1; k < 3; ++k) too_long |= vm.length(m, w, x[(i + k) % 3]) > 1.6;
+    }
+    if (too_long || after <= before + 1e-9) continue;
+    kernel.collapse(v, w);
+    return true;
+  }
+  return false;
+}
+
+// 3. Inserts t's circumcentre (in its metric) when it lies in the mesh, not too close to a
+// vertex, and the cavity does not reach past a constraint to it. Returns the points inserted.
+size_t insert_circumcenter(Triangulation& m, VertexMetrics& vm, std::vector<uint8_t>& fixed, Kernel& kernel,
+                           uint32_t t, bool split_segments) {
+  const uint32_t a = m.v(t, 0), b = m.v(t, 1), c = m.v(t, 2);
+  double cc[2];
+  if (vm.anisotropic) metric_circumcenter(m.point(a), m.point(b), m.point(c), mean_metric(vm.at[a], vm.at[b], vm.at[c]), cc);
+  else circumcenter(m.point(a), m.point(b), m.point(c), cc);
+  if (!std::isfinite(cc[0]) || !std::isfinite(cc[1])) return 0;
+  Location loc;
+  if (split_segments) {
+    // Ruppert's rule: a circumcentre beyond a segment, or inside the diametral circle of a
+    // segment piece next to where it falls, splits that piece instead.
+    const auto [ct, ck] = walk_to(m, t, cc);
+    if (ct == kNone) return 0;
+    uint32_t st_t = kNone;
+    int st_k = -1;
+    if (ck >= 0) {
+      if (m.constrained(ct, ck)) st_t = ct, st_k = ck;
+    } else {
+      for (int k = 0; k < 3 && st_t == kNone; ++k) {
+        const uint32_t cand[2] = {ct, m.across(ct, k)};
+        for (uint32_t x : cand) {
+          if (x == kNone) continue;
+          for (int j = 0; j < 3 && st_t == kNone; ++j)
+            if (m.constrained(x, j) && encroaches(m.point(m.edge_a(x, j)), m.point(m.edge_b(x, j)), cc)) st_t = x, st_k = j;
+        }
+      }
+    }
+    if (st_t != kNone) return split_segment_piece(m, vm, fixed, st_t, st_k);
+    if (ck >= 0) return 0;  // left the mesh
+    loc = kernel.locate(cc, ct);
+  } else {
+    loc = kernel.locate(cc, t);
+  }
+  const Metric2 mc = metric_at(vm.field, cc[0], cc[1]);
+  for (int k = 0; k < 3; ++k)
+    if (edge_length(mc, cc, vm.at[m.v(loc.t, k)], m.point(m.v(loc.t, k))) < 0.5) return 0;
+  const uint32_t nv = kernel.insert(cc, loc, vm.anisotropic ? &mc : nullptr, false);
+  if (nv == kNone) return 0;
+  vm.at.push_back(mc);
+  fixed.push_back(0);
+  return 1;
+}
+
 }  // namespace
 
 size_t length_smoothing(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& vm, double floor) {
@@ -304,121 +413,15 @@ Status optimize2(Triangulation& m, std::vector<uint8_t>& fixed, VertexMetrics& v
     for (uint32_t t = 0; t < m.num_slots(); ++t) {
       if (!m.alive(t) || !bad(m, vm, t, o)) continue;
       if (o.split_segments && near_sharp_corner(m, t, corners)) continue;
-      bool done = false;
-      // 1. Move a point of t to the best of: its ODT target, its neighbours' centroid.
-      for (int k = 0; k < 3 && !done; ++k) {
-        const uint32_t v = m.v(t, k);
-        if (!s.movable(v)) continue;
-        const double before = s.star_quality(v, m.point(v));
-        double best_q = before, best[2] = {0, 0};
-        double cand[2][2];
-        const bool has_odt = s.odt_target(v, cand[0]);
-        m.neighbours(v, ring);
-        cand[1][0] = cand[1][1] = 0;
-        for (uint32_t x : ring) cand[1][0] += m.point(x)[0] / double(ring.size()), cand[1][1] += m.point(x)[1] / double(ring.size());
-        for (int c = has_odt ? 0 : 1; c < 2; ++c)
-          for (double step : {1.0, 0.5}) {
-            const double p[2] = {m.point(v)[0] + step * (cand[c][0] - m.point(v)[0]), m.point(v)[1] + step * (cand[c][1] - m.point(v)[1])};
-            const double q = s.star_quality(v, p);
-            if (q > best_q + 1e-9) best_q = q, best[0] = p[0], best[1] = p[1];
-          }
-        if (best_q > before + 1e-9) {
-          m.xy[2 * size_t(v)] = best[0];
-          m.xy[2 * size_t(v) + 1] = best[1];
-          vm.at[v] = metric_at(vm.field, best[0], best[1]);
-          ++st.cleanup_moves;
-          done = true;
-        }
+      if (move_a_point(m, vm, s, t, ring)) {
+        ++st.cleanup_moves, ++changed;
+      } else if (collapse_shortest_edge(m, vm, fixed, kernel, t)) {
+        ++st.cleanup_collapses, ++changed;
+      } else if (o.insert) {
+        const size_t made = insert_circumcenter(m, vm, fixed, kernel, t, o.split_segments);
+        st.cleanup_inserts += made;
+        changed += made > 0;
       }
-      if (done) {
-        ++changed;
-        continue;
-      }
-      // 2. Collapse its shortest edge (a free end onto the other) when the worst triangle
-      // around gets better.
-      int shortest = 0;
-      double len = 1e300;
-      for (int k = 0; k < 3; ++k) {
-        const double l = vm.length(m, m.edge_a(t, k), m.edge_b(t, k));
-        if (l < len) len = l, shortest = k;
-      }
-      const uint32_t ea = m.edge_a(t, shortest), eb = m.edge_b(t, shortest);
-      for (const auto& [v, w] : {std::pair{ea, eb}, std::pair{eb, ea}}) {
-        if (fixed[v] || !kernel.can_collapse(v, w)) continue;
-        std::vector<uint32_t> fan;
-        m.star(v, fan);
-        double before = 1e300, after = 1e300;
-        bool too_long = false;
-        for (uint32_t f : fan) {
-          uint32_t x[3] = {m.v(f, 0), m.v(f, 1), m.v(f, 2)};
-          before = std::min(before, vm.quality(m, x[0], x[1], x[2]));
-          if (m.index_of(f, w) >= 0) continue;
-          const int i = m.index_of(f, v);
-          x[i] = w;
-          after = std::min(after, vm.quality(m, x[0], x[1], x[2]));
-          for (int k = 1; k < 3; ++k) too_long |= vm.length(m, w, x[(i + k) % 3]) > 1.6;
-        }
-        if (too_long || after <= before + 1e-9) continue;
-        kernel.collapse(v, w);
-        ++st.cleanup_collapses;
-        done = true;
-        break;
-      }
-      if (done) {
-        ++changed;
-        continue;
-      }
-      // 3. Insert its circumcentre (in its metric) when it lies in the mesh and the cavity
-      // does not reach past a constraint to it.
-      if (!o.insert) continue;
-      const uint32_t a = m.v(t, 0), b = m.v(t, 1), c = m.v(t, 2);
-      double cc[2];
-      if (vm.anisotropic) metric_circumcenter(m.point(a), m.point(b), m.point(c), mean_metric(vm.at[a], vm.at[b], vm.at[c]), cc);
-      else circumcenter(m.point(a), m.point(b), m.point(c), cc);
-      if (!std::isfinite(cc[0]) || !std::isfinite(cc[1])) continue;
-      Location loc;
-      if (o.split_segments) {
-        // Ruppert's rule: a circumcentre beyond a segment, or inside the diametral circle of a
-        // segment piece next to where it falls, splits that piece instead.
-        const auto [ct, ck] = walk_to(m, t, cc);
-        if (ct == kNone) continue;
-        uint32_t st_t = kNone;
-        int st_k = -1;
-        if (ck >= 0) {
-          if (m.constrained(ct, ck)) st_t = ct, st_k = ck;
-        } else {
-          for (int k = 0; k < 3 && st_t == kNone; ++k) {
-            const uint32_t cand[2] = {ct, m.across(ct, k)};
-            for (uint32_t x : cand) {
-              if (x == kNone) continue;
-              for (int j = 0; j < 3 && st_t == kNone; ++j)
-                if (m.constrained(x, j) && encroaches(m.point(m.edge_a(x, j)), m.point(m.edge_b(x, j)), cc)) st_t = x, st_k = j;
-            }
-          }
-        }
-        if (st_t != kNone) {
-          const size_t made = split_segment_piece(m, vm, fixed, st_t, st_k);
-          if (made == 0) continue;
-          st.cleanup_inserts += made;
-          ++changed;
-          continue;
-        }
-        if (ck >= 0) continue;  // left the mesh
-        loc = kernel.locate(cc, ct);
-      } else {
-        loc = kernel.locate(cc, t);
-      }
-      const Metric2 mc = metric_at(vm.field, cc[0], cc[1]);
-      // Not too close to a vertex of the triangle it falls in.
-      bool close = false;
-      for (int k = 0; k < 3; ++k) close |= edge_length(mc, cc, vm.at[m.v(loc.t, k)], m.point(m.v(loc.t, k))) < 0.5;
-      if (close) continue;
-      const uint32_t nv = kernel.insert(cc, loc, vm.anisotropic ? &mc : nullptr, false);
-      if (nv == kNone) continue;
-      vm.at.push_back(mc);
-      fixed.push_back(0);
-      ++st.cleanup_inserts;
-      ++changed;
     }
     st.flips += quality_flips(m, vm);
     if (changed == 0) break;

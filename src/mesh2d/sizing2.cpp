@@ -433,6 +433,54 @@ double wavelength_size(const SizingOptions2& o, double value) {
   return o.wave_period * std::sqrt(9.80665 * depth) / o.points_per_wavelength;
 }
 
+// The lattice's spacing (unless given): the smallest size asked for, or the input's typical
+// segment length when nothing is asked, times o.scale; at least hmin / 2.
+double lattice_spacing(const Pslg& p, const Domain& domain, const SizingOptions2& o, bool has_source,
+                       const double lo[2], const double hi[2]) {
+  double natural = kInf;
+  if (!has_source) {
+    std::vector<double> len(p.num_segments());
+    double mean = 0;
+    for (size_t s = 0; s < len.size(); ++s) {
+      const double* a = p.point(p.seg[2 * s]);
+      const double* b = p.point(p.seg[2 * s + 1]);
+      mean += (len[s] = std::hypot(b[0] - a[0], b[1] - a[1]));
+    }
+    mean /= double(std::max<size_t>(len.size(), 1));
+    std::nth_element(len.begin(), len.begin() + long(len.size() / 2), len.end());
+    natural = std::min(mean, 2.0 * len[len.size() / 2]);
+  }
+  if (o.hsize > 0) natural = std::min(natural, o.hsize);
+  if (o.distance_h0 > 0) natural = std::min(natural, o.distance_h0);
+  if (o.metric) natural = std::min(natural, smallest_size(*o.metric, p, lo, hi));
+  for (size_t f = 0; f < domain.face_max_area.size(); ++f)
+    if (domain.face_max_area[f] > 0) natural = std::min(natural, area_size(domain.face_max_area[f]));
+  if (o.bathymetry) natural = std::min(natural, std::max(hi[0] - lo[0], hi[1] - lo[1]) / 256.0);
+  double sp = o.spacing > 0 ? o.spacing : natural * o.scale;
+  if (o.hmin > 0) sp = std::max(sp, 0.5 * o.hmin);
+  if (!(sp > 0) || !std::isfinite(sp)) sp = std::max(hi[0] - lo[0], hi[1] - lo[1]) / 64.0;
+  return sp;
+}
+
+// Regional area bounds as sizes, spread to the nodes around their faces too: a cell across a
+// face's border then interpolates the bound, not the larger size outside.
+void apply_area_bounds(const Domain& domain, const Grid& g, const std::vector<uint32_t>& face, std::vector<double>& h) {
+  const size_t n = h.size();
+  std::vector<double> bound(n, kInf);
+  for (size_t c = 0; c < n; ++c)
+    if (face[c] != kNone && domain.face_max_area[face[c]] > 0) bound[c] = area_size(domain.face_max_area[face[c]]);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      double b = kInf;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int x = i + di, y = j + dj;
+          if (x >= 0 && y >= 0 && x < g.nx && y < g.ny) b = std::min(b, bound[g.node(x, y)]);
+        }
+      h[g.node(i, j)] = std::min(h[g.node(i, j)], b);
+    }
+}
+
 }  // namespace
 
 Result<std::unique_ptr<SizingField>> build_sizing2(const Pslg& p, const Domain& domain, const SizingOptions2& o,
@@ -460,28 +508,7 @@ Result<std::unique_ptr<SizingField>> build_sizing2(const Pslg& p, const Domain& 
   // The lattice over the input's box, two cells of margin.
   double lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
   for (size_t i = 0; i < p.xy.size(); ++i) lo[i % 2] = std::min(lo[i % 2], p.xy[i]), hi[i % 2] = std::max(hi[i % 2], p.xy[i]);
-  double natural = kInf;
-  if (!has_source) {
-    std::vector<double> len(p.num_segments());
-    double mean = 0;
-    for (size_t s = 0; s < len.size(); ++s) {
-      const double* a = p.point(p.seg[2 * s]);
-      const double* b = p.point(p.seg[2 * s + 1]);
-      mean += (len[s] = std::hypot(b[0] - a[0], b[1] - a[1]));
-    }
-    mean /= double(std::max<size_t>(len.size(), 1));
-    std::nth_element(len.begin(), len.begin() + long(len.size() / 2), len.end());
-    natural = std::min(mean, 2.0 * len[len.size() / 2]);
-  }
-  if (o.hsize > 0) natural = std::min(natural, o.hsize);
-  if (o.distance_h0 > 0) natural = std::min(natural, o.distance_h0);
-  if (o.metric) natural = std::min(natural, smallest_size(*o.metric, p, lo, hi));
-  for (size_t f = 0; f < domain.face_max_area.size(); ++f)
-    if (domain.face_max_area[f] > 0) natural = std::min(natural, area_size(domain.face_max_area[f]));
-  if (o.bathymetry) natural = std::min(natural, std::max(hi[0] - lo[0], hi[1] - lo[1]) / 256.0);
-  double sp = o.spacing > 0 ? o.spacing : natural * o.scale;
-  if (o.hmin > 0) sp = std::max(sp, 0.5 * o.hmin);
-  if (!(sp > 0) || !std::isfinite(sp)) sp = std::max(hi[0] - lo[0], hi[1] - lo[1]) / 64.0;
+  double sp = lattice_spacing(p, domain, o, has_source, lo, hi);
   Grid g;
   for (;;) {
     g.nx = int(std::ceil((hi[0] - lo[0]) / sp)) + 5;
@@ -520,23 +547,7 @@ Result<std::unique_ptr<SizingField>> build_sizing2(const Pslg& p, const Domain& 
     const std::vector<double> d = segment_distances(p, g);
     for (size_t c = 0; c < n; ++c) h[c] = std::min(h[c], o.distance_h0 + o.distance_rate * d[c]);
   }
-  // Regional area bounds, spread to the nodes around their faces too: a cell across a face's
-  // border then interpolates the bound, not the larger size outside.
-  if (area_bound) {
-    std::vector<double> bound(n, kInf);
-    for (size_t c = 0; c < n; ++c)
-      if (face[c] != kNone && domain.face_max_area[face[c]] > 0) bound[c] = area_size(domain.face_max_area[face[c]]);
-    for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i) {
-        double b = kInf;
-        for (int dj = -1; dj <= 1; ++dj)
-          for (int di = -1; di <= 1; ++di) {
-            const int x = i + di, y = j + dj;
-            if (x >= 0 && y >= 0 && x < g.nx && y < g.ny) b = std::min(b, bound[g.node(x, y)]);
-          }
-        h[g.node(i, j)] = std::min(h[g.node(i, j)], b);
-      }
-  }
+  if (area_bound) apply_area_bounds(domain, g, face, h);
   if (o.bathymetry) {
     std::vector<double> q(2 * n);
     for (int j = 0; j < g.ny; ++j)
