@@ -229,7 +229,11 @@ def main(argv):
     seg_lo = np.minimum(Q[S[:, 0]], Q[S[:, 1]]); seg_hi = np.maximum(Q[S[:, 0]], Q[S[:, 1]])
     span = max(float(np.ptp(Q[:, 0])), float(np.ptp(Q[:, 1])), 1e-300)
     tol = 1e-10 * span
+    seg_lo -= tol; seg_hi += tol
     cell = max(float(np.median(np.linalg.norm(Q[S[:, 1]] - Q[S[:, 0]], axis=1))), 1e-300)
+    # (coarser cells while the segments' boxes would fill more than 4 million: thin inputs)
+    while np.sum((seg_hi[:, 0] // cell - seg_lo[:, 0] // cell + 1) * (seg_hi[:, 1] // cell - seg_lo[:, 1] // cell + 1)) > 4e6:
+        cell *= 2
     grid = {}
     for s in range(len(S)):
         for gx in range(int(seg_lo[s, 0] // cell), int(seg_hi[s, 0] // cell) + 1):
@@ -245,7 +249,10 @@ def main(argv):
         p = P[v]
         for s in grid.get((int(p[0] // cell), int(p[1] // cell)), []):
             dd, t = dist_to(s, p)
-            if dd <= tol and 0 < t < 1: on_seg.setdefault(s, []).append((t, v))
+            # (without --split only a point exactly on the segment counts: the mesher adds
+            # none, and on a thin input a point inside may lie within tol of a segment)
+            if dd <= tol and 0 < t < 1 and (opts['split'] or orient_exact(Q[S[s, 0]], Q[S[s, 1]], p) == 0):
+                on_seg.setdefault(s, []).append((t, v))
     added = sum(len(x) for x in on_seg.values())
     fig['points_on_segments_added'] = added
     if added and not opts['split']: fails.append('no_added: %d mesh points lie on input segments' % added)
