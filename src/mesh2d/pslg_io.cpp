@@ -251,13 +251,27 @@ namespace {
 
 using nlohmann::json;
 
+// An object's "type" member, "" when it has none or it is no string (json::value would throw).
+std::string type_of(const json& o) {
+  const auto it = o.find("type");
+  return it != o.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
+// Whether the properties hold a "label" that is an integer of 32 bits.
+bool is_label(const json& props) {
+  const auto it = props.find("label");
+  if (it == props.end() || !it->is_number_integer()) return false;
+  const double v = it->get<double>();
+  return v >= -2147483648.0 && v <= 2147483647.0;
+}
+
 class GeoJsonBuilder {
  public:
   explicit GeoJsonBuilder(const std::string& name) { p_.name = name; }
 
   Status feature(const json& f, uint32_t number) {
     if (!f.is_object()) return fail(number, "is not an object");
-    const std::string type = f.value("type", std::string());
+    const std::string type = type_of(f);
     if (type == "Feature") {
       const json& props = f.contains("properties") && f["properties"].is_object() ? f["properties"] : json::object();
       return geometry(f.contains("geometry") ? f["geometry"] : json(), props, number);
@@ -340,9 +354,11 @@ class GeoJsonBuilder {
   Status polygon(const json& coords, const json& props, uint32_t feature, uint32_t number) {
     if (!coords.is_array() || coords.empty()) return fail(feature, "has a polygon without rings");
     PolygonRings poly;
-    const bool has_region = props.contains("region") && props["region"].is_number();
+    const bool has_region = props.contains("region");
+    if (has_region && !props["region"].is_number()) return fail(feature, "has a \"region\" that is not a number");
     poly.attribute = has_region ? props["region"].get<double>() : double(p_.polygons.size() + 1);
-    const bool has_label = props.contains("label") && props["label"].is_number_integer();
+    const bool has_label = props.contains("label");
+    if (has_label && !is_label(props)) return fail(feature, "has a \"label\" that is not an integer of 32 bits");
     for (size_t r = 0; r < coords.size(); ++r) {
       Origin o;
       o.feature = feature;
@@ -358,7 +374,7 @@ class GeoJsonBuilder {
   }
 
   Status lines(const json& coords, const json& props, uint32_t feature) {
-    if (!props.contains("label") || !props["label"].is_number_integer())
+    if (!is_label(props))
       return fail(feature, "is a line without an integer \"label\" property (lines only label polygon edges)");
     const int32_t label = props["label"].get<int32_t>();
     uint32_t edge = 0;
@@ -379,7 +395,7 @@ class GeoJsonBuilder {
 
   Status geometry(const json& g, const json& props, uint32_t feature) {
     if (!g.is_object()) return g.is_null() ? Status::success() : fail(feature, "has a geometry that is not an object");
-    const std::string type = g.value("type", std::string());
+    const std::string type = type_of(g);
     const json coords = g.contains("coordinates") ? g["coordinates"] : json();
     if (type == "Polygon") return polygon(coords, props, feature, ++polygons_in_feature_[feature]);
     if (type == "MultiPolygon") {
@@ -440,7 +456,7 @@ Result<Pslg> parse_geojson(std::string_view data, const std::string& name) {
       return Status(Error::Parse, name + ": not valid JSON");
     }
     GeoJsonBuilder b(name);
-    if (doc.is_object() && doc.value("type", std::string()) == "FeatureCollection") {
+    if (doc.is_object() && type_of(doc) == "FeatureCollection") {
       if (!doc.contains("features") || !doc["features"].is_array())
         return Status(Error::Parse, name + ": a FeatureCollection without a features array");
       uint32_t number = 0;

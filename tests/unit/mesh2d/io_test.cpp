@@ -124,6 +124,17 @@ TEST(Mesh2dIo, GeoJsonErrorsNameTheFeature) {
   s = parse_geojson(R"({"type": "Polygon", "coordinates": [[[0, 0], [1, 0], [0, 0]]]})", "t.geojson").status();
   EXPECT_EQ(s.code(), Error::InvalidArgument);
   EXPECT_NE(s.message().find("feature 1, polygon 1, ring 1"), std::string::npos) << s.message();
+  // Members of the wrong type: refused by name, never thrown.
+  s = parse_geojson(R"({"type": [1], "coordinates": []})", "t.geojson").status();
+  EXPECT_EQ(s.code(), Error::UnsupportedFormat) << s.message();
+  s = parse_geojson(R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {}, "geometry": null},
+    {"type": "Feature", "properties": {"label": "land"}, "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [1, 0], [0, 1], [0, 0]]]}}]})",
+                    "t.geojson").status();
+  EXPECT_EQ(s.code(), Error::Parse);
+  EXPECT_NE(s.message().find("feature 2 has a \"label\" that is not an integer"), std::string::npos) << s.message();
+  s = parse_geojson(R"({"type": "Feature", "properties": {"label": 4294967296}, "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [1, 0], [0, 1], [0, 0]]]}})",
+                    "t.geojson").status();
+  EXPECT_EQ(s.code(), Error::Parse) << s.message();
   // A bow tie: the crossing named by its ring and vertex.
   Result<Pslg> p = parse_geojson(R"({"type": "Polygon", "coordinates": [[[0, 0], [1, 1], [1, 0], [0, 1], [0, 0]]]})", "t.geojson");
   ASSERT_TRUE(p.ok());
