@@ -452,6 +452,8 @@ Result<Pslg> parse_geojson(std::string_view data, const std::string& name) {
         LineCounter lines(data);
         return Status(Error::Parse, name + ":" + std::to_string(lines.at(std::min(e.byte, data.size()))) +
                                         ": not valid JSON (" + e.what() + ")");
+      } catch (const json::exception& e) {  // e.g. out_of_range: a number past a double's range
+        return Status(Error::Parse, name + ": not valid JSON (" + e.what() + ")");
       }
       return Status(Error::Parse, name + ": not valid JSON");
     }
