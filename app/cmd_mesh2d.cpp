@@ -76,8 +76,9 @@ int exit_code_of(const Status& s, const std::string& stage) {
     case Error::Cancelled: return kExitInternal;
     default: break;
   }
-  // A file read but not a valid PSLG (a ring of 2 points, no edges), or refused by the checks.
-  if (stage == "read" || stage == "validate") return kExitInvalidInput;
+  // A file read but not a valid PSLG (a ring of 2 points, no edges), refused by the checks, or
+  // too thin beside a segment for stage 1 in doubles.
+  if (stage == "read" || stage == "validate" || stage == "front") return kExitInvalidInput;
   return s.code() == Error::InvalidArgument ? kExitUsage : kExitInternal;
 }
 
@@ -248,8 +249,10 @@ int run(Mesh2dCommand::Args& a) {
                 st.stages.s1_edges, st.stages.coupled);
     std::printf("  sizing: %s; refinement: %zu splits, %zu collapses; %zu CVT moves, %zu flips\n", st.sizing.source.c_str(),
                 st.refine.splits, st.refine.collapses, st.optimize.moves, st.optimize.flips + st.refine.flips);
-    std::printf("  quality: min angle %.2f deg (%.2f deg off the input's points), mean radius ratio %.4f (min %.4f)\n",
-                q.min_angle_deg, q.min_angle_free_deg, q.mean_radius_ratio, q.min_radius_ratio);
+    char off_input[64] = "no triangle off the input's points";
+    if (q.free_triangles > 0) std::snprintf(off_input, sizeof off_input, "%.2f deg off the input's points", q.min_angle_free_deg);
+    std::printf("  quality: min angle %.2f deg (%s), mean radius ratio %.4f (min %.4f)\n", q.min_angle_deg, off_input,
+                q.mean_radius_ratio, q.min_radius_ratio);
     std::printf("  edges of metric length in [1/sqrt2, sqrt2]: %.2f%%\n", 100.0 * q.in_range);
   }
   return kExitOk;

@@ -338,7 +338,14 @@ void check_pslg(const char* target, Result<mesh2d::Pslg> read) {
   }
   mesh2d::StageStats stats;
   Result<mesh2d::Triangulation> m = mesh2d::boundary_constrained_triangulation(p, d.value(), mesh2d::FrontOptions{}, &stats);
-  if (!m.ok()) broken(target, "stages 1-2 failed on a checked input: " + m.status().message());
+  if (!m.ok()) {
+    // The one refusal past the checks: a domain narrower beside a segment than stage 1's precision.
+    const Status& s = m.status();
+    if (s.code() == Error::InvalidArgument && s.message().find("the precision stage 1 needs") != std::string::npos &&
+        s.message().find(kName) != std::string::npos)
+      return;
+    broken(target, "stages 1-2 failed on a checked input: " + s.message());
+  }
   if (Status s = mesh2d::check_triangulation(m.value()); !s.ok()) broken(target, "stages 1-2: " + s.message());
   for (size_t i = 0; i < p.num_segments(); ++i) {
     uint32_t t;

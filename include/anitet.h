@@ -957,9 +957,10 @@ ANITET_API int anitet_mesh2d_get_edge_labels(const anitet_mesh2d* mesh, int32_t*
  * (ADCIRC, every labelled boundary a land boundary). */
 ANITET_API int anitet_mesh2d_write(const anitet_mesh2d* mesh, const char* path);
 /** Quality figures (any pointer may be NULL): the smallest angle in degrees, the smallest over
- * the triangles with no vertex among the input's points, the mean radius ratio 2r/R (1 for an
- * equilateral triangle) and the share of edges whose length in the sizing field's metric lies in
- * [1/sqrt2, sqrt2] (measured in the local frame for geodetic inputs). */
+ * the triangles with no vertex among the input's points (180 when there is none), the mean
+ * radius ratio 2r/R (1 for an equilateral triangle) and the share of edges whose length in the
+ * sizing field's metric lies in [1/sqrt2, sqrt2] (measured in the local frame for geodetic
+ * inputs). */
 ANITET_API int anitet_mesh2d_quality(const anitet_mesh2d* mesh, double* min_angle_deg,
                                      double* min_angle_off_input_deg, double* mean_radius_ratio,
                                      double* edges_in_range);

@@ -100,42 +100,16 @@ class Front {
     const Edge ed = edges_[e];
     const uint32_t ep = prev(e), en = next(e);
     if (ep == kNone || en == kNone) return false;
-    const uint32_t u = edges_[ep].a, w = edges_[en].b;
+    // First an apex clear of the front by 1e-9 of the new edges' lengths: a front point closer
+    // to a new edge costs stage 2's recovery splits down to that distance, and rounding may put
+    // the point across the edge's pieces. Where the domain is thinner than that, any apex the
+    // exact tests accept (the lemma's).
     uint32_t q = kNone;
-    // Close a sharp corner on the neighbouring vertex when the triangle is good.
-    double best = -1.0;
-    const double close = options_.close_angle_deg * M_PI / 180.0;
-    for (uint32_t cand : {u, w}) {
-      const bool at_a = cand == u;
-      const double corner = at_a ? corner_angle(ed.a, ed.b, u) : corner_angle(ed.b, w, ed.a);
-      if (u != w && corner >= close) continue;
-      if (!valid(e, ep, en, cand)) continue;
-      const double quality = min_angle(p(ed.a), p(ed.b), p(cand));
-      if (quality > best) best = quality, q = cand;
-    }
-    if (q == kNone) {
-      double height = apex_height(ed.a, ed.b);
-      const double* a = p(ed.a);
-      const double* b = p(ed.b);
-      const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
-      const double nx = -(b[1] - a[1]) / len, ny = (b[0] - a[0]) / len;
-      const double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
-      for (int tries = 0; tries < 200; ++tries) {
-        xy_.push_back(mx + height * nx);
-        xy_.push_back(my + height * ny);
-        const uint32_t cand = uint32_t(xy_.size() / 2 - 1);
-        if (valid(e, ep, en, cand)) {
-          q = cand;
-          break;
-        }
-        xy_.resize(xy_.size() - 2);
-        height *= 0.5;
-        ++out.halvings;
-      }
-      if (q == kNone) return false;
-    } else {
-      ++out.closed;
-    }
+    bool closed = false;
+    for (double clearance : {1e-9, 0.0})
+      if ((q = choose_apex(e, ep, en, clearance, closed, out)) != kNone) break;
+    if (q == kNone) return false;
+    if (closed) ++out.closed;
     // The triangle (a, b, q): edge 2 is ab, edge 1 is qa, edge 0 is bq.
     const uint32_t t = uint32_t(out.tri.size() / 3);
     out.tri.insert(out.tri.end(), {ed.a, ed.b, q});
@@ -149,6 +123,42 @@ class Front {
   const std::vector<Edge>& edges() const { return edges_; }
 
  private:
+  // The apex of e's triangle: a neighbouring front vertex closing a sharp corner well (closed
+  // = true), else a new point on e's inward normal, its height halved until valid; kNone if none.
+  uint32_t choose_apex(uint32_t e, uint32_t ep, uint32_t en, double clearance, bool& closed, FrontResult& out) {
+    const Edge& ed = edges_[e];
+    const uint32_t u = edges_[ep].a, w = edges_[en].b;
+    uint32_t q = kNone;
+    double best = -1.0;
+    const double close = options_.close_angle_deg * M_PI / 180.0;
+    for (uint32_t cand : {u, w}) {
+      const bool at_a = cand == u;
+      const double corner = at_a ? corner_angle(ed.a, ed.b, u) : corner_angle(ed.b, w, ed.a);
+      if (u != w && corner >= close) continue;
+      if (!valid(e, ep, en, cand, clearance)) continue;
+      const double quality = min_angle(p(ed.a), p(ed.b), p(cand));
+      if (quality > best) best = quality, q = cand;
+    }
+    closed = q != kNone;
+    if (closed) return q;
+    double height = apex_height(ed.a, ed.b);
+    const double* a = p(ed.a);
+    const double* b = p(ed.b);
+    const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+    const double nx = -(b[1] - a[1]) / len, ny = (b[0] - a[0]) / len;
+    const double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
+    // Halved until valid, or until the apex rounds onto the midpoint (a needle's tip may need
+    // hundreds of halvings).
+    for (; mx + height * nx != mx || my + height * ny != my; height *= 0.5, ++out.halvings) {
+      xy_.push_back(mx + height * nx);
+      xy_.push_back(my + height * ny);
+      const uint32_t cand = uint32_t(xy_.size() / 2 - 1);
+      if (valid(e, ep, en, cand, clearance)) return cand;
+      xy_.resize(xy_.size() - 2);
+    }
+    return kNone;
+  }
+
   static SegmentGrid make_grid(const std::vector<double>& xy) {
     double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     double hi[2] = {-lo[0], -lo[1]};
@@ -215,7 +225,7 @@ class Front {
   // Whether the triangle (a, b, q) on e = a->b, with ep = u->a and en = b->w its corners'
   // other edges, lies in the unmeshed region: positive, inside both corners (and q's), its
   // new edges meeting no front edge, no front vertex inside.
-  bool valid(uint32_t e, uint32_t ep, uint32_t en, uint32_t q) {
+  bool valid(uint32_t e, uint32_t ep, uint32_t en, uint32_t q, double clearance_factor) {
     const uint32_t a = edges_[e].a, b = edges_[e].b, u = edges_[ep].a, w = edges_[en].b;
     if (q == a || q == b) return false;
     if (orient2d(p(a), p(b), p(q)) <= 0) return false;
@@ -229,8 +239,18 @@ class Front {
       const uint32_t en2 = next(en);
       if (en2 == kNone || !in_sector(p(w), p(edges_[en2].b), p(b), p(a))) return false;
     }
-    const double clearance = 1e-9 * std::max(std::hypot(p(q)[0] - p(a)[0], p(q)[1] - p(a)[1]),
-                                             std::hypot(p(q)[0] - p(b)[0], p(q)[1] - p(b)[1]));
+    // Clearance: a point within it of an edge lets stage 2's rounded midpoints, or the coupling's
+    // fans, put it on the wrong side: at least 256 roundings of the coordinates here.
+    double magnitude = 0;
+    for (uint32_t v : {a, b, q}) magnitude = std::max({magnitude, std::abs(p(v)[0]), std::abs(p(v)[1])});
+    const double clearance =
+        std::max(clearance_factor * std::max(std::hypot(p(q)[0] - p(a)[0], p(q)[1] - p(a)[1]),
+                                             std::hypot(p(q)[0] - p(b)[0], p(q)[1] - p(b)[1])),
+                 256 * std::numeric_limits<double>::epsilon() * magnitude);
+    // ... between the triangle's own vertices and edges too (a flat triangle).
+    if (point_segment_distance(p(q), p(a), p(b)) < clearance || point_segment_distance(p(a), p(q), p(b)) < clearance ||
+        point_segment_distance(p(b), p(a), p(q)) < clearance)
+      return false;
     const double lo[2] = {std::min({p(a)[0], p(b)[0], p(q)[0]}) - clearance, std::min({p(a)[1], p(b)[1], p(q)[1]}) - clearance};
     const double hi[2] = {std::max({p(a)[0], p(b)[0], p(q)[0]}) + clearance, std::max({p(a)[1], p(b)[1], p(q)[1]}) + clearance};
     return grid_.for_each_in_box(lo, hi, [&](uint32_t f) {
@@ -252,8 +272,6 @@ class Front {
       for (uint32_t r : {fa, fb}) {
         if (r == a || r == b || r == q) continue;
         if (orient2d(p(a), p(b), p(r)) > 0 && orient2d(p(b), p(q), p(r)) > 0 && orient2d(p(q), p(a), p(r)) > 0) return false;
-        // Clearance: a front point within rounding of a new edge would let stage 2's rounded
-        // midpoints put it on the wrong side of that edge.
         for (const auto& [s, t] : {std::pair{a, q}, std::pair{q, b}})
           if (point_segment_distance(p(r), p(s), p(t)) < clearance) return false;
       }
@@ -272,7 +290,8 @@ class Front {
 }  // namespace
 
 Result<FrontResult> build_front(std::vector<double>& xy, const std::vector<uint32_t>& edges,
-                                const std::vector<int32_t>& edge_seg, const FrontOptions& options) {
+                                const std::vector<int32_t>& edge_seg, const FrontOptions& options,
+                                int32_t* failed_segment) {
   FrontResult out;
   Front front(xy, options);
   for (size_t i = 0; i < edges.size() / 2; ++i) front.add_edge(edges[2 * i], edges[2 * i + 1], edge_seg[i], kNone);
@@ -282,9 +301,11 @@ Result<FrontResult> build_front(std::vector<double>& xy, const std::vector<uint3
       if (front.edges()[e].alive) todo.push_back(e);
     for (uint32_t e : todo) {
       if (!front.edges()[e].alive) continue;  // consumed by a closed corner
-      if (!front.advance(e, out))
+      if (!front.advance(e, out)) {
+        if (failed_segment) *failed_segment = front.edges()[e].seg;
         return Status(Error::Internal, "stage 1: no triangle could be placed on the front edge " +
                                            std::to_string(front.edges()[e].a) + "-" + std::to_string(front.edges()[e].b));
+      }
     }
   }
   for (const Front::Edge& e : front.edges()) {

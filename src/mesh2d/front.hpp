@@ -33,10 +33,13 @@ struct FrontResult {
 };
 
 // `edges`: the input's front edges (2 vertices each, the domain on their left), with `edge_seg`
-// their input segments; xy (2 per vertex) gets the new apexes appended. Error::Internal if an
-// apex cannot be placed (against the lemma: it would mean a corrupt front).
+// their input segments; xy (2 per vertex) gets the new apexes appended. When no apex can be
+// placed on an edge, an error with *failed_segment set to its input segment (kFree past the
+// first layer): by the lemma, the domain beside it is thinner than the doubles around it can
+// resolve (or the front is corrupt).
 Result<FrontResult> build_front(std::vector<double>& xy, const std::vector<uint32_t>& edges,
-                                const std::vector<int32_t>& edge_seg, const FrontOptions& options);
+                                const std::vector<int32_t>& edge_seg, const FrontOptions& options,
+                                int32_t* failed_segment = nullptr);
 
 // Whether q lies strictly inside the sector swept counter-clockwise from the ray o->p1 to the
 // ray o->p2 (exact). A sector of 360 degrees (p1, p2 on one ray) excludes only that ray.

@@ -510,12 +510,11 @@ Result<std::unique_ptr<SizingField>> build_sizing2(const Pslg& p, const Domain& 
   for (size_t i = 0; i < p.xy.size(); ++i) lo[i % 2] = std::min(lo[i % 2], p.xy[i]), hi[i % 2] = std::max(hi[i % 2], p.xy[i]);
   double sp = lattice_spacing(p, domain, o, has_source, lo, hi);
   Grid g;
-  for (;;) {
-    g.nx = int(std::ceil((hi[0] - lo[0]) / sp)) + 5;
-    g.ny = int(std::ceil((hi[1] - lo[1]) / sp)) + 5;
-    if (double(g.nx) * double(g.ny) <= double(o.max_nodes)) break;
-    sp *= 1.25;
-  }
+  // (Counted in doubles: a thin input's node count along its long side may pass INT_MAX.)
+  const auto nodes_along = [&](int axis) { return std::ceil((hi[axis] - lo[axis]) / sp) + 5; };
+  while (nodes_along(0) * nodes_along(1) > double(o.max_nodes)) sp *= 1.25;
+  g.nx = int(nodes_along(0));
+  g.ny = int(nodes_along(1));
   metric::Lattice& l = g.lattice;
   l.origin[0] = lo[0] - 2 * sp, l.origin[1] = lo[1] - 2 * sp, l.origin[2] = 0.0;
   l.spacing = sp;

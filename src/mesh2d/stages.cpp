@@ -84,7 +84,13 @@ Result<Triangulation> boundary_constrained_triangulation(const Pslg& pslg, const
   std::vector<int32_t> seg;
   front_edges(pslg, domain, edges, seg);
   std::vector<double> xy = pslg.xy;
-  Result<FrontResult> front = build_front(xy, edges, seg, front_options);
+  int32_t failed = kFree;
+  Result<FrontResult> front = build_front(xy, edges, seg, front_options, &failed);
+  if (!front.ok() && failed != kFree)
+    return Status(Error::InvalidArgument, (pslg.name.empty() ? std::string() : pslg.name + ": ") + "no triangle fits beside " +
+                                              describe_segment(pslg, size_t(failed)) +
+                                              ": the domain there is narrower than about 1e-13 times its coordinates "
+                                              "(the precision stage 1 needs)");
   if (!front.ok()) return front.status();
   const FrontResult& f = front.value();
   st.t1_triangles = f.tri.size() / 3;
