@@ -66,10 +66,10 @@ bool is_geojson(const std::string& path) {
 // The exit code of a library error raised in `stage`.
 int exit_code_of(const Status& s, const std::string& stage) {
   switch (s.code()) {
-    case Error::FileNotFound:
-    case Error::Parse:
+    case Error::FileNotFound: return kExitReadError;
+    case Error::Parse:  // read but malformed, or a variant not read: invalid input
     case Error::UnsupportedFormat:
-    case Error::BadIndex: return kExitReadError;
+    case Error::BadIndex: return kExitInvalidInput;
     case Error::NotImplemented: return kExitNotImplemented;
     case Error::OutOfMemory:
     case Error::Internal:
