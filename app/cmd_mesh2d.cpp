@@ -4,8 +4,6 @@
 // print the quality figures.
 #include "cmd_mesh2d.hpp"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -15,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_util.hpp"
 #include "exit_codes.hpp"
 #include "geo/geodetic.hpp"
 #include "io/file_bytes.hpp"
@@ -25,7 +24,6 @@
 #include "mesh2d/quality2.hpp"
 #include "mesh2d/sizing2.hpp"
 #include "metric/metric_field.hpp"
-#include "progress_bar.hpp"
 
 namespace anitet::cli {
 
@@ -208,7 +206,7 @@ int run(Mesh2dCommand::Args& a) {
     so.elevation = a.elevation;
     if (frame) so.to_raster_frame = [&](std::vector<double>& xy) { return mesh2d::convert_pairs(*frame, xy, false); };
   }
-  ProgressBar bar(!a.quiet && !a.json && isatty(STDERR_FILENO));
+  ProgressLine bar(!a.quiet && !a.json);
   o.progress = [&](double fraction, const char* stage) { return bar.update(stage, fraction); };
   mesh2d::Mesh2dStats st;
   Result<mesh2d::TriMesh2> result = mesh2d::mesh_pslg(pslg, o, &st);
@@ -266,7 +264,6 @@ Mesh2dCommand::Mesh2dCommand(CLI::App& app) : args_(std::make_unique<Args>()) {
   Args& a = *args_;
   cmd_ = app.add_subcommand("mesh2d", "Triangle mesh of a planar straight-line graph or a coastline, keeping its segments");
   CLI::App* c = cmd_;
-  c->get_formatter()->column_width(34);
   c->footer(
       "Every input segment stays a union of mesh edges with no point added on it (the paper's\n"
       "method in 2D: a front layer, conforming Delaunay recovery of the new front, coupling,\n"
@@ -276,33 +273,32 @@ Mesh2dCommand::Mesh2dCommand(CLI::App& app) : args_(std::make_unique<Args>()) {
       "  anitet mesh2d lake.poly -o lake.msh --hsize 0.01 --hgrad 1.3\n"
       "  anitet mesh2d coast.geojson -o coast.14 --hsize 5000 --open-labels 3 --geodetic-output\n"
       "  anitet mesh2d coast.geojson -o coast.vtu --bathymetry depth.asc --hmin 500 --hmax 20000\n"
-      "  anitet mesh2d ring.poly -o ring.mesh --metric m.sol --background bg.mesh\n\n"
-      "Exit codes: 0 success, 1 internal error, 2 usage, 3 read/write error, 4 invalid input.");
+      "  anitet mesh2d ring.poly -o ring.mesh --metric m.sol --background bg.mesh");
   const char* io = "Input and output";
-  c->add_option("IN", a.input, "Triangle .poly, 2D Medit .mesh (Edges),\nor GeoJSON polygons (lon/lat)")
+  c->add_option("IN", a.input, "Triangle .poly, 2D Medit .mesh (Edges), or GeoJSON polygons (lon/lat)")
       ->required()
       ->group(io);
   c->add_option("-o,--output", a.output, ".mesh .msh .vtu, or .14 / fort.14 (ADCIRC)")->required()->group(io);
   c->add_option("--also-write", a.also_write, "Also write the mesh here (repeatable)")->group(io);
-  c->add_option("--hole", a.holes, "A hole point X,Y (repeatable; in the input's\ncoordinates)")
+  c->add_option("--hole", a.holes, "A hole point X,Y (repeatable; in the input's coordinates)")
       ->delimiter(',')
       ->expected(1, 1000)
       ->group(io);
-  c->add_option("--write-metric", a.write_metric, "Write the sizing field at the mesh's vertices\nas a 2D .sol")
+  c->add_option("--write-metric", a.write_metric, "Write the sizing field at the mesh's vertices as a 2D .sol")
       ->group(io);
   c->add_flag("--json", a.json, "Print the report as JSON")->group(io);
   c->add_flag("-q,--quiet", a.quiet, "Print nothing but errors")->group(io);
 
   const char* method = "Method";
   c->add_flag("--split-segments", a.split_segments,
-              "Allow points on the input's segments (better\ntriangles at small input angles)")
+              "Allow points on the input's segments (better triangles at small input angles)")
       ->group(method);
   c->add_option("--layers", a.layers, "Front layers of stage 1")->capture_default_str()->check(CLI::Range(1, 20))->group(method);
   c->add_option("--min-angle", a.min_angle, "Clean-up target angle in degrees (isotropic)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 40.0))
       ->group(method);
-  c->add_option("--anisotropic-cycles", a.anisotropic_cycles, "More refine + optimize rounds on an\nanisotropic field")
+  c->add_option("--anisotropic-cycles", a.anisotropic_cycles, "More refine + optimize rounds on an anisotropic field")
       ->capture_default_str()
       ->check(CLI::Range(0, 10))
       ->group(method);
@@ -317,18 +313,18 @@ Mesh2dCommand::Mesh2dCommand(CLI::App& app) : args_(std::make_unique<Args>()) {
       ->group(sizing);
   c->add_option("--hmin", a.hmin, "Smallest target length")->check(CLI::PositiveNumber)->group(sizing);
   c->add_option("--hmax", a.hmax, "Largest target length")->check(CLI::PositiveNumber)->group(sizing);
-  c->add_option("--hgrad", a.hgrad, "Gradation: sizes grow at most this factor per\nedge length (> 1)")
+  c->add_option("--hgrad", a.hgrad, "Gradation: sizes grow at most this factor per edge length (> 1)")
       ->check(CLI::Range(1.0, 100.0))
       ->group(sizing);
-  c->add_option("--metric", a.metric, "A metric: a Dimension 2 .sol (with --background)\nor a .vdb (read at z = 0)")
+  c->add_option("--metric", a.metric, "A metric: a Dimension 2 .sol (with --background) or a .vdb (read at z = 0)")
       ->group(sizing);
   c->add_option("--background", a.background, "The 2D .mesh the --metric .sol is given on")->group(sizing);
-  c->add_option("--distance-size", a.distance_size, "H0,RATE: sizes H0 + RATE d at distance d from\nthe segments")
+  c->add_option("--distance-size", a.distance_size, "H0,RATE: sizes H0 + RATE d at distance d from the segments")
       ->delimiter(',')
       ->expected(2)
       ->group(sizing);
   const char* ocean = "Bathymetry (sizes from depth: T sqrt(9.81 depth) / N)";
-  c->add_option("--bathymetry", a.bathymetry, "An ESRI ASCII grid (.asc) of depths (in lon/lat\nfor geographic input)")
+  c->add_option("--bathymetry", a.bathymetry, "An ESRI ASCII grid (.asc) of depths (in lon/lat for geographic input)")
       ->group(ocean);
   c->add_option("--wave-period", a.wave_period, "T in seconds (the M2 tide's)")->capture_default_str()->check(CLI::PositiveNumber)->group(ocean);
   c->add_option("--points-per-wavelength", a.points_per_wavelength, "N")->capture_default_str()->check(CLI::PositiveNumber)->group(ocean);
@@ -339,7 +335,7 @@ Mesh2dCommand::Mesh2dCommand(CLI::App& app) : args_(std::make_unique<Args>()) {
   c->add_flag("--elevation", a.elevation, "The grid holds elevations (negative under water)")->group(ocean);
 
   const char* geography = "Geographic input (longitude, latitude in degrees on WGS84)";
-  c->add_flag("--geodetic", a.geodetic, "IN's x, y are longitude, latitude (GeoJSON's are\nunless --planar)")
+  c->add_flag("--geodetic", a.geodetic, "IN's x, y are longitude, latitude (GeoJSON's are unless --planar)")
       ->group(geography);
   c->add_flag("--planar", a.planar, "GeoJSON coordinates are planar, not lon/lat")->group(geography);
   c->add_option("--geo-frame", a.geo_frame, "The local frame: enu (tangent plane) or utm")
@@ -350,10 +346,10 @@ Mesh2dCommand::Mesh2dCommand(CLI::App& app) : args_(std::make_unique<Args>()) {
       ->delimiter(',')
       ->expected(2)
       ->group(geography);
-  c->add_flag("--geodetic-output", a.geodetic_output, "Write the mesh in lon/lat (the input's points\nexactly as given)")
+  c->add_flag("--geodetic-output", a.geodetic_output, "Write the mesh in lon/lat (the input's points exactly as given)")
       ->group(geography);
   const char* adcirc = "ADCIRC fort.14 output";
-  c->add_option("--open-labels", a.open_labels, "Labels of open (ocean) boundaries; all other\nsegments are land")
+  c->add_option("--open-labels", a.open_labels, "Labels of open (ocean) boundaries; all other segments are land")
       ->delimiter(',')
       ->group(adcirc);
   c->add_option("--title", a.title, "The grid's title line")->capture_default_str()->group(adcirc);

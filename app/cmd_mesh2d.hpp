@@ -15,6 +15,7 @@ class Mesh2dCommand {
   ~Mesh2dCommand();
   // The exit code of `mesh2d` when it was the subcommand given, else -1.
   int run_if_parsed();
+  CLI::App* command() const { return cmd_; }
 
   struct Args;
 

@@ -68,110 +68,12 @@ int run(int argc, char** argv) {
   Mesh2dCommand mesh2d(app);
   // Every command: --threads, and the exit codes under its options.
   int threads = 0;
-  for (CLI::App* cmd : {check_cmd, quality_cmd, report_cmd, mesh_cmd, recover_cmd}) {
+  for (CLI::App* cmd : {check_cmd, quality_cmd, report_cmd, mesh_cmd, recover_cmd, mesh2d.command()}) {
     cmd->add_option("--threads", threads, "Threads to use (0: all cores); the mesh is the same on any number")
         ->check(in_range(0, 4096))
         ->group("General");
     cmd->footer(cmd->get_footer() + (cmd->get_footer().empty() ? "" : "\n\n") + kExitCodes);
   }
-=======
-  CLI::Option* mesh_report = mesh_cmd->add_option(
-      "--report", mesh.report_html,
-      "Also write the HTML quality report of the mesh here (summary with the stage timers, histograms, cut views)");
-  mesh_cmd->add_option("--cut", mesh.report_cut, "Cut planes of the HTML report: x,y,z as fractions of the bounding box")
-      ->expected(3)
-      ->delimiter(',')
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0))
-      ->needs(mesh_report);
-  mesh_cmd->add_option("--stop-after", mesh.stop_after,
-                       "Stop after a stage and write its result: 'layers' writes T1 (stage 1) to the "
-                       "output, with S1 as one more patch, and S1 to OUTSTEM.front.off")
-      ->check(CLI::IsMember({"layers"}));
-  mesh_cmd->add_option("--layers", mesh.layers, "Number of advancing-front layers (stage 1)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 50));
-  mesh_cmd->add_option("--attempts-seconds", mesh.attempts_seconds,
-                       "Wall time for stages 1-2 and the coupling, run again with other layer counts and "
-                       "recovery strategies when S1 is not recovered; no new attempt starts after it (0: no limit)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  mesh_cmd->add_option("--layer-scheme", mesh.layer_scheme,
-                       "Stage 1 scheme: push (prism layers, each front vertex pushed off in turn) or "
-                       "faces (the paper's: a tet on every face, then vertex pushes)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"push", "faces"}));
-  mesh_cmd->add_option("--push-tasks-min-vertices", mesh.push_tasks_min_vertices,
-                       "Stage 1 pushes a layer on two tasks, one per side of a plane, when it has at least "
-                       "this many front vertices (the same mesh on one core as on two); 0: every push one by "
-                       "one, in vertex order")
-      ->capture_default_str();
-  const char* bl_group = "Boundary layer";
-  mesh_cmd->add_option("--bl-patches", mesh.bl_patches,
-                       "The input's patch labels (comma-separated) that are walls, each a whole shell: "
-                       "n thin prism layers grow there first, then the ordinary --layers on the whole "
-                       "front. BL tets keep their heights through the pipeline (frozen for refinement "
-                       "and optimization) and get region bodies + body (1 for one body)")
-      ->delimiter(',')
-      ->group(bl_group);
-  CLI::Option* first_height_opt =
-      mesh_cmd->add_option("--bl-first-height", mesh.bl_first_height,
-                           "First layer height h0 (length units; needed with --bl-patches unless --bl-yplus gives it)")
-          ->check(CLI::PositiveNumber)
-          ->group(bl_group);
-  CLI::Option* reynolds_opt =
-      mesh_cmd->add_option("--bl-reynolds", mesh.bl_reynolds, "Reynolds number Re = U L / nu, for --bl-yplus")
-          ->check(CLI::PositiveNumber)
-          ->group(bl_group);
-  CLI::Option* ref_length_opt =
-      mesh_cmd->add_option("--bl-ref-length", mesh.bl_ref_length,
-                           "Reference length L of --bl-reynolds (length units), for --bl-yplus")
-          ->check(CLI::PositiveNumber)
-          ->group(bl_group);
-  mesh_cmd->add_option("--bl-yplus", mesh.bl_yplus,
-                       "Target y+ of the first layer: h0 from the flat-plate estimate Cf = 0.026 Re^(-1/7), "
-                       "h0 = y+ L / (Re sqrt(Cf/2)); needs --bl-reynolds and --bl-ref-length, excludes "
-                       "--bl-first-height; the h0 used is printed")
-      ->check(CLI::PositiveNumber)
-      ->needs(reynolds_opt)
-      ->needs(ref_length_opt)
-      ->excludes(first_height_opt)
-      ->group(bl_group);
-  mesh_cmd->add_option("--bl-growth", mesh.bl_growth, "Growth ratio r: layer i has height h0 r^i")
-      ->capture_default_str()
-      ->check(CLI::Range(1.0, 10.0))
-      ->group(bl_group);
-  mesh_cmd->add_option("--bl-layers", mesh.bl_layers, "Number of boundary layers n")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1000))
-      ->group(bl_group);
-  mesh_cmd->add_flag("--bl-sizing", mesh.bl_sizing,
-                     "Refine the interior to continue the boundary layer's heights: the sizing field is "
-                     "intersected with a metric of normal size h0 + (r - 1) d at distance d from the walls, "
-                     "so the tets on the BL's top are about as thin as its last layer instead of jumping to "
-                     "the surface's sizes. Anisotropic near the walls: refinement is slower. Needs "
-                     "--bl-patches and --bl-growth above 1")
-      ->group(bl_group);
-  mesh_cmd->add_option("--size", mesh.size,
-                       "Scale every target edge length of the sizing field (--metric's, or the paper's "
-                       "grid from the surface's triangle sizes), after --hmin/--hmax/--hgrad: 0.5 = "
-                       "twice as fine, 2 = twice as coarse")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber)
-      ->group("Sizing");
-  add_metric_options(*mesh_cmd, mesh.metric);
-  mesh_cmd->add_flag("--no-refine", mesh.no_refine, "Skip refinement/coarsening by metric edge length");
-  mesh_cmd->add_flag("--no-optimize", mesh.no_optimize, "Skip CVT smoothing, flips and sliver removal");
-  mesh_cmd
-      ->add_option("--anisotropic-cycles", mesh.anisotropic_cycles,
-                   "With an anisotropic metric (--metric tensors, --bl-sizing): more rounds of refinement then "
-                   "optimization after the first, which even the metric lengths and shapes further")
-      ->check(CLI::Range(0, 10))
-      ->capture_default_str();
-  mesh_cmd->add_flag("--json", mesh.json, "Print the report as JSON");
-  Mesh2dCommand mesh2d(app);
-
->>>>>>> 66e604e (app: `anitet mesh2d IN -o OUT` (app/cmd_mesh2d.cpp, one Mesh2dCommand that registers the subcommand; main.cpp gains three lines): .poly/.mesh/GeoJSON in, .mesh/.msh/.vtu/fort.14 out (--also-write), grouped --help under 100 columns with examples, --json, a progress bar, -q; sizing (--hsize, --size, --hmin/--hmax/--hgrad, --metric .sol with --background or .vdb, --distance-size, --bathymetry with the wavelength rule), geographic input (--geodetic, GeoJSON by default; ENU or UTM; --geodetic-output writes the input's points back exactly), ADCIRC labels (--open-labels); exit codes 2/3/4 by the failing stage. ProgressBar moved to app/progress_bar.hpp for both mesh commands; mesh2d/quality2 measures the report's figures)
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -252,7 +154,6 @@ class JsonFailureGuard {
     std::cerr.rdbuf(old_err_);
     std::cout.rdbuf(old_out_);
   }
-<<<<<<< HEAD
   void finish(int code) {
     if (!on_ || code == anitet::cli::kExitOk || out_.count() > 0) return;
     std::vector<std::string> lines;

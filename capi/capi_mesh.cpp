@@ -16,8 +16,6 @@ using namespace anitet::capi;
 
 namespace {
 
-const auto kSame = [](auto v) { return v; };
-
 anitet::Result<anitet::QualityReport> measure(const anitet_mesh* mesh, const anitet_surface* input) {
   anitet::QualityOptions options;
   return anitet::compute_quality_report(mesh->mesh, input ? &input->mesh : nullptr, options);

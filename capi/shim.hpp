@@ -84,15 +84,4 @@ inline int convert_indices(const char* function, const char* element, const int3
   return ANITET_OK;
 }
 
-// Copies `values` (converted by f) into a caller buffer after the length check.
-template <class T, class U, class F>
-int fill(const char* function, const char* argument, const std::vector<T>& values, U* buf,
-         int64_t buf_len, F&& f) {
-  if (values.empty()) return ok();  // nothing to write: a NULL buffer is fine
-  if (buf == nullptr) return null_argument(function, argument);
-  if (buf_len < 0 || uint64_t(buf_len) < values.size()) return too_small(function, argument, buf_len, values.size());
-  std::transform(values.begin(), values.end(), buf, f);
-  return ok();
-}
-
 }  // namespace anitet::capi

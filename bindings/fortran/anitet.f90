@@ -140,6 +140,8 @@ module anitet
     real(c_double) :: imbalance
     real(c_double) :: total_weight
     real(c_double) :: max_part_weight
+  end type
+
   ! The 2D mesher's options (anitet_mesh2d_options); anitet_mesh2d_options_init sets the defaults.
   type, bind(c), public :: anitet_mesh2d_options_t
     integer(c_int32_t) :: version
@@ -618,6 +620,11 @@ module anitet
         bind(c, name="anitet_part_get_boundary_triangles")
       import :: c_int, c_int32_t, c_int64_t, c_ptr
       type(c_ptr), value :: part
+      integer(c_int32_t), intent(out) :: tri(*)
+      integer(c_int64_t), value :: tri_len
+      integer(c_int32_t), value :: index_base
+    end function
+
     ! ---- 2D meshes ----
     integer(c_int) function c_anitet_pslg_create(xy, num_points, segments, num_segments, labels, &
         holes, num_holes, index_base, out) bind(c, name="anitet_pslg_create")
@@ -773,6 +780,8 @@ module anitet
       import :: c_int, c_int32_t, c_char
       integer(c_int32_t), value :: code
       character(kind=c_char), intent(in) :: message(*)
+    end function
+
     integer(c_int) function c_anitet_mesh2d_get_attributes(mesh, attributes, attributes_len) &
         bind(c, name="anitet_mesh2d_get_attributes")
       import :: c_int, c_int64_t, c_double, c_ptr
@@ -1551,6 +1560,8 @@ contains
     integer(c_int8_t), intent(in) :: bytes(:)
     type(c_ptr), intent(out) :: part
     rc = c_anitet_part_deserialize(bytes, size(bytes, kind=c_int64_t), part)
+  end function
+
   ! ---- 2D meshes ----------------------------------------------------------------------------------
 
   ! xy(2, np), segments(2, ns), labels(ns), holes(2, nh); index_base default 1.

@@ -365,6 +365,8 @@ contains
                "unknown options version")
     call check(index(anitet_last_error_message(), "version 99") > 0, "version error message")
     call anitet_mesh_destroy(mesh)
+  end subroutine
+
   ! The 2D mesher: a square with a square hole from arrays (1-based), meshed with points allowed
   ! on its long sides; the input's points come first and exactly; the segments' labels come
   ! back on their pieces; a bad input is refused with its element named.

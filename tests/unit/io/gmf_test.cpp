@@ -377,5 +377,28 @@ TEST(Gmf, TruncatedAndMutatedFilesNeverCrash) {
   }
 }
 
+// A Dimension 2 .sol (the 2D mesher's fields): read with its own component counts and written
+// back the same; the by-extension reader, which feeds 3D meshes, refuses it by name.
+TEST(Gmf, TwoDimensionalSolIsReadButNotForThreeDimensions) {
+  const std::string text = "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n2\n2 1 3\n0.5 1 0 2\n0.25 3 0.5 4\nEnd\n";
+  Result<VertexFields> f = read_medit_sol(text, "f2.sol");
+  ASSERT_TRUE(f.ok()) << f.status().message();
+  EXPECT_EQ(f->dimension, 2);
+  EXPECT_EQ(f->record_size(), 4u);
+  EXPECT_EQ(f->num_vertices(), 2u);
+  EXPECT_EQ(f->offset(1), 1u);
+  EXPECT_EQ(f->values[7], 4.0);
+  Result<std::string> back = to_sol(f.value());
+  ASSERT_TRUE(back.ok());
+  EXPECT_NE(back->find("Dimension 2\n"), std::string::npos) << back.value();
+  EXPECT_EQ(read_medit_sol(back.value(), "b.sol").value().values, f->values);
+  EXPECT_EQ(read_medit_sol("Dimension 4\n", "d.sol").status().code(), Error::UnsupportedFormat);
+  const std::string path = test::temp_dir() + "/f2.sol";
+  ASSERT_TRUE(write_vertex_fields(f.value(), path).ok());
+  Status s = read_vertex_fields(path).status();
+  EXPECT_EQ(s.code(), Error::UnsupportedFormat);
+  EXPECT_NE(s.message().find("Dimension 2"), std::string::npos) << s.message();
+}
+
 }  // namespace
 }  // namespace anitet
