@@ -41,9 +41,13 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_LOG_WARNING = 1
   integer(c_int32_t), parameter, public :: ANITET_LOG_INFO = 2
   integer(c_int32_t), parameter, public :: ANITET_LOG_DEBUG = 3
-  integer(c_int32_t), parameter, public :: ANITET_OPTIONS_VERSION = 2
+  integer(c_int32_t), parameter, public :: ANITET_OPTIONS_VERSION = 3
   integer(c_int32_t), parameter, public :: ANITET_LAYERS_PUSH = 0
   integer(c_int32_t), parameter, public :: ANITET_LAYERS_FACE_PUSH = 1
+  integer(c_int32_t), parameter, public :: ANITET_RECOVERY_ALL = 0
+  integer(c_int32_t), parameter, public :: ANITET_RECOVERY_SPLIT = 1
+  integer(c_int32_t), parameter, public :: ANITET_RECOVERY_FUZZY = 2
+  integer(c_int32_t), parameter, public :: ANITET_RUN_STATS_VERSION = 1
   integer(c_int32_t), parameter, public :: ANITET_QUALITY_VERSION = 1
   ! partitions
   integer(c_int32_t), parameter, public :: ANITET_PARTITION_OPTIONS_VERSION = 1
@@ -99,6 +103,60 @@ module anitet
     integer(c_int32_t) :: refine
     integer(c_int32_t) :: optimize
     real(c_double) :: size_scale
+    ! version 3
+    real(c_double) :: attempts_seconds
+    integer(c_int32_t) :: retry_layer_counts
+    integer(c_int32_t) :: recovery
+    real(c_double) :: hmin
+    real(c_double) :: hmax
+    real(c_double) :: hgrad
+    real(c_double) :: max_tets
+    integer(c_int32_t) :: anisotropic_cycles
+    integer(c_int32_t) :: bl_num_patches
+    ! The wall labels: c_loc of an integer(c_int32_t), target :: walls(bl_num_patches) that lives
+    ! until the run returns, or (simpler) leave it and pass bl_patches= to anitet_mesher_run.
+    type(c_ptr) :: bl_patches
+    real(c_double) :: bl_first_height
+    real(c_double) :: bl_growth
+    integer(c_int32_t) :: bl_layers
+    integer(c_int32_t) :: bl_sizing
+  end type
+
+  ! What the run that made a mesh did (anitet_mesh_get_run_stats).
+  type, bind(c), public :: anitet_run_stats_t
+    integer(c_int32_t) :: version
+    integer(c_int32_t) :: layers_used
+    integer(c_int32_t) :: layers_retries
+    integer(c_int32_t) :: recovery_strategy
+    integer(c_int32_t) :: refine_passes
+    integer(c_int32_t) :: refine_stopped_at_pass_cap
+    integer(c_int32_t) :: anisotropic_cycles
+    integer(c_int32_t) :: num_notices
+    integer(c_int64_t) :: vertices
+    integer(c_int64_t) :: tets
+    integer(c_int64_t) :: steiner_on_front_edges
+    integer(c_int64_t) :: steiner_on_front_faces
+    integer(c_int64_t) :: refine_splits
+    integer(c_int64_t) :: refine_collapses
+    integer(c_int64_t) :: flat_tets_left
+    integer(c_int64_t) :: metric_not_spd
+    real(c_double) :: seconds
+    real(c_double) :: estimated_tets
+    real(c_double) :: edges_in_range
+    real(c_double) :: metric_radius_ratio_mean
+    real(c_double) :: metric_radius_ratio_min
+    integer(c_int32_t) :: bl_layers
+    integer(c_int32_t) :: reserved0
+    integer(c_int64_t) :: bl_wall_vertices
+    integer(c_int64_t) :: bl_full_columns
+    integer(c_int64_t) :: bl_nominal_columns
+    integer(c_int64_t) :: bl_reduced_vertices
+    integer(c_int64_t) :: bl_tets
+    real(c_double) :: bl_first_height_min
+    real(c_double) :: bl_first_height_mean
+    real(c_double) :: bl_first_height_max
+    real(c_double) :: bl_growth_mean
+    real(c_double) :: bl_max_height_error
   end type
 
   type, bind(c), public :: anitet_quality_t
@@ -177,6 +235,7 @@ module anitet
   public :: c_anitet_mesh_get_tets, c_anitet_mesh_get_regions
   public :: c_anitet_mesh_get_boundary_triangles, c_anitet_mesh_get_boundary_patches
   public :: c_anitet_mesh_get_metric_components, c_anitet_mesh_get_metric, c_anitet_mesh_set_metric
+  public :: c_anitet_mesh_set_patch_name, c_anitet_mesh_get_run_stats, c_anitet_mesh_run_json
   public :: c_anitet_mesh_quality, c_anitet_mesh_quality_json
   public :: c_anitet_partition_options_init, c_anitet_mesh_partition, c_anitet_partition_destroy
   public :: c_anitet_partition_get_info, c_anitet_partition_get_tet_parts, c_anitet_partition_get_part
@@ -463,6 +522,30 @@ module anitet
       real(c_double), intent(in) :: values(*)
       integer(c_int64_t), value :: values_len
       integer(c_int32_t), value :: components
+    end function
+
+    integer(c_int) function c_anitet_mesh_set_patch_name(mesh, label, name) &
+        bind(c, name="anitet_mesh_set_patch_name")
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), value :: label
+      type(c_ptr), value :: name  ! a NUL-terminated string, or c_null_ptr to remove the name
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_run_stats(mesh, out) &
+        bind(c, name="anitet_mesh_get_run_stats")
+      import :: c_int, c_ptr, anitet_run_stats_t
+      type(c_ptr), value :: mesh
+      type(anitet_run_stats_t), intent(inout) :: out
+    end function
+
+    integer(c_int) function c_anitet_mesh_run_json(mesh, buf, buf_len, needed) &
+        bind(c, name="anitet_mesh_run_json")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      type(c_ptr), value :: buf
+      integer(c_int64_t), value :: buf_len
+      integer(c_int64_t), intent(out) :: needed
     end function
 
     integer(c_int) function c_anitet_mesh_quality(mesh, input, out) &
@@ -843,7 +926,8 @@ module anitet
   public :: anitet_mesh_get_tets, anitet_mesh_get_regions, anitet_mesh_get_boundary_triangles
   public :: anitet_mesh_get_boundary_patches, anitet_mesh_get_metric_components
   public :: anitet_mesh_get_metric, anitet_mesh_set_metric, anitet_mesh_quality
-  public :: anitet_mesh_quality_json
+  public :: anitet_mesh_quality_json, anitet_mesh_set_patch_name, anitet_mesh_get_run_stats
+  public :: anitet_mesh_run_json
   public :: anitet_pslg_create, anitet_pslg_read, anitet_pslg_destroy, anitet_pslg_get_counts
   public :: anitet_mesh2d_options_init, anitet_mesh2d_run, anitet_mesh2d_destroy
   public :: anitet_mesh2d_get_counts, anitet_mesh2d_get_points, anitet_mesh2d_get_triangles
@@ -1112,16 +1196,44 @@ contains
 
   ! ---- meshing ----------------------------------------------------------------------------------
 
-  integer function anitet_mesher_run(surface, mesh, metric, options) result(rc)
+  ! bl_patches: the boundary layer's wall labels for this call, in place of options%bl_patches and
+  ! options%bl_num_patches (copied for the call: any integer(c_int32_t) array or expression will
+  ! do); the other bl_ fields (bl_first_height, ...) come from options.
+  integer function anitet_mesher_run(surface, mesh, metric, options, bl_patches) result(rc)
     type(c_ptr), intent(in) :: surface
     type(c_ptr), intent(out) :: mesh
     type(c_ptr), intent(in), optional :: metric
     type(anitet_options_t), intent(in), optional, target :: options
-    if (present(options)) then
-      rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_loc(options), mesh)
-    else
-      rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_null_ptr, mesh)
+    integer(c_int32_t), intent(in), optional :: bl_patches(:)
+    type(anitet_options_t), target :: with_walls
+    integer(c_int32_t), allocatable, target :: walls(:)
+    mesh = c_null_ptr
+    if (.not. present(bl_patches)) then
+      if (present(options)) then
+        rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_loc(options), mesh)
+      else
+        rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_null_ptr, mesh)
+      end if
+      return
     end if
+    if (present(options)) then
+      with_walls = options
+    else
+      rc = c_anitet_options_init(with_walls, ANITET_OPTIONS_VERSION)
+      if (rc /= ANITET_OK) return
+    end if
+    if (with_walls%version < 3) then  ! older structs have no walls: the labels would be ignored
+      rc = c_anitet_set_last_error(ANITET_ERR_INVALID_ARGUMENT, "anitet_mesher_run: bl_patches " // &
+                                   "needs options of version 3 or later" // c_null_char)
+      return
+    end if
+    with_walls%bl_num_patches = size(bl_patches, kind=c_int32_t)
+    with_walls%bl_patches = c_null_ptr
+    if (size(bl_patches) > 0) then
+      walls = bl_patches
+      with_walls%bl_patches = c_loc(walls)
+    end if
+    rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_loc(with_walls), mesh)
   end function
 
   ! ---- volume meshes ----------------------------------------------------------------------------
@@ -1295,6 +1407,44 @@ contains
       rc = c_anitet_mesh_set_metric(mesh, values, size(values, kind=c_int64_t), &
                                     size(values, 1, c_int32_t))
     end if
+  end function
+
+  ! Names the boundary patch `label` in the files anitet_mesh_write writes (SU2 markers, OpenFOAM
+  ! patches, ...); trailing blanks are not part of the name. Without a name: removes it.
+  integer function anitet_mesh_set_patch_name(mesh, label, name) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer, intent(in) :: label
+    character(len=*), intent(in), optional :: name
+    character(kind=c_char, len=:), allocatable, target :: c_name
+    if (present(name)) then
+      c_name = to_c_string(name)
+      rc = c_anitet_mesh_set_patch_name(mesh, int(label, c_int32_t), c_loc(c_name))
+    else
+      rc = c_anitet_mesh_set_patch_name(mesh, int(label, c_int32_t), c_null_ptr)
+    end if
+  end function
+
+  ! The figures of the run that made the mesh (an error for a mesh read or made from arrays).
+  integer function anitet_mesh_get_run_stats(mesh, stats) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    type(anitet_run_stats_t), intent(out) :: stats
+    stats%version = ANITET_RUN_STATS_VERSION
+    rc = c_anitet_mesh_get_run_stats(mesh, stats)
+  end function
+
+  ! The run's whole report as JSON text (stages, recovery, boundary_layer, notices, ...).
+  integer function anitet_mesh_run_json(mesh, text) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    character(len=:), allocatable, intent(out) :: text
+    character(kind=c_char), allocatable, target :: buf(:)
+    integer(c_int64_t) :: needed, written
+    text = ""
+    needed = 0
+    rc = c_anitet_mesh_run_json(mesh, c_null_ptr, 0_c_int64_t, needed)
+    if (rc /= ANITET_OK) return
+    allocate(buf(needed))
+    rc = c_anitet_mesh_run_json(mesh, c_loc(buf), needed, written)
+    if (rc == ANITET_OK) text = buffer_text(buf, needed)
   end function
 
   integer function anitet_mesh_quality(mesh, quality, input) result(rc)
