@@ -1,6 +1,8 @@
 # ctest -P script: the Fortran module mirrors include/anitet.h (HEADER=..., FORTRAN=...).
-# Every function declared with ANITET_API must have an interface bound to its name, and every
-# ANITET_ERR_* / version / struct-version constant must have the same value in the module.
+# Every function declared with ANITET_API must have an interface bound to its name, every
+# ANITET_ERR_* / version / struct-version constant must have the same value in the module, and
+# every struct of the header (typedef struct anitet_x { ... } anitet_x;) must have a bind(c) type
+# anitet_x_t with the same fields in the same order, of the same kinds.
 # Optional: EXCLUDE, functions Fortran cannot call (anitet_mpi.h's MPI_Comm ones, bound through
 # their _f variants); MIN_FUNCTIONS, the fewest declarations expected (default 30: a check that
 # the header was parsed at all).
@@ -43,7 +45,7 @@ foreach(b IN LISTS binds)
 endforeach()
 
 # Integer constants: "#define ANITET_X (-n)" or "#define ANITET_X n".
-string(REGEX MATCHALL "#define (ANITET_(ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|PARTITION_[A-Z]+_VERSION|HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|FIELD_[A-Z_]+|MPI_EXCHANGE_TAG|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+)) \\(?-?[0-9]+\\)?" defines "${header}")
+string(REGEX MATCHALL "#define (ANITET_(ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|RECOVERY_[A-Z]+|VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|RUN_STATS_VERSION|PARTITION_[A-Z]+_VERSION|HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|FIELD_[A-Z_]+|MPI_EXCHANGE_TAG|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+)) \\(?-?[0-9]+\\)?" defines "${header}")
 set(mismatched "")
 foreach(d IN LISTS defines)
   string(REGEX MATCH "#define (ANITET_[A-Z0-9_]+) \\(?(-?[0-9]+)\\)?" m "${d}")
@@ -56,10 +58,81 @@ foreach(d IN LISTS defines)
 endforeach()
 list(LENGTH defines nd)
 
-if(missing OR stale OR mismatched)
+# Struct layouts. ';' would split CMake lists: it becomes '@' first; comments go.
+string(REPLACE ";" "@" header_fields "${header}")
+string(REGEX REPLACE "/\\*([^*]|\\*+[^*/])*\\*+/" "" header_fields "${header_fields}")
+string(REPLACE ";" "@" fortran_fields "${fortran_lower}")
+string(REGEX MATCHALL "typedef struct anitet_[a-z0-9_]+ {[^}]*}" structs "${header_fields}")
+set(layouts "")
+foreach(st IN LISTS structs)
+  string(REGEX MATCH "typedef struct (anitet_[a-z0-9_]+) {([^}]*)}" m "${st}")
+  set(name "${CMAKE_MATCH_1}")
+  string(REPLACE "@" ";" decls "${CMAKE_MATCH_2}")
+  set(c_fields "")
+  foreach(decl IN LISTS decls)
+    string(STRIP "${decl}" decl)
+    if(decl STREQUAL "")
+      continue()
+    endif()
+    string(REGEX MATCH "([a-z0-9_]+)$" field "${decl}")
+    if(decl MATCHES "\\*")
+      set(kind ptr)
+    elseif(decl MATCHES "^anitet_[a-z_]+_fn ")
+      set(kind funptr)
+    elseif(decl MATCHES "^(int32_t|int64_t|double) ")
+      set(kind "${CMAKE_MATCH_1}")
+    else()
+      message(FATAL_ERROR "${name}: cannot read the field declaration '${decl}'")
+    endif()
+    list(APPEND c_fields "${field}:${kind}")
+  endforeach()
+  set(f_fields "")
+  string(FIND "${fortran_fields}" "type, bind(c), public :: ${name}_t\n" start)
+  if(start EQUAL -1)
+    list(APPEND layouts "${name}: no type ${name}_t")
+    continue()
+  endif()
+  string(SUBSTRING "${fortran_fields}" ${start} -1 rest)
+  string(FIND "${rest}" "end type" stop)
+  string(SUBSTRING "${rest}" 0 ${stop} body)
+  string(REPLACE "\n" ";" lines "${body}")
+  list(REMOVE_AT lines 0)
+  foreach(line IN LISTS lines)
+    string(REGEX REPLACE "!.*$" "" line "${line}")
+    string(STRIP "${line}" line)
+    if(line STREQUAL "")
+      continue()
+    endif()
+    if(NOT line MATCHES "^(integer\\(c_int32_t\\)|integer\\(c_int64_t\\)|real\\(c_double\\)|type\\(c_ptr\\)|type\\(c_funptr\\)) *:: *(.*)$")
+      message(FATAL_ERROR "${name}_t: cannot read the component line '${line}'")
+    endif()
+    set(fkind "${CMAKE_MATCH_1}")
+    string(REPLACE "," ";" names "${CMAKE_MATCH_2}")
+    foreach(pair "integer(c_int32_t)=int32_t" "integer(c_int64_t)=int64_t" "real(c_double)=double"
+                 "type(c_ptr)=ptr" "type(c_funptr)=funptr")
+      string(REPLACE "=" ";" pair "${pair}")
+      list(GET pair 0 from)
+      list(GET pair 1 to)
+      if(fkind STREQUAL from)
+        set(fkind "${to}")
+      endif()
+    endforeach()
+    foreach(component IN LISTS names)
+      string(STRIP "${component}" component)
+      list(APPEND f_fields "${component}:${fkind}")
+    endforeach()
+  endforeach()
+  if(NOT c_fields STREQUAL f_fields)
+    list(APPEND layouts "${name}:\n    C:       ${c_fields}\n    Fortran: ${f_fields}")
+  endif()
+endforeach()
+list(LENGTH structs ns)
+
+if(missing OR stale OR mismatched OR layouts)
   message(FATAL_ERROR "Fortran module and C header differ:\n"
     "  functions without a Fortran interface: ${missing}\n"
     "  Fortran interfaces to no header function: ${stale}\n"
-    "  constants missing or different in Fortran: ${mismatched}")
+    "  constants missing or different in Fortran: ${mismatched}\n"
+    "  structs: ${layouts}")
 endif()
-message(STATUS "${n} functions and ${nd} constants match")
+message(STATUS "${n} functions, ${nd} constants and ${ns} structs match")
