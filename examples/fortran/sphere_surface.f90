@@ -2,6 +2,7 @@
 ! made of SPHERE_NLAT-1 rings of SPHERE_NLON points and the two poles, triangles counter-clockwise
 ! seen from outside, patches 1 (south cap), 2 (bands), 3 (north cap). The same operations in the
 ! same order as the C version (sqrt and divisions only), so the points are the same doubles.
+! sphere_in_box_build adds the box [-3, 3]^3 around it (patch 4), as examples/c/boundary_layer.c.
 module sphere_surface
   use, intrinsic :: iso_c_binding
   implicit none
@@ -9,7 +10,9 @@ module sphere_surface
   integer, parameter, public :: SPHERE_NLAT = 8, SPHERE_NLON = 16
   integer, parameter, public :: SPHERE_NPOINTS = 2 + (SPHERE_NLAT - 1) * SPHERE_NLON
   integer, parameter, public :: SPHERE_NTRI = 2 * SPHERE_NLON * (SPHERE_NLAT - 1)
-  public :: sphere_build
+  integer, parameter, public :: SPHERE_IN_BOX_NPOINTS = SPHERE_NPOINTS + 8
+  integer, parameter, public :: SPHERE_IN_BOX_NTRI = SPHERE_NTRI + 12
+  public :: sphere_build, sphere_in_box_build
 
 contains
 
@@ -76,6 +79,23 @@ contains
                    int(SPHERE_NPOINTS, c_int32_t)]
       patch(t) = 3
     end do
+  end subroutine
+
+  ! The sphere, then the box's 8 corners (corner i at -3 or 3 by the bits of i - 1: x, y, z) and
+  ! 12 triangles (patch 4), counter-clockwise seen from outside. The sphere is a cavity of the
+  ! box: the validation's repairs (on by default) turn it inward.
+  subroutine sphere_in_box_build(xyz, tri, patch)
+    real(c_double), intent(out) :: xyz(3, SPHERE_IN_BOX_NPOINTS)
+    integer(c_int32_t), intent(out) :: tri(3, SPHERE_IN_BOX_NTRI), patch(SPHERE_IN_BOX_NTRI)
+    integer(c_int32_t), parameter :: box_tri(3, 12) = reshape([0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, &
+        0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5], [3, 12])
+    integer :: i
+    call sphere_build(xyz(:, 1:SPHERE_NPOINTS), tri(:, 1:SPHERE_NTRI), patch(1:SPHERE_NTRI))
+    do i = 0, 7
+      xyz(:, SPHERE_NPOINTS + 1 + i) = merge(3d0, -3d0, [btest(i, 0), btest(i, 1), btest(i, 2)])
+    end do
+    tri(:, SPHERE_NTRI + 1:) = box_tri + int(SPHERE_NPOINTS + 1, c_int32_t)
+    patch(SPHERE_NTRI + 1:) = 4
   end subroutine
 
 end module sphere_surface

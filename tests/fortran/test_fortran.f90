@@ -1,7 +1,8 @@
 ! The Fortran module over the C ABI: a cube surface built in memory (1-based), validated and read
 ! back; a volume mesh read from the tests' data and filled into allocatable arrays; the error
 ! paths a Fortran caller meets; the examples' sphere meshed with and without a metric, and with
-! a metric from per-point values or a .sol on a background mesh; a mesh in parts.
+! a metric from per-point values or a .sol on a background mesh; a mesh in parts; options
+! version 3, a boundary layer on the sphere inside a box and the run's report, patch names.
 ! Argument 1: the tests' data directory (tests/data).
 program test_fortran
   use, intrinsic :: iso_c_binding
@@ -23,6 +24,9 @@ program test_fortran
   call check_metric_on_background(trim(data_dir) // "/io/box.mesh")
   call check_partition(trim(data_dir) // "/io/box.mesh")
   call check_mesh2d(trim(data_dir) // "/mesh2d")
+  call check_options_v3()
+  call check_boundary_layer()
+  call check_run_report_errors(trim(data_dir) // "/io/box.mesh")
 
   if (failures > 0) then
     print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
@@ -220,8 +224,9 @@ contains
     call check(options%layers == 1 .and. options%layer_scheme == ANITET_LAYERS_PUSH, &
                "options v2 defaults")
     ! The struct's layout is the C one: version 1 ends after four pointers, version 2 adds
-    ! 2 * (4 + 4 + 8) bytes.
-    call check(c_sizeof(options) == 6 * 4 + 4 * c_sizeof(c_null_ptr) + 32, "options size")
+    ! 2 * (4 + 4 + 8) bytes, version 3 seven 8-byte fields, six 4-byte ones and a pointer.
+    call check(c_sizeof(options) == 6 * 4 + 4 * c_sizeof(c_null_ptr) + 32 + 80 + &
+               c_sizeof(c_null_ptr), "options size")
     call check(options%refine == 1 .and. options%optimize == 1 .and. options%size_scale == 1d0, &
                "options v2 refine defaults")
     options%layers = 0
@@ -428,5 +433,148 @@ contains
     call check(index(anitet_last_error_message(), "segment 2 (line 9)") > 0, "crossing named")
     call anitet_pslg_destroy(pslg)
   end subroutine
+
+  ! Version 3 of the options: the defaults of anitet_options_init, the run stats' layout, and a
+  ! version 2 struct still accepted.
+  subroutine check_options_v3()
+    type(anitet_options_t) :: o
+    type(anitet_run_stats_t) :: st
+    call check(anitet_options_init(o) == ANITET_OK .and. o%version == 3, "options v3")
+    call check(o%attempts_seconds == 240d0 .and. o%retry_layer_counts == 1 .and. &
+               o%recovery == ANITET_RECOVERY_ALL, "options v3: attempts, retries, recovery")
+    call check(o%hmin == 0d0 .and. o%hmax == 0d0 .and. o%hgrad == 0d0 .and. o%max_tets == 0d0, &
+               "options v3: no size bounds, no tet cap")
+    call check(o%anisotropic_cycles == 2 .and. o%bl_num_patches == 0 .and. &
+               .not. c_associated(o%bl_patches), "options v3: cycles, no walls")
+    call check(o%bl_first_height == 0d0 .and. o%bl_growth == 1.2d0 .and. o%bl_layers == 10 .and. &
+               o%bl_sizing == 0, "options v3: boundary layer defaults")
+    ! 8 int32, 8 int64, 5 doubles, 2 int32, 5 int64, 5 doubles: no padding.
+    call check(c_sizeof(st) == 224, "run stats size")
+    call check(anitet_options_init(o, 2) == ANITET_OK .and. o%version == 2, "options v2 still")
+  end subroutine
+
+  ! The sphere (patches 1-3) inside the box [-3, 3]^3 (patch 4) with a boundary layer on the
+  ! sphere: the walls given as a c_loc, then through bl_patches=; the report; patch names.
+  subroutine check_boundary_layer()
+    real(c_double) :: xyz(3, SPHERE_IN_BOX_NPOINTS)
+    integer(c_int32_t) :: tri(3, SPHERE_IN_BOX_NTRI), patch(SPHERE_IN_BOX_NTRI)
+    integer(c_int32_t), target :: walls(3) = [1, 2, 3]
+    type(c_ptr) :: surface, mesh, other
+    type(anitet_options_t), target :: o
+    type(anitet_run_stats_t) :: st, st2
+    integer(c_int64_t) :: np, nt, nb
+    character(len=:), allocatable :: json, su2
+    call sphere_in_box_build(xyz, tri, patch)
+    call check(anitet_surface_create(xyz, tri, surface, patch) == ANITET_OK, "sphere in box")
+    call check(anitet_options_init(o) == ANITET_OK, "options")
+    o%bl_first_height = 0.02d0
+    o%bl_growth = 1.25d0
+    o%bl_layers = 4
+    o%bl_num_patches = size(walls)
+    o%bl_patches = c_loc(walls)
+    call check(anitet_mesher_run(surface, mesh, options=o) == ANITET_OK, "BL run, walls by c_loc")
+    call check(anitet_mesh_get_run_stats(mesh, st) == ANITET_OK, "run stats")
+    call check(anitet_mesh_get_counts(mesh, np, nt, nb) == ANITET_OK, "BL mesh counts")
+    call check(st%version == ANITET_RUN_STATS_VERSION .and. st%vertices == np .and. st%tets == nt, &
+               "run stats: version, counts")
+    call check(st%layers_used >= 1 .and. st%seconds > 0d0 .and. st%refine_passes >= 1 .and. &
+               (st%recovery_strategy == ANITET_RECOVERY_SPLIT .or. &
+                st%recovery_strategy == ANITET_RECOVERY_FUZZY), "run stats: stages")
+    call check(st%bl_layers == 4 .and. st%bl_wall_vertices == SPHERE_NPOINTS .and. &
+               st%bl_full_columns == SPHERE_NPOINTS, "BL: 4 layers, every wall vertex a full column")
+    call check(10 * st%bl_nominal_columns >= 9 * SPHERE_NPOINTS .and. &
+               st%bl_tets >= 3 * 4 * SPHERE_NTRI, "BL: nominal columns, tets")
+    call check(abs(st%bl_first_height_mean - 0.02d0) < 0.002d0 .and. st%bl_first_height_min > 0d0 &
+               .and. st%bl_first_height_min <= st%bl_first_height_max, "BL: first heights")
+    call check(abs(st%bl_growth_mean - 1.25d0) < 0.05d0 .and. st%bl_max_height_error <= 0.1d0, &
+               "BL: growth, height error")
+    call check(anitet_mesh_run_json(mesh, json) == ANITET_OK, "run json")
+    call check(json(1:1) == "{" .and. index(json, '"boundary_layer"') > 0 .and. &
+               index(json, '"columns_reaching"') > 0 .and. index(json, '"stages"') > 0, "run json text")
+
+    ! The same walls through bl_patches= (an expression: the wrapper keeps a copy for the call).
+    o%bl_num_patches = 0
+    o%bl_patches = c_null_ptr
+    call check(anitet_mesher_run(surface, other, options=o, bl_patches=walls(1:3) + 0) == ANITET_OK, &
+               "BL run, walls by bl_patches=")
+    call check(anitet_mesh_get_run_stats(other, st2) == ANITET_OK, "run stats again")
+    call check(st2%bl_tets == st%bl_tets .and. st2%tets == st%tets, "the same boundary layer")
+    call anitet_mesh_destroy(other)
+
+    ! Patch names in the written files; trailing blanks are not part of a name.
+    call check(anitet_mesh_set_patch_name(mesh, 4, "farfield") == ANITET_OK, "name patch 4")
+    call check(anitet_mesh_set_patch_name(mesh, 1, "sphere_south   ") == ANITET_OK, "name patch 1")
+    call check(anitet_mesh_write(mesh, "fortran_bl.su2") == ANITET_OK, "write su2")
+    su2 = file_text("fortran_bl.su2")
+    call check(index(su2, "MARKER_TAG= farfield") > 0 .and. index(su2, "MARKER_TAG= sphere_south" // &
+               new_line("a")) > 0 .and. index(su2, "MARKER_TAG= patch2") > 0, "named markers")
+    call check(anitet_mesh_set_patch_name(mesh, 1) == ANITET_OK, "remove a name")
+    call check(anitet_mesh_write(mesh, "fortran_bl.su2") == ANITET_OK, "write su2 again")
+    su2 = file_text("fortran_bl.su2")
+    call check(index(su2, "MARKER_TAG= patch1") > 0 .and. index(su2, "sphere_south") == 0, &
+               "name removed")
+    call check(anitet_mesh_set_patch_name(mesh, 9, "wall") == ANITET_ERR_INVALID_ARGUMENT, &
+               "no patch 9")
+    call check(index(anitet_last_error_message(), "9") > 0, "no patch 9: message")
+    call check(anitet_mesh_set_patch_name(mesh, 4, "far field") == ANITET_ERR_INVALID_ARGUMENT, &
+               "a name with a blank")
+    call check(anitet_mesh_set_patch_name(mesh, 4, "") == ANITET_ERR_INVALID_ARGUMENT, "empty name")
+    call check(anitet_mesh_set_patch_name(mesh, 4, "9lives") == ANITET_ERR_INVALID_ARGUMENT, &
+               "a name starting with a digit")
+    call check(anitet_mesh_set_patch_name(mesh, 2, "farfield") == ANITET_OK, "a name twice")
+    call check(anitet_mesh_write(mesh, "fortran_bl_twice.su2") == ANITET_ERR_INVALID_ARGUMENT, &
+               "two patches of one name: no write")
+    call check(index(anitet_last_error_message(), "farfield") > 0, "two patches: message")
+    call anitet_mesh_destroy(mesh)
+
+    ! The options' errors, named.
+    o%bl_first_height = 0d0
+    call check(anitet_mesher_run(surface, mesh, options=o, bl_patches=[1, 2, 3]) == &
+               ANITET_ERR_INVALID_ARGUMENT, "walls without a first height")
+    call check(index(anitet_last_error_message(), "bl_first_height") > 0, "first height: message")
+    call check(.not. c_associated(mesh), "no mesh on error")
+    o%bl_first_height = 0.02d0
+    call check(anitet_mesher_run(surface, mesh, options=o, bl_patches=[1, 7]) == &
+               ANITET_ERR_INVALID_ARGUMENT, "an unknown wall label")
+    call check(index(anitet_last_error_message(), "wall patch label 7") > 0, "wall 7: message")
+    call check(anitet_mesher_run(surface, mesh, bl_patches=[1, 2, 3]) == ANITET_ERR_INVALID_ARGUMENT, &
+               "walls with the default options (no first height)")
+    o%recovery = 3
+    call check(anitet_mesher_run(surface, mesh, options=o) == ANITET_ERR_INVALID_ARGUMENT, "recovery 3")
+    call check(index(anitet_last_error_message(), "recovery is 3") > 0, "recovery 3: message")
+    call check(anitet_options_init(o, 2) == ANITET_OK, "options v2")
+    call check(anitet_mesher_run(surface, mesh, options=o, bl_patches=[1, 2, 3]) == &
+               ANITET_ERR_INVALID_ARGUMENT, "walls with version 2 options")
+    call check(index(anitet_last_error_message(), "version 3") > 0, "walls with v2: message")
+    call anitet_surface_destroy(surface)
+  end subroutine
+
+  ! A mesh read from a file was made by no run: no stats, no report.
+  subroutine check_run_report_errors(path)
+    character(len=*), intent(in) :: path
+    type(c_ptr) :: mesh
+    type(anitet_run_stats_t) :: st
+    character(len=:), allocatable :: json
+    call check(anitet_mesh_read(path, mesh) == ANITET_OK, "read " // path)
+    call check(anitet_mesh_get_run_stats(mesh, st) == ANITET_ERR_INVALID_ARGUMENT, "stats of a read mesh")
+    call check(index(anitet_last_error_message(), "not made by anitet_mesher_run") > 0, &
+               "stats of a read mesh: message")
+    call check(anitet_mesh_run_json(mesh, json) == ANITET_ERR_INVALID_ARGUMENT .and. len(json) == 0, &
+               "report of a read mesh")
+    call anitet_mesh_destroy(mesh)
+    call check(anitet_mesh_get_run_stats(mesh, st) == ANITET_ERR_INVALID_ARGUMENT, "stats of no mesh")
+  end subroutine
+
+  ! The whole file as one string.
+  function file_text(path) result(text)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: text
+    integer :: unit, n
+    open(newunit=unit, file=path, access="stream", form="unformatted", status="old", action="read")
+    inquire(unit=unit, size=n)
+    allocate(character(len=n) :: text)
+    read(unit) text
+    close(unit)
+  end function
 
 end program test_fortran
