@@ -1,11 +1,12 @@
-"""The Python face of the C ABI: Surface, Metric, Mesh, Options, Quality and AnitetError; and for
-2D meshes Pslg, Mesh2d and mesh2d().
+"""The Python face of the C ABI: Surface, Metric, Mesh, Options, Quality, RunStats and AnitetError;
+and for 2D meshes Pslg, Mesh2d and mesh2d().
 
 Arrays: with NumPy importable (and ANITET_PYTHON_NUMPY not "0"), outputs are NumPy arrays shaped
 (n, 3) / (n, 4) / (n,) and inputs may be any array-like; without it, outputs are lists of tuples
 (lists for one value per element) and inputs are sequences. Indices are 0-based unless an
 index_base of 1 is asked for.
 """
+import collections.abc
 import ctypes
 import json
 import os
@@ -178,19 +179,28 @@ def _create(cls, call, *args):
 # ---- options -----------------------------------------------------------------------------------
 
 class Options:
-    """The mesher's and the validation's options (anitet_options version 2; the fields and their
-    meaning are the C struct's, with booleans for the 0/1 ones).
+    """The mesher's and the validation's options (anitet_options version 3; the fields, their
+    meaning and their defaults are the C struct's, with booleans for the 0/1 ones).
 
     progress(stage, fraction): called on entering each stage; return False to cancel (the call
     then raises AnitetError with code ERR_CANCELLED); None or True continues. An exception raised
     in progress or log cancels the run and is raised again from the call.
     log(level, message): the validation's repairs and problems, one line per stage.
+
+    Version 3, keywords only: hmin, hmax, hgrad (size bounds and gradation, 0: none), max_tets (0:
+    no cap), recovery (RECOVERY_ALL, RECOVERY_SPLIT, RECOVERY_FUZZY), retry_layer_counts,
+    attempts_seconds, anisotropic_cycles, and the boundary layer: bl_patches, the wall patch labels
+    (a sequence of ints or one int; an int32 NumPy array is passed without a copy), with
+    bl_first_height (needed with walls), bl_growth, bl_layers and bl_sizing.
     """
 
     def __init__(self, num_threads=0, merge_duplicate_vertices=True, orient_shells=True,
                  check_self_intersections=True, layers=1, layer_scheme=_capi.LAYERS_PUSH,
                  recovery_max_seconds=0.0, refine=True, optimize=True, size_scale=1.0,
-                 progress=None, log=None):
+                 progress=None, log=None, *, attempts_seconds=240.0, retry_layer_counts=True,
+                 recovery=_capi.RECOVERY_ALL, hmin=0.0, hmax=0.0, hgrad=0.0, max_tets=0.0,
+                 anisotropic_cycles=2, bl_patches=(), bl_first_height=0.0, bl_growth=1.2,
+                 bl_layers=10, bl_sizing=False):
         self.num_threads = num_threads
         self.merge_duplicate_vertices = merge_duplicate_vertices
         self.orient_shells = orient_shells
@@ -203,10 +213,24 @@ class Options:
         self.size_scale = size_scale
         self.progress = progress
         self.log = log
+        self.attempts_seconds = attempts_seconds
+        self.retry_layer_counts = retry_layer_counts
+        self.recovery = recovery
+        self.hmin = hmin
+        self.hmax = hmax
+        self.hgrad = hgrad
+        self.max_tets = max_tets
+        self.anisotropic_cycles = anisotropic_cycles
+        self.bl_patches = bl_patches
+        self.bl_first_height = bl_first_height
+        self.bl_growth = bl_growth
+        self.bl_layers = bl_layers
+        self.bl_sizing = bl_sizing
 
 
 class _CallbackScope:
-    """The C struct of an Options with its callbacks, for the duration of one call."""
+    """The C struct of an Options with its callbacks and wall labels, for the duration of one
+    call."""
 
     def __init__(self, options):
         self.error = None
@@ -225,6 +249,23 @@ class _CallbackScope:
         s.refine = int(bool(options.refine))
         s.optimize = int(bool(options.optimize))
         s.size_scale = options.size_scale
+        s.attempts_seconds = options.attempts_seconds
+        s.retry_layer_counts = int(bool(options.retry_layer_counts))
+        s.recovery = options.recovery
+        s.hmin, s.hmax, s.hgrad = options.hmin, options.hmax, options.hgrad
+        s.max_tets = options.max_tets
+        s.anisotropic_cycles = options.anisotropic_cycles
+        s.bl_first_height = options.bl_first_height
+        s.bl_growth = options.bl_growth
+        s.bl_layers = options.bl_layers
+        s.bl_sizing = int(bool(options.bl_sizing))
+        walls = options.bl_patches
+        if walls is not None:
+            # self._walls owns the memory behind s.bl_patches until the call returns.
+            self._walls, pointer, count = _flat_input([walls] if isinstance(walls, int) else walls,
+                                                      1, c_int32, "bl_patches")
+            if count > 0:
+                s.bl_patches, s.bl_num_patches = pointer, count
         # The ctypes callback objects must outlive the call: they are attributes of self.
         if options.progress is not None:
             user_progress = options.progress
@@ -420,29 +461,80 @@ class Metric(_Handle):
 
 # ---- volume meshes -----------------------------------------------------------------------------
 
-class Quality:
-    """The numbers of anitet_quality (version 1)."""
+class _Figures:
+    """The figures of a C struct as attributes: FIELDS, those in FLAGS as booleans."""
 
-    FIELDS = ("valid", "boundary_constrained", "vertices", "tets", "nonpositive_tets",
-              "radius_ratio_mean", "radius_ratio_min", "mean_ratio_mean", "mean_ratio_min",
-              "min_dihedral_deg", "max_dihedral_deg", "good_fraction", "bad_fraction")
+    FIELDS = ()
+    FLAGS = ()
 
-    def __init__(self, c_quality):
+    def __init__(self, c_struct):
         for name in self.FIELDS:
-            value = getattr(c_quality, name)
-            setattr(self, name, bool(value) if name in ("valid", "boundary_constrained") else value)
+            value = getattr(c_struct, name)
+            setattr(self, name, bool(value) if name in self.FLAGS else value)
 
     def as_dict(self):
         return {name: getattr(self, name) for name in self.FIELDS}
 
     def __repr__(self):
-        return "Quality(%s)" % ", ".join("%s=%r" % kv for kv in self.as_dict().items())
+        return "%s(%s)" % (type(self).__name__, ", ".join("%s=%r" % kv for kv in self.as_dict().items()))
+
+
+class Quality(_Figures):
+    """The numbers of anitet_quality (version 1)."""
+
+    FIELDS = ("valid", "boundary_constrained", "vertices", "tets", "nonpositive_tets",
+              "radius_ratio_mean", "radius_ratio_min", "mean_ratio_mean", "mean_ratio_min",
+              "min_dihedral_deg", "max_dihedral_deg", "good_fraction", "bad_fraction")
+    FLAGS = ("valid", "boundary_constrained")
+
+
+class RunStats(_Figures):
+    """The numbers of anitet_run_stats (version 1): what the run that made a mesh did.
+    recovery_strategy is RECOVERY_SPLIT or RECOVERY_FUZZY (the strategy that worked); the bl_*
+    figures are 0 without a boundary layer. Mesh.run_report() has everything else."""
+
+    FIELDS = tuple(name for name, _ in _capi.CRunStats._fields_ if name not in ("version", "reserved0"))
+    FLAGS = ("refine_stopped_at_pass_cap",)
+
+
+class PatchNames(collections.abc.MutableMapping):
+    """The patch names of a Mesh, label -> name, as given through it: setting or deleting an item
+    names or unnames the label (Mesh.set_patch_name)."""
+
+    def __init__(self, mesh):
+        self._mesh = mesh
+
+    def __getitem__(self, label):
+        return self._mesh._patch_names[label]
+
+    def __setitem__(self, label, name):
+        if name is None:
+            raise TypeError("a patch name is a str; del removes it")
+        self._mesh.set_patch_name(label, name)
+
+    def __delitem__(self, label):
+        if label not in self._mesh._patch_names:
+            raise KeyError(label)
+        self._mesh.set_patch_name(label, None)
+
+    def __iter__(self):
+        return iter(sorted(self._mesh._patch_names))
+
+    def __len__(self):
+        return len(self._mesh._patch_names)
+
+    def __repr__(self):
+        return "PatchNames(%r)" % dict(self)
 
 
 class Mesh(_Handle):
     """A tetrahedral mesh: the mesher's result, read from a file or built from arrays."""
 
     _destroy = lib.anitet_mesh_destroy
+
+    def __init__(self, ptr):
+        super().__init__(ptr)
+        self._patch_names = {}  # what set_patch_name gave the library (it has no getter)
 
     @classmethod
     def from_arrays(cls, points, tets, regions=None, boundary_triangles=None,
@@ -470,8 +562,51 @@ class Mesh(_Handle):
         return _create(cls, lib.anitet_mesh_read, _path(path))
 
     def write(self, path):
-        """Writes .mesh, .msh or .vtu by extension."""
+        """Writes by extension: .mesh .meshb .msh .vtu, or for solvers .su2 .cgns .exo/.e and a
+        path ending in polyMesh (OpenFOAM), the patches named as patch_names says (others
+        patch<label>)."""
         _check(lib.anitet_mesh_write(self, _path(path)))
+
+    def set_patch_name(self, label, name):
+        """Names the boundary patch `label` in the files write() writes (SU2 markers, OpenFOAM
+        patches, CGNS and Exodus names, Gmsh physical names): 1-32 letters, digits or '_',
+        starting with a letter. None removes the name."""
+        encoded = None if name is None else name.encode("utf-8")
+        _check(lib.anitet_mesh_set_patch_name(self, label, encoded))
+        if name is None:
+            self._patch_names.pop(label, None)
+        else:
+            self._patch_names[label] = name
+
+    @property
+    def patch_names(self):
+        """The names given, a mutable mapping label -> name (mesh.patch_names[4] = "farfield",
+        del mesh.patch_names[4], update(...)); assigning a dict replaces them all."""
+        return PatchNames(self)
+
+    @patch_names.setter
+    def patch_names(self, names):
+        current = PatchNames(self)
+        current.clear()
+        current.update(names)
+
+    @property
+    def run_stats(self):
+        """What the run that made this mesh did (RunStats). AnitetError (ERR_INVALID_ARGUMENT)
+        for a mesh read from a file or made from arrays."""
+        stats = _capi.CRunStats()
+        stats.version = _capi.RUN_STATS_VERSION
+        _check(lib.anitet_mesh_get_run_stats(self, byref(stats)))
+        return RunStats(stats)
+
+    def run_json(self):
+        """The run's whole report as JSON text: stages (name, seconds, tets), layers, recovery,
+        coupling, refine, optimize, metric_quality, boundary_layer, notices, seconds."""
+        return _text(lambda buf, n, needed: lib.anitet_mesh_run_json(self, buf, n, needed))
+
+    def run_report(self):
+        """run_json() parsed: a dict."""
+        return json.loads(self.run_json())
 
     def write_metric(self, path):
         """Writes the per-vertex metric as a Medit .sol (binary .solb by its extension)."""
@@ -563,7 +698,8 @@ def mesh_surface(surface, metric=None, options=None, **kwargs):
 
     metric: a Metric for the sizes (the mesh then carries it at its vertices, Mesh.metric()), or
     None for sizes from the surface's triangles. options: an Options, or its fields as keywords
-    (layers=1, size_scale=2, progress=..., log=...).
+    (layers=1, size_scale=2, hgrad=1.3, bl_patches=[1], bl_first_height=0.01, progress=...).
+    What the run did: the mesh's run_stats and run_report().
     """
     if metric is not None and not isinstance(metric, Metric):
         raise TypeError("metric must be an anitet.Metric or None, not %s" % type(metric).__name__)

@@ -43,10 +43,14 @@ LOG_ERROR = 0
 LOG_WARNING = 1
 LOG_INFO = 2
 LOG_DEBUG = 3
-OPTIONS_VERSION = 2
+OPTIONS_VERSION = 3
 QUALITY_VERSION = 1
+RUN_STATS_VERSION = 1
 LAYERS_PUSH = 0
 LAYERS_FACE_PUSH = 1
+RECOVERY_ALL = 0
+RECOVERY_SPLIT = 1
+RECOVERY_FUZZY = 2
 PARTITION_OPTIONS_VERSION = 1
 PARTITION_INFO_VERSION = 1
 HALO_VERTEX_SEND = 0
@@ -105,6 +109,59 @@ class COptions(Structure):
         ("refine", c_int32),
         ("optimize", c_int32),
         ("size_scale", c_double),
+        # version 3
+        ("attempts_seconds", c_double),
+        ("retry_layer_counts", c_int32),
+        ("recovery", c_int32),
+        ("hmin", c_double),
+        ("hmax", c_double),
+        ("hgrad", c_double),
+        ("max_tets", c_double),
+        ("anisotropic_cycles", c_int32),
+        ("bl_num_patches", c_int32),
+        ("bl_patches", POINTER(c_int32)),
+        ("bl_first_height", c_double),
+        ("bl_growth", c_double),
+        ("bl_layers", c_int32),
+        ("bl_sizing", c_int32),
+    ]
+
+
+class CRunStats(Structure):
+    _fields_ = [
+        ("version", c_int32),
+        ("layers_used", c_int32),
+        ("layers_retries", c_int32),
+        ("recovery_strategy", c_int32),
+        ("refine_passes", c_int32),
+        ("refine_stopped_at_pass_cap", c_int32),
+        ("anisotropic_cycles", c_int32),
+        ("num_notices", c_int32),
+        ("vertices", c_int64),
+        ("tets", c_int64),
+        ("steiner_on_front_edges", c_int64),
+        ("steiner_on_front_faces", c_int64),
+        ("refine_splits", c_int64),
+        ("refine_collapses", c_int64),
+        ("flat_tets_left", c_int64),
+        ("metric_not_spd", c_int64),
+        ("seconds", c_double),
+        ("estimated_tets", c_double),
+        ("edges_in_range", c_double),
+        ("metric_radius_ratio_mean", c_double),
+        ("metric_radius_ratio_min", c_double),
+        ("bl_layers", c_int32),
+        ("reserved0", c_int32),
+        ("bl_wall_vertices", c_int64),
+        ("bl_full_columns", c_int64),
+        ("bl_nominal_columns", c_int64),
+        ("bl_reduced_vertices", c_int64),
+        ("bl_tets", c_int64),
+        ("bl_first_height_min", c_double),
+        ("bl_first_height_mean", c_double),
+        ("bl_first_height_max", c_double),
+        ("bl_growth_mean", c_double),
+        ("bl_max_height_error", c_double),
     ]
 
 
@@ -219,7 +276,10 @@ _PROTOTYPES = {
     "anitet_mesh_get_boundary_patches": (c_int, [_P, _I32, c_int64]),
     "anitet_mesh_get_metric_components": (c_int, [_P, _I32]),
     "anitet_mesh_get_metric": (c_int, [_P, _D, c_int64]),
+    "anitet_mesh_set_patch_name": (c_int, [_P, c_int32, c_char_p]),
     "anitet_mesh_set_metric": (c_int, [_P, _D, c_int64, c_int32]),
+    "anitet_mesh_get_run_stats": (c_int, [_P, POINTER(CRunStats)]),
+    "anitet_mesh_run_json": (c_int, [_P, c_char_p, c_int64, _I64]),
     "anitet_mesh_quality": (c_int, [_P, _P, POINTER(CQuality)]),
     "anitet_mesh_quality_json": (c_int, [_P, _P, c_char_p, c_int64, _I64]),
     "anitet_partition_options_init": (c_int, [POINTER(CPartitionOptions), c_int32]),

@@ -17,7 +17,7 @@ import sys
 from ctypes import byref, c_double, c_int32, c_int64, c_void_p
 
 from . import _capi
-from ._api import Mesh, _check, _np
+from ._api import Mesh, _check, _Figures, _np
 from ._capi import lib
 
 _ORDER = "<" if sys.byteorder == "little" else ">"  # the library's memory: native order
@@ -58,21 +58,11 @@ class _View:
         self._memory = memory
 
 
-class PartitionInfo:
+class PartitionInfo(_Figures):
     """The numbers of anitet_partition_info (version 1)."""
 
     FIELDS = ("num_parts", "ghost_layers", "empty_parts", "num_tets", "edge_cut",
               "interface_vertices", "imbalance", "total_weight", "max_part_weight")
-
-    def __init__(self, c_info):
-        for name in self.FIELDS:
-            setattr(self, name, getattr(c_info, name))
-
-    def as_dict(self):
-        return {name: getattr(self, name) for name in self.FIELDS}
-
-    def __repr__(self):
-        return "PartitionInfo(%s)" % ", ".join("%s=%r" % kv for kv in self.as_dict().items())
 
 
 class Part:
