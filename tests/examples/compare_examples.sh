@@ -1,10 +1,12 @@
 #!/bin/sh
-# compare_examples.sh WORK_DIR NAME=COMMAND...: runs each example COMMAND with the output prefix
-# WORK_DIR/NAME, then checks that every one printed the same text and wrote the same .mesh and
-# .sol as the first: the same mesh (counts, quality report, coordinates, metric) bit for bit.
+# compare_examples.sh WORK_DIR "EXTENSIONS" NAME=COMMAND...: runs each example COMMAND with the
+# output prefix WORK_DIR/NAME, then checks that every one printed the same text and wrote the same
+# files WORK_DIR/NAME.EXT, for each EXT of EXTENSIONS ("mesh sol"), as the first: the same mesh
+# (counts, reports, coordinates, metric, patch names) bit for bit.
 set -eu
 work=$1
-shift
+extensions=$2
+shift 2
 rm -rf "$work"
 mkdir -p "$work"
 first=""
@@ -24,7 +26,7 @@ for spec in "$@"; do
     }
     continue
   fi
-  for ext in txt mesh sol; do
+  for ext in txt $extensions; do
     if ! cmp -s "$work/$first.$ext" "$work/$name.$ext"; then
       echo "examples $first and $name differ in their .$ext output:" >&2
       diff "$work/$first.$ext" "$work/$name.$ext" | head -20 >&2 || true
