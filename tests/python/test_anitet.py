@@ -17,6 +17,7 @@ import anitet
 from anitet import _capi
 
 sys.path.insert(0, os.environ["ANITET_EXAMPLES_DIR"])
+import boundary_layer  # noqa: E402 - the sphere in a box
 import mesh_sphere  # noqa: E402 - the examples' sphere
 
 HEADER = os.environ["ANITET_HEADER"]
@@ -53,8 +54,9 @@ class HeaderDrift(unittest.TestCase):
         self.assertEqual(sorted(declared), sorted(_capi._PROTOTYPES))
 
     def test_constants(self):
-        pattern = (r"#define ANITET_((?:ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|VERSION_MAJOR|"
-                   r"VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|PARTITION_[A-Z]+_VERSION|"
+        pattern = (r"#define ANITET_((?:ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|RECOVERY_[A-Z]+|"
+                   r"VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|RUN_STATS_VERSION|"
+                   r"PARTITION_[A-Z]+_VERSION|"
                    r"HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+)) \(?(-?\d+)\)?")
         found = re.findall(pattern, self.header)
         self.assertGreater(len(found), 25)
@@ -62,23 +64,50 @@ class HeaderDrift(unittest.TestCase):
             self.assertEqual(getattr(anitet, name), int(value), name)
 
     def struct_fields(self, name):
+        """[(field, kind)] of a header struct, kind int32_t, int64_t, double or pointer."""
         body = re.search(r"typedef struct %s \{(.*?)\} %s;" % (name, name), self.header, re.S).group(1)
         body = re.sub(r"/\*.*?\*/", "", body, flags=re.S)
-        return re.findall(r"\b([a-z_0-9]+);", body)
+        fields = []
+        for decl in (d.strip() for d in body.split(";")):
+            if decl:
+                pointer = "*" in decl or re.match(r"anitet_\w+_fn ", decl)
+                name = re.search(r"(\w+)$", decl).group(1)
+                fields.append((name, "pointer" if pointer else decl.split()[0]))
+        return fields
+
+    @staticmethod
+    def ctypes_fields(struct):
+        kinds = {ctypes.c_int32: "int32_t", ctypes.c_int64: "int64_t", ctypes.c_double: "double"}
+        return [(name, kinds.get(t, "pointer")) for name, t in struct._fields_]
 
     def test_struct_layouts(self):
-        self.assertEqual([f[0] for f in _capi.COptions._fields_], self.struct_fields("anitet_options"))
-        self.assertEqual([f[0] for f in _capi.CQuality._fields_], self.struct_fields("anitet_quality"))
-        self.assertEqual([f[0] for f in _capi.CPartitionOptions._fields_],
-                         self.struct_fields("anitet_partition_options"))
-        self.assertEqual([f[0] for f in _capi.CPartitionInfo._fields_],
-                         self.struct_fields("anitet_partition_info"))
-        self.assertEqual(ctypes.sizeof(_capi.CPartitionOptions), 24 + ctypes.sizeof(ctypes.c_void_p) + 8)
+        for struct, name in ((_capi.COptions, "anitet_options"), (_capi.CQuality, "anitet_quality"),
+                             (_capi.CRunStats, "anitet_run_stats"),
+                             (_capi.CPartitionOptions, "anitet_partition_options"),
+                             (_capi.CPartitionInfo, "anitet_partition_info")):
+            self.assertEqual(self.ctypes_fields(struct), self.struct_fields(name), name)
+        pointer = ctypes.sizeof(ctypes.c_void_p)
+        self.assertEqual(ctypes.sizeof(_capi.CPartitionOptions), 24 + pointer + 8)
         self.assertEqual(ctypes.sizeof(_capi.CPartitionInfo), 64)
-        self.assertEqual([f[0] for f in _capi.CMesh2dOptions._fields_], self.struct_fields("anitet_mesh2d_options"))
-        # Version 1 ends after the four pointers; version 2 adds 32 bytes.
-        self.assertEqual(_capi.COptions.layers.offset, 24 + 4 * ctypes.sizeof(ctypes.c_void_p))
-        self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.layers.offset + 32)
+        self.assertEqual(self.ctypes_fields(_capi.CMesh2dOptions), self.struct_fields("anitet_mesh2d_options"))
+        self.assertEqual(ctypes.sizeof(_capi.CRunStats), 224)
+        # Version 1 ends after the four pointers; version 2 adds 32 bytes, version 3 seven 8-byte
+        # fields, six 4-byte ones and a pointer.
+        self.assertEqual(_capi.COptions.layers.offset, 24 + 4 * pointer)
+        self.assertEqual(_capi.COptions.attempts_seconds.offset, _capi.COptions.layers.offset + 32)
+        self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.attempts_seconds.offset + 80 + pointer)
+
+    def test_options_defaults_are_the_library_s(self):
+        c = _capi.COptions()
+        self.assertEqual(_capi.lib.anitet_options_init(ctypes.byref(c), _capi.OPTIONS_VERSION), 0)
+        python = anitet.Options()
+        skip = ("version", "reserved0", "progress", "progress_user_data", "log", "log_user_data",
+                "bl_num_patches", "bl_patches")
+        for name, _ in _capi.COptions._fields_:
+            if name not in skip:
+                self.assertEqual(getattr(python, name), getattr(c, name), name)
+        self.assertEqual((c.bl_num_patches, bool(c.bl_patches)), (0, False))
+        self.assertEqual(len(python.bl_patches), 0)
 
 
 class Library(unittest.TestCase):
@@ -231,6 +260,146 @@ class Meshing(unittest.TestCase):
             self.assertEqual(m.counts(), alone.counts())
             self.assertEqual(rows(m.points()), rows(alone.points()))
             self.assertEqual(rows(m.tets()), rows(alone.tets()))
+
+
+    def test_options_v3(self):
+        s = sphere()[0]
+        plain = s.mesh()
+        self.assertGreater(s.mesh(hmax=0.2).num_tets, 2 * plain.num_tets)
+        m = s.mesh(recovery=anitet.RECOVERY_SPLIT, retry_layer_counts=False)
+        self.assertEqual(m.run_stats.recovery_strategy, anitet.RECOVERY_SPLIT)
+        self.assertEqual(m.run_stats.layers_retries, 0)
+        for fields, words in (({"recovery": 3}, "recovery is 3"),
+                              ({"hmin": 2.0, "hmax": 1.0}, "hmin"),
+                              ({"hgrad": 0.5}, "hgrad"),
+                              ({"attempts_seconds": -1.0}, "attempts_seconds"),
+                              ({"anisotropic_cycles": 11}, "anisotropic_cycles is 11"),
+                              ({"bl_sizing": True}, "bl_sizing"),
+                              ({"hmax": 0.2, "max_tets": 100}, "100")):
+            with self.assertRaises(anitet.AnitetError) as e:
+                s.mesh(options=anitet.Options(**fields))
+            self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT, fields)
+            self.assertIn(words, e.exception.message)
+        with self.assertRaises(TypeError):
+            # Version 3's fields are keywords only.
+            anitet.Options(1, True, True, True, 1, 0, 0.0, True, True, 1.0, None, None, 240.0)
+        with self.assertRaises(TypeError):
+            s.mesh(bl_wall=[1])  # no such option
+        # A plain run: its stats and report, no boundary layer.
+        stats = plain.run_stats
+        self.assertEqual((stats.vertices, stats.tets), plain.counts()[:2])
+        self.assertEqual((stats.bl_layers, stats.bl_wall_vertices, stats.bl_tets), (0, 0, 0))
+        self.assertGreater(stats.seconds, 0)
+        self.assertIn(stats.recovery_strategy, (anitet.RECOVERY_SPLIT, anitet.RECOVERY_FUZZY))
+        self.assertIsInstance(stats.refine_stopped_at_pass_cap, bool)
+        self.assertEqual(stats.as_dict()["tets"], stats.tets)
+        report = plain.run_report()
+        self.assertEqual([st["stage"] for st in report["stages"]][:2], ["layers", "recovery"])
+        self.assertEqual(report["notices"], [])
+
+
+class BoundaryLayers(unittest.TestCase):
+    """Options version 3's boundary layer on the sphere inside a box, the run's report, and the
+    patch names of the written files."""
+
+    WALLS = dict(bl_first_height=0.02, bl_growth=1.25, bl_layers=4)
+
+    @classmethod
+    def setUpClass(cls):
+        cls.surface = anitet.Surface.from_arrays(*boundary_layer.sphere_in_box())
+        cls.mesh = cls.surface.mesh(bl_patches=[1, 2, 3], **cls.WALLS)
+
+    def test_report(self):
+        s, n = self.mesh.run_stats, mesh_sphere.NPOINTS
+        self.assertEqual((s.vertices, s.tets), self.mesh.counts()[:2])
+        self.assertEqual((s.bl_layers, s.bl_wall_vertices, s.bl_full_columns), (4, n, n))
+        self.assertGreaterEqual(s.bl_nominal_columns, 0.9 * n)
+        self.assertGreaterEqual(s.bl_tets, 3 * 4 * mesh_sphere.NTRI)
+        self.assertAlmostEqual(s.bl_first_height_mean, 0.02, delta=0.002)
+        self.assertTrue(0 < s.bl_first_height_min <= s.bl_first_height_max)
+        self.assertAlmostEqual(s.bl_growth_mean, 1.25, delta=0.05)
+        self.assertLessEqual(s.bl_max_height_error, 0.1)
+        report = self.mesh.run_report()
+        self.assertEqual(report["boundary_layer"]["layers"], 4)
+        self.assertEqual(report["boundary_layer"]["columns_reaching"][4], n)
+        self.assertEqual(report["boundary_layer"]["tets"], s.bl_tets)
+        q = self.mesh.quality(self.surface)
+        self.assertTrue(q.valid and q.boundary_constrained)
+
+    def test_walls_in_every_form(self):
+        # One int, a tuple, an int32 NumPy array (passed without a copy): the same struct.
+        scope = anitet._api._options_arg(None, {"bl_patches": 2})
+        self.assertEqual((scope.struct.bl_num_patches, scope.struct.bl_patches[0]), (1, 2))
+        scope = anitet._api._options_arg(anitet.Options(bl_patches=()), {})
+        self.assertEqual((scope.struct.bl_num_patches, bool(scope.struct.bl_patches)), (0, False))
+        if anitet.HAVE_NUMPY:
+            import numpy
+            walls = numpy.array([1, 2, 3], dtype=numpy.int32)
+            scope = anitet._api._options_arg(None, {"bl_patches": walls})
+            self.assertEqual(ctypes.addressof(scope.struct.bl_patches.contents), walls.ctypes.data)
+            m = self.surface.mesh(options=anitet.Options(bl_patches=walls, **self.WALLS))
+            self.assertEqual(m.run_stats.bl_tets, self.mesh.run_stats.bl_tets)
+        with self.assertRaises(TypeError):
+            self.surface.mesh(bl_patches=[1.5], **self.WALLS)
+
+    def test_errors(self):
+        for fields, words in (({"bl_patches": [1, 7]}, "wall patch label 7"),
+                              ({"bl_patches": [1, 2, 3], "bl_first_height": 0.0}, "bl_first_height"),
+                              ({"bl_patches": [1, 2, 3], "bl_layers": 0}, "bl_layers"),
+                              ({"bl_patches": [1, 2, 3], "bl_growth": 0.5}, "bl_growth")):
+            with self.assertRaises(anitet.AnitetError) as e:
+                self.surface.mesh(**dict(self.WALLS, **fields))
+            self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+            self.assertIn(words, e.exception.message)
+        read = anitet.Mesh.read(os.path.join(DATA, "io", "box.mesh"))
+        for call in (lambda: read.run_stats, read.run_report, read.run_json):
+            with self.assertRaises(anitet.AnitetError) as e:
+                call()
+            self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+            self.assertIn("not made by anitet_mesher_run", e.exception.message)
+        read.close()
+        with self.assertRaises(anitet.AnitetError) as e:
+            read.run_stats
+        self.assertIn("mesh is NULL", e.exception.message)
+
+    def test_patch_names(self):
+        m = self.mesh
+        self.addCleanup(m.patch_names.clear)
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "names.su2")
+
+            def markers():
+                m.write(path)
+                with open(path) as f:
+                    return re.findall(r"^MARKER_TAG= (\w+)$", f.read(), re.M)
+
+            m.set_patch_name(4, "farfield")
+            m.patch_names[2] = "sphere_band"
+            self.assertEqual(dict(m.patch_names), {2: "sphere_band", 4: "farfield"})
+            self.assertEqual(markers(), ["patch1", "sphere_band", "patch3", "farfield"])
+            del m.patch_names[2]
+            m.set_patch_name(4, None)
+            self.assertEqual(markers(), ["patch1", "patch2", "patch3", "patch4"])
+            m.patch_names = {1: "south", 3: "north"}
+            self.assertEqual(markers(), ["south", "patch2", "north", "patch4"])
+            for label, name, words in ((9, "wall", "patch label 9"), (4, "far field", "far field"),
+                                       (4, "", ""), (4, "9lives", "9lives"), (4, "x" * 33, "x" * 33)):
+                with self.assertRaises(anitet.AnitetError) as e:
+                    m.patch_names[label] = name
+                self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+                self.assertIn(words, e.exception.message)
+            self.assertEqual(dict(m.patch_names), {1: "south", 3: "north"})  # unchanged by the errors
+            with self.assertRaises(KeyError):
+                del m.patch_names[2]
+            with self.assertRaises(TypeError):
+                m.patch_names[2] = None
+            # Two labels of one name: the write says so and writes nothing.
+            m.patch_names[2] = "south"
+            os.remove(path)
+            with self.assertRaises(anitet.AnitetError) as e:
+                m.write(path)
+            self.assertIn("south", e.exception.message)
+            self.assertFalse(os.path.exists(path))
 
 
 class Metrics(unittest.TestCase):
