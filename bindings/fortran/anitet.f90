@@ -49,6 +49,8 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_RECOVERY_FUZZY = 2
   integer(c_int32_t), parameter, public :: ANITET_RUN_STATS_VERSION = 1
   integer(c_int32_t), parameter, public :: ANITET_QUALITY_VERSION = 1
+  integer(c_int32_t), parameter, public :: ANITET_GEO_ENU = 0
+  integer(c_int32_t), parameter, public :: ANITET_GEO_UTM = 1
   ! partitions
   integer(c_int32_t), parameter, public :: ANITET_PARTITION_OPTIONS_VERSION = 1
   integer(c_int32_t), parameter, public :: ANITET_PARTITION_INFO_VERSION = 1
@@ -80,8 +82,6 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_PART_TET_RECV_OFFSETS = 18
   integer(c_int32_t), parameter, public :: ANITET_PART_TET_RECV = 19
   integer(c_int32_t), parameter, public :: ANITET_MESH2D_OPTIONS_VERSION = 1
-  integer(c_int32_t), parameter, public :: ANITET_GEO_ENU = 0
-  integer(c_int32_t), parameter, public :: ANITET_GEO_UTM = 1
 
   ! ---- versioned structs (same layout as the C structs) -----------------------------------------
   ! Set callbacks with c_funloc of a bind(c) procedure and user data with c_loc.
@@ -120,6 +120,8 @@ module anitet
     real(c_double) :: bl_growth
     integer(c_int32_t) :: bl_layers
     integer(c_int32_t) :: bl_sizing
+    integer(c_int32_t) :: push_tasks_min_vertices
+    integer(c_int32_t) :: reserved1
   end type
 
   ! What the run that made a mesh did (anitet_mesh_get_run_stats).
@@ -229,14 +231,18 @@ module anitet
   public :: c_anitet_surface_validation_json
   public :: c_anitet_metric_create_uniform, c_anitet_metric_create_analytic, c_anitet_metric_read
   public :: c_anitet_metric_create_from_points, c_anitet_metric_destroy, c_anitet_metric_evaluate
-  public :: c_anitet_mesher_run
+  public :: c_anitet_metric_create_surface_sizing, c_anitet_metric_read_on_mesh, c_anitet_metric_write
+  public :: c_anitet_mesher_run, c_anitet_layers_run, c_anitet_bl_first_height
   public :: c_anitet_mesh_create, c_anitet_mesh_read, c_anitet_mesh_destroy, c_anitet_mesh_write
   public :: c_anitet_mesh_write_metric, c_anitet_mesh_get_counts, c_anitet_mesh_get_points
   public :: c_anitet_mesh_get_tets, c_anitet_mesh_get_regions
   public :: c_anitet_mesh_get_boundary_triangles, c_anitet_mesh_get_boundary_patches
   public :: c_anitet_mesh_get_metric_components, c_anitet_mesh_get_metric, c_anitet_mesh_set_metric
   public :: c_anitet_mesh_set_patch_name, c_anitet_mesh_get_run_stats, c_anitet_mesh_run_json
-  public :: c_anitet_mesh_quality, c_anitet_mesh_quality_json
+  public :: c_anitet_mesh_sample_metric, c_anitet_mesh_quality, c_anitet_mesh_quality_json
+  public :: c_anitet_geo_frame_create, c_anitet_geo_frame_create_centred, c_anitet_geo_frame_destroy
+  public :: c_anitet_geo_frame_get, c_anitet_surface_to_local, c_anitet_mesh_to_local
+  public :: c_anitet_mesh_to_geodetic
   public :: c_anitet_partition_options_init, c_anitet_mesh_partition, c_anitet_partition_destroy
   public :: c_anitet_partition_get_info, c_anitet_partition_get_tet_parts, c_anitet_partition_get_part
   public :: c_anitet_part_destroy, c_anitet_part_get_index, c_anitet_part_get_counts
@@ -403,6 +409,30 @@ module anitet
       real(c_double), intent(out) :: m(6)
     end function
 
+    integer(c_int) function c_anitet_metric_create_surface_sizing(surface, options, out) &
+        bind(c, name="anitet_metric_create_surface_sizing")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: surface
+      type(c_ptr), value :: options  ! may be c_null_ptr
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_metric_read_on_mesh(path, background, out) &
+        bind(c, name="anitet_metric_read_on_mesh")
+      import :: c_int, c_char, c_ptr
+      character(kind=c_char), intent(in) :: path(*)
+      type(c_ptr), value :: background
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_metric_write(metric, box_of, path) &
+        bind(c, name="anitet_metric_write")
+      import :: c_int, c_char, c_ptr
+      type(c_ptr), value :: metric
+      type(c_ptr), value :: box_of  ! a surface, or c_null_ptr for a grid metric
+      character(kind=c_char), intent(in) :: path(*)
+    end function
+
     integer(c_int) function c_anitet_mesher_run(surface, metric, options, out) &
         bind(c, name="anitet_mesher_run")
       import :: c_int, c_ptr
@@ -410,6 +440,21 @@ module anitet
       type(c_ptr), value :: metric   ! may be c_null_ptr
       type(c_ptr), value :: options  ! may be c_null_ptr
       type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_layers_run(surface, options, out) &
+        bind(c, name="anitet_layers_run")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: surface
+      type(c_ptr), value :: options  ! may be c_null_ptr
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_bl_first_height(yplus, reynolds, ref_length, h0) &
+        bind(c, name="anitet_bl_first_height")
+      import :: c_int, c_double
+      real(c_double), value :: yplus, reynolds, ref_length
+      real(c_double), intent(out) :: h0
     end function
 
     integer(c_int) function c_anitet_mesh_create(xyz, num_points, tets, num_tets, regions, &
@@ -524,6 +569,12 @@ module anitet
       integer(c_int32_t), value :: components
     end function
 
+    integer(c_int) function c_anitet_mesh_sample_metric(mesh, metric) &
+        bind(c, name="anitet_mesh_sample_metric")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: mesh, metric
+    end function
+
     integer(c_int) function c_anitet_mesh_set_patch_name(mesh, label, name) &
         bind(c, name="anitet_mesh_set_patch_name")
       import :: c_int, c_int32_t, c_ptr
@@ -564,6 +615,55 @@ module anitet
       type(c_ptr), value :: buf
       integer(c_int64_t), value :: buf_len
       integer(c_int64_t), intent(out) :: needed
+    end function
+
+    ! ---- geographic frames ----
+    integer(c_int) function c_anitet_geo_frame_create(kind, lat, lon, height, out) &
+        bind(c, name="anitet_geo_frame_create")
+      import :: c_int, c_int32_t, c_double, c_ptr
+      integer(c_int32_t), value :: kind
+      real(c_double), value :: lat, lon, height
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_geo_frame_create_centred(kind, surface, out) &
+        bind(c, name="anitet_geo_frame_create_centred")
+      import :: c_int, c_int32_t, c_ptr
+      integer(c_int32_t), value :: kind
+      type(c_ptr), value :: surface
+      type(c_ptr), intent(out) :: out
+    end function
+
+    subroutine c_anitet_geo_frame_destroy(frame) bind(c, name="anitet_geo_frame_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: frame
+    end subroutine
+
+    ! (C accepts NULL for any output; this interface asks for all five.)
+    integer(c_int) function c_anitet_geo_frame_get(frame, lat, lon, height, utm_zone, utm_north) &
+        bind(c, name="anitet_geo_frame_get")
+      import :: c_int, c_int32_t, c_double, c_ptr
+      type(c_ptr), value :: frame
+      real(c_double), intent(out) :: lat, lon, height
+      integer(c_int32_t), intent(out) :: utm_zone, utm_north
+    end function
+
+    integer(c_int) function c_anitet_surface_to_local(surface, frame) &
+        bind(c, name="anitet_surface_to_local")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: surface, frame
+    end function
+
+    integer(c_int) function c_anitet_mesh_to_local(mesh, frame) bind(c, name="anitet_mesh_to_local")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: mesh, frame
+    end function
+
+    integer(c_int) function c_anitet_mesh_to_geodetic(mesh, frame, geodetic_surface) &
+        bind(c, name="anitet_mesh_to_geodetic")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: mesh, frame
+      type(c_ptr), value :: geodetic_surface  ! may be c_null_ptr
     end function
 
     ! ---- partitions ----
@@ -920,14 +1020,18 @@ module anitet
   public :: anitet_surface_validation_json
   public :: anitet_metric_create_uniform, anitet_metric_create_analytic, anitet_metric_read
   public :: anitet_metric_create_from_points, anitet_metric_destroy, anitet_metric_evaluate
-  public :: anitet_mesher_run
+  public :: anitet_metric_create_surface_sizing, anitet_metric_read_on_mesh, anitet_metric_write
+  public :: anitet_mesher_run, anitet_layers_run, anitet_bl_first_height
   public :: anitet_mesh_create, anitet_mesh_read, anitet_mesh_destroy, anitet_mesh_write
   public :: anitet_mesh_write_metric, anitet_mesh_get_counts, anitet_mesh_get_points
   public :: anitet_mesh_get_tets, anitet_mesh_get_regions, anitet_mesh_get_boundary_triangles
   public :: anitet_mesh_get_boundary_patches, anitet_mesh_get_metric_components
   public :: anitet_mesh_get_metric, anitet_mesh_set_metric, anitet_mesh_quality
   public :: anitet_mesh_quality_json, anitet_mesh_set_patch_name, anitet_mesh_get_run_stats
-  public :: anitet_mesh_run_json
+  public :: anitet_mesh_run_json, anitet_mesh_sample_metric
+  public :: anitet_geo_frame_create, anitet_geo_frame_create_centred, anitet_geo_frame_destroy
+  public :: anitet_geo_frame_get, anitet_surface_to_local, anitet_mesh_to_local
+  public :: anitet_mesh_to_geodetic
   public :: anitet_pslg_create, anitet_pslg_read, anitet_pslg_destroy, anitet_pslg_get_counts
   public :: anitet_mesh2d_options_init, anitet_mesh2d_run, anitet_mesh2d_destroy
   public :: anitet_mesh2d_get_counts, anitet_mesh2d_get_points, anitet_mesh2d_get_triangles
@@ -1194,6 +1298,36 @@ contains
     rc = c_anitet_metric_evaluate(metric, point(1), point(2), point(3), m)
   end function
 
+  ! The sizing field anitet_mesher_run follows without a metric (bounded by options%hmin, hmax,
+  ! hgrad; `anitet mesh --write-sizing`).
+  integer function anitet_metric_create_surface_sizing(surface, metric, options) result(rc)
+    type(c_ptr), intent(in) :: surface
+    type(c_ptr), intent(out) :: metric
+    type(anitet_options_t), intent(in), optional, target :: options
+    if (present(options)) then
+      rc = c_anitet_metric_create_surface_sizing(surface, c_loc(options), metric)
+    else
+      rc = c_anitet_metric_create_surface_sizing(surface, c_null_ptr, metric)
+    end if
+  end function
+
+  ! A .sol/.solb metric on a background mesh in memory (copied).
+  integer function anitet_metric_read_on_mesh(path, background, metric) result(rc)
+    character(len=*), intent(in) :: path
+    type(c_ptr), intent(in) :: background
+    type(c_ptr), intent(out) :: metric
+    rc = c_anitet_metric_read_on_mesh(to_c_string(path), background, metric)
+  end function
+
+  ! Writes the metric as OpenVDB grids (.vdb): a grid metric as it is, any other sampled over the
+  ! box of the surface box_of (then required).
+  integer function anitet_metric_write(metric, path, box_of) result(rc)
+    type(c_ptr), intent(in) :: metric
+    character(len=*), intent(in) :: path
+    type(c_ptr), intent(in), optional :: box_of
+    rc = c_anitet_metric_write(metric, opt_ptr(box_of), to_c_string(path))
+  end function
+
   ! ---- meshing ----------------------------------------------------------------------------------
 
   ! bl_patches: the boundary layer's wall labels for this call, in place of options%bl_patches and
@@ -1216,6 +1350,46 @@ contains
       end if
       return
     end if
+    rc = options_with_walls("anitet_mesher_run", bl_patches, with_walls, walls, options)
+    if (rc /= ANITET_OK) return
+    if (allocated(walls)) with_walls%bl_patches = c_loc(walls)
+    rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_loc(with_walls), mesh)
+  end function
+
+  ! Stage 1 alone (`anitet mesh --stop-after layers`): T1, with the surface's triangles under
+  ! their labels and the new front under the largest label + 1. bl_patches as anitet_mesher_run.
+  integer function anitet_layers_run(surface, mesh, options, bl_patches) result(rc)
+    type(c_ptr), intent(in) :: surface
+    type(c_ptr), intent(out) :: mesh
+    type(anitet_options_t), intent(in), optional, target :: options
+    integer(c_int32_t), intent(in), optional :: bl_patches(:)
+    type(anitet_options_t), target :: with_walls
+    integer(c_int32_t), allocatable, target :: walls(:)
+    mesh = c_null_ptr
+    if (.not. present(bl_patches)) then
+      if (present(options)) then
+        rc = c_anitet_layers_run(surface, c_loc(options), mesh)
+      else
+        rc = c_anitet_layers_run(surface, c_null_ptr, mesh)
+      end if
+      return
+    end if
+    rc = options_with_walls("anitet_layers_run", bl_patches, with_walls, walls, options)
+    if (rc /= ANITET_OK) return
+    if (allocated(walls)) with_walls%bl_patches = c_loc(walls)
+    rc = c_anitet_layers_run(surface, c_loc(with_walls), mesh)
+  end function
+
+  ! The options (or the defaults) with bl_num_patches set for the wall labels, copied into
+  ! `walls` (not allocated when there are none); the caller points bl_patches at `walls`, which
+  ! must outlive the call that reads them.
+  integer function options_with_walls(caller, bl_patches, with_walls, walls, options) result(rc)
+    character(len=*), intent(in) :: caller
+    integer(c_int32_t), intent(in) :: bl_patches(:)
+    type(anitet_options_t), intent(out) :: with_walls
+    integer(c_int32_t), allocatable, intent(out) :: walls(:)
+    type(anitet_options_t), intent(in), optional :: options
+    rc = ANITET_OK
     if (present(options)) then
       with_walls = options
     else
@@ -1223,17 +1397,20 @@ contains
       if (rc /= ANITET_OK) return
     end if
     if (with_walls%version < 3) then  ! older structs have no walls: the labels would be ignored
-      rc = c_anitet_set_last_error(ANITET_ERR_INVALID_ARGUMENT, "anitet_mesher_run: bl_patches " // &
+      rc = c_anitet_set_last_error(ANITET_ERR_INVALID_ARGUMENT, caller // ": bl_patches " // &
                                    "needs options of version 3 or later" // c_null_char)
       return
     end if
     with_walls%bl_num_patches = size(bl_patches, kind=c_int32_t)
     with_walls%bl_patches = c_null_ptr
-    if (size(bl_patches) > 0) then
-      walls = bl_patches
-      with_walls%bl_patches = c_loc(walls)
-    end if
-    rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_loc(with_walls), mesh)
+    if (size(bl_patches) > 0) walls = bl_patches
+  end function
+
+  ! The first boundary-layer height h0 for a target y+ (flat-plate estimate; `--bl-yplus`).
+  integer function anitet_bl_first_height(yplus, reynolds, ref_length, h0) result(rc)
+    real(c_double), intent(in) :: yplus, reynolds, ref_length
+    real(c_double), intent(out) :: h0
+    rc = c_anitet_bl_first_height(yplus, reynolds, ref_length, h0)
   end function
 
   ! ---- volume meshes ----------------------------------------------------------------------------
@@ -1409,6 +1586,13 @@ contains
     end if
   end function
 
+  ! The mesh's per-vertex metric set to metric's values at its points (sizes when every tensor is
+  ! isotropic, else tensors), for anitet_mesh_write_metric (`anitet mesh --write-metric`).
+  integer function anitet_mesh_sample_metric(mesh, metric) result(rc)
+    type(c_ptr), intent(in) :: mesh, metric
+    rc = c_anitet_mesh_sample_metric(mesh, metric)
+  end function
+
   ! Names the boundary patch `label` in the files anitet_mesh_write writes (SU2 markers, OpenFOAM
   ! patches, ...); trailing blanks are not part of the name. Without a name: removes it.
   integer function anitet_mesh_set_patch_name(mesh, label, name) result(rc)
@@ -1468,6 +1652,70 @@ contains
     allocate(buf(needed))
     rc = c_anitet_mesh_quality_json(mesh, opt_ptr(input), c_loc(buf), needed, written)
     if (rc == ANITET_OK) text = buffer_text(buf, needed)
+  end function
+
+  ! ---- geographic frames ------------------------------------------------------------------------
+  ! Points in (longitude, latitude, height) on WGS84 moved to a local frame in metres and back.
+
+  ! A frame of kind ANITET_GEO_ENU or ANITET_GEO_UTM at the origin (lat, lon in degrees, height
+  ! in metres).
+  integer function anitet_geo_frame_create(kind, lat, lon, height, frame) result(rc)
+    integer, intent(in) :: kind
+    real(c_double), intent(in) :: lat, lon, height
+    type(c_ptr), intent(out) :: frame
+    rc = c_anitet_geo_frame_create(int(kind, c_int32_t), lat, lon, height, frame)
+  end function
+
+  ! A frame at the centre of the bounding box of the surface's (lon, lat, h) points.
+  integer function anitet_geo_frame_create_centred(kind, surface, frame) result(rc)
+    integer, intent(in) :: kind
+    type(c_ptr), intent(in) :: surface
+    type(c_ptr), intent(out) :: frame
+    rc = c_anitet_geo_frame_create_centred(int(kind, c_int32_t), surface, frame)
+  end function
+
+  subroutine anitet_geo_frame_destroy(frame)
+    type(c_ptr), intent(inout) :: frame
+    call c_anitet_geo_frame_destroy(frame)
+    frame = c_null_ptr
+  end subroutine
+
+  ! The frame's origin and, for UTM, its zone (1-60; 0 for ENU) and hemisphere (north: .true.);
+  ! every output is optional.
+  integer function anitet_geo_frame_get(frame, lat, lon, height, utm_zone, utm_north) result(rc)
+    type(c_ptr), intent(in) :: frame
+    real(c_double), intent(out), optional :: lat, lon, height
+    integer, intent(out), optional :: utm_zone
+    logical, intent(out), optional :: utm_north
+    real(c_double) :: la, lo, h
+    integer(c_int32_t) :: zone, north
+    rc = c_anitet_geo_frame_get(frame, la, lo, h, zone, north)
+    if (rc /= ANITET_OK) return
+    if (present(lat)) lat = la
+    if (present(lon)) lon = lo
+    if (present(height)) height = h
+    if (present(utm_zone)) utm_zone = int(zone)
+    if (present(utm_north)) utm_north = north == 1
+  end function
+
+  ! Moves the surface's points from (lon, lat, h) to the frame, in place.
+  integer function anitet_surface_to_local(surface, frame) result(rc)
+    type(c_ptr), intent(in) :: surface, frame
+    rc = c_anitet_surface_to_local(surface, frame)
+  end function
+
+  ! The same for a mesh (a background mesh; its metric values are not converted).
+  integer function anitet_mesh_to_local(mesh, frame) result(rc)
+    type(c_ptr), intent(in) :: mesh, frame
+    rc = c_anitet_mesh_to_local(mesh, frame)
+  end function
+
+  ! Moves the mesh's points back to (lon, lat, h); with geodetic_surface (the surface, before
+  ! anitet_surface_to_local, that the mesh was made from) its points come back exactly.
+  integer function anitet_mesh_to_geodetic(mesh, frame, geodetic_surface) result(rc)
+    type(c_ptr), intent(in) :: mesh, frame
+    type(c_ptr), intent(in), optional :: geodetic_surface
+    rc = c_anitet_mesh_to_geodetic(mesh, frame, opt_ptr(geodetic_surface))
   end function
 
   ! ---- partitions -------------------------------------------------------------------------------

@@ -2,12 +2,34 @@
 ! back; a volume mesh read from the tests' data and filled into allocatable arrays; the error
 ! paths a Fortran caller meets; the examples' sphere meshed with and without a metric, and with
 ! a metric from per-point values or a .sol on a background mesh; a mesh in parts; options
-! version 3, a boundary layer on the sphere inside a box and the run's report, patch names.
+! version 3, a boundary layer on the sphere inside a box and the run's report, patch names;
+! stage 1 alone, y+ to a first height, the surface's sizing field written and read back, a
+! metric sampled on a mesh and read on a mesh in memory, geographic frames.
 ! Argument 1: the tests' data directory (tests/data).
+! The analytic metric of check_sample_metric: a bind(c) procedure of a module, for c_funloc.
+module test_fortran_metrics
+  use, intrinsic :: iso_c_binding
+  implicit none
+contains
+  ! 100 along x, 4 along y and z; fails (returns 3) beyond x = 1.5.
+  integer(c_int) function stretched_below_x1(x, y, z, m, user_data) bind(c)
+    real(c_double), value :: x, y, z
+    real(c_double) :: m(6)
+    type(c_ptr), value :: user_data
+    stretched_below_x1 = 0
+    if (x > 1.5d0 .or. c_associated(user_data)) then
+      stretched_below_x1 = 3
+      return
+    end if
+    m = [100d0, 0d0, 4d0, 0d0, 0d0, 4d0] + 0 * (y + z)
+  end function
+end module test_fortran_metrics
+
 program test_fortran
   use, intrinsic :: iso_c_binding
   use anitet
   use sphere_surface
+  use test_fortran_metrics
   implicit none
 
   integer :: failures = 0
@@ -27,6 +49,11 @@ program test_fortran
   call check_options_v3()
   call check_boundary_layer()
   call check_run_report_errors(trim(data_dir) // "/io/box.mesh")
+  call check_layers_run()
+  call check_bl_first_height()
+  call check_surface_sizing()
+  call check_sample_metric(trim(data_dir) // "/io/box.mesh")
+  call check_geo_frames()
 
   if (failures > 0) then
     print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
@@ -224,8 +251,8 @@ contains
     call check(options%layers == 1 .and. options%layer_scheme == ANITET_LAYERS_PUSH, &
                "options v2 defaults")
     ! The struct's layout is the C one: version 1 ends after four pointers, version 2 adds
-    ! 2 * (4 + 4 + 8) bytes, version 3 seven 8-byte fields, six 4-byte ones and a pointer.
-    call check(c_sizeof(options) == 6 * 4 + 4 * c_sizeof(c_null_ptr) + 32 + 80 + &
+    ! 2 * (4 + 4 + 8) bytes, version 3 seven 8-byte fields, eight 4-byte ones and a pointer.
+    call check(c_sizeof(options) == 6 * 4 + 4 * c_sizeof(c_null_ptr) + 32 + 88 + &
                c_sizeof(c_null_ptr), "options size")
     call check(options%refine == 1 .and. options%optimize == 1 .and. options%size_scale == 1d0, &
                "options v2 refine defaults")
@@ -439,7 +466,8 @@ contains
   subroutine check_options_v3()
     type(anitet_options_t) :: o
     type(anitet_run_stats_t) :: st
-    call check(anitet_options_init(o) == ANITET_OK .and. o%version == 3, "options v3")
+    call check(anitet_options_init(o) == ANITET_OK, "options v3")
+    call check(o%version == 3, "options v3: version")
     call check(o%attempts_seconds == 240d0 .and. o%retry_layer_counts == 1 .and. &
                o%recovery == ANITET_RECOVERY_ALL, "options v3: attempts, retries, recovery")
     call check(o%hmin == 0d0 .and. o%hmax == 0d0 .and. o%hgrad == 0d0 .and. o%max_tets == 0d0, &
@@ -448,9 +476,12 @@ contains
                .not. c_associated(o%bl_patches), "options v3: cycles, no walls")
     call check(o%bl_first_height == 0d0 .and. o%bl_growth == 1.2d0 .and. o%bl_layers == 10 .and. &
                o%bl_sizing == 0, "options v3: boundary layer defaults")
+    call check(o%push_tasks_min_vertices == 2000 .and. o%reserved1 == 0, &
+               "options v3: push tasks from 2000 front vertices")
     ! 8 int32, 8 int64, 5 doubles, 2 int32, 5 int64, 5 doubles: no padding.
     call check(c_sizeof(st) == 224, "run stats size")
-    call check(anitet_options_init(o, 2) == ANITET_OK .and. o%version == 2, "options v2 still")
+    call check(anitet_options_init(o, 2) == ANITET_OK, "options v2 still")
+    call check(o%version == 2, "options v2: version")
   end subroutine
 
   ! The sphere (patches 1-3) inside the box [-3, 3]^3 (patch 4) with a boundary layer on the
@@ -563,6 +594,254 @@ contains
                "report of a read mesh")
     call anitet_mesh_destroy(mesh)
     call check(anitet_mesh_get_run_stats(mesh, st) == ANITET_ERR_INVALID_ARGUMENT, "stats of no mesh")
+  end subroutine
+
+  ! Stage 1 alone on the sphere in the box with 3 boundary layers: T1 holds the input's triangles
+  ! under their labels and the new front under label 5; its stats the layers measured on T1.
+  subroutine check_layers_run()
+    real(c_double) :: xyz(3, SPHERE_IN_BOX_NPOINTS)
+    integer(c_int32_t) :: tri(3, SPHERE_IN_BOX_NTRI), patch(SPHERE_IN_BOX_NTRI)
+    integer(c_int32_t), allocatable :: t1_patch(:)
+    type(c_ptr) :: surface, t1, again
+    type(anitet_options_t) :: o
+    type(anitet_run_stats_t) :: st
+    integer(c_int64_t) :: np, nt, nb, nt2
+    character(len=:), allocatable :: json
+    call sphere_in_box_build(xyz, tri, patch)
+    call check(anitet_surface_create(xyz, tri, surface, patch) == ANITET_OK, "sphere in box")
+    call check(anitet_options_init(o) == ANITET_OK, "options")
+    o%bl_first_height = 0.02d0
+    o%bl_growth = 1.25d0
+    o%bl_layers = 3
+    call check(anitet_layers_run(surface, t1, options=o, bl_patches=[1, 2, 3]) == ANITET_OK, &
+               "layers run")
+    call check(anitet_mesh_get_counts(t1, np, nt, nb) == ANITET_OK, "T1 counts")
+    call check(anitet_mesh_get_boundary_patches(t1, t1_patch) == ANITET_OK, "T1 patches")
+    call check(nb > SPHERE_IN_BOX_NTRI .and. all(t1_patch(1:SPHERE_IN_BOX_NTRI) == patch) .and. &
+               all(t1_patch(SPHERE_IN_BOX_NTRI + 1:) == 5), "T1: the input's labels, then S1 as 5")
+    call check(anitet_mesh_get_run_stats(t1, st) == ANITET_OK, "T1 run stats")
+    call check(st%layers_used == 1 .and. st%recovery_strategy == 0 .and. st%refine_passes == 0 &
+               .and. st%tets == nt, "T1 stats: one layer, no recovery, no refinement")
+    call check(st%bl_layers == 3 .and. st%bl_wall_vertices == SPHERE_NPOINTS .and. &
+               st%bl_full_columns == SPHERE_NPOINTS .and. st%bl_tets > 0 .and. st%bl_tets < nt .and. &
+               abs(st%bl_first_height_mean - 0.02d0) < 0.002d0, "T1 stats: the boundary layer")
+    call check(anitet_mesh_run_json(t1, json) == ANITET_OK, "T1 run json")
+    call check(index(json, '"layers"') > 0, "T1 run json text")
+    ! One push at a time: the same T1.
+    o%push_tasks_min_vertices = 0
+    call check(anitet_layers_run(surface, again, options=o, bl_patches=[1, 2, 3]) == ANITET_OK, &
+               "layers run, pushes one by one")
+    call check(anitet_mesh_get_counts(again, np, nt2, nb) == ANITET_OK, "T1 counts again")
+    call check(nt2 == nt, "the same T1")
+    call anitet_mesh_destroy(again)
+    ! Errors.
+    o%push_tasks_min_vertices = -1
+    call check(anitet_layers_run(surface, again, options=o, bl_patches=[1, 2, 3]) == &
+               ANITET_ERR_INVALID_ARGUMENT, "push_tasks_min_vertices -1")
+    call check(index(anitet_last_error_message(), "push_tasks_min_vertices") > 0, &
+               "push_tasks_min_vertices: message")
+    call check(.not. c_associated(again), "no T1 on error")
+    call check(anitet_layers_run(surface, again, bl_patches=[1, 9]) == ANITET_ERR_INVALID_ARGUMENT, &
+               "layers run: walls without a first height")
+    call check(anitet_options_init(o, 2) == ANITET_OK, "options v2")
+    call check(anitet_layers_run(surface, again, options=o, bl_patches=[1]) == &
+               ANITET_ERR_INVALID_ARGUMENT, "layers run: walls with version 2 options")
+    call check(index(anitet_last_error_message(), "anitet_layers_run") > 0, "v2 walls: message")
+    call check(anitet_layers_run(surface, again) == ANITET_OK, "layers run, default options")
+    call anitet_mesh_destroy(again)
+    call anitet_mesh_destroy(t1)
+    call anitet_surface_destroy(surface)
+  end subroutine
+
+  subroutine check_bl_first_height()
+    real(c_double) :: h0, cf
+    cf = 0.026d0 * 1d6**(-1d0 / 7d0)
+    call check(anitet_bl_first_height(1d0, 1d6, 1d0, h0) == ANITET_OK, "y+ 1 at Re 1e6")
+    call check(abs(h0 - 1d0 / (1d6 * sqrt(cf / 2d0))) < 1d-18, "y+ 1: the flat-plate h0")
+    call check(anitet_bl_first_height(0d0, 1d6, 1d0, h0) == ANITET_ERR_INVALID_ARGUMENT, "y+ 0")
+    call check(anitet_bl_first_height(1d0, 1d6, -1d0, h0) == ANITET_ERR_INVALID_ARGUMENT, &
+               "a negative reference length")
+  end subroutine
+
+  ! The field the mesher follows without a metric, bounded by hmax, written as a .vdb and read
+  ! back; another metric written over the sphere's box.
+  subroutine check_surface_sizing()
+    real(c_double) :: xyz(3, SPHERE_NPOINTS)
+    integer(c_int32_t) :: faces(3, SPHERE_NTRI), patch(SPHERE_NTRI)
+    type(c_ptr) :: surface, field, back, uniform
+    type(anitet_options_t) :: o
+    real(c_double) :: a(6), b(6)
+    call sphere_build(xyz, faces, patch)
+    call check(anitet_surface_create(xyz, faces, surface, patch) == ANITET_OK, "sphere surface")
+    call check(anitet_options_init(o) == ANITET_OK, "options")
+    o%hmax = 0.1d0
+    call check(anitet_metric_create_surface_sizing(surface, field, o) == ANITET_OK, &
+               "surface sizing, hmax 0.1")
+    call check(anitet_metric_evaluate(field, [0d0, 0d0, 0d0], a) == ANITET_OK, "evaluate sizing")
+    call check(a(1) >= 100d0 * (1 - 1d-6) .and. a(3) >= 100d0 * (1 - 1d-6), "hmax bounds the field")
+    call check(anitet_metric_write(field, "fortran_sizing.vdb") == ANITET_OK, "write sizing .vdb")
+    call check(anitet_metric_read("fortran_sizing.vdb", back) == ANITET_OK, "read sizing .vdb")
+    call check(anitet_metric_evaluate(back, [0d0, 0d0, 0d0], b) == ANITET_OK, "evaluate read back")
+    call check(abs(b(1) - a(1)) <= 1d-5 * a(1) .and. abs(b(6) - a(6)) <= 1d-5 * a(6), &
+               "the same field read back")
+    call anitet_metric_destroy(back)
+    call anitet_metric_destroy(field)
+    call check(anitet_metric_create_surface_sizing(surface, field) == ANITET_OK, &
+               "surface sizing, no options")
+    call anitet_metric_destroy(field)
+    ! Another metric is sampled over a surface's box, which must then be given.
+    call check(anitet_metric_create_uniform(0.3d0, uniform) == ANITET_OK, "uniform")
+    call check(anitet_metric_write(uniform, "fortran_uniform.vdb") == ANITET_ERR_INVALID_ARGUMENT, &
+               "no box to sample on")
+    call check(index(anitet_last_error_message(), "box_of") > 0, "no box: message")
+    call check(anitet_metric_write(uniform, "fortran_uniform.vdb", surface) == ANITET_OK, &
+               "uniform written over the sphere's box")
+    call check(anitet_metric_read("fortran_uniform.vdb", back) == ANITET_OK, "read uniform .vdb")
+    call check(anitet_metric_evaluate(back, [0.2d0, -0.3d0, 0.1d0], b) == ANITET_OK, "evaluate")
+    call check(abs(b(1) - 1d0 / 0.09d0) < 1d-4 .and. abs(b(2)) < 1d-9, "size 0.3 read back")
+    call anitet_metric_destroy(back)
+    call check(anitet_metric_write(uniform, "fortran_uniform.sol", surface) == &
+               ANITET_ERR_UNSUPPORTED_FORMAT, "write .sol refused")
+    o%hgrad = 0.5d0
+    call check(anitet_metric_create_surface_sizing(surface, field, o) == ANITET_ERR_INVALID_ARGUMENT, &
+               "hgrad 0.5")
+    call check(.not. c_associated(field), "no field on error")
+    call anitet_metric_destroy(uniform)
+    call anitet_surface_destroy(surface)
+  end subroutine
+
+  ! A metric sampled at a mesh's points (sizes, then tensors), its .sol read back on the mesh in
+  ! memory; a failing callback leaves the metric as it was.
+  subroutine check_sample_metric(box_path)
+    character(len=*), intent(in) :: box_path
+    type(c_ptr) :: mesh, uniform, stretched, on_mesh
+    real(c_double), allocatable :: values(:, :)
+    real(c_double) :: m(6)
+    integer :: components
+    type(c_funptr) :: callback
+    call check(anitet_mesh_read(box_path, mesh) == ANITET_OK, "read " // box_path)
+    call check(anitet_metric_create_uniform(0.25d0, uniform) == ANITET_OK, "uniform")
+    call check(anitet_mesh_sample_metric(mesh, uniform) == ANITET_OK, "sample uniform")
+    call check(anitet_mesh_get_metric(mesh, values) == ANITET_OK, "sampled metric")
+    call check(size(values, 1) == 1 .and. all(values == 0.25d0), "sizes where isotropic")
+    callback = c_funloc(stretched_below_x1)  ! (a variable: a constant trips PIE linking)
+    call check(anitet_metric_create_analytic(callback, c_null_ptr, stretched) == ANITET_OK, &
+               "analytic metric")
+    call check(anitet_mesh_sample_metric(mesh, stretched) == ANITET_OK, "sample stretched")
+    call check(anitet_mesh_get_metric(mesh, values) == ANITET_OK, "sampled tensors")
+    call check(size(values, 1) == 6 .and. all(values(1, :) == 100d0) .and. all(values(3, :) == 4d0), &
+               "tensors where anisotropic")
+    call check(anitet_mesh_write_metric(mesh, "fortran_sampled.sol") == ANITET_OK, "write .sol")
+    call check(anitet_metric_read_on_mesh("fortran_sampled.sol", mesh, on_mesh) == ANITET_OK, &
+               "read .sol on the mesh in memory")
+    call check(anitet_metric_evaluate(on_mesh, [0.5d0, 0.05d0, 0.5d0], m) == ANITET_OK, "evaluate")
+    call check(abs(m(1) - 100d0) < 1d-9 .and. abs(m(3) - 4d0) < 1d-9, "the .sol's tensors")
+    call anitet_metric_destroy(on_mesh)
+    call check(anitet_metric_read_on_mesh("no_such.sol", mesh, on_mesh) == ANITET_ERR_FILE_NOT_FOUND, &
+               "read_on_mesh: missing file")
+    call check(anitet_metric_read_on_mesh("fortran_sampled.sol", c_null_ptr, on_mesh) == &
+               ANITET_ERR_INVALID_ARGUMENT, "read_on_mesh: no mesh")
+    call check(anitet_mesh_sample_metric(mesh, c_null_ptr) == ANITET_ERR_INVALID_ARGUMENT, &
+               "sample: no metric")
+    ! Beyond x = 1.5 the callback fails: an error, the mesh's metric unchanged.
+    call scale_mesh(mesh, 2d0)
+    call check(anitet_mesh_sample_metric(mesh, uniform) == ANITET_OK, "sample the scaled mesh")
+    call check(anitet_mesh_sample_metric(mesh, stretched) == ANITET_ERR_INVALID_ARGUMENT, &
+               "a failing callback")
+    call check(index(anitet_last_error_message(), "returned 3") > 0, "failing callback: message")
+    call check(anitet_mesh_get_metric_components(mesh, components) == ANITET_OK, "components")
+    call check(components == 1, "the metric unchanged")
+    call anitet_metric_destroy(stretched)
+    call anitet_metric_destroy(uniform)
+    call anitet_mesh_destroy(mesh)
+  end subroutine
+
+  ! Replaces `mesh` by a copy with its points times `factor`.
+  subroutine scale_mesh(mesh, factor)
+    type(c_ptr), intent(inout) :: mesh
+    real(c_double), intent(in) :: factor
+    real(c_double), allocatable :: xyz(:, :)
+    integer(c_int32_t), allocatable :: tets(:, :)
+    call check(anitet_mesh_get_points(mesh, xyz) == ANITET_OK, "points")
+    call check(anitet_mesh_get_tets(mesh, tets) == ANITET_OK, "tets")
+    call anitet_mesh_destroy(mesh)
+    call check(anitet_mesh_create(factor * xyz, tets, mesh) == ANITET_OK, "scaled mesh")
+  end subroutine
+
+  ! The unit cube as a box of 0.01 deg x 0.01 deg x 1000 m at (lon 7.44, lat 46.95): meshed in
+  ! an ENU frame at its centre and moved back, its points exactly as given; a UTM frame's zone.
+  subroutine check_geo_frames()
+    real(c_double) :: lonlat(3, 8), local(3, 8)
+    integer(c_int32_t) :: tri(3, 12)
+    real(c_double), allocatable :: xyz(:, :)
+    type(c_ptr) :: geo, moved, frame, sizing, mesh, made
+    real(c_double) :: lat, lon, h
+    integer :: zone, i
+    logical :: north
+    lonlat = reshape([0d0, 0d0, 0d0, 1d0, 0d0, 0d0, 1d0, 1d0, 0d0, 0d0, 1d0, 0d0, &
+                      0d0, 0d0, 1d0, 1d0, 0d0, 1d0, 1d0, 1d0, 1d0, 0d0, 1d0, 1d0], [3, 8])
+    do i = 1, 8
+      lonlat(:, i) = [7.44d0, 46.95d0, 0d0] + [0.01d0, 0.01d0, 1000d0] * lonlat(:, i)
+    end do
+    tri = reshape([1, 3, 2, 1, 4, 3, 5, 6, 7, 5, 7, 8, 1, 2, 6, 1, 6, 5, &
+                   4, 8, 7, 4, 7, 3, 1, 5, 8, 1, 8, 4, 2, 3, 7, 2, 7, 6], [3, 12])
+    call check(anitet_surface_create(lonlat, tri, geo) == ANITET_OK, "geodetic box")
+    call check(anitet_surface_create(lonlat, tri, moved) == ANITET_OK, "geodetic box, to move")
+    call check(anitet_geo_frame_create_centred(ANITET_GEO_ENU, moved, frame) == ANITET_OK, &
+               "ENU frame at the centre")
+    call check(anitet_geo_frame_get(frame, lat, lon, h, zone) == ANITET_OK, "frame origin")
+    call check(abs(lat - 46.955d0) < 1d-9 .and. abs(lon - 7.445d0) < 1d-9 .and. &
+               abs(h - 500d0) < 1d-9 .and. zone == 0, "the box's centre, no UTM zone")
+    call check(anitet_surface_to_local(moved, frame) == ANITET_OK, "surface to local")
+    call check(anitet_surface_get_points(moved, xyz) == ANITET_OK, "local points")
+    local = xyz
+    ! Metres: about 760 m east-west, 1112 m north-south, 1000 m high.
+    call check(abs(local(1, 2) - local(1, 1) - 760d0) < 10d0 .and. &
+               abs(local(2, 4) - local(2, 1) - 1112d0) < 10d0 .and. &
+               abs(local(3, 5) - local(3, 1) - 1000d0) < 1d0, "the box in metres")
+    call check(anitet_metric_create_uniform(300d0, sizing) == ANITET_OK, "size 300 m")
+    call check(anitet_mesher_run(moved, mesh, sizing) == ANITET_OK, "mesh in the local frame")
+    call check(anitet_mesh_to_geodetic(mesh, frame, geo) == ANITET_OK, "mesh to geodetic")
+    call check(anitet_mesh_get_points(mesh, xyz) == ANITET_OK, "geodetic points")
+    call check(size(xyz, 2) > 8, "points inside")
+    call check(all(xyz(:, 1:8) == lonlat), "the surface's points exactly as given")
+    call check(all(xyz(1, :) > 7.44d0 - 1d-9 .and. xyz(1, :) < 7.45d0 + 1d-9 .and. &
+                   xyz(2, :) > 46.95d0 - 1d-9 .and. xyz(2, :) < 46.96d0 + 1d-9), "in the box")
+    ! A mesh made from arrays: moved to the frame and back, but not against a surface.
+    call check(anitet_mesh_create(lonlat, reshape([1_c_int32_t, 2_c_int32_t, 4_c_int32_t, &
+               5_c_int32_t], [4, 1]), made) == ANITET_OK, "one tet")
+    call check(anitet_mesh_to_local(made, frame) == ANITET_OK, "mesh to local")
+    call check(anitet_mesh_to_geodetic(made, frame, geo) == ANITET_ERR_INVALID_ARGUMENT, &
+               "geodetic surface for a mesh no run made")
+    call check(index(anitet_last_error_message(), "not made by anitet_mesher_run") > 0, &
+               "no run: message")
+    call check(anitet_mesh_to_geodetic(made, frame) == ANITET_OK, "mesh back without a surface")
+    call check(anitet_mesh_get_points(made, xyz) == ANITET_OK, "points back")
+    call check(all(abs(xyz(1:2, :) - lonlat(1:2, :)) < 1d-9) .and. &
+               all(abs(xyz(3, :) - lonlat(3, :)) < 1d-6), "a round trip to rounding")
+    call anitet_mesh_destroy(made)
+    call anitet_geo_frame_destroy(frame)
+    call check(.not. c_associated(frame), "destroy clears the frame")
+    ! UTM: zone 32 north at 7.44 E.
+    call check(anitet_geo_frame_create(ANITET_GEO_UTM, 46.95d0, 7.44d0, 0d0, frame) == ANITET_OK, &
+               "UTM frame")
+    call check(anitet_geo_frame_get(frame, utm_zone=zone, utm_north=north) == ANITET_OK, "UTM zone")
+    call check(zone == 32 .and. north, "UTM zone 32 north")
+    call anitet_geo_frame_destroy(frame)
+    ! Errors.
+    call check(anitet_geo_frame_create(7, 46d0, 7d0, 0d0, frame) == ANITET_ERR_INVALID_ARGUMENT, &
+               "frame kind 7")
+    call check(index(anitet_last_error_message(), "kind is 7") > 0, "kind 7: message")
+    call check(.not. c_associated(frame), "no frame on error")
+    call check(anitet_geo_frame_create(ANITET_GEO_ENU, 95d0, 7d0, 0d0, frame) == &
+               ANITET_ERR_INVALID_ARGUMENT, "latitude 95")
+    call check(anitet_geo_frame_get(c_null_ptr, lat) == ANITET_ERR_INVALID_ARGUMENT, "get: no frame")
+    call check(anitet_surface_to_local(geo, c_null_ptr) == ANITET_ERR_INVALID_ARGUMENT, &
+               "to local: no frame")
+    call anitet_mesh_destroy(mesh)
+    call anitet_metric_destroy(sizing)
+    call anitet_surface_destroy(moved)
+    call anitet_surface_destroy(geo)
   end subroutine
 
   ! The whole file as one string.
