@@ -54,7 +54,7 @@ class HeaderDrift(unittest.TestCase):
         self.assertEqual(sorted(declared), sorted(_capi._PROTOTYPES))
 
     def test_constants(self):
-        pattern = (r"#define ANITET_((?:ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|RECOVERY_[A-Z]+|"
+        pattern = (r"#define ANITET_((?:ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|RECOVERY_[A-Z]+|GEO_[A-Z]+|"
                    r"VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|RUN_STATS_VERSION|"
                    r"PARTITION_[A-Z]+_VERSION|"
                    r"HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+)) \(?(-?\d+)\)?")
@@ -92,16 +92,16 @@ class HeaderDrift(unittest.TestCase):
         self.assertEqual(self.ctypes_fields(_capi.CMesh2dOptions), self.struct_fields("anitet_mesh2d_options"))
         self.assertEqual(ctypes.sizeof(_capi.CRunStats), 224)
         # Version 1 ends after the four pointers; version 2 adds 32 bytes, version 3 seven 8-byte
-        # fields, six 4-byte ones and a pointer.
+        # fields, eight 4-byte ones and a pointer.
         self.assertEqual(_capi.COptions.layers.offset, 24 + 4 * pointer)
         self.assertEqual(_capi.COptions.attempts_seconds.offset, _capi.COptions.layers.offset + 32)
-        self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.attempts_seconds.offset + 80 + pointer)
+        self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.attempts_seconds.offset + 88 + pointer)
 
     def test_options_defaults_are_the_library_s(self):
         c = _capi.COptions()
         self.assertEqual(_capi.lib.anitet_options_init(ctypes.byref(c), _capi.OPTIONS_VERSION), 0)
         python = anitet.Options()
-        skip = ("version", "reserved0", "progress", "progress_user_data", "log", "log_user_data",
+        skip = ("version", "reserved0", "reserved1", "progress", "progress_user_data", "log", "log_user_data",
                 "bl_num_patches", "bl_patches")
         for name, _ in _capi.COptions._fields_:
             if name not in skip:
@@ -401,6 +401,43 @@ class BoundaryLayers(unittest.TestCase):
             self.assertIn("south", e.exception.message)
             self.assertFalse(os.path.exists(path))
 
+    def test_build_layers(self):
+        # Stage 1 alone: the input's triangles under their labels, then the new front's under 5.
+        t1 = anitet.build_layers(self.surface, bl_patches=[1, 2, 3], bl_first_height=0.02,
+                                 bl_growth=1.25, bl_layers=3)
+        patches, given = rows(t1.boundary_patches()), boundary_layer.sphere_in_box()[2]
+        self.assertEqual(patches[:len(given)], list(given))
+        self.assertGreater(len(patches), len(given))
+        self.assertEqual(set(patches[len(given):]), {5})
+        s, n = t1.run_stats, mesh_sphere.NPOINTS
+        self.assertEqual((s.layers_used, s.recovery_strategy, s.refine_passes, s.tets),
+                         (1, 0, 0, t1.num_tets))
+        self.assertEqual((s.bl_layers, s.bl_wall_vertices, s.bl_full_columns), (3, n, n))
+        self.assertTrue(0 < s.bl_tets < s.tets)
+        self.assertAlmostEqual(s.bl_first_height_mean, 0.02, delta=0.002)
+        self.assertIn("layers", t1.run_report())
+        # Pushes one by one: the same T1.
+        again = self.surface.build_layers(anitet.Options(bl_patches=(1, 2, 3), bl_first_height=0.02,
+                                                         bl_growth=1.25, bl_layers=3,
+                                                         push_tasks_min_vertices=0))
+        self.assertEqual(again.counts(), t1.counts())
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.build_layers(self.surface, push_tasks_min_vertices=-1)
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        self.assertIn("push_tasks_min_vertices", e.exception.message)
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.build_layers(anitet.Surface.from_arrays(CUBE_POINTS, CUBE_TRIS[:11]))
+        self.assertEqual(e.exception.code, anitet.ERR_OPEN_BOUNDARY)
+
+    def test_bl_first_height(self):
+        cf = 0.026 * 1e6 ** (-1.0 / 7.0)
+        self.assertAlmostEqual(anitet.bl_first_height(1.0, 1e6, 1.0), 1.0 / (1e6 * (cf / 2) ** 0.5),
+                               delta=1e-18)
+        for args in ((0.0, 1e6, 1.0), (1.0, float("nan"), 1.0), (1.0, 1e6, -1.0)):
+            with self.assertRaises(anitet.AnitetError) as e:
+                anitet.bl_first_height(*args)
+            self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+
 
 class Metrics(unittest.TestCase):
     def test_uniform_and_analytic(self):
@@ -436,10 +473,10 @@ class Metrics(unittest.TestCase):
         p = rows(m.points())[5]
         self.assertEqual(values[5], mesh_sphere.stretched_metric(*p))
 
-    def assert_size(self, metric, point, h):
+    def assert_size(self, metric, point, h, places=12):
         t = metric.evaluate(*point)
         for c, expected in enumerate((1 / h**2, 0, 1 / h**2, 0, 0, 1 / h**2)):
-            self.assertAlmostEqual(t[c] * h**2, expected * h**2, places=12)
+            self.assertAlmostEqual(t[c] * h**2, expected * h**2, places=places)
 
     def test_from_points(self):
         background = anitet.Mesh.read(os.path.join(DATA, "io", "box.mesh"))  # 8 points, 6 tets
@@ -489,6 +526,140 @@ class Metrics(unittest.TestCase):
         with self.assertRaises(anitet.AnitetError) as e:
             anitet.Metric.read(os.path.join(d, "size_linear.vdb"), os.path.join(DATA, "io", "box.mesh"))
         self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+
+    def test_surface_sizing_and_write(self):
+        s = sphere()[0]
+        field = anitet.Metric.surface_sizing(s, hmax=0.1)  # the field mesh_surface follows, bounded
+        t = field.evaluate(0, 0, 0)
+        self.assertGreaterEqual(t[0], 100 * (1 - 1e-6))
+        self.assertEqual(len(anitet.Metric.surface_sizing(s).evaluate(0, 0, 0)), 6)
+        uniform = anitet.Metric.uniform(0.3)
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "sizing.vdb")
+            field.write(path)  # a grid: written as it is
+            back = anitet.Metric.read(path).evaluate(0, 0, 0)
+            for c in (0, 2, 5):
+                self.assertAlmostEqual(back[c] / t[c], 1.0, delta=1e-5)
+            with self.assertRaises(anitet.AnitetError) as e:
+                uniform.write(os.path.join(d, "uniform.vdb"))  # sampled: needs a box
+            self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+            self.assertIn("box_of", e.exception.message)
+            uniform.write(os.path.join(d, "uniform.vdb"), box_of=s)
+            self.assert_size(anitet.Metric.read(os.path.join(d, "uniform.vdb")), (0.2, -0.3, 0.1), 0.3,
+                             places=4)
+            with self.assertRaises(anitet.AnitetError) as e:
+                uniform.write(os.path.join(d, "uniform.sol"), s)
+            self.assertEqual(e.exception.code, anitet.ERR_UNSUPPORTED_FORMAT)
+            with self.assertRaises(TypeError):
+                uniform.write(os.path.join(d, "uniform.vdb"), box_of=uniform)
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.Metric.surface_sizing(s, hgrad=0.5)
+        self.assertIn("hgrad", e.exception.message)
+        with self.assertRaises(TypeError):
+            anitet.Metric.surface_sizing(None)
+
+    def test_sample_and_read_on_mesh(self):
+        mesh = anitet.Mesh.read(os.path.join(DATA, "io", "box.mesh"))  # x in [0, 1]
+
+        def stretched(x, y, z):
+            if x > 1.5:
+                raise ArithmeticError("beyond x = 1.5")
+            return (100, 0, 4, 0, 0, 4)
+
+        mesh.sample_metric(anitet.Metric.uniform(0.25))
+        self.assertEqual(rows(mesh.metric()), [0.25] * 8)  # sizes where isotropic
+        stretched_metric = anitet.Metric.analytic(stretched)
+        mesh.sample_metric(stretched_metric)
+        self.assertEqual(rows(mesh.metric()), [(100, 0, 4, 0, 0, 4)] * 8)
+        with tempfile.TemporaryDirectory() as d:
+            sol = os.path.join(d, "sampled.sol")
+            mesh.write_metric(sol)
+            t = anitet.Metric.read_on_mesh(sol, mesh).evaluate(0.5, 0.05, 0.5)
+            self.assertAlmostEqual(t[0], 100, places=9)
+            self.assertAlmostEqual(t[2], 4, places=9)
+            for path, code in ((os.path.join(d, "missing.sol"), anitet.ERR_FILE_NOT_FOUND),
+                               (os.path.join(d, "sampled.vdb"), anitet.ERR_UNSUPPORTED_FORMAT)):
+                with self.assertRaises(anitet.AnitetError) as e:
+                    anitet.Metric.read_on_mesh(path, mesh)
+                self.assertEqual(e.exception.code, code)
+            with self.assertRaises(TypeError):
+                anitet.Metric.read_on_mesh(sol, None)
+        # A callback failing at a point: AnitetError naming it, the metric unchanged.
+        far = anitet.Mesh.from_arrays([[2 * c for c in p] for p in CUBE_POINTS], [(0, 1, 2, 4)])
+        far.sample_metric(anitet.Metric.uniform(0.5))
+        with self.assertRaises(anitet.AnitetError) as e:
+            far.sample_metric(stretched_metric)
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        self.assertEqual(far.metric_components, 1)
+        with self.assertRaises(TypeError):
+            far.sample_metric(None)
+
+
+class GeoFrames(unittest.TestCase):
+    """A surface in longitude, latitude and height meshed in a local frame and moved back."""
+
+    # The unit cube as a box of 0.01 deg x 0.01 deg x 1000 m at (lon 7.44, lat 46.95).
+    LONLAT = [(7.44 + 0.01 * x, 46.95 + 0.01 * y, 1000.0 * z) for x, y, z in CUBE_POINTS]
+
+    def test_mesh_in_a_local_frame(self):
+        geo = anitet.Surface.from_arrays(self.LONLAT, CUBE_TRIS)
+        local = anitet.Surface.from_arrays(self.LONLAT, CUBE_TRIS)
+        frame = anitet.GeoFrame.centred(local)
+        lat, lon, h = frame.origin
+        self.assertAlmostEqual(lat, 46.955, places=9)
+        self.assertAlmostEqual(lon, 7.445, places=9)
+        self.assertAlmostEqual(h, 500.0, places=9)
+        self.assertIsNone(frame.utm_zone)
+        local.to_local(frame)
+        p = rows(local.points())  # metres: about 760 m east-west, 1112 north-south, 1000 high
+        self.assertAlmostEqual(p[1][0] - p[0][0], 760.0, delta=10.0)
+        self.assertAlmostEqual(p[3][1] - p[0][1], 1112.0, delta=10.0)
+        self.assertAlmostEqual(p[4][2] - p[0][2], 1000.0, delta=1.0)
+        mesh = local.mesh(anitet.Metric.uniform(300.0))
+        mesh.to_geodetic(frame, geo)
+        points = rows(mesh.points())
+        self.assertGreater(len(points), 8)
+        self.assertEqual(points[:8], self.LONLAT)  # exactly as given
+        for x, y, z in points:
+            self.assertTrue(7.44 - 1e-9 < x < 7.45 + 1e-9 and 46.95 - 1e-9 < y < 46.96 + 1e-9)
+        # UTM: the origin's zone, 32 north at 7.44 E.
+        utm = anitet.GeoFrame.create(46.95, 7.44, kind=anitet.GEO_UTM)
+        self.assertEqual(utm.utm_zone, (32, True))
+        self.assertIn("utm_zone=(32, True)", repr(utm))
+
+    def test_errors(self):
+        for args, words in (((46.0, 7.0, 0.0, 7), "kind is 7"), ((95.0, 7.0), "lat"),
+                            ((float("nan"), 7.0), "lat")):
+            with self.assertRaises(anitet.AnitetError) as e:
+                anitet.GeoFrame.create(*args)
+            self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+            self.assertIn(words, e.exception.message)
+        bad = list(self.LONLAT)
+        bad[5] = (bad[5][0], 120.0, bad[5][2])
+        s = anitet.Surface.from_arrays(bad, CUBE_TRIS)
+        with self.assertRaises(anitet.AnitetError):
+            anitet.GeoFrame.centred(s)
+        frame = anitet.GeoFrame.create(46.95, 7.44)
+        with self.assertRaises(anitet.AnitetError):
+            s.to_local(frame)
+        self.assertEqual(rows(s.points()), bad)  # nothing moved
+        made = anitet.Mesh.from_arrays(self.LONLAT, [(0, 1, 3, 4)])
+        made.to_local(frame)
+        with self.assertRaises(anitet.AnitetError) as e:
+            made.to_geodetic(frame, s)
+        self.assertIn("not made by anitet_mesher_run", e.exception.message)
+        made.to_geodetic(frame)
+        for got, given in zip(rows(made.points()), self.LONLAT):
+            for a, b, delta in zip(got, given, (1e-9, 1e-9, 1e-6)):
+                self.assertAlmostEqual(a, b, delta=delta)
+        for call in (lambda: s.to_local(None), lambda: made.to_geodetic(frame, made),
+                     lambda: anitet.GeoFrame.centred(made)):
+            with self.assertRaises(TypeError):
+                call()
+        frame.close()
+        self.assertEqual(repr(frame), "GeoFrame(closed)")
+        with self.assertRaises(anitet.AnitetError):
+            made.to_local(frame)
 
 
 class Meshes(unittest.TestCase):

@@ -8,6 +8,7 @@ of this package, then the system's loader (libanitet.so.0). NumPy is optional.
     surface = anitet.Surface.read("fandisk.off")          # or Surface.from_arrays(points, tris)
     mesh = anitet.mesh_surface(surface, layers=2, progress=lambda stage, f: print(stage, f))
     print(mesh.counts(), mesh.quality(surface), mesh.run_stats)
+    t1 = anitet.build_layers(surface, bl_patches=[0], bl_first_height=0.01)  # stage 1 alone
     mesh.patch_names[0] = "wall"                           # an OFF file: every triangle label 0
     mesh.write("fandisk.su2")
     partition = mesh.partition(4)                          # parts for 4 ranks, NumPy views
@@ -23,7 +24,7 @@ from ._capi import (ERR_BAD_INDEX, ERR_BUFFER_TOO_SMALL, ERR_CANCELLED, ERR_DEGE
                     ERR_NON_FINITE_COORDINATE, ERR_NON_MANIFOLD_EDGE, ERR_NON_MANIFOLD_VERTEX,
                     ERR_NOT_IMPLEMENTED, ERR_OPEN_BOUNDARY, ERR_OUT_OF_MEMORY, ERR_PARSE,
                     ERR_RECOVERY_FAILED, ERR_SELF_INTERSECTION, ERR_UNSUPPORTED_FORMAT,
-                    LAYERS_FACE_PUSH, LAYERS_PUSH, LOG_DEBUG, LOG_ERROR, LOG_INFO, LOG_WARNING, OK,
+                    GEO_ENU, GEO_UTM, LAYERS_FACE_PUSH, LAYERS_PUSH, LOG_DEBUG, LOG_ERROR, LOG_INFO, LOG_WARNING, OK,
                     OPTIONS_VERSION, QUALITY_VERSION, RECOVERY_ALL, RECOVERY_FUZZY, RECOVERY_SPLIT,
                     RUN_STATS_VERSION, VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH,
                     HALO_TET_RECV, HALO_TET_SEND, HALO_VERTEX_RECV, HALO_VERTEX_SEND,
@@ -36,7 +37,9 @@ from ._capi import (PART_BOUNDARY_GLOBAL_IDS, PART_BOUNDARY_PATCHES, PART_BOUNDA
                     PART_VERTEX_RECV, PART_VERTEX_RECV_OFFSETS, PART_VERTEX_SEND,
                     PART_VERTEX_SEND_OFFSETS)
 from ._api import (HAVE_NUMPY, AnitetError, Mesh, Metric, Options, PatchNames, Quality, RunStats,
-                   Surface, error_name, mesh_surface, version, version_number, Pslg, Mesh2d, mesh2d)
+                   Surface, bl_first_height, build_layers, error_name, mesh_surface, version,
+                   version_number, Pslg, Mesh2d, mesh2d)
+from ._geo import GeoFrame
 from ._partition import Part, Partition, PartitionInfo, partition_mesh
 
 __version__ = "%d.%d.%d" % (VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH)

@@ -1,5 +1,6 @@
-"""The Python face of the C ABI: Surface, Metric, Mesh, Options, Quality, RunStats and AnitetError;
-and for 2D meshes Pslg, Mesh2d and mesh2d().
+"""The Python face of the C ABI: Surface, Metric, Mesh, Options, Quality, RunStats, AnitetError,
+mesh_surface, build_layers and bl_first_height (geographic frames: _geo.py); and for 2D meshes
+Pslg, Mesh2d and mesh2d().
 
 Arrays: with NumPy importable (and ANITET_PYTHON_NUMPY not "0"), outputs are NumPy arrays shaped
 (n, 3) / (n, 4) / (n,) and inputs may be any array-like; without it, outputs are lists of tuples
@@ -137,6 +138,12 @@ def _base(index_base):
     return index_base
 
 
+def _require(value, cls, what):
+    """TypeError unless value is a cls (a handle of the wrong kind would reach C)."""
+    if not isinstance(value, cls):
+        raise TypeError("%s must be an anitet.%s, not %s" % (what, cls.__name__, type(value).__name__))
+
+
 # ---- handles -----------------------------------------------------------------------------------
 
 class _Handle:
@@ -191,7 +198,9 @@ class Options:
     no cap), recovery (RECOVERY_ALL, RECOVERY_SPLIT, RECOVERY_FUZZY), retry_layer_counts,
     attempts_seconds, anisotropic_cycles, and the boundary layer: bl_patches, the wall patch labels
     (a sequence of ints or one int; an int32 NumPy array is passed without a copy), with
-    bl_first_height (needed with walls), bl_growth, bl_layers and bl_sizing.
+    bl_first_height (needed with walls; bl_first_height() gives it for a y+), bl_growth, bl_layers
+    and bl_sizing; push_tasks_min_vertices (stage 1 pushes a layer of at least this many front
+    vertices on two tasks, 0: one by one; the same mesh either way).
     """
 
     def __init__(self, num_threads=0, merge_duplicate_vertices=True, orient_shells=True,
@@ -200,7 +209,7 @@ class Options:
                  progress=None, log=None, *, attempts_seconds=240.0, retry_layer_counts=True,
                  recovery=_capi.RECOVERY_ALL, hmin=0.0, hmax=0.0, hgrad=0.0, max_tets=0.0,
                  anisotropic_cycles=2, bl_patches=(), bl_first_height=0.0, bl_growth=1.2,
-                 bl_layers=10, bl_sizing=False):
+                 bl_layers=10, bl_sizing=False, push_tasks_min_vertices=2000):
         self.num_threads = num_threads
         self.merge_duplicate_vertices = merge_duplicate_vertices
         self.orient_shells = orient_shells
@@ -226,6 +235,7 @@ class Options:
         self.bl_growth = bl_growth
         self.bl_layers = bl_layers
         self.bl_sizing = bl_sizing
+        self.push_tasks_min_vertices = push_tasks_min_vertices
 
 
 class _CallbackScope:
@@ -259,6 +269,7 @@ class _CallbackScope:
         s.bl_growth = options.bl_growth
         s.bl_layers = options.bl_layers
         s.bl_sizing = int(bool(options.bl_sizing))
+        s.push_tasks_min_vertices = options.push_tasks_min_vertices
         walls = options.bl_patches
         if walls is not None:
             # self._walls owns the memory behind s.bl_patches until the call returns.
@@ -383,6 +394,10 @@ class Surface(_Handle):
         """Meshes the inside of the surface: see mesh_surface."""
         return mesh_surface(self, metric, options, **kwargs)
 
+    def build_layers(self, options=None, **kwargs):
+        """Stage 1 alone: see build_layers."""
+        return build_layers(self, options, **kwargs)
+
 
 # ---- metrics -----------------------------------------------------------------------------------
 
@@ -436,14 +451,40 @@ class Metric(_Handle):
         """A metric from values at the points of `background` (a Mesh), in its point order:
         (n,) sizes or (n, 6) tensors xx xy yy xz yz zz. components (1 or 6) defaults to the
         values' row length. The values and the mesh are copied."""
-        if not isinstance(background, Mesh):
-            raise TypeError("background must be an anitet.Mesh, not %s" % type(background).__name__)
+        _require(background, Mesh, "background")
         if components is None:
             first = values[0] if len(values) else 0.0
             components = len(first) if hasattr(first, "__len__") else 1
         keep, ptr, count = _flat_doubles(values)  # keep owns the memory behind ptr
         return _create(cls, lib.anitet_metric_create_from_points, background, ptr, count,
                        components)
+
+    @classmethod
+    def surface_sizing(cls, surface, options=None, **kwargs):
+        """The sizing field mesh_surface follows when given no metric (`anitet mesh
+        --write-sizing`): a grid over the surface's box from its triangles' sizes, bounded and
+        graded by the options' hmin, hmax and hgrad (an Options or keywords). The surface is
+        validated on a copy with the options' repairs, as mesh_surface does."""
+        _require(surface, Surface, "surface")
+        scope = _options_arg(options, kwargs)
+        out = c_void_p()
+        scope.call(lib.anitet_metric_create_surface_sizing, surface, byref(scope.struct), byref(out))
+        return cls(out.value)
+
+    @classmethod
+    def read_on_mesh(cls, path, background):
+        """A Medit .sol or .solb metric on `background`, a Mesh in memory (copied): one moved to
+        a local frame by Mesh.to_local, say, or the mesh of the last adaptation pass."""
+        _require(background, Mesh, "background")
+        return _create(cls, lib.anitet_metric_read_on_mesh, _path(path), background)
+
+    def write(self, path, box_of=None):
+        """Writes the metric as OpenVDB grids (.vdb), which Metric.read reads back: a grid metric
+        (read from a .vdb, or Metric.surface_sizing) as it is, any other sampled on a lattice over
+        the box of the Surface box_of (required then)."""
+        if box_of is not None:
+            _require(box_of, Surface, "box_of")
+        _check(lib.anitet_metric_write(self, box_of, _path(path)))
 
     def evaluate(self, x, y, z):
         """The tensor at (x, y, z): a tuple xx xy yy xz yz zz."""
@@ -678,6 +719,14 @@ class Mesh(_Handle):
         keep, ptr, count = _flat_doubles(values)  # keep owns the memory behind ptr
         _check(lib.anitet_mesh_set_metric(self, ptr, count, components))
 
+    def sample_metric(self, metric):
+        """Sets the per-vertex metric to `metric`'s values at the points (`anitet mesh
+        --write-metric`): sizes (1 component) when every tensor is isotropic, else tensors; then
+        write_metric writes it. A failing analytic metric raises AnitetError and leaves the mesh's
+        metric as it was."""
+        _require(metric, Metric, "metric")
+        _check(lib.anitet_mesh_sample_metric(self, metric))
+
     def quality(self, input=None):  # noqa: A002 - the C argument's name
         """The quality numbers, against the input surface when given (boundary_constrained)."""
         q = _capi.CQuality()
@@ -707,6 +756,28 @@ def mesh_surface(surface, metric=None, options=None, **kwargs):
     out = c_void_p()
     scope.call(lib.anitet_mesher_run, surface, metric, byref(scope.struct), byref(out))
     return Mesh(out.value)
+
+
+def build_layers(surface, options=None, **kwargs):
+    """Stage 1 alone (`anitet mesh --stop-after layers`, the C ABI's anitet_layers_run), to look
+    at the layers: validates a copy of `surface`, builds the advancing-front layers (the options'
+    layers, layer_scheme, push_tasks_min_vertices and bl_* fields; the others are not used) at the
+    surface's own sizes and returns T1 as a Mesh: the surface's triangles under their labels, the
+    new front's under the largest label + 1, the boundary layer's tets in region 1. Its run_stats
+    hold layers_used and the boundary layer measured on T1."""
+    scope = _options_arg(options, kwargs)
+    out = c_void_p()
+    scope.call(lib.anitet_layers_run, surface, byref(scope.struct), byref(out))
+    return Mesh(out.value)
+
+
+def bl_first_height(yplus, reynolds, ref_length):
+    """The first boundary-layer height h0 for a target y+ (`anitet mesh --bl-yplus`), from the
+    flat-plate estimate Cf = 0.026 Re^(-1/7), h0 = y+ L / (Re sqrt(Cf / 2)), with the Reynolds
+    number Re and the reference length L (in the coordinates' unit)."""
+    h0 = c_double()
+    _check(lib.anitet_bl_first_height(yplus, reynolds, ref_length, byref(h0)))
+    return h0.value
 
 
 # ---- 2D meshes ---------------------------------------------------------------------------------

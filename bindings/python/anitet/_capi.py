@@ -51,6 +51,8 @@ LAYERS_FACE_PUSH = 1
 RECOVERY_ALL = 0
 RECOVERY_SPLIT = 1
 RECOVERY_FUZZY = 2
+GEO_ENU = 0
+GEO_UTM = 1
 PARTITION_OPTIONS_VERSION = 1
 PARTITION_INFO_VERSION = 1
 HALO_VERTEX_SEND = 0
@@ -124,6 +126,8 @@ class COptions(Structure):
         ("bl_growth", c_double),
         ("bl_layers", c_int32),
         ("bl_sizing", c_int32),
+        ("push_tasks_min_vertices", c_int32),
+        ("reserved1", c_int32),
     ]
 
 
@@ -261,7 +265,12 @@ _PROTOTYPES = {
     "anitet_metric_create_from_points": (c_int, [_P, _D, c_int64, c_int32, _PP]),
     "anitet_metric_destroy": (None, [_P]),
     "anitet_metric_evaluate": (c_int, [_P, c_double, c_double, c_double, _D]),
+    "anitet_metric_create_surface_sizing": (c_int, [_P, POINTER(COptions), _PP]),
+    "anitet_metric_read_on_mesh": (c_int, [c_char_p, _P, _PP]),
+    "anitet_metric_write": (c_int, [_P, _P, c_char_p]),
     "anitet_mesher_run": (c_int, [_P, _P, POINTER(COptions), _PP]),
+    "anitet_layers_run": (c_int, [_P, POINTER(COptions), _PP]),
+    "anitet_bl_first_height": (c_int, [c_double, c_double, c_double, _D]),
     "anitet_mesh_create": (c_int, [_D, c_int64, _I32, c_int64, _I32, _I32, c_int64, _I32, c_int32,
                                    _PP]),
     "anitet_mesh_read": (c_int, [c_char_p, _PP]),
@@ -278,10 +287,18 @@ _PROTOTYPES = {
     "anitet_mesh_get_metric": (c_int, [_P, _D, c_int64]),
     "anitet_mesh_set_patch_name": (c_int, [_P, c_int32, c_char_p]),
     "anitet_mesh_set_metric": (c_int, [_P, _D, c_int64, c_int32]),
+    "anitet_mesh_sample_metric": (c_int, [_P, _P]),
     "anitet_mesh_get_run_stats": (c_int, [_P, POINTER(CRunStats)]),
     "anitet_mesh_run_json": (c_int, [_P, c_char_p, c_int64, _I64]),
     "anitet_mesh_quality": (c_int, [_P, _P, POINTER(CQuality)]),
     "anitet_mesh_quality_json": (c_int, [_P, _P, c_char_p, c_int64, _I64]),
+    "anitet_geo_frame_create": (c_int, [c_int32, c_double, c_double, c_double, _PP]),
+    "anitet_geo_frame_create_centred": (c_int, [c_int32, _P, _PP]),
+    "anitet_geo_frame_destroy": (None, [_P]),
+    "anitet_geo_frame_get": (c_int, [_P, _D, _D, _D, _I32, _I32]),
+    "anitet_surface_to_local": (c_int, [_P, _P]),
+    "anitet_mesh_to_local": (c_int, [_P, _P]),
+    "anitet_mesh_to_geodetic": (c_int, [_P, _P, _P]),
     "anitet_partition_options_init": (c_int, [POINTER(CPartitionOptions), c_int32]),
     "anitet_mesh_partition": (c_int, [_P, c_int32, POINTER(CPartitionOptions), _PP]),
     "anitet_partition_destroy": (None, [_P]),
