@@ -83,8 +83,6 @@ PART_TET_SEND = 17
 PART_TET_RECV_OFFSETS = 18
 PART_TET_RECV = 19
 MESH2D_OPTIONS_VERSION = 1
-GEO_ENU = 0
-GEO_UTM = 1
 
 # ---- callbacks and structs ----------------------------------------------------------------------
 PROGRESS_FN = CFUNCTYPE(c_int, c_double, c_char_p, c_void_p)
