@@ -85,8 +85,7 @@ int run_mesh_layers(MeshArgs& args) {
   if (const int code = check_output_paths(args); code != kExitOk) return code;
   CheckedSurface checked;
   if (const int code = load_and_validate("mesh", args.input, checked); code != kExitOk) return code;
-  const SurfaceMesh& surface = checked.surface;
-  const int32_t front_label = front_patch_label(surface);  // S1's patch in the output
+  const int32_t front_label = front_patch_label(checked.surface);  // S1's patch in the output
   if (const int code = check_patch_names(args, checked, {front_label}); code != kExitOk) return code;
 
   LayersOptions options;
@@ -102,8 +101,11 @@ int run_mesh_layers(MeshArgs& args) {
     options.boundary_layer.first_height = args.bl_first_height;
     options.boundary_layer.growth = args.bl_growth;
     options.boundary_layer.layers = args.bl_layers;
+    options.boundary_layer.slide_patches.assign(args.bl_slide_patches.begin(), args.bl_slide_patches.end());
   }
-  Result<Stage1Result> built = run_stage1(surface, options);
+  // With slide patches, stage 1 runs on the surface re-triangulated around the columns (as the
+  // pipeline does).
+  Result<Stage1Result> built = run_stage1(checked.surface, options);
   if (!built.ok()) {
     std::cerr << cmd << ": stage 1 (layers) failed on '" << args.input << "': " << built.status().message()
               << " [" << error_name(built.status().code()) << "]\n";
@@ -111,6 +113,7 @@ int run_mesh_layers(MeshArgs& args) {
                ? kExitUsage
                : kExitInternal;
   }
+  const SurfaceMesh& surface = built->surface(checked.surface);
   const LayersOutput& r = built->layers;
   const LayersCheck& check = built->check;
   const VolumeMesh& vm = built->mesh;

@@ -306,6 +306,7 @@ class MeshCommand {
       }
       BoundaryLayerOptions& bl = o.layers.boundary_layer;
       bl.wall_patches.assign(args_.bl_patches.begin(), args_.bl_patches.end());
+      bl.slide_patches.assign(args_.bl_slide_patches.begin(), args_.bl_slide_patches.end());
       bl.first_height = args_.bl_first_height;
       bl.growth = args_.bl_growth;
       bl.layers = args_.bl_layers;
@@ -375,12 +376,18 @@ class MeshCommand {
     return e == Error::NotImplemented ? kExitNotImplemented : e == Error::InvalidArgument ? kExitUsage : kExitInternal;
   }
 
+  // The surface the mesh must keep: the input, its slide patches re-triangulated when walls meet
+  // them (the run's; the rest of it is the input's, exactly).
+  const SurfaceMesh& meshed_surface(const MesherResult& r) const {
+    return r.slide.changes.empty() ? checked_.surface : r.slide.surface;
+  }
+
   // The quality report, measured in the local frame against the surface that was meshed (with
   // --report, by the HTML report, which gives the same report); a report file that cannot be
   // written goes to not_written_.
   Result<QualityReport> measure(const MesherResult& r) {
     if (args_.report_html.empty())
-      return tbb::this_task_arena::isolate([&] { return compute_quality_report(r.mesh, &checked_.surface); });
+      return tbb::this_task_arena::isolate([&] { return compute_quality_report(r.mesh, &meshed_surface(r)); });
     HtmlReportOptions html_options;
     html_options.title = "anitet mesh: " + std::filesystem::path(args_.input).filename().string();
     html_options.mesh_name = args_.output;
@@ -388,7 +395,7 @@ class MeshCommand {
     for (size_t k = 0; k < 3 && k < args_.report_cut.size(); ++k) html_options.cut[k] = args_.report_cut[k];
     html_options.run_rows = run_rows(r);
     Result<HtmlReport> html = tbb::this_task_arena::isolate(
-        [&] { return quality_report_html(r.mesh, &checked_.surface, QualityOptions(), html_options); });
+        [&] { return quality_report_html(r.mesh, &meshed_surface(r), QualityOptions(), html_options); });
     if (!html.ok()) return html.status();
     if (Status st = write_file_bytes(args_.report_html, html.value().html); !st.ok()) {
       std::cerr << kCmd << ": cannot write report '" << args_.report_html << "': " << st.message() << "\n";
@@ -501,6 +508,7 @@ int check_mesh_option_combinations(const CLI::App& cmd, const MeshArgs& a) {
       {"--bl-yplus", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-growth", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-layers", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-slide-patches", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-reynolds", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
       {"--bl-ref-length", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
       {"--background", a.metric.metric.empty(), "a .sol --metric (it is the mesh the .sol's values are at)"},
@@ -610,7 +618,7 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
 
   const char* bl_group = "Boundary layer";
   cmd->add_option("--bl-patches", args.bl_patches,
-                  "The input's patch labels (comma-separated) that are walls, each a whole shell: n thin "
+                  "The input's patch labels (comma-separated) that are walls: n thin "
                   "prism layers grow there first, then the front layers on the whole front. BL tets keep "
                   "their heights (frozen for refinement and optimization) and get region bodies + body "
                   "(1 for one body)")
@@ -646,6 +654,13 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
   cmd->add_option("--bl-layers", args.bl_layers, "Number of boundary layers n")
       ->capture_default_str()
       ->check(in_range(1, 1000))
+      ->group(bl_group);
+  cmd->add_option("--bl-slide-patches", args.bl_slide_patches,
+                  "Patch labels (comma-separated) that the walls may meet (inlet, outlet, symmetry plane, a "
+                  "channel's sides): the layers' columns slide along them and they are triangulated again "
+                  "inside the band the layers cover; planar where the layers slide. Without it a wall "
+                  "meeting another patch is refused. The rest of the surface stays exactly as given")
+      ->delimiter(',')
       ->group(bl_group);
   cmd->add_flag("--bl-sizing", args.bl_sizing,
                 "Refine the interior to continue the boundary layer's heights (normal size h0 + (r - 1) d "

@@ -86,6 +86,7 @@ struct MeshArgs {
   std::string layer_scheme = "push";    // "push" (prism layers) or "faces" (the paper's)
   size_t push_tasks_min_vertices = LayersOptions().push_tasks_min_vertices;
   std::vector<int> bl_patches;          // boundary-layer walls (patch labels); empty: none
+  std::vector<int> bl_slide_patches;    // patches the walls may meet, re-triangulated (labels)
   double bl_first_height = 0.0;         // h0 (given, or from --bl-yplus)
   double bl_yplus = 0.0;                // y+ of the first layer (0: not given)
   double bl_reynolds = 0.0;             // Reynolds number on bl_ref_length, for bl_yplus

@@ -8,7 +8,21 @@
 #include "layers/geometry.hpp"
 #include "layers/layer_builder.hpp"
 
-namespace anitet::layers {
+namespace anitet {
+
+int boundary_layer_count(const BoundaryLayerOptions& bl) {
+  if (bl.layers > 0) return bl.layers;
+  int n = 0;
+  double total = 0.0, h = bl.first_height;
+  while (total < bl.total_thickness && n < 1000) {
+    total += h;
+    h *= bl.growth;
+    ++n;
+  }
+  return n;
+}
+
+namespace layers {
 
 namespace {
 
@@ -21,13 +35,24 @@ Status LayerBuilder::setup_boundary_layer() {
   if (!bl.enabled()) return Status::success();
   const size_t nv = s_.num_vertices(), nt = s_.num_triangles();
   wall_.assign(nv, 0);
-  std::vector<uint8_t> other(nv, 0);
+  wall_triangle_.assign(nt, 0);
+  std::vector<int32_t> other(nv, 0);
+  std::vector<uint8_t> has_other(nv, 0);
   size_t wall_triangles = 0;
   for (size_t t = 0; t < nt; ++t) {
     const bool wall = std::find(bl.wall_patches.begin(), bl.wall_patches.end(), s_.patch[t]) !=
                       bl.wall_patches.end();
+    wall_triangle_[t] = wall ? 1 : 0;
     wall_triangles += wall ? 1 : 0;
-    for (int k = 0; k < 3; ++k) (wall ? wall_ : other)[s_.tri[3 * t + k]] = 1;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = s_.tri[3 * t + k];
+      if (wall) {
+        wall_[v] = 1;
+      } else if (!has_other[v]) {
+        has_other[v] = 1;
+        other[v] = s_.patch[t];
+      }
+    }
   }
   // A wall label no triangle has would be dropped without a word (a typo, another file's label).
   for (int32_t label : bl.wall_patches)
@@ -35,24 +60,65 @@ Status LayerBuilder::setup_boundary_layer() {
       return Status(Error::InvalidArgument,
                     "layers: boundary layer: no triangle has the wall patch label " + std::to_string(label));
   if (wall_triangles == 0) return Status(Error::InvalidArgument, "layers: no triangle carries a wall patch label");
+  if (!bl.column_next.empty() && bl.column_next.size() != nv)
+    return Status(Error::InvalidArgument, "layers: boundary layer: column_next must have one entry per vertex");
+  // A wall vertex on another patch needs its junction column (the slide patches, set up by
+  // slide_boundary_layer): without one its prisms would have no side faces to stand on.
   for (size_t v = 0; v < nv; ++v)
-    if (wall_[v] && other[v])
-      return Status(Error::NotImplemented,
-                    "layers: boundary layer: vertex " + std::to_string(v) +
-                        " is shared by a wall patch and another patch (only whole wall shells are "
-                        "supported)");
-  bl_layers_ = bl.layers;
-  if (bl_layers_ == 0) {
-    double total = 0.0, h = bl.first_height;
-    while (total < bl.total_thickness && bl_layers_ < 1000) {
-      total += h;
-      h *= bl.growth;
-      ++bl_layers_;
-    }
-  }
+    if (wall_[v] && has_other[v] && (bl.column_next.empty() || bl.column_next[v] == TetMesh::kNone))
+      return Status(Error::InvalidArgument,
+                    "layers: boundary layer: vertex " + std::to_string(v) + " at " + point_text(s_.point(v)) +
+                        " is on a wall patch and on patch " + std::to_string(other[v]) +
+                        ": a wall may meet another patch only where the layers slide along it (make it a slide "
+                        "patch: --bl-slide-patches " + std::to_string(other[v]) + ")");
+  bl_layers_ = boundary_layer_count(bl);
   bl_reduced_root_.assign(nv, 0);
   out_.stats.bl_wall_vertices = size_t(std::count(wall_.begin(), wall_.end(), 1));
   return Status::success();
+}
+
+void LayerBuilder::push_junctions(std::vector<uint32_t>& vertices) {
+  const std::vector<uint32_t>& next = opt_.boundary_layer.column_next;
+  if (next.empty()) return;
+  // In increasing id order, as the slide patches' band triangles were cut for (slide_patches.hpp).
+  std::vector<uint32_t> junctions, others;
+  for (uint32_t v : vertices) (v < next.size() && next[v] != TetMesh::kNone ? junctions : others).push_back(v);
+  std::sort(junctions.begin(), junctions.end());
+  for (uint32_t a : junctions) push_junction(a, next[a]);
+  vertices = std::move(others);
+}
+
+void LayerBuilder::push_junction(uint32_t a, uint32_t next) {
+  // The cone from the column's next point over a's wall-side star; the band triangles holding
+  // that point are closed by its tets. A slide triangle without it (the neighbouring column did
+  // not move up) leaves the column waiting, as a push that does not fit.
+  std::vector<uint32_t> part;
+  bool closable = true;
+  for (uint32_t f : front_.star(a)) {
+    const uint32_t* t = front_.tri(f);
+    if (t[0] == next || t[1] == next || t[2] == next) continue;
+    if (front_.owner(f) == Front::kNone && !wall_triangle_[f]) closable = false;
+    part.push_back(f);
+  }
+  const size_t tets_before = mesh_.num_tet_slots();
+  auto& st = out_.stats;
+  if (closable && join_to_front(part, next) && front_.star(a).empty()) {
+    front_.commit();
+    st.push_tets += mesh_.num_tet_slots() - tets_before;
+    ++st.pushes;
+    ++st.bl_junction_pushes;
+    out_.vertex_origin.resize(mesh_.num_vertices(), TetMesh::kNone);
+    out_.vertex_origin[next] = a;
+    wall_[next] = 1;
+    record_bl_push(a, next);
+    return;
+  }
+  if (closable) {
+    front_.rollback();
+    truncate_tets(tets_before);
+  }
+  ++st.bl_junction_stops;
+  mark_bl_reduced(a);
 }
 
 double LayerBuilder::bl_nominal() const {
@@ -118,9 +184,9 @@ void LayerBuilder::plan_boundary_layer(const std::vector<uint32_t>& vertices) {
 }
 
 void LayerBuilder::mark_bl_reduced(uint32_t v) {
+  // (Junction columns' points are surface vertices with an origin too.)
   uint32_t root = v;
-  while (root >= s_.num_vertices() && root < out_.vertex_origin.size() &&
-         out_.vertex_origin[root] != TetMesh::kNone)
+  while (root < out_.vertex_origin.size() && out_.vertex_origin[root] != TetMesh::kNone)
     root = out_.vertex_origin[root];
   if (root < bl_reduced_root_.size()) bl_reduced_root_[root] = 1;
 }
@@ -141,4 +207,5 @@ void LayerBuilder::record_bl_push(uint32_t a, uint32_t moved) {
   }
 }
 
-}  // namespace anitet::layers
+}  // namespace layers
+}  // namespace anitet

@@ -168,6 +168,12 @@ class LayerBuilder {
   // h0 r^i along d, capped by the share of the free distance across (fronts colliding).
   double bl_height(uint32_t a, const double d[3]) const;
   void record_bl_push(uint32_t a, uint32_t moved);
+  // The junction vertices among `vertices` (BoundaryLayerOptions::column_next) pushed to their
+  // columns' next points, in increasing id order, and taken out of the list.
+  void push_junctions(std::vector<uint32_t>& vertices);
+  // One of them: the cone from `next` over a's star closes the band triangles holding `next`;
+  // when it does not fit, a waits (counted as reduced).
+  void push_junction(uint32_t a, uint32_t next);
   // The wall vertex below v (its column) had a reduced or stopped BL layer.
   void mark_bl_reduced(uint32_t v);
   double bl_nominal() const;
@@ -226,6 +232,7 @@ class LayerBuilder {
   int bl_index_ = -1;            // the BL layer being built (0-based), -1: an ordinary layer
   int bl_layers_ = 0;
   std::vector<uint8_t> wall_;    // 1 per vertex: on a wall shell (or pushed from one)
+  std::vector<uint8_t> wall_triangle_;    // 1 per input triangle: a wall patch's
   std::vector<uint8_t> bl_reduced_root_;  // 1 per input vertex: some BL layer was reduced
   std::vector<uint8_t> column_halved_;    // 1 per input triangle, for the current layer
   // frame_of()'s cache: per vertex 0 unknown, 1 isotropic, 2 anisotropic (U in frame_).

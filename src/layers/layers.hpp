@@ -109,9 +109,13 @@ enum class LayerScheme : int {
 // push does not fit (shrunk like any push). Such vertices are counted as reduced. The ordinary
 // layers (LayersOptions::layers) follow on the whole front, wall and other patches alike. BL tets
 // carry `region` in TetMesh::tet_region (all other T1 tets: 0).
-// Wall shells must be whole: a vertex shared by a wall triangle and another is NotImplemented.
+// A wall may meet other patches only where they are slide patches: the pipeline first
+// re-triangulates them around the columns that slide along them (slide_patches.hpp), which sets
+// column_next; stage 1 then pushes each junction vertex to the next point of its column. A vertex
+// of a wall and of any other patch without such a column is InvalidArgument.
 struct BoundaryLayerOptions {
   std::vector<int32_t> wall_patches;  // patch labels of the input; empty: no boundary layer
+  std::vector<int32_t> slide_patches; // labels the layers' columns may slide along (re-triangulated)
   double first_height = 0.0;          // h0, in length units (> 0 when walls are given)
   double growth = 1.2;                // r >= 1
   int layers = 0;                     // n; 0: from total_thickness
@@ -127,9 +131,16 @@ struct BoundaryLayerOptions {
   // of moving that little: such pushes left S1 vertices 1e-14 apart in folded BL fronts, which
   // stage 2 cannot recover (airplane, 15 layers).
   double min_height_ratio = 0.05;
+  // Per surface vertex: the next point of its junction column (TetMesh::kNone: none), as
+  // slide_boundary_layer() gives it for the surface it made; empty: no junction.
+  std::vector<uint32_t> column_next;
 
   bool enabled() const { return !wall_patches.empty(); }
 };
+
+// The number of boundary layers the options ask for: `layers`, or the least count whose heights
+// h0 r^i add up to total_thickness (at most 1000).
+int boundary_layer_count(const BoundaryLayerOptions& bl);
 
 // The first-layer height for a target y+ by the flat-plate estimate: skin friction
 // Cf = 0.026 Re^(-1/7), friction velocity u_tau = U sqrt(Cf / 2), so
@@ -223,6 +234,8 @@ struct LayersStats {
   size_t bl_pushes = 0;
   size_t bl_reduced_pushes = 0;     // pushes below 90% of h0 r^i
   size_t bl_reduced_vertices = 0;   // wall vertices with at least one reduced layer
+  size_t bl_junction_pushes = 0;    // pushes of junction vertices along their slide patch
+  size_t bl_junction_stops = 0;     // junction pushes that did not fit (the column waits)
   double bl_reduced_share = 0.0;    // bl_reduced_vertices / bl_wall_vertices
   double bl_max_height_error = 0.0; // max |h / (h0 r^i) - 1| over the pushes not reduced
   double bl_min_height_ratio = 1.0; // min h / (h0 r^i) over all pushes

@@ -182,7 +182,11 @@ double LayerBuilder::target_height(uint32_t a, const double d[3]) const {
   return std::min(target, share * clearance(mesh_.point(a), d, target / share, ring));
 }
 
-Status LayerBuilder::push_step(const std::vector<uint32_t>& vertices) {
+Status LayerBuilder::push_step(const std::vector<uint32_t>& layer_vertices) {
+  // A BL layer's junction vertices first: they go to their columns' fixed points, and the
+  // others plan on the front they leave.
+  std::vector<uint32_t> vertices = layer_vertices;
+  if (bl_index_ >= 0) push_junctions(vertices);
   plan_.assign(mesh_.num_vertices(), Plan());
   touched_plans_.clear();
   // The plans read the front only, each vertex's its own: on both cores. (frame_of's cache is

@@ -19,6 +19,7 @@
 #include "metric/boundary_layer.hpp"
 #include "metric/metric_field.hpp"
 #include "pipeline/bl_report.hpp"
+#include "pipeline/stage1.hpp"
 
 namespace anitet {
 
@@ -166,6 +167,7 @@ Result<MesherResult> Mesher::run_scaled(const SurfaceMesh& surface) const {
   if (!run.ok()) return run;
   MesherResult& r = run.value();
   for (double& x : r.mesh.xyz) x = std::ldexp(x, -k);
+  for (double& x : r.slide.surface.xyz) x = std::ldexp(x, -k);
   BoundaryLayerReport& report = r.boundary_layer;
   for (double* x : {&report.first_height_min, &report.first_height_mean, &report.first_height_max, &report.max_displacement})
     *x = std::ldexp(*x, -k);
@@ -237,10 +239,13 @@ struct StageField {
 // One run of the pipeline after validation, its steps in order (Mesher::run_in_range).
 class MeshingRun {
  public:
-  MeshingRun(const MesherOptions& options, const SurfaceMesh& surface)
+  // `surface`: the one meshed; `sizing_surface`: the one the default sizes come from (the input,
+  // when the slide patches' thin band triangles are in `surface`).
+  MeshingRun(const MesherOptions& options, const SurfaceMesh& surface, const SurfaceMesh& sizing_surface)
       : o_(options),
         surface_(surface),
-        grid_(surface, options.surface_sizing, (options.run_refine || options.run_optimize) && !options.sizing) {}
+        sizing_surface_(sizing_surface),
+        grid_(sizing_surface, options.surface_sizing, (options.run_refine || options.run_optimize) && !options.sizing) {}
 
   Result<MesherResult> run() {
     const auto start = Clock::now();
@@ -339,7 +344,7 @@ class MeshingRun {
   }
 
   Result<CoupledMesh> stages_1_and_2() {
-    const IsotropicSurfaceSizing surface_sizing(surface_);
+    const IsotropicSurfaceSizing surface_sizing(sizing_surface_);
     const LayerSizing sizing(surface_sizing, o_.sizing);
     const std::vector<std::pair<int, RecoveryOptions>> tries = attempts();
     Result<CoupledMesh> coupled = Status(Error::Internal, "no layer count tried");
@@ -539,6 +544,7 @@ class MeshingRun {
 
   const MesherOptions& o_;
   const SurfaceMesh& surface_;
+  const SurfaceMesh& sizing_surface_;
   DefaultGrid grid_;
   MesherResult result_;
   std::vector<uint32_t> t1_origin_;  // kept for the boundary-layer figures (stage 1's vertex ids
@@ -549,7 +555,25 @@ class MeshingRun {
 }  // namespace
 
 Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
-  return MeshingRun(options_, surface).run();
+  const BoundaryLayerOptions& bl = options_.layers.boundary_layer;
+  if (!bl.enabled() || bl.slide_patches.empty()) return MeshingRun(options_, surface, surface).run();
+  // Walls meeting slide patches: those are re-triangulated around the layers' columns first,
+  // and the pipeline meshes that surface (its other patches the input's, exactly).
+  const auto t = Clock::now();
+  if (options_.progress && !options_.progress("slide patches", 0.0))
+    return Status(Error::Cancelled, "cancelled before the slide patches");
+  Result<SlideSurface> slid = slide_and_validate(surface, bl, options_.validation);
+  if (!slid.ok()) return slid.status();
+  MesherOptions options = options_;
+  options.layers.boundary_layer.column_next = std::move(slid->column_next);
+  const double seconds = since(t);
+  Result<MesherResult> run = MeshingRun(options, slid->surface, surface).run();
+  if (!run.ok()) return run;
+  MesherResult& r = run.value();
+  r.slide = slide_report(std::move(slid).value());
+  r.stages.insert(r.stages.begin(), {"slide patches", seconds, 0});
+  r.seconds += seconds;
+  return run;
 }
 
 Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,

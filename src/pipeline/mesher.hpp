@@ -19,6 +19,7 @@
 #include "couple/couple.hpp"
 #include "core/sizing.hpp"
 #include "layers/layers.hpp"
+#include "layers/slide_patches.hpp"
 #include "metric/surface_sizing.hpp"
 #include "optimize/optimize.hpp"
 #include "pipeline/bl_report.hpp"
@@ -115,6 +116,9 @@ struct MesherResult {
   RecoveryStats recovery;
   CoupleStats couple;
   BoundaryLayerReport boundary_layer;  // zero without wall patches
+  // With slide patches: the boundary triangles (mesh.bnd_tri) are the input's but on those
+  // patches, whose new triangles follow the input's others.
+  SlideReport slide;
   RefineStats refine;      // zero when the stage did not run
   OptimizeStats optimize;  // zero when the stage did not run
   int anisotropic_cycles = 0;  // extra refine + optimize rounds run (anisotropic field)

@@ -13,11 +13,32 @@ int32_t front_patch_label(const SurfaceMesh& surface) {
   return label;
 }
 
-Result<Stage1Result> run_stage1(const SurfaceMesh& surface, const LayersOptions& options) {
-  IsotropicSurfaceSizing sizing(surface);
+Result<SlideSurface> slide_and_validate(const SurfaceMesh& surface, const BoundaryLayerOptions& bl,
+                                        const ValidationOptions& validation) {
+  Result<SlideSurface> slid = slide_boundary_layer(surface, bl);
+  if (!slid.ok()) return Status(slid.status().code(), "boundary layer: " + slid.status().message());
+  SurfaceMesh checked = slid->surface;
+  const ValidationReport report = validate_surface(checked, validation);
+  if (!report.ok() || !report.repairs.empty())
+    return Status(Error::Internal, "boundary layer: the slide patches re-triangulated around the layers do not give a "
+                                   "valid surface: " +
+                                       (report.ok() ? std::string("it needed repairs") : report.status().message()));
+  return slid;
+}
+
+Result<Stage1Result> run_stage1(const SurfaceMesh& input, const LayersOptions& input_options) {
+  IsotropicSurfaceSizing sizing(input);
+  Stage1Result out;
+  LayersOptions options = input_options;
+  if (options.boundary_layer.enabled() && !options.boundary_layer.slide_patches.empty()) {
+    Result<SlideSurface> slid = slide_and_validate(input, options.boundary_layer);
+    if (!slid.ok()) return slid.status();
+    options.boundary_layer.column_next = std::move(slid->column_next);
+    out.slide = slide_report(std::move(slid).value());
+  }
+  const SurfaceMesh& surface = out.surface(input);
   Result<LayersOutput> built = build_layers(surface, sizing, options);
   if (!built.ok()) return built.status();
-  Stage1Result out;
   out.layers = std::move(built).value();
   const LayersOutput& r = out.layers;
   // The audit is the library's own independent check; a failure is a bug, reported as such.

@@ -9,7 +9,9 @@
 #include "core/volume_mesh.hpp"
 #include "layers/layers.hpp"
 #include "layers/layers_check.hpp"
+#include "layers/slide_patches.hpp"
 #include "pipeline/bl_report.hpp"
+#include "validate/validate.hpp"
 
 namespace anitet {
 
@@ -24,10 +26,22 @@ struct Stage1Result {
   VolumeMesh mesh;
   int32_t front_label = 1;
   BoundaryLayerReport boundary_layer;  // measured on T1 (when options ask for one)
+  // With slide patches (options.boundary_layer.slide_patches): the surface stage 1 ran on (the
+  // input, those patches re-triangulated), whose triangles T1's boundary holds.
+  SlideReport slide;
+  const SurfaceMesh& surface(const SurfaceMesh& input) const { return slide.surface.tri.empty() ? input : slide.surface; }
 };
 
 // The layers follow the surface's own sizes (IsotropicSurfaceSizing), as in the full pipeline
-// without a metric. Errors: build_layers'; Error::Internal when the audit fails (a bug).
+// without a metric; with slide patches they run on the surface slide_and_validate gives (the
+// sizes still the input's). Errors: build_layers' and slide_and_validate's; Error::Internal when
+// the audit fails (a bug).
 Result<Stage1Result> run_stage1(const SurfaceMesh& surface, const LayersOptions& options);
+
+// Walls meeting slide patches (slide_patches.hpp): the surface with those patches re-triangulated
+// around the junction columns, validated again (Error::Internal when it is not valid as it is: a
+// bug). Messages start with "boundary layer: ".
+Result<SlideSurface> slide_and_validate(const SurfaceMesh& surface, const BoundaryLayerOptions& bl,
+                                        const ValidationOptions& validation = {});
 
 }  // namespace anitet

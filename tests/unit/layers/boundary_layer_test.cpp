@@ -185,11 +185,14 @@ TEST(BoundaryLayer, RejectsBadOptionsAndMixedShells) {
   o.boundary_layer.growth = 1.2;
   o.boundary_layer.wall_patches = {7};  // no such label
   EXPECT_EQ(build_layers(cube, sizing, o).status().code(), Error::InvalidArgument);
-  // One shell with two labels: not supported, and said so.
+  // A wall meeting another patch without slide patches: refused, pointing to the option.
   SurfaceMesh mixed = cube;
   mixed.patch[0] = 5;
   o.boundary_layer.wall_patches = {5};
-  EXPECT_EQ(build_layers(mixed, sizing, o).status().code(), Error::NotImplemented);
+  const Status refused = build_layers(mixed, sizing, o).status();
+  EXPECT_EQ(refused.code(), Error::InvalidArgument);
+  EXPECT_NE(refused.message().find("is on a wall patch and on patch 0"), std::string::npos) << refused.message();
+  EXPECT_NE(refused.message().find("--bl-slide-patches 0"), std::string::npos) << refused.message();
   // By total thickness: the least n whose layers reach it.
   o.boundary_layer.wall_patches = {0};
   o.boundary_layer.layers = 0;
