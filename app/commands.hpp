@@ -102,6 +102,8 @@ struct MeshArgs {
   std::string recovery = "all";         // stage 2 strategies: all (split, then fuzzy), split, fuzzy
   std::string patch_names_spec;         // --patch-names "1=wall,2=farfield"
   PatchNames patch_names;               // parsed by check_output_options
+  std::string patch_types_spec;         // --patch-types "2=inlet,3=outlet"
+  PatchTypes patch_types;               // parsed by check_patch_names
   int threads = 0;                      // --threads (0: all cores)
 };
 CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args);
@@ -133,6 +135,7 @@ int write_outputs(const MeshArgs& args, const VolumeMesh& mesh);
 // After reading the surface: args.patch_names gets the names the file carries (SU2 markers),
 // then those of --patch-names, which may name only labels the surface has (or one of
 // `extra_labels`, e.g. the S1 patch of --stop-after layers); no two labels may share a name.
+// --patch-types is parsed there too (labels the surface has).
 // Returns kExitOk, or kExitUsage after printing the reason.
 int check_patch_names(MeshArgs& args, const CheckedSurface& input, const std::vector<int32_t>& extra_labels = {});
 // `mesh`: the whole pipeline (cmd_mesh.cpp).

@@ -77,7 +77,7 @@ int write_outputs(const MeshArgs& args, const VolumeMesh& mesh) {
   std::vector<std::string> written;
   int code = kExitOk;
   for (const std::string& path : output_paths(args)) {
-    const Status s = write_volume_mesh(mesh, path, args.patch_names);
+    const Status s = write_volume_mesh(mesh, path, args.patch_names, args.patch_types);
     if (s.ok()) {
       written.push_back(path);
       continue;
@@ -101,14 +101,28 @@ int check_patch_names(MeshArgs& args, const CheckedSurface& input, const std::ve
   const std::string cmd = "anitet " + args.command;
   // The file's own names (SU2 markers) first; --patch-names renames on top of them.
   args.patch_names = input.names;
+  std::set<int32_t> labels(input.surface.patch.begin(), input.surface.patch.end());
+  labels.insert(extra_labels.begin(), extra_labels.end());
+  if (!args.patch_types_spec.empty()) {
+    Result<PatchTypes> types = parse_patch_types(args.patch_types_spec);
+    if (!types.ok()) {
+      std::cerr << cmd << ": --patch-types: " << types.status().message() << "\n";
+      return kExitUsage;
+    }
+    for (const auto& [label, kind] : types.value())
+      if (!labels.count(label)) {
+        std::cerr << cmd << ": --patch-types: no triangle of '" << args.input << "' has the patch label " << label
+                  << " (given the type " << patch_kind_name(kind) << ")\n";
+        return kExitUsage;
+      }
+    args.patch_types = std::move(types).value();
+  }
   if (args.patch_names_spec.empty()) return kExitOk;
   Result<PatchNames> names = parse_patch_names(args.patch_names_spec);
   if (!names.ok()) {
     std::cerr << cmd << ": --patch-names: " << names.status().message() << "\n";
     return kExitUsage;
   }
-  std::set<int32_t> labels(input.surface.patch.begin(), input.surface.patch.end());
-  labels.insert(extra_labels.begin(), extra_labels.end());
   for (const auto& [label, name] : names.value()) {
     if (!labels.count(label)) {
       std::cerr << cmd << ": --patch-names: no triangle of '" << args.input << "' has the patch label " << label
@@ -144,8 +158,15 @@ void add_mesh_io_options(CLI::App* cmd, MeshArgs& args) {
   cmd->add_option("--patch-names", args.patch_names_spec,
                   "Names of the input's patch labels, LABEL=NAME,... (1=wall,2=farfield); unnamed labels "
                   "are patch<label>. A name: 1-32 letters, digits or '_', starting with a letter. Used as "
-                  "SU2 markers, OpenFOAM patches, CGNS and Exodus names, Gmsh physical names. A name with "
-                  "'farfield' or 'symmetry' (any case) sets the CGNS BC and OpenFOAM patch type; others are walls")
+                  "SU2 markers, OpenFOAM patches, CGNS and Exodus names, Gmsh physical names. The name "
+                  "implies the patch's type unless --patch-types gives it")
+      ->group(io);
+  cmd->add_option("--patch-types", args.patch_types_spec,
+                  "Types of the patch labels, LABEL=TYPE,... (2=inlet,3=outlet): wall, inlet, outlet, farfield, "
+                  "symmetry or patch. OpenFOAM gets wall, patch (inlet, outlet, farfield, patch) or "
+                  "symmetryPlane; CGNS BCWall, BCInflow, BCOutflow, BCFarfield, BCSymmetryPlane, BCGeneral; "
+                  "Exodus a side-set property of that name. Unlisted labels: from the name ('inlet', "
+                  "'inflow', 'outlet', 'outflow', 'farfield', 'symmetry' in it, any case), else wall")
       ->group(io);
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing but errors")->group(io);
   cmd->add_option("--recovery", args.recovery,

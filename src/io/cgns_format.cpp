@@ -76,8 +76,11 @@ const CgnsApi& cgns_api() {
 
 CGNS_ENUMT(BCType_t) cgns_bc_type(PatchKind kind) {
   switch (kind) {
+    case PatchKind::Inlet: return CGNS_ENUMV(BCInflow);
+    case PatchKind::Outlet: return CGNS_ENUMV(BCOutflow);
     case PatchKind::Farfield: return CGNS_ENUMV(BCFarfield);
     case PatchKind::Symmetry: return CGNS_ENUMV(BCSymmetryPlane);
+    case PatchKind::Patch: return CGNS_ENUMV(BCGeneral);
     case PatchKind::Wall: break;
   }
   return CGNS_ENUMV(BCWall);
@@ -122,9 +125,10 @@ class CgnsFile {
 
 std::string cgns_load_error() { return cgns_api().error; }
 
-Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names) {
+Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names,
+                  const PatchTypes& patch_types) {
   if (Status s = check_volume_arrays(mesh); !s.ok()) return s;
-  Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names);
+  Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names, patch_types);
   if (!patches.ok()) return patches.status();
   Result<MeshFaces> faces = build_mesh_faces(mesh);
   if (!faces.ok()) return faces.status();
@@ -181,7 +185,7 @@ Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNa
       return file.error("cg_section_write");
     }
     int bc = 0;
-    if (cg_boco_write(fn, base, zone, p.patch.name.c_str(), cgns_bc_type(patch_kind(p.patch.name)),
+    if (cg_boco_write(fn, base, zone, p.patch.name.c_str(), cgns_bc_type(p.patch.kind),
                       CGNS_ENUMV(PointRange), 2, range, &bc) != CG_OK) {
       return file.error("cg_boco_write");
     }
@@ -198,7 +202,7 @@ Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNa
 bool cgns_available() { return false; }
 std::string cgns_load_error() { return "anitet was not built with CGNS"; }
 
-Status write_cgns(const VolumeMesh&, const std::string& path, const PatchNames&) {
+Status write_cgns(const VolumeMesh&, const std::string& path, const PatchNames&, const PatchTypes&) {
   return Status(Error::NotImplemented, path + ": anitet was not built with CGNS (install libcgns-dev and "
                                               "configure again to write .cgns)");
 }

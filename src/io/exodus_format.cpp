@@ -41,6 +41,7 @@ struct ExodusApi {
   decltype(&::ex_put_name) put_name = nullptr;
   decltype(&::ex_put_set_param) put_set_param = nullptr;
   decltype(&::ex_put_set) put_set = nullptr;
+  decltype(&::ex_put_prop) put_prop = nullptr;
   int* errval = nullptr;  // the library's exerrval
   std::string error;  // empty: every function was found
 };
@@ -54,7 +55,8 @@ const ExodusApi& exodus_api() {
                     library.bind(a.put_coord_names, "ex_put_coord_names") &&
                     library.bind(a.put_block, "ex_put_block") && library.bind(a.put_conn, "ex_put_conn") &&
                     library.bind(a.put_name, "ex_put_name") && library.bind(a.put_set_param, "ex_put_set_param") &&
-                    library.bind(a.put_set, "ex_put_set") && library.bind(a.errval, "exerrval");
+                    library.bind(a.put_set, "ex_put_set") && library.bind(a.put_prop, "ex_put_prop") &&
+                    library.bind(a.errval, "exerrval");
     if (!ok) a.error = library.error();  // (bind() says why whenever it fails)
     return a;
   }();
@@ -71,6 +73,7 @@ const ExodusApi& exodus_api() {
 #define ex_put_name (exodus_api().put_name)
 #define ex_put_set_param (exodus_api().put_set_param)
 #define ex_put_set (exodus_api().put_set)
+#define ex_put_prop (exodus_api().put_prop)
 #undef exerrval
 #define exerrval (*exodus_api().errval)
 
@@ -121,9 +124,10 @@ class ExodusFile {
 
 std::string exodus_load_error() { return exodus_api().error; }
 
-Status write_exodus(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names) {
+Status write_exodus(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names,
+                    const PatchTypes& patch_types) {
   if (Status s = check_volume_arrays(mesh); !s.ok()) return s;
-  Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names);
+  Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names, patch_types);
   if (!patches.ok()) return patches.status();
   Result<MeshFaces> built = build_mesh_faces(mesh);
   if (!built.ok()) return built.status();
@@ -213,6 +217,14 @@ Status write_exodus(const VolumeMesh& mesh, const std::string& path, const Patch
     }
     if ((rc = ex_put_name(id, EX_SIDE_SET, set, p.patch.name.c_str())) < 0) return file.error("ex_put_name", rc);
   }
+  // The patches' kinds as side-set properties: one per kind present, named as --patch-types names
+  // it in capitals (WALL, INLET, ...), 1 on the side sets of that kind and 0 on the others.
+  for (const PatchTriangles& p : patches.value()) {
+    std::string kind = patch_kind_name(p.patch.kind);
+    for (char& c : kind) c = char(c - 'a' + 'A');
+    if ((rc = ex_put_prop(id, EX_SIDE_SET, set_ids.at(p.patch.label), kind.c_str(), 1)) < 0)
+      return file.error("ex_put_prop", rc);
+  }
   return file.close();
 }
 
@@ -221,7 +233,7 @@ Status write_exodus(const VolumeMesh& mesh, const std::string& path, const Patch
 bool exodus_available() { return false; }
 std::string exodus_load_error() { return "anitet was not built with Exodus II"; }
 
-Status write_exodus(const VolumeMesh&, const std::string& path, const PatchNames&) {
+Status write_exodus(const VolumeMesh&, const std::string& path, const PatchNames&, const PatchTypes&) {
   return Status(Error::NotImplemented, path + ": anitet was not built with Exodus II (install libexodusii-dev "
                                               "and configure again to write .exo/.e)");
 }

@@ -78,8 +78,9 @@ std::array<uint32_t, 3> outward_triangle(const VolumeMesh& mesh, const MeshFaces
   return {v[lf[0]], v[lf[1]], v[lf[2]]};
 }
 
-Result<std::vector<PatchTriangles>> patch_triangles(const VolumeMesh& mesh, const PatchNames& names) {
-  Result<std::vector<NamedPatch>> patches = named_patches(mesh.bnd_patch, names);
+Result<std::vector<PatchTriangles>> patch_triangles(const VolumeMesh& mesh, const PatchNames& names,
+                                                    const PatchTypes& types) {
+  Result<std::vector<NamedPatch>> patches = named_patches(mesh.bnd_patch, names, types);
   if (!patches.ok()) return patches.status();
   std::vector<PatchTriangles> out;
   std::map<int32_t, size_t> index;

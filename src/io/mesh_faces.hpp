@@ -41,6 +41,7 @@ struct PatchTriangles {
   NamedPatch patch;
   std::vector<uint32_t> tris;
 };
-Result<std::vector<PatchTriangles>> patch_triangles(const VolumeMesh& mesh, const PatchNames& names);
+Result<std::vector<PatchTriangles>> patch_triangles(const VolumeMesh& mesh, const PatchNames& names,
+                                                    const PatchTypes& types = {});
 
 }  // namespace anitet

@@ -139,7 +139,8 @@ std::string patch_name(const PatchNames& names, int32_t label) {
 
 std::string region_name(int32_t label) { return labelled("region", label); }
 
-Result<std::vector<NamedPatch>> named_patches(const std::vector<int32_t>& labels, const PatchNames& names) {
+Result<std::vector<NamedPatch>> named_patches(const std::vector<int32_t>& labels, const PatchNames& names,
+                                              const PatchTypes& types) {
   std::set<int32_t> used(labels.begin(), labels.end());
   for (const auto& [label, name] : names) {
     if (Status s = check_patch_name(name); !s.ok()) return s;
@@ -148,10 +149,17 @@ Result<std::vector<NamedPatch>> named_patches(const std::vector<int32_t>& labels
                                                 "') is on no boundary triangle of the mesh");
     }
   }
+  for (const auto& [label, kind] : types) {
+    if (!used.count(label)) {
+      return Status(Error::InvalidArgument, "patch label " + std::to_string(label) + " (of type " +
+                                                patch_kind_name(kind) + ") is on no boundary triangle of the mesh");
+    }
+  }
   std::vector<NamedPatch> out;
   std::map<std::string, int32_t> by_name;
   for (int32_t label : used) {
     NamedPatch p{label, patch_name(names, label)};
+    p.kind = patch_kind(types, label, p.name);
     auto [it, fresh] = by_name.emplace(p.name, label);
     if (!fresh) {
       return Status(Error::InvalidArgument, "patch labels " + std::to_string(it->second) + " and " +
@@ -164,9 +172,65 @@ Result<std::vector<NamedPatch>> named_patches(const std::vector<int32_t>& labels
 
 PatchKind patch_kind(const std::string& name) {
   const std::string l = lower(name);
-  if (l.find("farfield") != std::string::npos) return PatchKind::Farfield;
-  if (l.find("symmetry") != std::string::npos) return PatchKind::Symmetry;
+  auto has = [&](const char* word) { return l.find(word) != std::string::npos; };
+  if (has("inlet") || has("inflow")) return PatchKind::Inlet;
+  if (has("outlet") || has("outflow")) return PatchKind::Outlet;
+  if (has("farfield")) return PatchKind::Farfield;
+  if (has("symmetry")) return PatchKind::Symmetry;
   return PatchKind::Wall;
+}
+
+PatchKind patch_kind(const PatchTypes& types, int32_t label, const std::string& name) {
+  auto it = types.find(label);
+  return it != types.end() ? it->second : patch_kind(name);
+}
+
+const char* patch_kind_name(PatchKind kind) {
+  switch (kind) {
+    case PatchKind::Inlet: return "inlet";
+    case PatchKind::Outlet: return "outlet";
+    case PatchKind::Farfield: return "farfield";
+    case PatchKind::Symmetry: return "symmetry";
+    case PatchKind::Patch: return "patch";
+    case PatchKind::Wall: break;
+  }
+  return "wall";
+}
+
+Result<PatchTypes> parse_patch_types(const std::string& spec) {
+  PatchTypes types;
+  size_t start = 0;
+  while (start <= spec.size()) {
+    size_t comma = spec.find(',', start);
+    if (comma == std::string::npos) comma = spec.size();
+    const std::string item = trim(spec.substr(start, comma - start));
+    start = comma + 1;
+    if (item.empty()) {
+      if (comma == spec.size() && !types.empty()) break;  // a trailing comma
+      return Status(Error::InvalidArgument, "'" + spec + "': empty item (expected LABEL=TYPE,...)");
+    }
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos) return Status(Error::InvalidArgument, "'" + item + "' is not LABEL=TYPE");
+    const std::string label_text = trim(item.substr(0, eq)), type = lower(trim(item.substr(eq + 1)));
+    int32_t label = 0;
+    const char* first = label_text.data();
+    const char* last = first + label_text.size();
+    auto [ptr, ec] = std::from_chars(first, last, label);
+    if (label_text.empty() || ec != std::errc() || ptr != last)
+      return Status(Error::InvalidArgument, "'" + item + "': '" + label_text + "' is not an integer patch label");
+    bool known = false;
+    for (PatchKind kind : {PatchKind::Wall, PatchKind::Inlet, PatchKind::Outlet, PatchKind::Farfield,
+                           PatchKind::Symmetry, PatchKind::Patch})
+      if (type == patch_kind_name(kind)) {
+        if (!types.emplace(label, kind).second)
+          return Status(Error::InvalidArgument, "label " + label_text + " is given a type twice");
+        known = true;
+      }
+    if (!known)
+      return Status(Error::InvalidArgument, "'" + item + "': unknown type '" + type +
+                                                "' (wall, inlet, outlet, farfield, symmetry or patch)");
+  }
+  return types;
 }
 
 std::map<int32_t, int32_t> positive_ids(const std::vector<int32_t>& sorted_unique_labels) {

@@ -39,22 +39,42 @@ PatchNames patch_names_from_text(const std::map<int32_t, std::string>& texts);
 std::string patch_name(const PatchNames& names, int32_t label);
 std::string region_name(int32_t label);
 
+// The boundary condition a patch stands for, as the solver formats type it (OpenFOAM's boundary
+// file, CGNS boundary conditions, Exodus side-set properties):
+//   Wall      OpenFOAM wall           CGNS BCWall
+//   Inlet     OpenFOAM patch          CGNS BCInflow
+//   Outlet    OpenFOAM patch          CGNS BCOutflow
+//   Farfield  OpenFOAM patch          CGNS BCFarfield
+//   Symmetry  OpenFOAM symmetryPlane  CGNS BCSymmetryPlane  (OpenFOAM symmetry when not planar)
+//   Patch     OpenFOAM patch          CGNS BCGeneral        (any other open boundary)
+enum class PatchKind { Wall, Inlet, Outlet, Farfield, Symmetry, Patch };
+// Label -> kind, overriding the kind the name implies (--patch-types).
+using PatchTypes = std::map<int32_t, PatchKind>;
+
+// The kind a name implies, case-insensitive: one containing "inlet" or "inflow" is an inlet,
+// "outlet" or "outflow" an outlet, "farfield" a farfield, "symmetry" a symmetry plane; any other
+// name a wall.
+PatchKind patch_kind(const std::string& name);
+// The kind given for `label` in `types`, else the one `name` implies.
+PatchKind patch_kind(const PatchTypes& types, int32_t label, const std::string& name);
+// "wall", "inlet", "outlet", "farfield", "symmetry", "patch".
+const char* patch_kind_name(PatchKind kind);
+// "1=wall,2=inlet" (the names above, case-insensitive). Error::InvalidArgument, naming the item,
+// for a malformed item, an unknown type or a label given twice.
+Result<PatchTypes> parse_patch_types(const std::string& spec);
+
 // The names of the labels actually used by a mesh's boundary triangles, checked: every given
 // name valid, every named label used by at least one triangle, no two labels with one name
 // (a default name counts too: naming label 2 "patch1" while label 1 keeps its default fails).
-// Ordered by increasing label.
+// Ordered by increasing label. Each gets its kind (patch_kind(types, label, name)); a label in
+// `types` that no triangle has is Error::InvalidArgument too.
 struct NamedPatch {
   int32_t label = 0;
   std::string name;
+  PatchKind kind = PatchKind::Wall;
 };
-Result<std::vector<NamedPatch>> named_patches(const std::vector<int32_t>& labels, const PatchNames& names);
-
-// The boundary-condition kind a name implies, for CGNS and OpenFOAM (case-insensitive): a name
-// containing "farfield" is a farfield (CGNS BCFarfield, OpenFOAM patch), one containing
-// "symmetry" a symmetry plane (BCSymmetryPlane, OpenFOAM symmetry), any other a wall (BCWall,
-// OpenFOAM wall).
-enum class PatchKind { Wall, Farfield, Symmetry };
-PatchKind patch_kind(const std::string& name);
+Result<std::vector<NamedPatch>> named_patches(const std::vector<int32_t>& labels, const PatchNames& names,
+                                              const PatchTypes& types = {});
 
 // Entity ids for labels, as Gmsh tags and Exodus ids need positive numbers: the labels
 // themselves when all are positive, else 1, 2, ... in increasing label order.

@@ -2,6 +2,7 @@
 // (CGNS and Exodus II are in cgns_format.cpp and exodus_format.cpp.)
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -20,13 +21,57 @@ namespace {
 constexpr int kSu2Triangle = 5;
 constexpr int kSu2Tetra = 10;
 
-const char* openfoam_type(PatchKind kind) {
-  switch (kind) {
-    case PatchKind::Farfield: return "patch";
-    case PatchKind::Symmetry: return "symmetry";
-    case PatchKind::Wall: break;
+// Every triangle's unit normal within 1e-8 of the first's (either way), and every corner within
+// 1e-10 of the patch's size of its plane.
+bool triangles_coplanar(const VolumeMesh& mesh, const std::vector<uint32_t>& tris) {
+  if (tris.empty()) return false;
+  auto normal = [&](uint32_t b, double n[3]) {
+    const double* p = mesh.point(mesh.bnd_tri[3 * size_t(b)]);
+    const double* q = mesh.point(mesh.bnd_tri[3 * size_t(b) + 1]);
+    const double* r = mesh.point(mesh.bnd_tri[3 * size_t(b) + 2]);
+    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; ++k) n[k] = len > 0 ? n[k] / len : 0.0;
+  };
+  double n0[3], lo[3], hi[3];
+  normal(tris[0], n0);
+  const double* origin = mesh.point(mesh.bnd_tri[3 * size_t(tris[0])]);
+  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = origin[k];
+  for (uint32_t b : tris)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], mesh.point(mesh.bnd_tri[3 * size_t(b) + j])[k]);
+        hi[k] = std::max(hi[k], mesh.point(mesh.bnd_tri[3 * size_t(b) + j])[k]);
+      }
+  const double size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  for (uint32_t b : tris) {
+    double n[3];
+    normal(b, n);
+    if (std::abs(std::abs(n[0] * n0[0] + n[1] * n0[1] + n[2] * n0[2]) - 1.0) > 1e-8) return false;
+    for (int j = 0; j < 3; ++j) {
+      const double* x = mesh.point(mesh.bnd_tri[3 * size_t(b) + j]);
+      const double d = (x[0] - origin[0]) * n0[0] + (x[1] - origin[1]) * n0[1] + (x[2] - origin[2]) * n0[2];
+      if (std::abs(d) > 1e-10 * size) return false;
+    }
   }
-  return "wall";
+  return true;
+}
+
+// OpenFOAM's type for a patch: a symmetry patch is a symmetryPlane when its faces are coplanar
+// (OpenFOAM refuses a symmetryPlane that is not), else the general `symmetry`.
+const char* openfoam_type(PatchKind kind, const VolumeMesh& mesh, const std::vector<uint32_t>& tris) {
+  switch (kind) {
+    case PatchKind::Wall: return "wall";
+    case PatchKind::Symmetry: return triangles_coplanar(mesh, tris) ? "symmetryPlane" : "symmetry";
+    case PatchKind::Inlet:
+    case PatchKind::Outlet:
+    case PatchKind::Farfield:
+    case PatchKind::Patch: break;
+  }
+  return "patch";
 }
 
 void append_foam_header(std::string& out, const char* cls, const char* object, const std::string& note = "") {
@@ -76,9 +121,9 @@ Result<std::string> to_su2(const VolumeMesh& mesh, const PatchNames& patch_names
   return out;
 }
 
-Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_names) {
+Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_names, const PatchTypes& patch_types) {
   if (Status s = check_volume_arrays(mesh); !s.ok()) return s;
-  Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names);
+  Result<std::vector<PatchTriangles>> patches = patch_triangles(mesh, patch_names, patch_types);
   if (!patches.ok()) return patches.status();
   Result<MeshFaces> built = build_mesh_faces(mesh);
   if (!built.ok()) return built.status();
@@ -151,7 +196,7 @@ Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_nam
   }
   for (size_t p = 0; p < patches.value().size(); ++p) {
     const NamedPatch& named = patches.value()[p].patch;
-    PolyMeshPatch patch{named.name, openfoam_type(patch_kind(named.name)), pm.owner.size(), 0};
+    PolyMeshPatch patch{named.name, openfoam_type(named.kind, mesh, patches.value()[p].tris), pm.owner.size(), 0};
     for (size_t face : by_patch[p]) push_face(face / 4, int(face % 4));
     patch.size = pm.owner.size() - patch.start;
     pm.patches.push_back(std::move(patch));
@@ -164,8 +209,9 @@ Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_nam
   return pm;
 }
 
-Status write_openfoam(const VolumeMesh& mesh, const std::string& dir, const PatchNames& patch_names) {
-  Result<PolyMesh> built = to_polymesh(mesh, patch_names);
+Status write_openfoam(const VolumeMesh& mesh, const std::string& dir, const PatchNames& patch_names,
+                      const PatchTypes& patch_types) {
+  Result<PolyMesh> built = to_polymesh(mesh, patch_names, patch_types);
   if (!built.ok()) return built.status();
   const PolyMesh& pm = built.value();
   std::error_code ec;

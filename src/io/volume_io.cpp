@@ -114,6 +114,11 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path,
 
 Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names,
                          const std::vector<TetScalar>& tet_scalars) {
+  return write_volume_mesh(mesh, path, patch_names, PatchTypes(), tet_scalars);
+}
+
+Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names,
+                         const PatchTypes& patch_types, const std::vector<TetScalar>& tet_scalars) {
   Result<VolumeFormat> format = volume_format_from_path(path);
   if (!format.ok()) {
     return Status(Error::UnsupportedFormat, path + ": cannot write volume mesh format '." + lower_extension(path) +
@@ -127,21 +132,26 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
     return Status(st.code(), path + ": not written: " + st.message() +
                                  (mesh.bnd_tri.empty() ? " (this format's boundary markers need them)" : ""));
   }
+  // The formats without patch types still refuse a type for a label no triangle has.
+  if (!patch_types.empty()) {
+    if (Result<std::vector<NamedPatch>> named = named_patches(mesh.bnd_patch, patch_names, patch_types); !named.ok())
+      return named.status();
+  }
   Result<std::string> bytes = std::string();
   switch (format.value()) {
     case VolumeFormat::Medit: return write_medit_volume(mesh, path, patch_names);
     case VolumeFormat::Gmsh: bytes = to_gmsh(mesh, patch_names); break;
     case VolumeFormat::MeditBinary:
     case VolumeFormat::Vtu:
-      if (Result<std::vector<NamedPatch>> named = named_patches(mesh.bnd_patch, patch_names); !named.ok()) {
+      if (Result<std::vector<NamedPatch>> named = named_patches(mesh.bnd_patch, patch_names, patch_types); !named.ok()) {
         return named.status();  // VTU and .meshb have no names, but a wrong name is still an error
       }
       bytes = format.value() == VolumeFormat::Vtu ? to_vtu(mesh, tet_scalars) : to_meshb(mesh);
       break;
     case VolumeFormat::Su2: bytes = to_su2(mesh, patch_names); break;
-    case VolumeFormat::OpenFoam: return write_openfoam(mesh, path, patch_names);
-    case VolumeFormat::Cgns: return write_cgns(mesh, path, patch_names);
-    case VolumeFormat::Exodus: return write_exodus(mesh, path, patch_names);
+    case VolumeFormat::OpenFoam: return write_openfoam(mesh, path, patch_names, patch_types);
+    case VolumeFormat::Cgns: return write_cgns(mesh, path, patch_names, patch_types);
+    case VolumeFormat::Exodus: return write_exodus(mesh, path, patch_names, patch_types);
     case VolumeFormat::TetGen: break;  // refused above
   }
   if (!bytes.ok()) return bytes.status();

@@ -69,6 +69,10 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path,
                          const std::vector<TetScalar>& tet_scalars = {});
 Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names,
                          const std::vector<TetScalar>& tet_scalars = {});
+// The same with the patches' kinds given (patch_names.hpp: the kind a name implies otherwise),
+// for the formats that type their patches: OpenFOAM, CGNS, Exodus II.
+Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names,
+                         const PatchTypes& patch_types, const std::vector<TetScalar>& tet_scalars = {});
 // Writes mesh.vertex_metric as a Medit .sol (sol_io.hpp), or a binary .solb when the path ends
 // in .solb (GMF version chosen as in to_gmf_mesh): SolAtVertices of type 1 (1 value per vertex)
 // or type 3 (6 values per vertex, Medit's order xx xy yy xz yz zz, the same as VolumeMesh's).
@@ -104,11 +108,12 @@ Result<std::string> to_su2(const VolumeMesh& mesh, const PatchNames& patch_names
 // neighbour; owner < neighbour), oriented from owner to neighbour; then the boundary faces patch
 // by patch (increasing label), oriented out of the domain. Every boundary face of the tets must
 // be a boundary triangle and no boundary triangle an internal face (Error::InvalidArgument
-// otherwise). Patch type from patch_kind(): wall, patch (farfield) or symmetry. cellZones: one
+// otherwise). Patch type from the patch's kind (patch_names.hpp): wall, patch (inlet, outlet, farfield,
+// patch) or symmetryPlane (symmetry when its faces are not coplanar). cellZones: one
 // zone region<label> per region when mesh.region is not empty.
 struct PolyMeshPatch {
   std::string name;
-  std::string type;  // "wall", "patch" or "symmetry"
+  std::string type;  // "wall", "patch", "symmetryPlane" or "symmetry"
   size_t start = 0, size = 0;
 };
 struct PolyMesh {
@@ -119,26 +124,33 @@ struct PolyMesh {
   std::vector<std::pair<std::string, std::vector<uint32_t>>> cell_zones;
   size_t num_internal_faces() const { return neighbour.size(); }
 };
-Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_names = {});
+Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_names = {},
+                             const PatchTypes& patch_types = {});
 // Writes DIR/points, faces, owner, neighbour, boundary (and cellZones, or removes a stale one),
 // creating DIR and its parents. OpenFOAM's tools want DIR = CASE/constant/polyMesh and a
 // CASE/system/controlDict, which this does not write.
-Status write_openfoam(const VolumeMesh& mesh, const std::string& dir, const PatchNames& patch_names = {});
+Status write_openfoam(const VolumeMesh& mesh, const std::string& dir, const PatchNames& patch_names = {},
+                      const PatchTypes& patch_types = {});
 
 // CGNS (HDF5 through the CGNS mid-level library): base "Base" (3, 3), one unstructured zone
 // "Zone1"; coordinates; section "GridElements" of TETRA_4 (elements 1..tets); one TRI_3 section
 // per patch named after it (the following element ids); one boundary condition per patch with
-// the same name, type from patch_kind() (BCWall, BCFarfield, BCSymmetryPlane), PointRange over
+// the same name, type from the patch's kind (BCWall, BCInflow, BCOutflow, BCFarfield,
+// BCSymmetryPlane, BCGeneral), PointRange over
 // its section's element ids, GridLocation FaceCenter. Error::NotImplemented when built without
 // CGNS.
-Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names = {});
+Status write_cgns(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names = {},
+                  const PatchTypes& patch_types = {});
 
 // Exodus II: one TETRA element block (4 nodes per element) per region (id = the label when all are positive, else
 // 1, 2, ..., named region<label>), elements numbered block by block; one side set per patch
 // (id by the same rule, named after the patch) listing element and Exodus side number (1 = nodes
 // 1 2 4, 2 = 2 3 4, 3 = 1 4 3, 4 = 1 3 2). Every boundary triangle must be a face of a tet
-// (Error::InvalidArgument otherwise). Error::NotImplemented when built without Exodus II.
-Status write_exodus(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names = {});
+// (Error::InvalidArgument otherwise). The patches' kinds (patch_names.hpp) as side-set properties
+// named WALL, INLET, OUTLET, FARFIELD, SYMMETRY, PATCH (those present): 1 on the side sets of
+// that kind, 0 on the others. Error::NotImplemented when built without Exodus II.
+Status write_exodus(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names = {},
+                    const PatchTypes& patch_types = {});
 
 // Error::InvalidArgument unless the array sizes agree; Error::BadIndex for an index that is not
 // a vertex. Writers run this first.

@@ -146,6 +146,38 @@ TEST(PatchNames, ParsesAndRefuses) {
   EXPECT_EQ(patch_kind("wall"), PatchKind::Wall);
   EXPECT_EQ(patch_kind("FarField_out"), PatchKind::Farfield);
   EXPECT_EQ(patch_kind("SYMMETRY"), PatchKind::Symmetry);
+  EXPECT_EQ(patch_kind("Inlet_1"), PatchKind::Inlet);
+  EXPECT_EQ(patch_kind("main_inflow"), PatchKind::Inlet);
+  EXPECT_EQ(patch_kind("OUTLET"), PatchKind::Outlet);
+  EXPECT_EQ(patch_kind("outflow2"), PatchKind::Outlet);
+  EXPECT_EQ(patch_kind(PatchTypes{{3, PatchKind::Patch}}, 3, "wall"), PatchKind::Patch);
+  EXPECT_EQ(patch_kind(PatchTypes{{3, PatchKind::Patch}}, 4, "inlet"), PatchKind::Inlet);
+}
+
+TEST(PatchTypes, ParsesAndRefuses) {
+  Result<PatchTypes> ok = parse_patch_types(" 1=wall, 2 = Inlet,-3=OUTLET,4=farfield,5=symmetry,6=patch,");
+  ASSERT_TRUE(ok.ok()) << ok.status().message();
+  EXPECT_EQ(ok.value(), (PatchTypes{{1, PatchKind::Wall}, {2, PatchKind::Inlet}, {-3, PatchKind::Outlet},
+                                    {4, PatchKind::Farfield}, {5, PatchKind::Symmetry}, {6, PatchKind::Patch}}));
+  for (PatchKind kind : {PatchKind::Wall, PatchKind::Inlet, PatchKind::Outlet, PatchKind::Farfield,
+                         PatchKind::Symmetry, PatchKind::Patch}) {
+    Result<PatchTypes> back = parse_patch_types("7=" + std::string(patch_kind_name(kind)));
+    ASSERT_TRUE(back.ok());
+    EXPECT_EQ(back.value().at(7), kind);
+  }
+  for (const char* bad : {"", "1", "=wall", "x=wall", "1.5=wall", "1=wall,1=inlet", "1=symmetryPlane", "1=",
+                          "1=wall,,2=inlet"}) {
+    Result<PatchTypes> r = parse_patch_types(bad);
+    EXPECT_FALSE(r.ok()) << "'" << bad << "' was accepted";
+    if (!r.ok()) {
+      EXPECT_EQ(r.status().code(), Error::InvalidArgument) << bad;
+    }
+  }
+  // A type for a label no boundary triangle has is refused by the writers.
+  const VolumeMesh m = grid_mesh(1, 2);
+  const Status s = write_volume_mesh(m, test::temp_dir() + "/types.su2", PatchNames{}, PatchTypes{{9, PatchKind::Inlet}});
+  EXPECT_EQ(s.code(), Error::InvalidArgument);
+  EXPECT_NE(s.message().find("patch label 9 (of type inlet)"), std::string::npos) << s.message();
 }
 
 TEST(PatchNames, WritersRefuseNamesTheMeshCannotCarry) {
@@ -377,7 +409,7 @@ TEST(OpenFoam, PolyMeshInvariants) {
   }
   const std::vector<std::pair<std::string, std::string>> want = {
       {"wall", "wall"}, {"FarField_out", "patch"}, {"patch3", "wall"},
-      {"patch4", "wall"}, {"symmetry_bottom", "symmetry"}, {"patch6", "wall"}};
+      {"patch4", "wall"}, {"symmetry_bottom", "symmetryPlane"}, {"patch6", "wall"}};
   const std::map<int32_t, std::set<Tri>> expected = triangles_by_patch(m);
   size_t next = ni;
   for (size_t p = 0; p < npatch; ++p) {
@@ -408,6 +440,30 @@ TEST(OpenFoam, PolyMeshInvariants) {
       if (m.region[t] == r) expected_cells.push_back(uint32_t(t));
     EXPECT_EQ(cells, expected_cells);
   }
+}
+
+// --patch-types over the names' kinds: inlet, outlet, farfield and patch are OpenFOAM `patch`es; a
+// symmetry patch is a symmetryPlane when planar, else the general `symmetry`.
+TEST(OpenFoam, PatchTypesOverTheNames) {
+  VolumeMesh m = grid_mesh(2, 5);
+  for (int32_t& label : m.bnd_patch)
+    if (label == 4) label = 3;  // y- and y+ as one non-planar patch 3
+  const PatchTypes types = {{1, PatchKind::Inlet}, {2, PatchKind::Outlet}, {3, PatchKind::Symmetry},
+                            {5, PatchKind::Wall}, {6, PatchKind::Patch}};
+  Result<PolyMesh> pm = to_polymesh(m, kNames, types);
+  ASSERT_TRUE(pm.ok()) << pm.status().message();
+  std::vector<std::pair<std::string, std::string>> got;
+  for (const PolyMeshPatch& p : pm.value().patches) got.emplace_back(p.name, p.type);
+  EXPECT_EQ(got, (std::vector<std::pair<std::string, std::string>>{{"wall", "patch"},
+                                                                   {"FarField_out", "patch"},
+                                                                   {"patch3", "symmetry"},
+                                                                   {"symmetry_bottom", "wall"},
+                                                                   {"patch6", "patch"}}));
+  m.bnd_patch = grid_mesh(2, 5).bnd_patch;  // patch 3 planar again: a symmetryPlane
+  Result<PolyMesh> planar = to_polymesh(m, kNames, types);
+  ASSERT_TRUE(planar.ok());
+  EXPECT_EQ(planar.value().patches[2].type, "symmetryPlane");
+  EXPECT_EQ(planar.value().patches[3].type, "wall");  // patch4 by its default name
 }
 
 TEST(OpenFoam, RefusesBoundaryFacesOutsideEveryPatch) {
@@ -508,7 +564,9 @@ TEST(Cgns, ReadBackWithTheCgnsLibrary) {
   ASSERT_TRUE(cgns_available());
   const VolumeMesh m = grid_mesh(2, 6);
   const std::string path = test::temp_dir() + "/grid.cgns";
-  const Status written = write_volume_mesh(m, path, kNames);
+  // Labels 1, 2, 5: the kinds their names imply; 3, 4, 6 typed by --patch-types.
+  const PatchTypes patch_types = {{3, PatchKind::Inlet}, {4, PatchKind::Outlet}, {6, PatchKind::Patch}};
+  const Status written = write_volume_mesh(m, path, kNames, patch_types);
   ASSERT_TRUE(written.ok()) << written.message();
   int fn = 0, nbases = 0, nzones = 0, ncoords = 0, nsections = 0, nbocos = 0, cell_dim = 0, phys_dim = 0;
   ASSERT_EQ(cg_open(path.c_str(), CG_MODE_READ, &fn), CG_OK) << cg_get_error();
@@ -573,8 +631,9 @@ TEST(Cgns, ReadBackWithTheCgnsLibrary) {
   }
   ASSERT_EQ(cg_nbocos(fn, 1, 1, &nbocos), CG_OK);
   ASSERT_EQ(nbocos, 6);
-  const CGNS_ENUMT(BCType_t) types[6] = {CGNS_ENUMV(BCWall), CGNS_ENUMV(BCFarfield), CGNS_ENUMV(BCWall),
-                                         CGNS_ENUMV(BCWall), CGNS_ENUMV(BCSymmetryPlane), CGNS_ENUMV(BCWall)};
+  const CGNS_ENUMT(BCType_t) types[6] = {CGNS_ENUMV(BCWall),   CGNS_ENUMV(BCFarfield),
+                                         CGNS_ENUMV(BCInflow), CGNS_ENUMV(BCOutflow),
+                                         CGNS_ENUMV(BCSymmetryPlane), CGNS_ENUMV(BCGeneral)};
   for (int bc = 1; bc <= nbocos; ++bc) {
     CGNS_ENUMT(BCType_t) type;
     CGNS_ENUMT(PointSetType_t) ptset;
@@ -613,7 +672,8 @@ TEST(Exodus, ReadBackWithTheExodusLibrary) {
   ASSERT_TRUE(exodus_available());
   const VolumeMesh m = grid_mesh(2, 7);
   const std::string path = test::temp_dir() + "/grid.exo";
-  const Status written = write_volume_mesh(m, path, kNames);
+  const PatchTypes patch_types = {{3, PatchKind::Inlet}, {4, PatchKind::Outlet}, {6, PatchKind::Patch}};
+  const Status written = write_volume_mesh(m, path, kNames, patch_types);
   ASSERT_TRUE(written.ok()) << written.message();
   int cpu_ws = sizeof(double), io_ws = 0;
   float version = 0;
@@ -700,6 +760,26 @@ TEST(Exodus, ReadBackWithTheExodusLibrary) {
     }
     EXPECT_EQ(got, expected.at(s + 1)) << "side set " << s + 1;
   }
+  // The patches' kinds as side-set properties (after Exodus's own ID property): 1 where the set
+  // has that kind.
+  const int nprops = ex_inquire_int(id, EX_INQ_SS_PROP);
+  std::vector<std::vector<char>> storage(size_t(nprops), std::vector<char>(MAX_STR_LENGTH + 1, '\0'));
+  std::vector<char*> ptrs;
+  for (auto& st : storage) ptrs.push_back(st.data());
+  ASSERT_GE(ex_get_prop_names(id, EX_SIDE_SET, ptrs.data()), 0);
+  std::map<std::string, std::vector<int>> props;
+  for (char* name : ptrs) {
+    std::vector<int> values(6);
+    ASSERT_GE(ex_get_prop_array(id, EX_SIDE_SET, name, values.data()), 0);
+    props[name] = values;
+  }
+  EXPECT_EQ(props, (std::map<std::string, std::vector<int>>{{"ID", {1, 2, 3, 4, 5, 6}},
+                                                            {"WALL", {1, 0, 0, 0, 0, 0}},
+                                                            {"FARFIELD", {0, 1, 0, 0, 0, 0}},
+                                                            {"INLET", {0, 0, 1, 0, 0, 0}},
+                                                            {"OUTLET", {0, 0, 0, 1, 0, 0}},
+                                                            {"SYMMETRY", {0, 0, 0, 0, 1, 0}},
+                                                            {"PATCH", {0, 0, 0, 0, 0, 1}}}));
   ex_close(id);
 }
 #else
