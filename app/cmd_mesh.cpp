@@ -42,8 +42,20 @@ std::string optimization_counts(const OptimizeStats& o) {
          " tets flat to rounding opened";
 }
 
+// "slide patches: 2 'inlet' 384 -> 2112 triangles (+1728), ...; N junction columns, M reduced".
+std::string slide_text(const SlideReport& slide, const PatchNames& names) {
+  std::string text = "slide patches (re-triangulated where the layers slide):";
+  for (const SlidePatchChange& c : slide.changes) {
+    text += (&c == &slide.changes.front() ? " " : ", ") + std::to_string(c.label) + " '" + patch_name(names, c.label) +
+            "' " + std::to_string(c.triangles_before) + " -> " + std::to_string(c.triangles_after) + " triangles (+" +
+            std::to_string(int64_t(c.triangles_after) - int64_t(c.triangles_before)) + ")";
+  }
+  return text + "; " + std::to_string(slide.junction_vertices) + " junction columns, " +
+         std::to_string(slide.reduced_columns) + " lowered";
+}
+
 // The run's figures for the HTML report's "Meshing run" table.
-std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r) {
+std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r, const PatchNames& names) {
   auto fixed = [](double x, const char* format) {
     char buf[64];
     std::snprintf(buf, sizeof buf, format, x);
@@ -69,6 +81,15 @@ std::vector<std::pair<std::string, std::string>> run_rows(const MesherResult& r)
                                             std::to_string(r.boundary_layer.tets) + " tets; first height " +
                                             fixed(r.boundary_layer.first_height_min, "%.4g") + " .. " +
                                             fixed(r.boundary_layer.first_height_max, "%.4g"));
+  if (r.boundary_layer.layers > 0)
+    rows.emplace_back("boundary layer cells",
+                      std::to_string(r.boundary_layer.full_columns) + " full columns, " +
+                          std::to_string(r.boundary_layer.nominal_columns) + " within 10% of h0 r^i; max growth " +
+                          fixed(r.boundary_layer.max_neighbour_growth, "%.3f") + "; non-orthogonality max " +
+                          fixed(r.boundary_layer.non_orthogonality_max, "%.1f deg") + ", skewness max " +
+                          fixed(r.boundary_layer.skewness_max, "%.2f") + "; reduced columns " +
+                          std::to_string(r.boundary_layer.reduced_vertices));
+  if (!r.slide.changes.empty()) rows.emplace_back("slide patches", slide_text(r.slide, names));
   rows.emplace_back("refinement", std::to_string(r.refine.splits) + " splits, " + std::to_string(r.refine.collapses) +
                                       " collapses; " + fixed(100.0 * r.refine.length_in_range, "%.1f") +
                                       "% of edges in [1/sqrt2, sqrt2]");
@@ -132,7 +153,14 @@ void print_details(const MesherResult& r, const QualityReport& quality) {
     std::cout << "  boundary layer: wall vertices by layers reached:";
     for (size_t i = 0; i < bl.columns_reaching.size(); ++i)
       if (bl.columns_reaching[i] > 0) std::cout << " " << i << ": " << bl.columns_reaching[i];
-    std::cout << "\n";
+    std::cout << "\n  boundary layer: heights per layer (min / mean / max):";
+    for (size_t i = 0; i < bl.layer_height_mean.size(); ++i)
+      std::cout << (i % 4 == 0 ? "\n   " : ";") << " " << i << ": " << bl.layer_height_min[i] << " / "
+                << bl.layer_height_mean[i] << " / " << bl.layer_height_max[i];
+    std::cout << "\n  boundary layer: max growth between neighbouring layers " << bl.max_neighbour_growth
+              << "; dual faces " << bl.dual_faces << ": non-orthogonality max " << bl.non_orthogonality_max
+              << " deg, mean " << bl.non_orthogonality_mean << ", " << bl.non_orthogonal_faces
+              << " above 70; skewness max " << bl.skewness_max << ", " << bl.skew_faces << " above 4\n";
   }
   std::cout << "  stage 2 Steiner points on S1: " << r.recovery.steiner_on_edges << " on edges, "
             << r.recovery.steiner_on_faces << " in faces (" << recovery_strategy_name(r.recovery.strategy)
@@ -215,10 +243,18 @@ void print_summary(const MeshArgs& args, const MesherResult& r, const QualityRep
       std::cout << line;
     }
   }
-  if (bl.layers > 0)
+  if (bl.layers > 0) {
     std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
               << bl.full_columns << " full columns (" << std::llround(bl.wall_vertices ? 100.0 * double(bl.full_columns) / double(bl.wall_vertices) : 0.0)
               << "%), first height " << bl.first_height_min << " .. " << bl.first_height_max << "\n";
+    std::snprintf(line, sizeof line,
+                  "  boundary layer cells: heights within 10%% of h0 r^i in %zu full columns, max growth between "
+                  "layers %.3f; non-orthogonality max %.1f deg (mean %.1f), skewness max %.2f\n",
+                  bl.nominal_columns, bl.max_neighbour_growth, bl.non_orthogonality_max, bl.non_orthogonality_mean,
+                  bl.skewness_max);
+    std::cout << line;
+  }
+  if (!r.slide.changes.empty()) std::cout << "  " << slide_text(r.slide, args.patch_names) << "\n";
   if (r.metric_quality.tets > 0) {
     std::snprintf(line, sizeof line,
                   "  in the metric: %.1f%% of edges in [1/sqrt2, sqrt2]; radius ratio mean %.3f, min %.3f\n",
@@ -393,7 +429,7 @@ class MeshCommand {
     html_options.mesh_name = args_.output;
     html_options.surface_name = args_.input;
     for (size_t k = 0; k < 3 && k < args_.report_cut.size(); ++k) html_options.cut[k] = args_.report_cut[k];
-    html_options.run_rows = run_rows(r);
+    html_options.run_rows = run_rows(r, args_.patch_names);
     Result<HtmlReport> html = tbb::this_task_arena::isolate(
         [&] { return quality_report_html(r.mesh, &meshed_surface(r), QualityOptions(), html_options); });
     if (!html.ok()) return html.status();

@@ -28,6 +28,11 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
       for (int k = 0; k < 3; ++k) wall[surface.tri[3 * t + k]] = 1;
   double first_sum = 0.0, growth_sum = 0.0;
   r.first_height_min = HUGE_VAL;
+  const size_t n = size_t(std::max(layers, 0));
+  r.layer_height_min.assign(n, HUGE_VAL);
+  r.layer_height_mean.assign(n, 0.0);
+  r.layer_height_max.assign(n, 0.0);
+  std::vector<size_t> reaching(n, 0);
   for (uint32_t v = 0; v < surface.num_vertices(); ++v) {
     if (!wall[v]) continue;
     ++r.wall_vertices;
@@ -40,7 +45,12 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
       const uint32_t next = children[at].back();
       const double h = distance(mesh.point(at), mesh.point(next));
       if (i == 0) first = h;
+      if (i > 0 && h > 0.0 && last > 0.0) r.max_neighbour_growth = std::max({r.max_neighbour_growth, h / last, last / h});
       last = h;
+      r.layer_height_min[size_t(i)] = std::min(r.layer_height_min[size_t(i)], h);
+      r.layer_height_max[size_t(i)] = std::max(r.layer_height_max[size_t(i)], h);
+      r.layer_height_mean[size_t(i)] += h;
+      ++reaching[size_t(i)];
       worst = std::max(worst, std::abs(h / (bl.first_height * std::pow(bl.growth, i)) - 1.0));
       at = next;
     }
@@ -56,6 +66,10 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
       r.max_height_error = std::max(r.max_height_error, worst);
     }
   }
+  for (size_t i = 0; i < n; ++i) {
+    r.layer_height_mean[i] = reaching[i] ? r.layer_height_mean[i] / double(reaching[i]) : 0.0;
+    if (!reaching[i]) r.layer_height_min[i] = 0.0;
+  }
   if (r.full_columns) {
     r.first_height_mean = first_sum / double(r.full_columns);
     r.growth_mean = growth_sum / double(r.full_columns);
@@ -65,6 +79,72 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
   for (uint32_t v = 0; v < nv && 3 * size_t(v) + 2 < t1_xyz.size(); ++v)
     if (mesh.vflags[v] & vflag::kBoundaryLayer)
       r.max_displacement = std::max(r.max_displacement, distance(mesh.point(v), &t1_xyz[3 * size_t(v)]));
+}
+
+void measure_boundary_layer_cells(const TetMesh& mesh, int32_t first_bl_region, BoundaryLayerReport& r) {
+  const double kPi = 3.14159265358979323846;
+  auto centroid = [&](uint32_t t, double c[3]) {
+    for (int k = 0; k < 3; ++k) c[k] = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) c[k] += 0.25 * mesh.point(mesh.vertex(t, i))[k];
+  };
+  auto bl = [&](uint32_t t) { return !mesh.is_deleted(t) && !mesh.is_ghost(t) && mesh.tet_region[t] >= first_bl_region; };
+  double angle_sum = 0.0;
+  r.dual_faces = 0;
+  r.non_orthogonality_max = r.skewness_max = 0.0;
+  r.non_orthogonal_faces = r.skew_faces = 0;
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    if (!bl(t)) continue;
+    for (int f = 0; f < 4; ++f) {
+      if (mesh.tet_adj[4 * size_t(t) + f] == TetMesh::kNoNeighbour) continue;
+      const uint32_t u = mesh.neighbour(t, f);
+      if (mesh.is_deleted(u) || mesh.is_ghost(u) || (bl(u) && u < t)) continue;  // each face once
+      const double* p[3] = {mesh.point(mesh.vertex(t, kFacetVertex[f][0])), mesh.point(mesh.vertex(t, kFacetVertex[f][1])),
+                            mesh.point(mesh.vertex(t, kFacetVertex[f][2]))};
+      double ct[3], cu[3], fc[3], d[3], e1[3], e2[3], s[3];
+      centroid(t, ct);
+      centroid(u, cu);
+      for (int k = 0; k < 3; ++k) {
+        fc[k] = (p[0][k] + p[1][k] + p[2][k]) / 3.0;
+        d[k] = cu[k] - ct[k];
+        e1[k] = p[1][k] - p[0][k];
+        e2[k] = p[2][k] - p[0][k];
+      }
+      s[0] = e1[1] * e2[2] - e1[2] * e2[1];
+      s[1] = e1[2] * e2[0] - e1[0] * e2[2];
+      s[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      // Oriented out of t: away from its vertex opposite the face.
+      const double* opposite = mesh.point(mesh.vertex(t, f));
+      if (s[0] * (opposite[0] - p[0][0]) + s[1] * (opposite[1] - p[0][1]) + s[2] * (opposite[2] - p[0][2]) > 0.0)
+        for (double& x : s) x = -x;
+      const double sd = s[0] * d[0] + s[1] * d[1] + s[2] * d[2];
+      const double ls = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+      const double ld = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (!(ls > 0.0 && ld > 0.0)) continue;
+      // Towards u's centre when the dual edge is sound (below 90 deg).
+      const double angle = std::acos(std::clamp(sd / (ls * ld), -1.0, 1.0)) * 180.0 / kPi;
+      // Skewness: where the centres' line crosses the face's plane, against the face's centroid.
+      const double at = sd != 0.0 ? (s[0] * (fc[0] - ct[0]) + s[1] * (fc[1] - ct[1]) + s[2] * (fc[2] - ct[2])) / sd : 0.0;
+      double sv[3], lsv = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        sv[k] = fc[k] - (ct[k] + at * d[k]);
+        lsv += sv[k] * sv[k];
+      }
+      lsv = std::sqrt(lsv);
+      double reach = 0.2 * ld;
+      if (lsv > 0.0)
+        for (const double* q : p)
+          reach = std::max(reach, std::abs((q[0] - fc[0]) * sv[0] + (q[1] - fc[1]) * sv[1] + (q[2] - fc[2]) * sv[2]) / lsv);
+      const double skew = lsv / reach;
+      ++r.dual_faces;
+      angle_sum += angle;
+      r.non_orthogonality_max = std::max(r.non_orthogonality_max, angle);
+      r.skewness_max = std::max(r.skewness_max, skew);
+      r.non_orthogonal_faces += angle > 70.0;
+      r.skew_faces += skew > 4.0;
+    }
+  }
+  r.non_orthogonality_mean = r.dual_faces ? angle_sum / double(r.dual_faces) : 0.0;
 }
 
 }  // namespace anitet

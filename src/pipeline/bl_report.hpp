@@ -28,6 +28,19 @@ struct BoundaryLayerReport {
   double max_height_error = 0.0;  // max |h / (h0 r^i) - 1| over the nominal columns
   double growth_mean = 0.0;       // mean of (h_(n-1) / h_0)^(1 / (n-1)) over full columns
   double max_displacement = 0.0;  // largest move of a BL vertex after stage 1 (0: kept)
+  // Per layer i (0..n-1), over the columns that reach it: the heights' min, mean and max.
+  std::vector<double> layer_height_min, layer_height_mean, layer_height_max;
+  double max_neighbour_growth = 0.0;  // max h_(i+1) / h_i within a column (1/that if larger)
+  // OpenFOAM checkMesh's measures of the dual mesh on the faces two tets share, one of them a BL
+  // tet (cell centres: the tets' centroids): non-orthogonality, the angle between the face's
+  // normal and the line joining the centres (degrees); skewness, the distance from the face's
+  // centroid to where that line crosses the face's plane over the distance to the face's edge in
+  // that direction (at least 0.2 of the centres' distance). checkMesh flags > 70 deg and > 4.
+  size_t dual_faces = 0;
+  double non_orthogonality_max = 0.0, non_orthogonality_mean = 0.0;
+  double skewness_max = 0.0;
+  size_t non_orthogonal_faces = 0;  // above 70 deg
+  size_t skew_faces = 0;            // above 4
 };
 
 // The BL columns of `surface`'s wall vertices measured on `mesh` (stage 1's T1, or the final
@@ -36,5 +49,9 @@ struct BoundaryLayerReport {
 void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptions& bl, int layers,
                             const std::vector<uint32_t>& vertex_origin, const std::vector<double>& t1_xyz,
                             const TetMesh& mesh, BoundaryLayerReport& r);
+
+// The dual-mesh figures above (dual_faces .. skew_faces) on the tets of regions >= first_bl_region
+// (the final mesh's BL regions, or T1's BoundaryLayerOptions::region).
+void measure_boundary_layer_cells(const TetMesh& mesh, int32_t first_bl_region, BoundaryLayerReport& r);
 
 }  // namespace anitet

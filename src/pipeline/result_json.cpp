@@ -62,6 +62,16 @@ std::string mesher_result_json(const MesherResult& r, int indent) {
         {"max_height_error", bl.max_height_error},
         {"growth_mean", bl.growth_mean},
         {"max_displacement", bl.max_displacement},
+        {"layer_height_min", bl.layer_height_min},
+        {"layer_height_mean", bl.layer_height_mean},
+        {"layer_height_max", bl.layer_height_max},
+        {"max_neighbour_growth", bl.max_neighbour_growth},
+        {"dual_faces", bl.dual_faces},
+        {"non_orthogonality_max", bl.non_orthogonality_max},
+        {"non_orthogonality_mean", bl.non_orthogonality_mean},
+        {"non_orthogonal_faces", bl.non_orthogonal_faces},
+        {"skewness_max", bl.skewness_max},
+        {"skew_faces", bl.skew_faces},
         {"stage1_seconds", r.layers.bl_seconds}}},
       {"optimize",
        {{"moves", r.optimize.moves},
@@ -77,6 +87,17 @@ std::string mesher_result_json(const MesherResult& r, int indent) {
           {"flips", r.optimize.seconds_flips},
           {"slivers", r.optimize.seconds_slivers},
           {"certify", r.optimize.seconds_certify}}}}}};
+  nlohmann::json slid = nlohmann::json::array();
+  for (const SlidePatchChange& c : r.slide.changes)
+    slid.push_back({{"label", c.label},
+                    {"triangles_before", c.triangles_before},
+                    {"triangles_after", c.triangles_after},
+                    {"triangles_gained", int64_t(c.triangles_after) - int64_t(c.triangles_before)},
+                    {"band_triangles", c.band_triangles},
+                    {"dropped_vertices", c.dropped_vertices}});
+  out["slide_patches"] = {{"patches", slid},
+                          {"junction_vertices", r.slide.junction_vertices},
+                          {"reduced_columns", r.slide.reduced_columns}};
   out["notices"] = nlohmann::json::array();
   for (const Notice& n : r.notices) out["notices"].push_back({{"kind", n.kind}, {"message", n.message}});
   return out.dump(indent);
