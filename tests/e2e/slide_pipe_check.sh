@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# slide_pipe_check.sh ANITET CASES_PY MESHCHECK WORKDIR: a small pipe (r 1, length 4, 24 segments)
+# meshed with 8 boundary layers on its wall sliding along the inlet and outlet; checks: every
+# wall column full (JSON), the slide patches cover exactly the input's (slide_patch_check.py),
+# meshcheck.py valid with no input triangle missing outside the slide patches; and without
+# --bl-slide-patches the run is refused with a message naming the option.
+set -uo pipefail
+anitet=$1 cases=$2 meshcheck=$3 work=$4
+python=/usr/bin/python3
+here=$(dirname "$0")
+fail() { echo "FAIL: $*"; exit 1; }
+rm -rf "$work" && mkdir -p "$work" || fail "cannot create $work"
+"$python" "$cases" pipe "$work/pipe.mesh" --segments 24 --length 4 || fail "cases.py failed"
+out=$("$anitet" mesh "$work/pipe.mesh" -o "$work/none.mesh" --bl-patches 1 --bl-first-height 1e-3 2>&1); rc=$?
+((rc == 2)) && grep -q -- "--bl-slide-patches 2" <<<"$out" || { echo "$out"; fail "without slide patches: exit $rc"; }
+"$anitet" mesh "$work/pipe.mesh" -o "$work/out.mesh" --json --bl-patches 1 --bl-slide-patches 2,3 \
+  --bl-first-height 1e-3 --bl-growth 1.15 --bl-layers 8 >"$work/run.json" || fail "anitet mesh exited $?"
+"$python" - "$work/run.json" <<'PY' || fail "report"
+import json, sys
+d = json.load(open(sys.argv[1]))
+b, s = d["boundary_layer"], d["slide_patches"]
+print(f"full columns {b['full_columns']}/{b['wall_vertices']}, nominal {b['nominal_columns']}, "
+      f"non-orthogonality max {b['non_orthogonality_max']:.1f}, skewness max {b['skewness_max']:.2f}, "
+      f"slide patches {[(p['label'], p['triangles_before'], p['triangles_after']) for p in s['patches']]}")
+ok = (b["full_columns"] == b["wall_vertices"] == 384 and b["nominal_columns"] == 384 and
+      len(b["layer_height_mean"]) == 8 and abs(b["layer_height_mean"][7] / (1e-3 * 1.15 ** 7) - 1) < 0.1 and
+      0 < b["non_orthogonality_max"] < 90 and b["dual_faces"] > 0 and
+      [p["label"] for p in s["patches"]] == [2, 3] and all(p["triangles_after"] > p["triangles_before"] for p in s["patches"]))
+sys.exit(0 if ok else 1)
+PY
+"$python" "$here/slide_patch_check.py" "$work/pipe.mesh" "$work/out.mesh" 2,3 --kept "$work/kept.off" || fail "slide patches"
+"$python" "$meshcheck" "$work/out.mesh" --surface "$work/kept.off" >"$work/meshcheck.json" || fail "meshcheck.py"
+"$python" -c "
+import json, sys; d = json.load(open('$work/meshcheck.json'))
+sys.exit(0 if d['valid'] and d['input_triangles_missing'] == 0 else 1)" || fail "meshcheck: not valid or input triangles missing"
+echo PASS
