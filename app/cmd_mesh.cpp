@@ -440,10 +440,10 @@ class MeshCommand {
     return std::move(html).value().report;
   }
 
-  // The mesh files, written beside the report's measures unless --geodetic-output converts the
-  // mesh after them (both only read the mesh; armadillo: the writer's 0.45 s behind the
-  // report's 0.8 s). The writer is a task of the run's arena (--threads bounds it; on one thread
-  // it runs at the wait, after the report); the report is measured isolated, so that its
+  // The mesh files, written beside the report's measures unless --geodetic-output converts the mesh
+  // after them (both only read the mesh, and their times are of the same order: run together, one
+  // hides most of the other). The writer is a task of the run's arena (--threads bounds it; on one
+  // thread it runs at the wait, after the report); the report is measured isolated, so that its
   // parallel loops' waits do not take the writer up and run it nested.
   int write_and_report(MesherResult& r) {
     const bool write_now = !args_.metric.geodetic_output;

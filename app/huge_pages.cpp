@@ -1,19 +1,18 @@
 // The command-line tool's allocations of 2 MiB and more go on transparent huge pages (when the
 // kernel offers them on request, "madvise" mode, as on Debian's default and on this project's
 // machines). The mesher's flat arrays are hundreds of MB on large meshes, and each 4 KiB page
-// costs a fault when first touched; on the paravirtualized machines here those faults were a
-// fifth of armadillo's run (22.9 and 27.0 s against 18.9 and 19.3 s with this file, run
-// alternately; glibc's glibc.malloc.hugetlb=1 tunable gave 18.2 and 23.9 s; the same meshes).
+// costs a fault when first touched; on paravirtualized machines those faults are a large share of
+// a run.
 //
 // They come from one reserved range of address space (an arena), in whole 2 MiB pages, and a
 // freed block stays in it, resident, for any later request it can hold (split, or merged with
 // its free neighbours): a first touch of a fresh huge page costs about 0.8 ms here (the kernel
 // zeroes it), and the refinement's passes, the optimizer and the report free and allocate again
-// arrays of ever new sizes (keeping only blocks of about the same size for reuse, as before,
-// still left armadillo 640-740 huge-page faults per run). Free blocks are handed back to the
-// kernel (madvise MADV_DONTNEED, the range kept) whenever live and free blocks together would
-// exceed the largest total the live ones have reached: the peak memory stays what it was. When
-// the range cannot be reserved or is full, blocks come from aligned_alloc as before.
+// arrays of ever new sizes, which blocks kept only for requests of about their own size would
+// seldom serve. Free blocks are handed back to the kernel (madvise MADV_DONTNEED, the range kept)
+// whenever live and free blocks together would exceed the largest total the live ones have
+// reached, so the arena does not raise the peak memory. When the range cannot be reserved or is
+// full, blocks come from aligned_alloc.
 //
 // Only the executable replaces the global operator new: the library (and so the C ABI and the
 // Python binding) leaves allocation to its host. Not under the sanitizers, whose own operator new

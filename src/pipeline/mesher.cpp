@@ -28,8 +28,8 @@ namespace {
 // Stage 1's sizing: the surface's own sizes (heights in proportion to the triangles they stand
 // on), except where the user's metric is anisotropic: there the metric, whose stretched
 // directions the layers must follow (stage 1 also measures its directions and margins in it).
-// With the surface's sizes, the layers on bench/aniso_cube's stretched sides (triangles
-// 0.1 x 0.001) were a fortieth of the metric's height, and refinement could not recover.
+// With the surface's sizes, the layers on stretched triangles are far thinner than the metric
+// asks, and refinement cannot make up for that.
 class LayerSizing final : public SizingField {
  public:
   LayerSizing(const SizingField& surface, const SizingField* user) : surface_(surface), user_(user) {}
@@ -178,12 +178,12 @@ Result<MesherResult> Mesher::run_scaled(const SurfaceMesh& surface) const {
 
 namespace {
 
-// The default sizing grid needs the surface only: it is built on another core while stage 2 runs
-// on one (armadillo: 0.4 s). Not during stage 1, whose plans and improvement passes use both
-// cores. A task of the run's own arena (so that --threads / num_threads bounds it too); stages 1-2
-// and the coupling run isolated (MeshingRun::isolated), so that no TBB wait inside their parallel
-// loops takes the grid task up and runs it nested there (they would then wait for the grid). On
-// one thread the task runs at the wait.
+// The default sizing grid needs the surface only: it is built on another core while stage 2 runs on
+// one. Not during stage 1, whose plans and improvement passes use both cores. A task of the run's
+// own arena (so that --threads / num_threads bounds it too); stages 1-2 and the coupling run
+// isolated (MeshingRun::isolated), so that no TBB wait inside their parallel loops takes the grid
+// task up and runs it nested there (they would then wait for the grid). On one thread the task runs
+// at the wait.
 class DefaultGrid {
  public:
   DefaultGrid(const SurfaceMesh& surface, const metric::SurfaceSizingOptions& options, bool wanted)
@@ -295,13 +295,13 @@ class MeshingRun {
   }
 
   // Stages 1 and 2 and the coupling are tried with these layer counts and recovery strategies in
-  // turn until one attempt gives a coupled mesh. When stage 2 cannot recover S1, stage 1 runs
-  // again with another number of layers (fewer first, down to 1, then more, up to 3): S1 changes
-  // shape and its recovery may then succeed (bimba_low: not with 2 layers, yes with 1). The fast
-  // split-constraints recovery is tried with every layer count before the slower fuzzy-face
-  // strategies are (femur: 2 layers fail, 1 works in 0.2 s). A recovered S2 whose subfaces do not
-  // all give positive cones from their T1 apexes (rounding, on slivers) fails the coupling, and
-  // the next attempt is tried as for a recovery failure.
+  // turn until one attempt gives a coupled mesh. When stage 2 cannot recover S1, stage 1 runs again
+  // with another number of layers (fewer first, down to 1, then more, up to 3): S1 changes shape
+  // and its recovery may then succeed. The fast split-constraints recovery is tried with every
+  // layer count before the slower fuzzy-face strategies are: another layer count it recovers costs
+  // far less than they do. A recovered S2 whose subfaces do not all give positive cones from their
+  // T1 apexes (rounding, on slivers) fails the coupling, and the next attempt is tried as for a
+  // recovery failure.
   std::vector<std::pair<int, RecoveryOptions>> attempts() const {
     std::vector<int> layer_counts = {o_.layers.layers};
     if (o_.retry_layer_counts) {
@@ -500,9 +500,9 @@ class MeshingRun {
     const auto coupled_vertices = static_cast<uint32_t>(mesh.num_vertices());
     Result<RefineStats> refined = refine_mesh(mesh, field, options);
     if (!refined.ok()) return Status(refined.status().code(), "stage 3b (refinement): " + refined.status().message());
-    // The optimizer walks balls and rings all over the mesh: 1.2 s of its 5.2 s on armadillo went
-    // to memory scattered by refinement's passes. The coupled mesh's vertices keep their ids
-    // (stage 1's boundary-layer figures are measured by them).
+    // The optimizer walks balls and rings all over the mesh, which refinement's passes leave
+    // scattered in memory: renumbered, neighbours sit close. The coupled mesh's vertices keep their
+    // ids (stage 1's boundary-layer figures are measured by them).
     order_for_locality(mesh, coupled_vertices);
     result_.refine = refined.value();
     result_.stages.push_back({"refine", since(t), refined->tets_after});

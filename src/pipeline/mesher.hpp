@@ -43,8 +43,8 @@ struct MesherOptions {
   bool retry_layer_counts = true;
   // Wall time for those attempts together (stages 1, 2 and the coupling, each run): a recovery
   // is given at most what is left (its own caps still apply), and no attempt starts after it ran
-  // out. Without it the attempts on an S1 no strategy recovers took 6-12 minutes (tray_bottom,
-  // turbine). <= 0: no budget.
+  // out: on an S1 that no strategy recovers, the attempts' own caps add up to many minutes.
+  // <= 0: no budget.
   double attempts_seconds = 240;
   ValidationOptions validation;
   ProgressCallback progress;  // may be empty
@@ -69,8 +69,7 @@ struct MesherOptions {
   // boundary-layer metric (metric::BoundaryLayerField: normal size h0 + (r - 1) d at distance d
   // from the walls), so the interior continues the layers' heights instead of jumping to the
   // surface's sizes. The metric is then anisotropic near the walls: refinement and optimization
-  // are slower and run anisotropic_cycles more times (sphere in a box, 15 layers: 0.2 s -> 8.7 s
-  // in all). Off by default.
+  // are many times slower and run anisotropic_cycles more times. Off by default.
   bool boundary_layer_sizing = false;
   const SizingField* sizing = nullptr;
   // When set, runs stages 3b and 3c (and the anisotropic cycles) in place of refine_mesh and
@@ -136,8 +135,7 @@ struct MesherResult {
 // `optimize`, except the lengths, the counts after and the quality after, which are the last
 // round's. For anisotropic fields: the optimizer's moves let through collapses and splits that
 // the stretched neighbourhoods refused, and each smoothing evens the lengths further
-// (bench/aniso_cube --direct: interior edges in [1/sqrt2, sqrt2] 87% -> 98%, tets below metric
-// radius ratio 0.1 0.95% -> 0.06%, with 2 cycles).
+// (bench/aniso_cube --direct measures it).
 Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
                               const OptimizeOptions& optimize_options, int cycles, RefineStats& refine,
                               OptimizeStats& optimize);
