@@ -411,13 +411,13 @@ bool CavityKernel::insert_constrained_owned(uint32_t t0, uint32_t pid, bool resp
   return ok;
 }
 
-// A cheap necessary condition for the forced kept tets (already in the cavity), tested before
-// the cavity grows: each of their facets that will bound the cavity whatever it grows to
-// (protected, on the hull, or facing a tet not in conflict) sees p, and so does each facet
-// towards a neighbour that such a facet of its own ejects. Otherwise shrinking would eject a kept
-// tet and the insertion would be refused anyway, after growing a cavity that around slivers
-// holds thousands of tets (adis16480: 19 refusals in 20 caught here). Leaves marks and cavity_
-// changed (the neighbours it found in conflict join the cavity).
+// A cheap necessary condition for the forced kept tets (already in the cavity), tested before the
+// cavity grows: each of their facets that will bound the cavity whatever it grows to (protected, on
+// the hull, or facing a tet not in conflict) sees p, and so does each facet towards a neighbour
+// that such a facet of its own ejects. Otherwise shrinking would eject a kept tet and the insertion
+// would be refused anyway, after growing a cavity that around slivers holds thousands of tets (most
+// refusals on sliver-rich fronts are caught here). Leaves marks and cavity_ changed (the neighbours
+// it found in conflict join the cavity).
 bool CavityKernel::kept_can_stay(bool respect_protected) {
   for (size_t k = 0; k < keep_count_; ++k) {
     const uint32_t c = keep_[k];

@@ -44,14 +44,14 @@
 //       is pushed last, and if its star is still not visible it is taken off in runs of
 //       consecutive triangles that one direction sees, each checked to fit very close to A.
 //    Two cores (options.push_tasks_min_vertices): a plane across the layer's vertices is chosen
-//    (on one of the three axes, at the 40th-60th percentile, the one fewest vertices' reach
-//    crosses: their star, their neighbours' stars, their apex); the vertices whose reach crosses
-//    it are pushed first, one by one; then the planned pushes of the others are made by two
-//    tasks, one per side, each on its own copy of its side of the front, and merged (low side
-//    first); those whose planned push did not fit are pushed after, one by one. The two tasks
-//    never meet the same triangle, and the split and the merge order do not depend on the
-//    threads: one core gives the same bits as two (the tasks give the bits of a one-by-one layer
-//    in that order).
+//    (on one of the three axes, at the 30th-70th percentile, the one that few vertices' reach
+//    crosses, their star, their neighbours' stars and their apex, with sides of about the same
+//    size); the vertices whose reach crosses it are pushed first, one by one; then the planned
+//    pushes of the others are made by two tasks, one per side, each on its own copy of its side
+//    of the front, and merged (low side first); those whose planned push did not fit are pushed
+//    after, one by one. The two tasks never meet the same triangle, and the split and the merge
+//    order do not depend on the threads: one core gives the same bits as two (the tasks give the
+//    bits of a one-by-one layer in that order).
 //
 // Schemes. kFacesThenPush is the paper's layer: face step on every triangle of the layer's
 // starting front, then push step on every vertex of it. It triples the front's triangle count per
@@ -129,7 +129,7 @@ struct BoundaryLayerOptions {
   // A vertex that is not an input vertex whose planned BL height is below this fraction of
   // h0 r^i (fronts colliding: thin gaps, trailing edges) stops for that layer (reported) instead
   // of moving that little: such pushes left S1 vertices 1e-14 apart in folded BL fronts, which
-  // stage 2 cannot recover (airplane, 15 layers).
+  // stage 2 cannot recover.
   double min_height_ratio = 0.05;
   // Per surface vertex: the next point of its junction column (TetMesh::kNone: none), as
   // slide_boundary_layer() gives it for the surface it made; empty: no junction.
@@ -151,8 +151,8 @@ Result<double> first_height_from_yplus(double yplus, double reynolds, double ref
 struct LayersOptions {
   // 1 or more. One layer hides S (every input vertex leaves the front) and is the default: the
   // second layer's prisms copied S's poor triangles onto S1, away from S where they count against
-  // the interior, and cost half of stage 1 (femur's interior tets: good 97.4% -> 97.9%; airplane
-  // 2.9 s -> 1.8 s; the pipeline still tries 2 and 3 when S1 is not recovered).
+  // the interior, and cost half of stage 1 (the pipeline still tries 2 and 3 when S1 is not
+  // recovered).
   int layers = 1;
   LayerScheme scheme = LayerScheme::kPushOnly;
   // Face step: initial apex height relative to the height of the regular tet on the base, both in

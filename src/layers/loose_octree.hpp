@@ -41,8 +41,8 @@ class LooseOctree {
     uint32_t parent = kNoNode;
     uint32_t count = 0;  // items in this node's subtree
     std::vector<uint32_t> items;
-    // Their boxes, beside them: a query tests them here, where reading each from the caller's
-    // array by id was a cache miss per candidate (a tenth of stage 1 on armadillo).
+    // Their boxes, beside them: a query tests them here, where reading each from the caller's array
+    // by id was a cache miss per candidate.
     std::vector<Box3> boxes;
   };
 

@@ -736,12 +736,11 @@ Result<std::vector<uint32_t>> LayerBuilder::push_sides(const std::vector<uint32_
   };
   measure_star_boxes();
   for_each_index(order.size(), measure_reach);
-  // The cut: among planes across each axis at the 30th to 70th percentiles of the vertices, the
-  // one with the least of twice the reach band's size (its pushes go one by one, with the wider
-  // reaches) plus the larger side's (its task's). The band's size alone, at the 40th to 60th, left
-  // one task with up to 1.5 times the other's vertices (airplane 4929 against 3207: one core idle
-  // for 50 ms; armadillo 25699 against 17040). (A cut through a feature of long triangles puts
-  // many vertices in the band; fandisk's second layer had its worst tets there.)
+  // The cut: among planes across each axis at the 30th to 70th percentiles of the vertices, the one
+  // with the least of twice the reach band's size (its pushes go one by one, with the wider
+  // reaches) plus the larger side's (its task's): the band's size alone left the two tasks
+  // unbalanced, one core idle while the other finished. (A cut through a feature of long triangles
+  // puts many vertices in the band, and the worst tets of a layer can end up there.)
   int axis = 0;
   double cut = 0.0;
   size_t best_cost = 2 * order.size() + 1;
@@ -775,9 +774,8 @@ Result<std::vector<uint32_t>> LayerBuilder::push_sides(const std::vector<uint32_
   };
   find_sides(false);
   // The vertices across the cut are pushed first, one by one, while their neighbours wait (pushed
-  // after the tasks, squeezed between their neighbours' cones, they left worse tets: fandisk's
-  // second layer 0.027 against 0.10). Their cones change the reach of the vertices next to them:
-  // measured again after.
+  // after the tasks, squeezed between their neighbours' cones, they left much worse tets). Their
+  // cones change the reach of the vertices next to them: measured again after.
   size_t sides[3] = {0, 0, 0};
   for (uint8_t k : side) ++sides[k];
   if (sides[0] == 0 || sides[1] == 0) return order;
