@@ -600,7 +600,7 @@ bool Recoverer::repair_boundary_segment(uint32_t f) {
 }
 
 // A point of face f. (Splitting an encroached subsegment instead, as conforming Delaunay
-// refinement does, made the knight cascade into tens of thousands of points: not done.)
+// refinement does, can cascade into far more points: not done.)
 bool Recoverer::insert_face_point(uint32_t f, const double x[3], uint32_t hint) {
   return insert(x, SteinerHost::kFace, f, hint);
 }
@@ -849,8 +849,7 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
         options.split_crossing_flips < kRetryCrossingFlips) {
       RecoveryOptions more = options;
       more.split_crossing_flips = kRetryCrossingFlips;
-      // and the other way round for edge crossings: adis16480's 2-layer front needs them off,
-      // where turbine and tray_bottom standalone need them on.
+      // and the other way round for edge crossings: some fronts need them off, others on.
       more.split_edge_crossings = !options.split_edge_crossings;
       RecoveryOutput again = fresh_output(S, 4);
       const Status s2 = recovery_detail::recover_by_splitting(S, more, again);
@@ -858,10 +857,9 @@ Result<RecoveryOutput> recover_boundary(const SurfaceMesh& S, const RecoveryOpti
     }
     if (s.code() == Error::RecoveryFailed && options.retry_strategies && options.split_exact_degeneracies) {
       // Once more without the degeneracy oracle: refusing every tet flat in exact geometry can
-      // leave a segment no point recovers (adis16480 translated by 1e6: its S1, rounded there,
-      // failed 400 passes; without the oracle it is recovered at once). The tets flat to double
-      // rounding this may make are opened later (the optimizer's last pass; flip_flat_tets in
-      // `anitet recover`).
+      // leave a segment no point recovers (an S1 rounded far from the origin; without the oracle it
+      // is recovered at once). The tets flat to double rounding this may make are opened later (the
+      // optimizer's last pass; flip_flat_tets in `anitet recover`).
       RecoveryOptions plain = options;
       plain.split_exact_degeneracies = false;
       RecoveryOutput again = fresh_output(S, 5);

@@ -31,13 +31,12 @@ struct RecoveryOptions {
   double max_steiner_per_face = 24; // Steiner cap: this many per input triangle (+ 1000)
   bool remove_outside = true;      // false: keep the whole convex hull and the ghost tets
   // Mark each subsegment constrained as soon as it is present, so that the kernel keeps it. Off
-  // at first: it stalls on femur, casting, tray_bottom, turbine (face points blocked by defended
-  // edges), where splitting destroyed subsegments again works; the last retry uses it.
+  // at first: it stalls on some surfaces (face points blocked by defended edges) where splitting
+  // destroyed subsegments again works; the last retry uses it.
   bool defend_edges = false;
   // Try flips (2-3, edge removal) before Steiner points for a missing edge or an unsplit face.
-  // Off at first: with flips, knight/kitten/elephant/rocker-arm need 5-30x fewer Steiner points
-  // and casting recovers, but bimba_low, femur, tray_bottom and turbine stall in the face phase.
-  // The retry below uses them.
+  // Off at first: flips save many Steiner points on some surfaces but make others stall in the
+  // face phase. The retry below uses them.
   bool use_flips = false;
   // When the recovery fails with the options above, start again with use_flips, then again with
   // defend_edges (each from scratch); the split strategy, again with split_crossing_flips = 3 and
@@ -50,16 +49,16 @@ struct RecoveryOptions {
   bool split_constraints = true;
   bool fuzzy_faces = true;
   // Its own wall-time safety net (the fallbacks get max_seconds each); the cascade test and the
-  // Steiner cap below stop it first on the surfaces it cannot do (adis16480: 2.5 s).
+  // Steiner cap below stop it first, within seconds, on the surfaces it cannot do.
   double split_max_seconds = 120;
   double split_max_steiner_per_face = 6;  // and Steiner cap (+ 1000): its successes need ~1
   // A missing input-edge subsegment gets one flip before a split, and a missing triangle whose
-  // edges are present one edge removal (fewer Steiner points: hammer's S1 7700 -> 4800).
+  // edges are present one edge removal (fewer Steiner points).
   bool split_flips = true;
   // A missing constraint edge is split at a point of it that a walk from one end shows to be
   // joined to that end (the cavity reaches back to it), instead of at its middle or a
   // power-of-two distance, which recovers only Delaunay pieces and cascades on needle triangles
-  // (the stage 1 fronts of hammer and casting, turbine's in 120 s).
+  // (stage 1 fronts over CAD parts).
   bool split_walk = true;
   // The walk's chain of tets joins the cavity of its point whatever the empty-sphere test says
   // (InsertOptions::force_keep): a point far along a missing edge is joined to the edge's end
@@ -71,16 +70,16 @@ struct RecoveryOptions {
   // points are tried (the walk's points creep towards such a crossing without reaching it).
   bool split_edge_crossings = true;
   // An input-edge subsegment is marked constrained (the kernel keeps it) as soon as a sweep finds
-  // it present, and so are the pieces of a split: later points no longer destroy what earlier
-  // ones recovered. On adis16480's stage 1 front the count of missing edges then falls to 0 in 20
-  // passes, where it grew from pass to pass (48k points to the Steiner cap).
+  // it present, and so are the pieces of a split: later points no longer destroy what earlier ones
+  // recovered. Otherwise, on needle-rich fronts, the count of missing edges can grow from pass to
+  // pass up to the Steiner cap.
   bool split_defend_edges = true;
   // A missing edge inside an input face that flips within the face do not make is made by flips
   // of the mesh along it, or split (with its two triangles) like an input edge.
   bool split_face_edges = true;
   // How many times a missing triangle's crossing edges are removed (edge removals) before it is
-  // split instead. Once recovers tray_bottom's stage 1 front, three times turbine's (and not
-  // tray_bottom's): when the split strategy fails with 1, it runs again with 3 (retry_strategies).
+  // split instead. No one count recovers every front: when the split strategy fails with 1, it
+  // runs again with 3 (retry_strategies).
   int split_crossing_flips = 1;
   // First split the long edge of every input triangle with an angle above this at the apex's
   // projection (180: never).

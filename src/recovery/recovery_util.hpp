@@ -71,11 +71,11 @@ inline bool line_crosses_triangle(const double* P, const double* Q, const double
 }
 
 // The Delaunay tetrahedralization of S's points into mesh (vertex i is S's vertex i), and with
-// `box` of the 8 corners of a box around them as well (vertices n..n+7, kBoxCorners): then no
-// point of S is on the convex hull. Points of S on a hull face (a flat face of a CAD part, its
-// Steiner points on it) sit on ghost tets, which no flip and no forced cavity may touch: there
-// the pieces of a missing edge were split down to 1e-18 (adis16480). Error::DuplicatePoint
-// names two input vertices with the same coordinates.
+// `box` of the 8 corners of a box around them as well (vertices n..n+7, kBoxCorners): then no point
+// of S is on the convex hull. Points of S on a hull face (a flat face of a CAD part, its Steiner
+// points on it) sit on ghost tets, which no flip and no forced cavity may touch: there the pieces
+// of a missing edge were split down to rounding. Error::DuplicatePoint names two input vertices
+// with the same coordinates.
 constexpr uint32_t kBoxCorners = 8;
 Status delaunay_of_surface_points(TetMesh& mesh, const SurfaceMesh& S, bool box);
 

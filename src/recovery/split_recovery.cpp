@@ -131,9 +131,9 @@ class SplitRecoverer : public DegeneracyOracle {
     int8_t kind = -1;      // -1 input vertex, else a SteinerHost: edge or face
     uint32_t host = kNone;  // host input edge / face
     // A point split where its segment crosses a mesh edge pq exactly coplanar with it stands for
-    // that crossing (a point of both in exact geometry): tets with p, q and it are flat too (else
-    // a flip makes pq again beside it, and the pieces from it cross pq within rounding of it:
-    // adis16480's plane y = 0.007946887). Not for a crossing near pq: the two are then skew.
+    // that crossing (a point of both in exact geometry): tets with p, q and it are flat too (else a
+    // flip makes pq again beside it, and the pieces from it cross pq within rounding of it). Not
+    // for a crossing near pq: the two are then skew.
     std::array<uint32_t, 2> crossed = {kNone, kNone};  // that edge, or kNone twice
     std::array<uint32_t, 2> planes = {kNone, kNone};   // host_planes()
   };
@@ -642,10 +642,10 @@ uint32_t SplitRecoverer::crossed_edge_point(uint32_t u, uint32_t w, double& frac
     vol[k] = dot(c, uw);
     total += vol[k];
   }
-  // Near an edge: on nearly flat fans the segment runs nearly in the facet's plane, and a
-  // crossing this near an edge is where the walk's points would creep to (adis16480, also
-  // translated by 1e6, whose needle fans are flat only to rounding; 1e-9 left it stalling). The
-  // kernel still refuses the point when pq's ring is not star-shaped from it.
+  // Near an edge: on nearly flat fans the segment runs nearly in the facet's plane, and a crossing
+  // this near an edge is where the walk's points would creep to (needle fans flat only to rounding
+  // stalled with 1e-9). The kernel still refuses the point when pq's ring is not star-shaped from
+  // it.
   constexpr double kNearEdge = 1e-3;
   int k = zero;
   crossed_coplanar_ = zero >= 0;
@@ -847,7 +847,7 @@ uint32_t SplitRecoverer::split_edge(uint64_t key, double at) {
   // ring of tets forced into the cavity: the point is then joined to the segment's end and to
   // everything around pq. A walk's point short of pq is joined to the end too, but the rest of
   // the segment crosses pq again, and the splits creep towards pq without reaching it (down to
-  // pieces of 1e-18 on adis16480).
+  // pieces at the scale of rounding).
   if (at < 0 && opt_.split_walk && opt_.split_edge_crossings)
     for (int from = 0; from < 2 && v == kNone; ++from) {
       const uint32_t u = from == 0 ? a : b, w = from == 0 ? b : a;
@@ -1026,7 +1026,7 @@ bool SplitRecoverer::flip_edge(uint64_t key, bool only_to_mesh) {
 // 2D Delaunay edge, until none flips, so each face's pieces reach its 2D Delaunay triangulation:
 // short rungs across a needle instead of the fans its edge splits made. A work list: a flip can
 // only make the edges of its two new triangles flippable, so only those are looked at again
-// (sweeping all edges until none flipped took 2 s on adis16480's 41k flips). Returns the flips.
+// (sweeping all edges until none flipped took many sweeps over every edge). Returns the flips.
 size_t SplitRecoverer::flip_face_edges() {
   std::vector<uint64_t> work;
   std::unordered_set<uint64_t> queued;
@@ -1235,7 +1235,7 @@ Status SplitRecoverer::run() {
   size_t growths = 0, last_missing = ~size_t(0);
   // The edge phase stalls (pieces split as fast as others are lost) on thin plates and needle
   // fans: give up when its count of missing edges has not reached a new low for kStallPasses
-  // passes in a row (turbine: 148 passes and 30 s to the Steiner cap otherwise).
+  // passes in a row, instead of running on to the Steiner cap.
   constexpr size_t kStallPasses = 30;
   size_t fewest_missing_edges = ~size_t(0), passes_since_fewest = 0;
   bool stalled = false;
@@ -1340,7 +1340,7 @@ Status SplitRecoverer::run() {
     out_.s2_patch.push_back(ct_face_[k] < S_.patch.size() ? S_.patch[ct_face_[k]] : 0);
   }
   // Constrained edge bits on every subsegment of an input edge: each tet marks its own edges, on
-  // every core (a ball per edge, one edge after the other, took 0.17 s of one core on armadillo).
+  // every core (a ball walk per edge, one edge after the other, ran on one core only).
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, mesh_.num_tet_slots(), 4096),
                     [&](const tbb::blocked_range<uint32_t>& r) {
                       for (uint32_t t = r.begin(); t != r.end(); ++t) {
