@@ -299,8 +299,8 @@ size_t flip_sweep(FlipContext& c, double quality, int rounds) {
     memo.gain = c.gain;
   }
   // The first round scans the mesh; later ones only revisit the tets the flips created. Every
-  // round with parallel_min tets or more runs on two tasks (armadillo: 51k and 10k tets in the
-  // second and third rounds after the first CVT passes).
+  // round with parallel_min tets or more runs on two tasks (on a large mesh the later rounds
+  // still revisit tens of thousands).
   std::vector<uint32_t> bad = tets_below(m, quality, *c.quality, &memo), fresh_bad, rest;
   for (int round = 0; round < rounds && !bad.empty(); ++round) {
     fresh_bad.clear();

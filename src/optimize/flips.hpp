@@ -34,14 +34,14 @@ struct Quality {
 // are numbered in order: each vertex keeps the number of the last change in its ball (a tet made
 // or removed there, a vertex of it moved, its metric measured again), each tet the number of the
 // last failure on it, and a tet is skipped while its failure is newer than the changes of all
-// four. The skips change no result, only the time: the sweeps after the CVT iterations met the
-// same ~37k tets below the flip threshold each time (armadillo), nearly all failing again.
+// four. The skips change no result, only the time: the sweeps after the CVT iterations meet the
+// same tets below the flip threshold each time, nearly all failing again.
 //
 // The same numbers date each tet's quality as last measured by tets_below(): a tet's quality
 // depends only on its four vertices (their points and metrics), and any change to them, or a new
 // tet in the slot, touches them. So a measure newer than the changes of all four still holds, and
-// the scans before each sweep (armadillo: 24 of 2.6M tets each, 1.3 s in all) measure only the
-// tets changed since the last one.
+// the scans before each sweep (every tet of the mesh otherwise, each time) measure only the tets
+// changed since the last one.
 struct FlipMemo {
   uint32_t clock = 0;                  // the last event's number
   uint32_t everything = 0;             // the last change anywhere (touch_all)

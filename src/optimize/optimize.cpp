@@ -202,7 +202,7 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
 void Optimizer::cvt_target(const Work& w, uint32_t v, double target[3]) {
   // With an anisotropic metric the ball is measured in v's metric (points mapped by L^T about v)
   // and the target mapped back: Euclidean circumcentres of tets stretched as the metric asks lie
-  // far outside them (bench/aniso_cube: 16% of interior edges out of range).
+  // far outside them, and the edges there come out of range.
   meshops::MetricMap map;
   if (quality_.anisotropic()) map = meshops::MetricMap::of(&quality_.vertex_metric[6 * size_t(v)]);
   const double* pv = mesh_.point(v);
@@ -448,10 +448,9 @@ size_t Optimizer::perturb_pass(const std::vector<uint8_t>* near) {
 }
 
 // The worst tets decide the minimum users see; they are few, so each free vertex of those below
-// kPolishQuality gets a longer hill climb with finer steps (8 times the trials, steps down to
-// 1/512 of the ball's size instead of 1/8, every other cycle along the gradient of the tet's
-// quality). Marks in `near` the vertices of the balls it changed. Armadillo: 12 tets; bimba's
-// worst, on a sliver of S: 0.0005439 -> 0.0005448 over the three rounds.
+// kPolishQuality gets a longer hill climb with finer steps (8 times the trials, steps down to 1/512
+// of the ball's size instead of 1/8, every other cycle along the gradient of the tet's quality).
+// Marks in `near` the vertices of the balls it changed.
 size_t Optimizer::polish_pass(std::vector<uint8_t>& near) {
   constexpr double kPolishQuality = 0.1;
   size_t moved = 0;

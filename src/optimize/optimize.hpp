@@ -28,7 +28,7 @@
 //     sliver triangles, which no move lifts and which would block the rule above), interleaved
 //     with flips, for sliver_rounds rounds.
 //   - Collapses: a tet that no vertex move lifts (four nearly collinear points, each held by its
-//     other tets: femur's creases) gets an edge collapse, its edges shortest first: the removed
+//     other tets, as at sharp creases) gets an edge collapse, its edges shortest first: the removed
 //     end is free, the other stays (or, when free too, first tries the midpoint). Applied when
 //     the worst tet of the changed region rises, every new tet is positive (exact) and no new
 //     edge is longer than both 1.5 sizes and every edge of the two ends before (a local repair,
@@ -60,19 +60,16 @@ namespace anitet {
 enum class CentroidKind { kBall, kOdt };
 
 struct OptimizeOptions {
-  // Lloyd iterations, each followed by a flip sweep. 3 against 4 (issue 8's seven inputs):
-  // radius ratio means 0.001-0.008 lower, interior minima still 0.22-0.41 and minimum interior
-  // dihedrals 15.2-22.2 degrees; armadillo's optimization 3.2 -> 2.95 s. (4 was the quality of 6
-  // in two thirds of the time.)
+  // Lloyd iterations, each followed by a flip sweep. 3 rather than 4: nearly the same quality in
+  // less time (4 was the quality of 6 in two thirds of the time).
   int cvt_iterations = 3;
-  // kOdt: femur's interior tets radius ratio mean 0.750 -> 0.786 against kBall, the others
-  // within 0.005 (with an anisotropic metric both are taken in the metric, see the top).
+  // kOdt: interior tets as good as with kBall or clearly better (with an anisotropic metric both
+  // are taken in the metric, see the top).
   CentroidKind centroid = CentroidKind::kOdt;
   double accept_floor = 0.3;      // a move may lower a ball's worst quality down to this
   // Flips are tried around tets below this radius ratio, and perturbation targets tets below
   // sliver_quality. At 0.4 and 0.3 the tets between 0.3 and 0.4 had flips only, and were most of
-  // those below 0.4 near a surface with poor triangles (femur's interior: 97.9% above 0.4, 99.3%
-  // at 0.5 and 0.4; airplane's minimum 0.30 -> 0.40, its time the same).
+  // those below 0.4 near a surface with poor triangles.
   double flip_quality = 0.5;
   double sliver_quality = 0.4;
   int sliver_rounds = 6;

@@ -16,8 +16,7 @@ void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
   const auto slots = static_cast<uint32_t>(mesh.num_tet_slots());
   first_vertex = static_cast<uint32_t>(std::min<size_t>(first_vertex, nv));
   // (The long loops over vertices and tets run on every core, each index writing its own entries,
-  // so the result does not depend on the threads; serial, they were 0.15 s of one core on
-  // armadillo. The curve and the new ids stay in order.)
+  // so the result does not depend on the threads. The curve and the new ids stay in order.)
   auto for_range = [](size_t n, auto&& body) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16384), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i) body(i);
@@ -74,7 +73,7 @@ void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
   for_range(order.size(), [&](size_t k) { new_tet[order[k]] = static_cast<uint32_t>(k); });
   const size_t nt = order.size();
   // A sixteenth more room: the optimizer's flips take new slots right after this, and growing
-  // the arrays then copied all of them to fresh pages (armadillo: 278 MB, first touched).
+  // the arrays then copied all of them to fresh pages.
   const size_t room = nt + nt / 16;
   std::vector<uint32_t> tet_v;
   std::vector<uint64_t> tet_adj;

@@ -290,12 +290,12 @@ class Refiner {
   double longest_s_edge(uint32_t v) const { return v < longest_s_edge_.size() ? longest_s_edge_[v] : 0.0; }
 };
 
-// The tets refinement will make, about: each tet's volume over that of the regular tet whose
-// edge is its vertices' mean size (fandisk, femur, elephant, armadillo, the unit sphere: the
-// refined counts were 1.0-1.45 times this). The mesh's arrays are reserved for 1.6 times as many,
-// so that they are not moved while the mesh grows: each move held the old arrays and the new
-// ones at once (54 bytes per tet each), the peak of the 1e7-tet run. Pages not written are not
-// resident, so a generous reservation costs address space only.
+// The tets refinement will make, about: each tet's volume over that of the regular tet whose edge
+// is its vertices' mean size (the refined counts exceed it by up to about half). The mesh's arrays
+// are reserved for 1.6 times as many, so that they are not moved while the mesh grows: each move
+// held the old arrays and the new ones at once (54 bytes per tet each), which set the peak memory
+// of large runs. Pages not written are not resident, so a generous reservation costs address space
+// only.
 void Refiner::reserve_for_refinement() {
   double expected = 0.0;
   for (uint32_t t = 0; t < mesh_.num_tet_slots(); ++t) {
@@ -602,10 +602,10 @@ void Refiner::choose_splits(refine_detail::EdgeList& edges, std::vector<Chosen>&
                             std::vector<double>& chosen_xyz, double lo[3], double hi[3]) {
   const auto choice_start = Clock::now();
   // The long edges by value, sorted on every core: sorting pointers read the edges at random
-  // (armadillo: 1.5M of them in its first pass). The order is total (a, b name one edge).
-  // An edge vetoed in an earlier pass with no tet around it changed since would be vetoed again
-  // (the veto reads only its ring and its ends): it is not measured again (armadillo: 78k of
-  // the 83k long edges of the last pass).
+  // (millions of them in a large mesh's first pass). The order is total (a, b name one edge). An
+  // edge vetoed in an earlier pass with no tet around it changed since would be vetoed again (the
+  // veto reads only its ring and its ends): it is not measured again (in the last passes, most long
+  // edges are such).
   refine_detail::EdgeList longs;
   for (const refine_detail::Edge& e : edges) {
     if (e.on_surface || !(e.length > options_.split_length)) continue;
@@ -626,10 +626,10 @@ void Refiner::choose_splits(refine_detail::EdgeList& edges, std::vector<Chosen>&
     hmin = std::min(hmin, size_[v]);
   }
   SpacingGrid grid(lo, std::max(options_.spacing * hmin, 1e-300));
-  // Each edge's midpoint and metric, on every core (the mesh is only read), then the spacing
-  // filter in length order (each point is checked against the ones chosen before it; most long
-  // edges are put off by the grid: armadillo 1.1M of 1.5M) with the local vetoes, block by block
-  // below. The same points are chosen as in one sequential loop.
+  // Each edge's midpoint and metric, on every core (the mesh is only read), then the spacing filter
+  // in length order (each point is checked against the ones chosen before it; most long edges are
+  // put off by the grid) with the local vetoes, block by block below. The same points are chosen as
+  // in one sequential loop.
   std::vector<Candidate> candidates(longs.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, longs.size(), 512), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
@@ -815,8 +815,8 @@ bool Refiner::collapse_fits(uint32_t v, uint32_t w, const double q[3], bool move
       anisotropic_ ? options_.anisotropic_max_collapse_result : options_.max_collapse_result;
   // An edge from w to a vertex x of S may be as long as x's longest edge of S, which no split
   // shortens (collapse_to_s_edge_length): beside sliver triangles of S every collapse otherwise
-  // made such an edge and was refused, and the recovery's Steiner points stayed (adis16480: 137k
-  // refusals, 141k tets out of refinement; the tet count then moved by 8% with the rounding).
+  // made such an edge and was refused, and the recovery's Steiner points stayed: far more tets than
+  // the sizes ask, their count sensitive to rounding.
   using refine_detail::normalized_length;
   const bool degenerate = normalized_length(mesh_, metrics_, w, v) < options_.degenerate_length;
   for (const meshops::TetVerts& f : s.fresh)

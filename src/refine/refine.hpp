@@ -29,8 +29,8 @@
 //   - the ring-crowding test on splits is off and refused collapses are retried each pass (the
 //     flips change the neighbourhoods);
 //   - a collapse may create edges up to anisotropic_max_collapse_result (still in range): with
-//     1.3, the stretched neighbourhoods refused most collapses and a sixth of the edges stayed
-//     short (bench/aniso_cube).
+//     max_collapse_result's 1.3, the stretched neighbourhoods refused most collapses and many
+//     edges stayed short.
 // Isotropic fields take exactly the isotropic path. optimize/ measures in the metric too, and
 // the pipeline runs refinement and optimization again on an anisotropic field (see
 // pipeline/mesher.hpp).
