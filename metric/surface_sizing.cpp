@@ -99,8 +99,8 @@ Result<Box> surface_box(const SurfaceMesh& surface) {
 
 // Each triangle's size (its shortest or mean edge), and the voxel size when none is given: the
 // mean edge length, unless a few long edges (needle fans, long CAD strips) make it more than
-// twice the median, for the grid must resolve the sizes of most triangles (adis16480: mean
-// 3.2 mm, median 0.26 mm; at 3.2 mm its rotated copy got 60% fewer tets than it).
+// twice the median, for the grid must resolve the sizes of most triangles (else a rotated copy
+// of a CAD part gets far fewer tets than the part).
 Status triangle_sizes(const SurfaceMesh& surface, const SurfaceSizingOptions& options, std::vector<double>& tri_size,
                       double& voxel) {
   const size_t nt = surface.num_triangles(), nv = surface.num_vertices();

@@ -7,7 +7,7 @@
 // half a voxel of the surface. That band has the same width whatever the surface's orientation,
 // so a rotated surface pins as many voxels per unit area; the paper's literal test (the surface
 // cuts the voxel's cube) pins up to sqrt(3) times more where faces lie oblique to the lattice's
-// axes, and a rotated CAD part then got up to 20% fewer tets (hammer.obj). The band still stops
+// axes, and a rotated CAD part then got noticeably fewer tets. The band still stops
 // the outside flood fill: a lattice step of length h that crosses the surface has an end within
 // h/2 of it. A surface whose band holds no node at all (tiny against a voxel that max_voxels
 // grew) is pinned by the cube test instead; a small separate shell whose band holds no node

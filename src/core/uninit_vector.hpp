@@ -1,8 +1,7 @@
 // A std::vector whose resize() default-initializes new elements instead of value-initializing
 // them: for trivial types, nothing is written. For large arrays that parallel loops fill right
-// after sizing them, where value-initialization was a memset on one core (refinement's edge
-// lists on armadillo: about 0.3 s of one core while the other waited), and the pages are now
-// first touched by the loops that fill them, on every core.
+// after sizing them: value-initialization would be a memset on one core while the others wait,
+// and the pages are first touched by the loops that fill them, on every core.
 #pragma once
 
 #include <memory>

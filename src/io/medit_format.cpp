@@ -302,8 +302,8 @@ Result<std::string> to_medit(const VolumeMesh& mesh, const PatchNames& patch_nam
 Status write_medit_volume(const VolumeMesh& mesh, const std::string& path, const PatchNames& patch_names) {
   Result<std::vector<NamedPatch>> named = medit_patch_names(mesh, patch_names);
   if (!named.ok()) return named.status();
-  // Streamed to the file: armadillo's 100 MB of text went through a string grown by doubling
-  // (its copies and fresh pages) before one write.
+  // Streamed to the file, not built in a string first: a large mesh's text runs to hundreds of MB,
+  // and a string grown by doubling copies it and touches fresh pages each time.
   return write_file_with(path, [&](const std::function<bool(std::string_view)>& write) {
     bool ok = true;
     write_medit_volume_text(mesh, named.value(), [&](std::string_view bytes) {

@@ -1,8 +1,7 @@
-// Text output formatted on every core (internal header): the items' lines are formatted in
-// blocks by parallel tasks, a bounded window of blocks at a time, and appended (or handed to a
-// writer) in order, so the text is the same as one loop's and at most one window (16 blocks) is
-// held besides it.
-// (Armadillo's .mesh, 100 MB: formatting the numbers was the whole of the writer's 0.45 s.)
+// Text output formatted on every core (internal header): the items' lines are formatted in blocks
+// by parallel tasks, a bounded window of blocks at a time, and appended (or handed to a writer) in
+// order, so the text is the same as one loop's and at most one window (16 blocks) is held besides
+// it. (Formatting the numbers is nearly all of a text writer's time.)
 #pragma once
 
 #include <algorithm>

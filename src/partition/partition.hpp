@@ -2,16 +2,14 @@
 // sharing a face), then each part with its ghost layers, vertex owners and halo lists (part.hpp
 // says what a part holds and in which order).
 //
-// Why METIS (5.1, Debian's libmetis-dev) and not Scotch (7.0, libscotch-dev): on armadillo's
-// dual graph (2.48M tets), one core of a loaded machine, METIS cut 2, 8 and 64 parts in 1.5-2.5 s
-// each, Scotch in 1.5-2.3, 2.8-4.0 and 12.7-15.0 s (both twice that on a busier machine).
-// Scotch's best cuts were 6-11% lower at 8 and 64 parts (three runs), within the same 3%
-// imbalance (bench/results/partition, docs/partitions.md), but they changed from run to run, and
-// Debian's Scotch starts threads of its own (with thread affinity) that a solver's threads would
-// have to share. METIS is serial, deterministic (a fixed seed), returns its errors and is
-// Apache-2.0. Its cost: Debian builds it with 32-bit indices, so a dual graph of more than
-// 2^31 - 1 adjacency entries (about 5 * 10^8 tets) is refused (Error::NotImplemented); meshes
-// that size are for a parallel partitioner on many ranks (ParMETIS, PT-Scotch) anyway.
+// Why METIS (5.1, Debian's libmetis-dev) and not Scotch (7.0, libscotch-dev): METIS was as fast at
+// few parts and several times faster at many; Scotch's best cuts were somewhat smaller, but they
+// changed from run to run, and Debian's Scotch starts threads of its own (with thread affinity)
+// that a solver's threads would have to share (the figures: bench/results/partition,
+// docs/partitions.md). METIS is serial, deterministic (a fixed seed), returns its errors and is
+// Apache-2.0. Its cost: Debian builds it with 32-bit indices, so a dual graph of more than 2^31 - 1
+// adjacency entries (about 5 * 10^8 tets) is refused (Error::NotImplemented); meshes that size are
+// for a parallel partitioner on many ranks (ParMETIS, PT-Scotch) anyway.
 //
 // A mesh whose tets form several pieces without a face in common (two bodies, or regions that
 // meet along an edge or a vertex only) is one graph with several components to METIS: the parts
