@@ -280,11 +280,9 @@ double edge_length(const VolumeMesh& mesh, uint32_t a, uint32_t b, int metric_ki
   return std::sqrt(l2);
 }
 
-}  // namespace
-
-Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh* input_surface,
-                                       const QualityOptions& quality_options,
-                                       const HtmlReportOptions& opt) {
+// InvalidArgument for a cut fraction outside [0, 1], a bin count < 1, or a vertex metric that is
+// not usable (1 or 6 values per vertex; sizes > 0, finite tensors).
+Status check_options(const VolumeMesh& mesh, const HtmlReportOptions& opt) {
   for (int axis = 0; axis < 3; ++axis) {
     if (!(opt.cut[size_t(axis)] >= 0.0 && opt.cut[size_t(axis)] <= 1.0)) {
       return Status(Error::InvalidArgument, "cut plane positions must be fractions in [0, 1] of the bounding box");
@@ -293,74 +291,124 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
   if (opt.quality_bins < 1 || opt.dihedral_bins < 1 || opt.edge_bins < 1) {
     return Status(Error::InvalidArgument, "histogram bin counts must be >= 1");
   }
-  {  // The vertex metric, when there is one, must be usable: sizes > 0, finite tensors.
-    const size_t nv = mesh.num_vertices();
-    const std::vector<double>& m = mesh.vertex_metric;
-    if (!m.empty() && m.size() != nv && m.size() != 6 * nv) {
-      return Status(Error::InvalidArgument, "the vertex metric has " + std::to_string(m.size()) + " values for " +
-                                                std::to_string(nv) + " vertices (1 or 6 per vertex expected)");
-    }
-    for (size_t i = 0; i < m.size(); ++i) {
-      if (!std::isfinite(m[i]) || (m.size() == nv && !(m[i] > 0.0))) {
-        return Status(Error::InvalidArgument, "the vertex metric value " + std::to_string(i) + " (" +
-                                                  std::to_string(m[i]) + ") is not a usable size or tensor entry");
-      }
+  const size_t nv = mesh.num_vertices();
+  const std::vector<double>& m = mesh.vertex_metric;
+  if (!m.empty() && m.size() != nv && m.size() != 6 * nv) {
+    return Status(Error::InvalidArgument, "the vertex metric has " + std::to_string(m.size()) + " values for " +
+                                              std::to_string(nv) + " vertices (1 or 6 per vertex expected)");
+  }
+  for (size_t i = 0; i < m.size(); ++i) {
+    if (!std::isfinite(m[i]) || (m.size() == nv && !(m[i] > 0.0))) {
+      return Status(Error::InvalidArgument, "the vertex metric value " + std::to_string(i) + " (" +
+                                                std::to_string(m[i]) + ") is not a usable size or tensor entry");
     }
   }
-  HtmlReport out;
-  TetData data;
-  std::vector<uint32_t> boundary;
-  {
-    Result<QualityReport> r =
-        quality_detail::compute_quality_report_keep(mesh, input_surface, quality_options, data, boundary);
-    if (!r.ok()) return r.status();
-    out.report = std::move(r).value();
-  }
-  out.seconds_quality = out.report.seconds;
-  const auto clock_start = std::chrono::steady_clock::now();
-  const bool parallel = quality_options.parallel;
-  const size_t nv = mesh.num_vertices(), nt = mesh.num_tets();
+  return Status::success();
+}
 
-  // Vertices on the boundary, and the bounding box of the used vertices.
-  std::vector<uint8_t> on_boundary(nv, 0);
-  for (uint32_t v : boundary) on_boundary[v] = 1;
+// The bounding box of the vertices used by a tet.
+Bbox used_vertex_box(const VolumeMesh& mesh) {
+  const size_t nv = mesh.num_vertices();
   Bbox box;
-  {
-    bool first = true;
-    std::vector<uint8_t> used(nv, 0);
-    for (uint32_t v : mesh.tet) used[v] = 1;
-    for (size_t v = 0; v < nv; ++v) {
-      if (!used[v]) continue;
-      for (int k = 0; k < 3; ++k) {
-        const double x = mesh.point(v)[k];
-        box.lo[k] = first ? x : std::min(box.lo[k], x);
-        box.hi[k] = first ? x : std::max(box.hi[k], x);
-      }
-      first = false;
+  bool first = true;
+  std::vector<uint8_t> used(nv, 0);
+  for (uint32_t v : mesh.tet) used[v] = 1;
+  for (size_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const double x = mesh.point(v)[k];
+      box.lo[k] = first ? x : std::min(box.lo[k], x);
+      box.hi[k] = first ? x : std::max(box.hi[k], x);
+    }
+    first = false;
+  }
+  return box;
+}
+
+// A dihedral angle's bin from its cosine, without acos. The angle is in bin i (of [0, 180]) when
+// cos(edge i+1) < cos(angle) <= cos(edge i); cos_edges_ holds the inner edges' cosines, so the bin
+// is how many of them are >= cos(angle). A table on the cosine gives it within one, the cosines
+// of the bin edges (decreasing) settle it.
+class DihedralBins {
+ public:
+  explicit DihedralBins(int bins) : bins_(bins), cos_edges_(size_t(bins - 1)), cos_table_(size_t(kCosTable)) {
+    for (int i = 1; i < bins; ++i) {
+      cos_edges_[size_t(i - 1)] = std::cos(3.14159265358979323846 * double(i) / double(bins));
+    }
+    for (size_t k = 0; k < cos_table_.size(); ++k) {
+      const double c = 2.0 * double(k) / kCosTable - 1.0;
+      cos_table_[k] = long(std::partition_point(cos_edges_.begin(), cos_edges_.end(),
+                                                [c](double edge) { return c <= edge; }) -
+                           cos_edges_.begin());
     }
   }
-  double plane[3];
-  for (int k = 0; k < 3; ++k) plane[k] = box.lo[k] + opt.cut[size_t(k)] * (box.hi[k] - box.lo[k]);
 
-  // Dihedral bins: angle in bin i (of [0, 180]) when cos(edge i+1) < cos(angle) <= cos(edge i);
-  // cos_edges holds the inner edges' cosines, so the bin is how many of them are >= cos(angle).
-  std::vector<double> cos_edges(size_t(opt.dihedral_bins - 1));
-  for (int i = 1; i < opt.dihedral_bins; ++i) {
-    cos_edges[size_t(i - 1)] = std::cos(3.14159265358979323846 * double(i) / double(opt.dihedral_bins));
+  size_t bin(double c) const {
+    long db = cos_table_[size_t(std::clamp((c + 1.0) * 0.5 * kCosTable, 0.0, kCosTable - 1.0))];
+    while (db + 1 < bins_ && c <= cos_edges_[size_t(db)]) ++db;
+    while (db > 0 && c > cos_edges_[size_t(db - 1)]) --db;
+    return size_t(db);
   }
-  constexpr double kCosTable = 4096.0;
-  std::vector<long> cos_table(static_cast<size_t>(kCosTable));
-  for (size_t k = 0; k < cos_table.size(); ++k) {
-    const double c = 2.0 * double(k) / kCosTable - 1.0;
-    cos_table[k] = long(std::partition_point(cos_edges.begin(), cos_edges.end(),
-                                             [c](double edge) { return c <= edge; }) -
-                        cos_edges.begin());
+
+ private:
+  static constexpr double kCosTable = 4096.0;
+  int bins_;
+  std::vector<double> cos_edges_;
+  std::vector<long> cos_table_;
+};
+
+// Bins the six dihedral angles of the tet p[0..3] (in h.bnd too when bnd): 180 degrees minus the
+// angle between the inward face normals.
+void add_dihedrals(const double* const p[4], const DihedralBins& bins, bool bnd, Hist& h) {
+  double e[6][3];
+  static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  for (int k = 0; k < 6; ++k) {
+    for (int c = 0; c < 3; ++c) e[k][c] = p[kEdge[k][1]][c] - p[kEdge[k][0]][c];
   }
-  // One pass over the tets: flags, histograms, per-group extremes, cross-sections.
-  std::vector<uint8_t> tet_bnd(nt, 0);
-  std::vector<TetTally> tallies(64);
-  std::vector<std::array<std::vector<Poly>, 3>> cuts(64);
-  const size_t blocks = for_blocks(nt, parallel, [&](size_t b, size_t begin, size_t end) {
+  auto cross = [](const double* x, const double* y, double* r) {
+    r[0] = x[1] * y[2] - x[2] * y[1];
+    r[1] = x[2] * y[0] - x[0] * y[2];
+    r[2] = x[0] * y[1] - x[1] * y[0];
+  };
+  double n[4][3];
+  cross(e[4], e[3], n[0]);  // facet 0 (b d c): bd x bc
+  cross(e[1], e[2], n[1]);  // facet 1 (a c d): ac x ad
+  cross(e[2], e[0], n[2]);  // facet 2 (a d b): ad x ab
+  cross(e[0], e[1], n[3]);  // facet 3 (a b c): ab x ac
+  double len[4];
+  for (int k = 0; k < 4; ++k) len[k] = std::sqrt(n[k][0] * n[k][0] + n[k][1] * n[k][1] + n[k][2] * n[k][2]);
+  for (int k = 0; k < 4; ++k) {
+    for (int j = k + 1; j < 4; ++j) {
+      // A degenerate face (zero normal) makes its three angles 0.
+      const double c = len[k] == 0.0 || len[j] == 0.0
+                           ? 1.0
+                           : -(n[k][0] * n[j][0] + n[k][1] * n[j][1] + n[k][2] * n[j][2]) / (len[k] * len[j]);
+      const size_t db = bins.bin(c);
+      h.all[db] += 1;
+      if (bnd) h.bnd[db] += 1;
+    }
+  }
+}
+
+// What the pass over the tets gives: per tet its boundary flag, per block of tets its tallies and
+// its cross-sections by each plane (merged in block order: the same on any number of threads).
+struct TetPass {
+  std::vector<uint8_t> tet_bnd;  // 1: the tet touches the boundary
+  std::vector<TetTally> tallies;
+  std::vector<std::array<std::vector<Poly>, 3>> cuts;
+  size_t blocks = 0;
+};
+
+// One pass over the tets: flags, histograms, per-group extremes, cross-sections.
+TetPass tet_pass(const VolumeMesh& mesh, const TetData& data, const std::vector<uint8_t>& on_boundary,
+                 const double plane[3], const HtmlReportOptions& opt, bool parallel) {
+  const size_t nt = mesh.num_tets();
+  const DihedralBins dihedral_bins(opt.dihedral_bins);
+  TetPass pass;
+  pass.tet_bnd.assign(nt, 0);
+  pass.tallies.resize(64);
+  pass.cuts.resize(64);
+  pass.blocks = for_blocks(nt, parallel, [&](size_t b, size_t begin, size_t end) {
     TetTally tally;  // local: the blocks' tallies side by side would share cache lines
     tally.rr = Hist(opt.quality_bins);
     tally.mr = Hist(opt.quality_bins);
@@ -369,7 +417,7 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
     for (size_t t = begin; t < end; ++t) {
       const uint32_t* v = &mesh.tet[4 * t];
       const bool bnd = on_boundary[v[0]] || on_boundary[v[1]] || on_boundary[v[2]] || on_boundary[v[3]];
-      tet_bnd[t] = bnd ? 1 : 0;
+      pass.tet_bnd[t] = bnd ? 1 : 0;
       tally.boundary_tets += bnd;
       const size_t rb = bin_of(data.radius_ratio[t], 0.0, 1.0, opt.quality_bins);
       const size_t mb = bin_of(data.mean_ratio[t], 0.0, 1.0, opt.quality_bins);
@@ -383,41 +431,8 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
       tally.max_dihedral_key[g] = std::max(tally.max_dihedral_key[g], data.max_dihedral_key[t]);
       tally.lt5[g] += data.min_dihedral[t] < 5.0;
       tally.lt10[g] += data.min_dihedral[t] < 10.0;
-      // The six dihedral angles: 180 degrees minus the angle between the inward face normals.
       const double* p[4] = {mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3])};
-      double e[6][3];
-      static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-      for (int k = 0; k < 6; ++k) {
-        for (int c = 0; c < 3; ++c) e[k][c] = p[kEdge[k][1]][c] - p[kEdge[k][0]][c];
-      }
-      auto cross = [](const double* x, const double* y, double* r) {
-        r[0] = x[1] * y[2] - x[2] * y[1];
-        r[1] = x[2] * y[0] - x[0] * y[2];
-        r[2] = x[0] * y[1] - x[1] * y[0];
-      };
-      double n[4][3];
-      cross(e[4], e[3], n[0]);  // facet 0 (b d c): bd x bc
-      cross(e[1], e[2], n[1]);  // facet 1 (a c d): ac x ad
-      cross(e[2], e[0], n[2]);  // facet 2 (a d b): ad x ab
-      cross(e[0], e[1], n[3]);  // facet 3 (a b c): ab x ac
-      double len[4];
-      for (int k = 0; k < 4; ++k) len[k] = std::sqrt(n[k][0] * n[k][0] + n[k][1] * n[k][1] + n[k][2] * n[k][2]);
-      for (int k = 0; k < 4; ++k) {
-        for (int j = k + 1; j < 4; ++j) {
-          // A degenerate face (zero normal) makes its three angles 0.
-          const double c = len[k] == 0.0 || len[j] == 0.0
-                               ? 1.0
-                               : -(n[k][0] * n[j][0] + n[k][1] * n[j][1] + n[k][2] * n[j][2]) / (len[k] * len[j]);
-          // The angle's bin without acos: a table on the cosine gives it within one, the
-          // cosines of the bin edges (decreasing) settle it.
-          long db = cos_table[size_t(std::clamp((c + 1.0) * 0.5 * kCosTable, 0.0, kCosTable - 1.0))];
-          while (db + 1 < opt.dihedral_bins && c <= cos_edges[size_t(db)]) ++db;
-          while (db > 0 && c > cos_edges[size_t(db - 1)]) --db;
-          tally.dihedral.all[size_t(db)] += 1;
-          if (bnd) tally.dihedral.bnd[size_t(db)] += 1;
-        }
-      }
-      // Cross-sections.
+      add_dihedrals(p, dihedral_bins, bnd, tally.dihedral);
       for (int axis = 0; axis < 3; ++axis) {
         Poly poly;
         if (cross_section(p, axis, plane[axis], poly)) {
@@ -426,15 +441,20 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
         }
       }
     }
-    tallies[b] = std::move(tally);
-    cuts[b] = std::move(block_cuts);
+    pass.tallies[b] = std::move(tally);
+    pass.cuts[b] = std::move(block_cuts);
   });
+  return pass;
+}
+
+// The blocks' tallies added up in block order.
+TetTally merge_tallies(const TetPass& pass, const HtmlReportOptions& opt) {
   TetTally total;
   total.rr = Hist(opt.quality_bins);
   total.mr = Hist(opt.quality_bins);
   total.dihedral = Hist(opt.dihedral_bins);
-  for (size_t b = 0; b < blocks; ++b) {
-    const TetTally& t = tallies[b];
+  for (size_t b = 0; b < pass.blocks; ++b) {
+    const TetTally& t = pass.tallies[b];
     total.rr.add(t.rr);
     total.mr.add(t.mr);
     total.dihedral.add(t.dihedral);
@@ -445,113 +465,136 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
       total.lt10[g] += t.lt10[g];
     }
   }
-  out.boundary_tets = total.boundary_tets;
+  return total;
+}
 
-  // Cut views: merge the blocks; beyond the cap keep the sections nearest the centre of the cut.
-  std::array<std::vector<Poly>, 3> cut_polys;
-  for (int axis = 0; axis < 3; ++axis) {
-    std::vector<Poly>& all = cut_polys[size_t(axis)];
-    for (size_t b = 0; b < blocks; ++b) {
-      all.insert(all.end(), cuts[b][size_t(axis)].begin(), cuts[b][size_t(axis)].end());
-      std::vector<Poly>().swap(cuts[b][size_t(axis)]);
-    }
-    out.cut_polygons_total[size_t(axis)] = all.size();
-    if (all.size() > opt.max_polygons_per_view) {
-      static const int kU[3] = {1, 0, 0}, kV[3] = {2, 2, 1};
-      const int u = kU[axis], w = kV[axis];
-      const double cu = 0.5 * (box.lo[u] + box.hi[u]), cv = 0.5 * (box.lo[w] + box.hi[w]);
-      const double su = std::max(box.hi[u] - box.lo[u], 1e-300), sv = std::max(box.hi[w] - box.lo[w], 1e-300);
-      auto key = [&](const Poly& p) {
-        double mu = 0, mv = 0;
-        for (int k = 0; k < p.n; ++k) {
-          mu += p.u[k];
-          mv += p.v[k];
-        }
-        return std::max(std::fabs(mu / p.n - cu) / su, std::fabs(mv / p.n - cv) / sv);
-      };
-      std::vector<std::pair<double, size_t>> keyed(all.size());
-      for (size_t i = 0; i < all.size(); ++i) keyed[i] = {key(all[i]), i};
-      std::nth_element(keyed.begin(), keyed.begin() + long(opt.max_polygons_per_view), keyed.end());
-      keyed.resize(opt.max_polygons_per_view);
-      std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
-      std::vector<Poly> kept;
-      kept.reserve(keyed.size());
-      for (const auto& k : keyed) kept.push_back(all[k.second]);
-      all.swap(kept);
-    }
-    out.cut_polygons_drawn[size_t(axis)] = all.size();
+// One cut view's cross-sections: the blocks' in block order (freeing them on the way), and beyond
+// `cap` the ones nearest the centre of the cut, in the same order. `total` gets the count before
+// the cap.
+std::vector<Poly> cut_view_polys(TetPass& pass, int axis, const Bbox& box, size_t cap, size_t& total) {
+  std::vector<Poly> all;
+  for (size_t b = 0; b < pass.blocks; ++b) {
+    all.insert(all.end(), pass.cuts[b][size_t(axis)].begin(), pass.cuts[b][size_t(axis)].end());
+    std::vector<Poly>().swap(pass.cuts[b][size_t(axis)]);
   }
+  total = all.size();
+  if (all.size() > cap) {
+    static const int kU[3] = {1, 0, 0}, kV[3] = {2, 2, 1};
+    const int u = kU[axis], w = kV[axis];
+    const double cu = 0.5 * (box.lo[u] + box.hi[u]), cv = 0.5 * (box.lo[w] + box.hi[w]);
+    const double su = std::max(box.hi[u] - box.lo[u], 1e-300), sv = std::max(box.hi[w] - box.lo[w], 1e-300);
+    auto key = [&](const Poly& p) {
+      double mu = 0, mv = 0;
+      for (int k = 0; k < p.n; ++k) {
+        mu += p.u[k];
+        mv += p.v[k];
+      }
+      return std::max(std::fabs(mu / p.n - cu) / su, std::fabs(mv / p.n - cv) / sv);
+    };
+    std::vector<std::pair<double, size_t>> keyed(all.size());
+    for (size_t i = 0; i < all.size(); ++i) keyed[i] = {key(all[i]), i};
+    std::nth_element(keyed.begin(), keyed.begin() + long(cap), keyed.end());
+    keyed.resize(cap);
+    std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+    std::vector<Poly> kept;
+    kept.reserve(keyed.size());
+    for (const auto& k : keyed) kept.push_back(all[k.second]);
+    all.swap(kept);
+  }
+  return all;
+}
 
-  // Unique edges: bucket by the smaller vertex, sort each bucket.
-  const int metric_kind = nv > 0 && mesh.vertex_metric.size() == nv ? 1
-                          : nv > 0 && mesh.vertex_metric.size() == 6 * nv ? 6
-                                                                          : 0;
-  out.metric_edge_lengths = metric_kind != 0;
+// The unique edges of the tets, by smaller vertex then larger: their lengths (in the vertex
+// metric when metric_kind is 1 or 6, see edge_length) and whether they touch the boundary.
+struct EdgeLengths {
   std::vector<double> lengths;
-  std::vector<uint8_t> edge_bnd;
+  std::vector<uint8_t> boundary;
+};
+
+// The tets' edges bucketed by their smaller vertex, each bucket sorted and made unique.
+EdgeLengths unique_edge_lengths(const VolumeMesh& mesh, const std::vector<uint8_t>& on_boundary, int metric_kind,
+                                bool parallel) {
+  const size_t nv = mesh.num_vertices(), nt = mesh.num_tets();
+  std::vector<size_t> start;
+  std::vector<uint32_t> other;  // the larger end, bucketed by the smaller
   {
-    std::vector<size_t> start;
-    std::vector<uint32_t> other;  // the larger end, bucketed by the smaller
-    {
-      std::vector<size_t> fill;
-      auto emit_edges = [&](size_t first, size_t last, auto&& emit) {
-        static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-        for (size_t t = first; t < last; ++t) {
-          const uint32_t* v = &mesh.tet[4 * t];
-          for (const auto& e : kEdge) {
-            const uint32_t a = v[e[0]], b = v[e[1]];
-            emit(std::min(a, b), std::max(a, b));
-          }
-        }
-      };
-      if (parallel) parallel_bucket_by_key(nv, nt, emit_edges, start, other, fill);
-      else bucket_by_key(nv, [&](auto&& emit) { emit_edges(0, nt, emit); }, start, other, fill);
-    }
-      std::vector<size_t> unique_count(nv, 0);
-    quality_detail::for_chunks(nv, parallel, [&](size_t begin, size_t end) {
-      for (size_t v = begin; v < end; ++v) {
-        auto first = other.begin() + long(start[v]), last = other.begin() + long(start[v + 1]);
-        std::sort(first, last);
-        unique_count[v] = size_t(std::unique(first, last) - first);
-      }
-    });
-    std::vector<size_t> offset(nv + 1, 0);
-    for (size_t v = 0; v < nv; ++v) offset[v + 1] = offset[v] + unique_count[v];
-      out.edges = offset[nv];
-    lengths.resize(out.edges);
-    edge_bnd.resize(out.edges);
-    quality_detail::for_chunks(nv, parallel, [&](size_t begin, size_t end) {
-      for (size_t v = begin; v < end; ++v) {
-        for (size_t k = 0; k < unique_count[v]; ++k) {
-          const uint32_t w = other[start[v] + k];
-          lengths[offset[v] + k] = edge_length(mesh, uint32_t(v), w, metric_kind);
-          edge_bnd[offset[v] + k] = on_boundary[v] || on_boundary[w];
+    std::vector<size_t> fill;
+    auto emit_edges = [&](size_t first, size_t last, auto&& emit) {
+      static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+      for (size_t t = first; t < last; ++t) {
+        const uint32_t* v = &mesh.tet[4 * t];
+        for (const auto& e : kEdge) {
+          const uint32_t a = v[e[0]], b = v[e[1]];
+          emit(std::min(a, b), std::max(a, b));
         }
       }
-    });
+    };
+    if (parallel) parallel_bucket_by_key(nv, nt, emit_edges, start, other, fill);
+    else bucket_by_key(nv, [&](auto&& emit) { emit_edges(0, nt, emit); }, start, other, fill);
   }
-  double len_min = 0, len_max = 0, len_mean = 0;
-  Hist edge_hist(opt.edge_bins);
+  std::vector<size_t> unique_count(nv, 0);
+  quality_detail::for_chunks(nv, parallel, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      auto first = other.begin() + long(start[v]), last = other.begin() + long(start[v + 1]);
+      std::sort(first, last);
+      unique_count[v] = size_t(std::unique(first, last) - first);
+    }
+  });
+  std::vector<size_t> offset(nv + 1, 0);
+  for (size_t v = 0; v < nv; ++v) offset[v + 1] = offset[v] + unique_count[v];
+  EdgeLengths edges;
+  edges.lengths.resize(offset[nv]);
+  edges.boundary.resize(offset[nv]);
+  quality_detail::for_chunks(nv, parallel, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      for (size_t k = 0; k < unique_count[v]; ++k) {
+        const uint32_t w = other[start[v] + k];
+        edges.lengths[offset[v] + k] = edge_length(mesh, uint32_t(v), w, metric_kind);
+        edges.boundary[offset[v] + k] = on_boundary[v] || on_boundary[w];
+      }
+    }
+  });
+  return edges;
+}
+
+// The edge lengths' extremes, mean and histogram over [0, longest] (zeros when there is none).
+struct EdgeSummary {
+  double min = 0, max = 0, mean = 0;
+  Hist hist;
+};
+
+EdgeSummary summarize_edges(const EdgeLengths& edges, int bins) {
+  const std::vector<double>& lengths = edges.lengths;
+  EdgeSummary s;
+  s.hist = Hist(bins);
   if (!lengths.empty()) {
-    len_min = *std::min_element(lengths.begin(), lengths.end());
-    len_max = *std::max_element(lengths.begin(), lengths.end());
+    s.min = *std::min_element(lengths.begin(), lengths.end());
+    s.max = *std::max_element(lengths.begin(), lengths.end());
     double sum = 0;
     for (double l : lengths) sum += l;
-    len_mean = sum / double(lengths.size());
+    s.mean = sum / double(lengths.size());
     for (size_t i = 0; i < lengths.size(); ++i) {
-      const size_t b = bin_of(lengths[i], 0.0, len_max, opt.edge_bins);
-      edge_hist.all[b] += 1;
-      if (edge_bnd[i]) edge_hist.bnd[b] += 1;
+      const size_t b = bin_of(lengths[i], 0.0, s.max, bins);
+      s.hist.all[b] += 1;
+      if (edges.boundary[i]) s.hist.bnd[b] += 1;
     }
   }
+  return s;
+}
 
-  // The groups' statistics (touching the boundary: 1, interior: 0).
-  const QualitySplit split_bnd = quality_detail::split_quality(data, tet_bnd, 1);
-  const QualitySplit split_int = quality_detail::split_quality(data, tet_bnd, 0);
+// What the page draws besides the report and HtmlReport's counts.
+struct PageData {
+  Bbox box;                                    // of the used vertices
+  double plane[3] = {0, 0, 0};                 // the cut planes' positions along x, y, z
+  TetTally tally;                              // all blocks' added up
+  std::array<std::vector<Poly>, 3> cut_polys;  // drawn per plane
+  EdgeSummary edges;
+  QualitySplit split_bnd, split_int;  // tets touching the boundary, the others
+};
 
-  // The page.
-  const QualityReport& r = out.report;
-  std::ostringstream h;
+// The page up to the end of its introduction: the style, the body's data attributes (which
+// tests/e2e/report_check.py reads), the title.
+void write_head(std::ostringstream& h, const HtmlReport& out, const PageData& page, const HtmlReportOptions& opt) {
   h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << escape(opt.title)
     << "</title>\n<style>\n"
        "body{font-family:sans-serif;margin:16px 24px;color:#222;background:#fff}\n"
@@ -572,20 +615,29 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
     h << "polygon.q" << c << "{fill:" << kClassColour[c] << "}.legend .q" << c << "{background:"
       << kClassColour[c] << (c <= 2 ? ";color:#fff" : "") << "}\n";
   }
-  h << "</style>\n</head>\n<body data-tets=\"" << r.tets << "\" data-boundary-tets=\"" << out.boundary_tets
+  h << "</style>\n</head>\n<body data-tets=\"" << out.report.tets << "\" data-boundary-tets=\"" << out.boundary_tets
     << "\" data-edges=\"" << out.edges << "\" data-edge-metric=\"" << (out.metric_edge_lengths ? 1 : 0)
-    << "\" data-edge-mean=\"" << num("%.6g", len_mean) << "\">\n";
+    << "\" data-edge-mean=\"" << num("%.6g", page.edges.mean) << "\">\n";
   h << "<h1>" << escape(opt.title) << "</h1>\n<p>Quality report written by anitet";
   if (!opt.mesh_name.empty()) h << " for <code>" << escape(opt.mesh_name) << "</code>";
   if (!opt.surface_name.empty()) h << " against the input surface <code>" << escape(opt.surface_name) << "</code>";
   h << ". Radius ratio = 3 &times; inradius / circumradius, mean ratio = 12 (3|V|)<sup>2/3</sup> / &Sigma; l<sup>2</sup> "
        "(both 1 for the regular tet). <i>Touching the boundary</i>: tets with a vertex on a boundary face "
        "of the mesh.</p>\n";
+}
 
+// A row of a two-column table (k and v are HTML already).
+void table_row(std::ostringstream& h, const std::string& k, const std::string& v) {
+  h << "<tr><td class=\"k\">" << k << "</td><td>" << v << "</td></tr>\n";
+}
+
+// The summary's first table: the mesh's counts, box, validity and edge lengths. The page's own
+// time is a marker, filled in when the page is done.
+void write_mesh_table(std::ostringstream& h, const HtmlReport& out, const PageData& page) {
+  const QualityReport& r = out.report;
+  const Bbox& box = page.box;
   h << "<h2>Summary</h2>\n<table><tr><th colspan=\"2\">Mesh</th></tr>\n";
-  auto row = [&](const std::string& k, const std::string& v) {
-    h << "<tr><td class=\"k\">" << k << "</td><td>" << v << "</td></tr>\n";
-  };
+  auto row = [&](const std::string& k, const std::string& v) { table_row(h, k, v); };
   row("vertices", std::to_string(r.vertices));
   row("tets", std::to_string(r.tets));
   row("unused vertices", std::to_string(r.unused_vertices));
@@ -602,15 +654,19 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
   row("valid tets flat to double rounding", std::to_string(r.rounding_flat_tets));
   row("faces shared by &gt; 2 tets", std::to_string(r.faces_shared_by_more_than_two));
   row(out.metric_edge_lengths ? "edge length in the metric: min / mean / max" : "edge length: min / mean / max",
-      num("%.4g", len_min) + " / " + num("%.4g", len_mean) + " / " + num("%.4g", len_max));
+      num("%.4g", page.edges.min) + " / " + num("%.4g", page.edges.mean) + " / " + num("%.4g", page.edges.max));
   row("report time (measures / page)", num("%.3f s", out.seconds_quality) + " / " + "<!--html-seconds-->");
   h << "</table>\n";
+}
 
+// The quality measures of all tets, of those touching the boundary and of the others.
+void write_quality_table(std::ostringstream& h, const QualityReport& r, const PageData& page) {
+  const TetTally& total = page.tally;
   h << "<table><tr><th></th><th>all tets</th><th>touching the boundary</th><th>interior</th></tr>\n";
   auto qrow = [&](const std::string& k, const std::string& a, const std::string& b, const std::string& c) {
     h << "<tr><td class=\"k\">" << k << "</td><td>" << a << "</td><td>" << b << "</td><td>" << c << "</td></tr>\n";
   };
-  const QualitySplit* groups[2] = {&split_bnd, &split_int};
+  const QualitySplit* groups[2] = {&page.split_bnd, &page.split_int};
   auto grp = [&](auto f) { return std::array<std::string, 2>{f(*groups[0]), f(*groups[1])}; };
   auto g3 = [&](const std::string& k, const std::string& all, const std::array<std::string, 2>& g) {
     qrow(k, all, g[0], g[1]);
@@ -639,46 +695,56 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
   g3("radius ratio &lt; 0.1", num("%.2f%%", 100.0 * r.bad_fraction),
      grp([](const QualitySplit& q) { return num("%.2f%%", 100.0 * q.bad_fraction); }));
   h << "</table>\n";
+}
 
-  if (!opt.run_rows.empty()) {
-    h << "<table><tr><th colspan=\"2\">Meshing run</th></tr>\n";
-    for (const auto& [name, value] : opt.run_rows) row(escape(name), escape(value));
-    h << "</table>\n";
-  }
+// The rows of the run that made the mesh (plain text, escaped here).
+void write_run_table(std::ostringstream& h, const HtmlReportOptions& opt) {
+  h << "<table><tr><th colspan=\"2\">Meshing run</th></tr>\n";
+  for (const auto& [name, value] : opt.run_rows) table_row(h, escape(name), escape(value));
+  h << "</table>\n";
+}
 
-  if (r.surface.present) {
-    const SurfaceMatchReport& s = r.surface;
-    h << "<table><tr><th colspan=\"2\">Against the input surface</th></tr>\n";
-    row("boundary constrained",
-        s.boundary_constrained ? "<span class=\"ok\">yes</span>" : "<span class=\"bad\">no</span>");
-    row("input vertices / triangles", std::to_string(s.input_vertices) + " / " + std::to_string(s.input_triangles));
-    row("input triangles missing", std::to_string(s.input_triangles_missing));
-    row("boundary faces not in the input", std::to_string(s.boundary_faces_not_in_input));
-    row("Steiner points on the boundary", std::to_string(s.steiner_points_on_boundary));
-    row("other vertices on the surface", std::to_string(s.vertices_on_input_surface));
-    row("volume relative error", num("%.3g", s.volume_rel_error));
-    row("tets with an input vertex: tets / rr min / rr mean",
-        std::to_string(s.touching_surface.tets) + " / " + num("%.4f", s.touching_surface.radius_ratio.min) +
-            " / " + num("%.4f", s.touching_surface.radius_ratio.mean));
-    row("other tets: tets / rr min / rr mean",
-        std::to_string(s.interior.tets) + " / " + num("%.4f", s.interior.radius_ratio.min) + " / " +
-            num("%.4f", s.interior.radius_ratio.mean));
-    h << "</table>\n";
-  }
+// The mesh against the input surface it was made from.
+void write_surface_table(std::ostringstream& h, const SurfaceMatchReport& s) {
+  auto row = [&](const std::string& k, const std::string& v) { table_row(h, k, v); };
+  h << "<table><tr><th colspan=\"2\">Against the input surface</th></tr>\n";
+  row("boundary constrained",
+      s.boundary_constrained ? "<span class=\"ok\">yes</span>" : "<span class=\"bad\">no</span>");
+  row("input vertices / triangles", std::to_string(s.input_vertices) + " / " + std::to_string(s.input_triangles));
+  row("input triangles missing", std::to_string(s.input_triangles_missing));
+  row("boundary faces not in the input", std::to_string(s.boundary_faces_not_in_input));
+  row("Steiner points on the boundary", std::to_string(s.steiner_points_on_boundary));
+  row("other vertices on the surface", std::to_string(s.vertices_on_input_surface));
+  row("volume relative error", num("%.3g", s.volume_rel_error));
+  row("tets with an input vertex: tets / rr min / rr mean",
+      std::to_string(s.touching_surface.tets) + " / " + num("%.4f", s.touching_surface.radius_ratio.min) +
+          " / " + num("%.4f", s.touching_surface.radius_ratio.mean));
+  row("other tets: tets / rr min / rr mean",
+      std::to_string(s.interior.tets) + " / " + num("%.4f", s.interior.radius_ratio.min) + " / " +
+          num("%.4f", s.interior.radius_ratio.mean));
+  h << "</table>\n";
+}
 
+// The four histograms: radius ratio, mean ratio, dihedral angles, edge lengths.
+void write_histograms(std::ostringstream& h, const HtmlReport& out, const PageData& page,
+                      const HtmlReportOptions& opt) {
   h << "<h2>Histograms</h2>\n<p>Blue: all tets (edges); orange: the ones touching the boundary.</p>\n"
        "<div class=\"hists\">\n";
   const int qt = std::max(1, opt.quality_bins / 5), dt = std::max(1, opt.dihedral_bins / 6),
             et = std::max(1, opt.edge_bins / 5);
-  h << hist_svg("radius-ratio", "Radius ratio (per tet)", "radius ratio", total.rr, 0.0, 1.0, "%.1f", qt);
-  h << hist_svg("mean-ratio", "Mean ratio (per tet)", "mean ratio", total.mr, 0.0, 1.0, "%.1f", qt);
-  h << hist_svg("dihedral", "Dihedral angles (6 per tet)", "degrees", total.dihedral, 0.0, 180.0, "%.0f", dt);
+  h << hist_svg("radius-ratio", "Radius ratio (per tet)", "radius ratio", page.tally.rr, 0.0, 1.0, "%.1f", qt);
+  h << hist_svg("mean-ratio", "Mean ratio (per tet)", "mean ratio", page.tally.mr, 0.0, 1.0, "%.1f", qt);
+  h << hist_svg("dihedral", "Dihedral angles (6 per tet)", "degrees", page.tally.dihedral, 0.0, 180.0, "%.0f", dt);
   h << hist_svg("edge-length", out.metric_edge_lengths ? "Edge length in the metric" : "Edge length",
                 out.metric_edge_lengths ? "metric length (1 = the prescribed size)"
                                         : "length (no metric in the mesh file: Euclidean)",
-                edge_hist, 0.0, len_max, "%.3g", et);
+                page.edges.hist, 0.0, page.edges.max, "%.3g", et);
   h << "</div>\n";
+}
 
+// The three cut views with their colour legend, and the end of the page.
+void write_cut_views(std::ostringstream& h, const HtmlReport& out, const PageData& page,
+                     const HtmlReportOptions& opt) {
   h << "<h2>Cut views</h2>\n<p>Cross-sections of the tets crossed by the planes through x, y, z at "
     << num("%.3g", opt.cut[0]) << ", " << num("%.3g", opt.cut[1]) << ", " << num("%.3g", opt.cut[2])
     << " of the bounding box, coloured by radius ratio:</p>\n<p class=\"legend\">";
@@ -688,10 +754,74 @@ Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh
   }
   h << "</p>\n<div class=\"cuts\">\n";
   for (int axis = 0; axis < 3; ++axis) {
-    h << cut_svg(axis, plane[axis], cut_polys[size_t(axis)], out.cut_polygons_total[size_t(axis)]);
+    h << cut_svg(axis, page.plane[axis], page.cut_polys[size_t(axis)], out.cut_polygons_total[size_t(axis)]);
   }
   h << "</div>\n</body>\n</html>\n";
-  out.html = h.str();
+}
+
+std::string page_html(const HtmlReport& out, const PageData& page, const HtmlReportOptions& opt) {
+  std::ostringstream h;
+  write_head(h, out, page, opt);
+  write_mesh_table(h, out, page);
+  write_quality_table(h, out.report, page);
+  if (!opt.run_rows.empty()) write_run_table(h, opt);
+  if (out.report.surface.present) write_surface_table(h, out.report.surface);
+  write_histograms(h, out, page, opt);
+  write_cut_views(h, out, page, opt);
+  return h.str();
+}
+
+}  // namespace
+
+Result<HtmlReport> quality_report_html(const VolumeMesh& mesh, const SurfaceMesh* input_surface,
+                                       const QualityOptions& quality_options,
+                                       const HtmlReportOptions& opt) {
+  if (Status st = check_options(mesh, opt); !st.ok()) return st;
+  HtmlReport out;
+  TetData data;
+  std::vector<uint32_t> boundary;
+  {
+    Result<QualityReport> r =
+        quality_detail::compute_quality_report_keep(mesh, input_surface, quality_options, data, boundary);
+    if (!r.ok()) return r.status();
+    out.report = std::move(r).value();
+  }
+  out.seconds_quality = out.report.seconds;
+  const auto clock_start = std::chrono::steady_clock::now();
+  const bool parallel = quality_options.parallel;
+  const size_t nv = mesh.num_vertices();
+
+  // Vertices on the boundary, and the cut planes across the bounding box of the used vertices.
+  std::vector<uint8_t> on_boundary(nv, 0);
+  for (uint32_t v : boundary) on_boundary[v] = 1;
+  PageData page;
+  page.box = used_vertex_box(mesh);
+  for (int k = 0; k < 3; ++k) page.plane[k] = page.box.lo[k] + opt.cut[size_t(k)] * (page.box.hi[k] - page.box.lo[k]);
+
+  TetPass pass = tet_pass(mesh, data, on_boundary, page.plane, opt, parallel);
+  page.tally = merge_tallies(pass, opt);
+  out.boundary_tets = page.tally.boundary_tets;
+  for (int axis = 0; axis < 3; ++axis) {
+    page.cut_polys[size_t(axis)] =
+        cut_view_polys(pass, axis, page.box, opt.max_polygons_per_view, out.cut_polygons_total[size_t(axis)]);
+    out.cut_polygons_drawn[size_t(axis)] = page.cut_polys[size_t(axis)].size();
+  }
+
+  const int metric_kind = nv > 0 && mesh.vertex_metric.size() == nv ? 1
+                          : nv > 0 && mesh.vertex_metric.size() == 6 * nv ? 6
+                                                                          : 0;
+  out.metric_edge_lengths = metric_kind != 0;
+  {
+    const EdgeLengths edges = unique_edge_lengths(mesh, on_boundary, metric_kind, parallel);
+    out.edges = edges.lengths.size();
+    page.edges = summarize_edges(edges, opt.edge_bins);
+  }
+
+  // The groups' statistics (touching the boundary: 1, interior: 0).
+  page.split_bnd = quality_detail::split_quality(data, pass.tet_bnd, 1);
+  page.split_int = quality_detail::split_quality(data, pass.tet_bnd, 0);
+
+  out.html = page_html(out, page, opt);
   out.seconds_html = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   const std::string marker = "<!--html-seconds-->";
   const size_t at = out.html.find(marker);
