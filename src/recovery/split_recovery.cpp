@@ -643,9 +643,9 @@ uint32_t SplitRecoverer::crossed_edge_point(uint32_t u, uint32_t w, double& frac
     total += vol[k];
   }
   // Near an edge: on nearly flat fans the segment runs nearly in the facet's plane, and a crossing
-  // this near an edge is where the walk's points would creep to (needle fans flat only to rounding
-  // stalled with 1e-9). The kernel still refuses the point when pq's ring is not star-shaped from
-  // it.
+  // this near an edge is where the walk's points would creep to (with 1e-9, needle fans flat only
+  // to rounding stalled). The kernel still refuses the point when pq's ring is not star-shaped
+  // from it.
   constexpr double kNearEdge = 1e-3;
   int k = zero;
   crossed_coplanar_ = zero >= 0;

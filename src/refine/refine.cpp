@@ -604,8 +604,8 @@ void Refiner::choose_splits(refine_detail::EdgeList& edges, std::vector<Chosen>&
   // The long edges by value, sorted on every core: sorting pointers read the edges at random
   // (millions of them in a large mesh's first pass). The order is total (a, b name one edge). An
   // edge vetoed in an earlier pass with no tet around it changed since would be vetoed again (the
-  // veto reads only its ring and its ends): it is not measured again (in the last passes, most long
-  // edges are such).
+  // veto reads only its ring and its ends): it is not measured again (most of the last passes'
+  // long edges).
   refine_detail::EdgeList longs;
   for (const refine_detail::Edge& e : edges) {
     if (e.on_surface || !(e.length > options_.split_length)) continue;
