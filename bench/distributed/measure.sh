@@ -11,10 +11,14 @@
 #
 #   bench/distributed/measure.sh [-o OUTDIR] [--stages12 SURFACE ...] [--full SURFACE:SIZE ...]
 #
-# SURFACE: a path, or a name in /work/shared/data/surfaces style (DATA dir below); 'NAME@4' is
-# NAME split 1-to-4 (every triangle into four at its edge midpoints: the same shape, 4x the
-# triangles), written to OUTDIR. Environment: ANITET (default build/app/anitet), DATA (default
-# ../shared/data/surfaces from the checkout).
+# OUTDIR (default out/bench-distributed) gets results.txt (overwritten by each call) and the runs'
+# JSON, stderr and GNU time figures.
+#
+# SURFACE: a path, or a file name without its extension in DATA (kitten, armadillo, ...);
+# 'NAME@4' is NAME split 1-to-4 (every triangle into four at its edge midpoints: the same shape,
+# four times the triangles), written to OUTDIR. Needs GNU time, taskset, meshio and NumPy.
+# Environment: ANITET (default build/app/anitet), DATA (default ../shared/data/surfaces from the
+# checkout).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 out=$root/out/bench-distributed
@@ -24,6 +28,7 @@ py=/usr/bin/python3
 stages12=() full=() mode=""
 while [[ $# -gt 0 ]]; do
   case $1 in
+    -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     -o) out=$2; shift 2 ;;
     --stages12) mode=s; shift ;;
     --full) mode=f; shift ;;
@@ -31,6 +36,10 @@ while [[ $# -gt 0 ]]; do
        else echo "usage: $0 [-o OUTDIR] [--stages12 SURFACE ...] [--full SURFACE:SIZE ...]" >&2; exit 2; fi; shift ;;
   esac
 done
+if [[ ${#stages12[@]} -eq 0 && ${#full[@]} -eq 0 ]]; then
+  echo "usage: $0 [-o OUTDIR] [--stages12 SURFACE ...] [--full SURFACE:SIZE ...] (--help)" >&2
+  exit 2
+fi
 mkdir -p "$out"
 
 # The path of SURFACE, splitting NAME@4 when asked.
