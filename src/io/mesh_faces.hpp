@@ -12,24 +12,38 @@
 
 namespace anitet {
 
-// Local face f of a positively oriented tet (v0 v1 v2 v3), listed so that its right-hand normal
-// points OUT of the tet. The order is Exodus II's side numbering for TETRA (side f + 1):
-// side 1 = nodes 1 2 4, side 2 = 2 3 4, side 3 = 1 4 3, side 4 = 1 3 2.
-inline constexpr int kOutwardFace[4][3] = {{0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 2, 1}};
+// (kOutwardFace and kPrismFace, the cells' outward faces, are in core/volume_mesh.hpp.)
 
 struct MeshFaces {
   static constexpr int64_t kNone = -1;
-  // For each tet face 4t+f: the tet face 4u+g on the other side, or kNone on the mesh boundary.
+  // Cell faces are numbered 4t+f for tet t's face f (kOutwardFace), then 4 nt + 5p + f for prism
+  // p's face f (kPrismFace: three quads, then the two triangles). For each cell face: the cell
+  // face on the other side, or kNone on the mesh boundary.
   std::vector<int64_t> across;
-  // For each boundary triangle i: the tet face 4t+f with the same three vertices, kNone when no
-  // tet has it. When two tets share it (an internal face) the one with the smaller t.
+  // For each boundary triangle i: the cell face with the same three vertices, or a prism's quad
+  // side whose diagonal split it is half of; kNone when there is none. When two cells share it
+  // (an internal face) the one with the smaller number.
   std::vector<int64_t> bnd_face;
-  // For each boundary triangle: true when the face it matched has a tet on both sides.
+  // For each boundary triangle: true when the face it matched has a cell on both sides.
   std::vector<bool> bnd_internal;
 };
 
-// Error::InvalidMesh, naming the vertices, when three or more tet faces share three vertices.
+// Error::InvalidMesh, naming the vertices, when three or more cell faces share their vertices.
 Result<MeshFaces> build_mesh_faces(const VolumeMesh& mesh);
+
+// The cell of cell face `face` (tets 0..nt-1, then prisms nt + p) and its vertices, outward from
+// that cell; returns their count (3 or 4).
+size_t cell_of_face(const VolumeMesh& mesh, int64_t face);
+int face_vertices(const VolumeMesh& mesh, int64_t face, uint32_t out[4]);
+
+// The boundary elements of the boundary triangles `tris` (e.g. a patch's), in that order: each
+// triangle oriented as outward_triangle does, but the two triangles of a prism's quad side as that
+// quad, once (at the first of the two), outward from the prism.
+struct BoundaryElements {
+  std::vector<uint32_t> vertices;  // 3 or 4 per element
+  std::vector<uint8_t> size;       // per element: 3 or 4
+};
+BoundaryElements boundary_elements(const VolumeMesh& mesh, const MeshFaces& faces, const std::vector<uint32_t>& tris);
 
 // Boundary triangle b, oriented out of the mesh when it is a face of exactly one tet (the tet's
 // outward face), else as given.

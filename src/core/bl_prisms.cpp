@@ -1,0 +1,287 @@
+#include "core/bl_prisms.hpp"
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <string>
+
+namespace anitet {
+
+namespace {
+
+constexpr uint32_t kNoVertex = ~uint32_t{0};
+using Tri = std::array<uint32_t, 3>;
+using Quad = std::array<uint32_t, 4>;
+
+Tri sorted3(uint32_t a, uint32_t b, uint32_t c) {
+  Tri s{a, b, c};
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+// Each vertex's column: the vertex it is pushed from, followed down to one pushed from nothing
+// (its root), and the number of steps (its depth).
+struct Columns {
+  std::vector<uint32_t> root, depth;
+};
+
+Result<Columns> follow_columns(const std::vector<uint32_t>& origin) {
+  const size_t nv = origin.size();
+  Columns c;
+  c.root.assign(nv, kNoVertex);
+  c.depth.assign(nv, 0);
+  std::vector<uint32_t> chain;
+  for (size_t v = 0; v < nv; ++v) {
+    chain.clear();
+    uint32_t u = static_cast<uint32_t>(v);
+    while (c.root[u] == kNoVertex && origin[u] != kNoVertex) {
+      chain.push_back(u);
+      u = origin[u];
+      if (u >= nv) return Status(Error::BadIndex, "vertex_origin refers to vertex " + std::to_string(u));
+      if (chain.size() > nv) return Status(Error::InvalidArgument, "vertex_origin has a cycle");
+    }
+    if (c.root[u] == kNoVertex) c.root[u] = u;
+    for (size_t i = chain.size(); i-- > 0;) {
+      const uint32_t w = chain[i];
+      c.root[w] = c.root[origin[w]];
+      c.depth[w] = c.depth[origin[w]] + 1;
+    }
+  }
+  return c;
+}
+
+// A BL tet and the key of the prism it may belong to: its three columns and its lowest depth.
+struct TetKey {
+  std::array<uint32_t, 3> roots;
+  uint32_t depth;
+  uint32_t tet;
+  bool operator<(const TetKey& o) const {
+    return roots != o.roots ? roots < o.roots : depth != o.depth ? depth < o.depth : tet < o.tet;
+  }
+  bool same_prism(const TetKey& o) const { return roots == o.roots && depth == o.depth; }
+};
+
+// The key of tet t when its vertices lie on exactly three columns, two of them one above the
+// other on one column.
+std::optional<TetKey> key_of(const VolumeMesh& mesh, const Columns& c, const std::vector<uint32_t>& origin, size_t t) {
+  const uint32_t* v = &mesh.tet[4 * t];
+  TetKey k{{}, kNoVertex, static_cast<uint32_t>(t)};
+  std::array<uint32_t, 4> roots{};
+  for (int i = 0; i < 4; ++i) {
+    roots[size_t(i)] = c.root[v[i]];
+    k.depth = std::min(k.depth, c.depth[v[i]]);
+  }
+  int pairs = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      if (roots[size_t(i)] == roots[size_t(j)]) {
+        if (origin[v[i]] != v[j] && origin[v[j]] != v[i]) return std::nullopt;
+        ++pairs;
+      }
+  if (pairs != 1) return std::nullopt;
+  std::sort(roots.begin(), roots.end());
+  const auto last = std::unique(roots.begin(), roots.end());
+  std::copy(roots.begin(), last, k.roots.begin());
+  return k;
+}
+
+// The prism (VolumeMesh::prism's order) that the three tets form exactly, if they do.
+std::optional<std::array<uint32_t, 6>> prism_of(const VolumeMesh& mesh, const std::vector<uint32_t>& origin,
+                                                const Columns& c, const std::array<uint32_t, 3>& roots,
+                                                const uint32_t tets[3]) {
+  // Two vertices per column, the upper pushed from the lower.
+  uint32_t lo[3], hi[3];
+  for (int i = 0; i < 3; ++i) lo[i] = hi[i] = kNoVertex;
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t v = mesh.tet[4 * size_t(tets[k]) + size_t(i)];
+      const int col = int(std::find(roots.begin(), roots.end(), c.root[v]) - roots.begin());
+      if (lo[col] == v || hi[col] == v) continue;
+      if (lo[col] == kNoVertex) {
+        lo[col] = v;
+      } else if (hi[col] == kNoVertex) {
+        hi[col] = v;
+      } else {
+        return std::nullopt;
+      }
+    }
+  for (int i = 0; i < 3; ++i) {
+    if (hi[i] == kNoVertex) return std::nullopt;
+    if (origin[lo[i]] == hi[i]) std::swap(lo[i], hi[i]);
+    if (origin[hi[i]] != lo[i]) return std::nullopt;
+  }
+  // The twelve faces: two shared pairs, then the caps once each and each side twice.
+  struct Face {
+    Tri key;
+    Tri outward;
+  };
+  std::array<Face, 12> faces;
+  for (int k = 0; k < 3; ++k)
+    for (int f = 0; f < 4; ++f) {
+      const uint32_t* v = &mesh.tet[4 * size_t(tets[k])];
+      const Tri out{v[kOutwardFace[f][0]], v[kOutwardFace[f][1]], v[kOutwardFace[f][2]]};
+      faces[size_t(4 * k + f)] = {sorted3(out[0], out[1], out[2]), out};
+    }
+  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.key < b.key; });
+  const Tri bottom = sorted3(lo[0], lo[1], lo[2]), top = sorted3(hi[0], hi[1], hi[2]);
+  std::optional<Tri> bottom_out;
+  int shared = 0, caps = 0, sides[3] = {0, 0, 0};
+  uint32_t missing[3][2] = {};
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (i + 1 < faces.size() && faces[i].key == faces[i + 1].key) {
+      if (i + 2 < faces.size() && faces[i + 2].key == faces[i].key) return std::nullopt;
+      ++shared;
+      ++i;
+      continue;
+    }
+    const Tri& key = faces[i].key;
+    if (key == bottom || key == top) {
+      if (key == bottom) bottom_out = faces[i].outward;
+      ++caps;
+      continue;
+    }
+    // A side face: both vertices of one column and one of another; side s is opposite column s.
+    int count[3] = {0, 0, 0};
+    for (uint32_t v : key) ++count[std::find(roots.begin(), roots.end(), c.root[v]) - roots.begin()];
+    const int s = count[0] == 0 ? 0 : count[1] == 0 ? 1 : count[2] == 0 ? 2 : -1;
+    if (s < 0 || sides[s] == 2) return std::nullopt;
+    // The quad's vertex this triangle leaves out.
+    const int a = (s + 1) % 3, b = (s + 2) % 3;
+    uint32_t left_out = kNoVertex;
+    for (uint32_t v : {lo[a], hi[a], lo[b], hi[b]})
+      if (std::find(key.begin(), key.end(), v) == key.end()) left_out = v;
+    missing[s][sides[s]++] = left_out;
+  }
+  if (shared != 2 || caps != 2 || !bottom_out) return std::nullopt;
+  for (int s = 0; s < 3; ++s) {
+    // The two triangles split the quad along a diagonal: they leave out opposite corners.
+    const int a = (s + 1) % 3, b = (s + 2) % 3;
+    const uint32_t m0 = missing[s][0], m1 = missing[s][1];
+    const bool opposite = (m0 == lo[a] && m1 == hi[b]) || (m0 == hi[b] && m1 == lo[a]) ||
+                          (m0 == hi[a] && m1 == lo[b]) || (m0 == lo[b] && m1 == hi[a]);
+    if (sides[s] != 2 || !opposite) return std::nullopt;
+  }
+  // The bottom's outward order is the prism's 0 2 1 (kPrismFace[3]).
+  const Tri& b = *bottom_out;
+  std::array<uint32_t, 6> p{b[0], b[2], b[1], 0, 0, 0};
+  for (int i = 0; i < 3; ++i) p[size_t(3 + i)] = hi[std::find(lo, lo + 3, p[size_t(i)]) - lo];
+  return p;
+}
+
+Quad sorted_quad(const std::array<uint32_t, 6>& p, int f) {
+  Quad q{p[size_t(kPrismFace[f][0])], p[size_t(kPrismFace[f][1])], p[size_t(kPrismFace[f][2])],
+         p[size_t(kPrismFace[f][3])]};
+  std::sort(q.begin(), q.end());
+  return q;
+}
+
+struct Candidate {
+  std::array<uint32_t, 6> v;
+  uint32_t tets[3];
+  bool kept = true;
+};
+
+// Drops the candidates with a quad side on a face of a tet that stays a tet, until none is left:
+// every quad side is then another prism's or on the boundary.
+void drop_unmatched_sides(const VolumeMesh& mesh, std::vector<Candidate>& cands) {
+  const size_t nt = mesh.num_tets();
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<uint8_t> in_prism(nt, 0);
+    std::vector<Quad> quads;
+    for (const Candidate& c : cands)
+      if (c.kept) {
+        for (uint32_t t : c.tets) in_prism[t] = 1;
+        for (int f = 0; f < 3; ++f) quads.push_back(sorted_quad(c.v, f));
+      }
+    std::sort(quads.begin(), quads.end());
+    std::vector<Tri> tet_faces;
+    for (size_t t = 0; t < nt; ++t)
+      if (!in_prism[t])
+        for (const auto& lf : kOutwardFace) {
+          const uint32_t* v = &mesh.tet[4 * t];
+          tet_faces.push_back(sorted3(v[lf[0]], v[lf[1]], v[lf[2]]));
+        }
+    std::sort(tet_faces.begin(), tet_faces.end());
+    for (Candidate& c : cands) {
+      if (!c.kept) continue;
+      for (int f = 0; f < 3 && c.kept; ++f) {
+        const Quad q = sorted_quad(c.v, f);
+        const auto range = std::equal_range(quads.begin(), quads.end(), q);
+        if (range.second - range.first >= 2) continue;  // another prism's side
+        for (int skip = 0; skip < 4; ++skip) {
+          Tri t{};
+          for (int i = 0, n = 0; i < 4; ++i)
+            if (i != skip) t[size_t(n++)] = q[size_t(i)];
+          if (std::binary_search(tet_faces.begin(), tet_faces.end(), t)) {
+            c.kept = false;
+            changed = true;
+            break;
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+Result<PrismMergeStats> merge_bl_prisms(VolumeMesh& mesh, const std::vector<uint32_t>& vertex_origin,
+                                        int32_t first_bl_region) {
+  const size_t nv = mesh.num_vertices(), nt = mesh.num_tets();
+  if (vertex_origin.size() != nv)
+    return Status(Error::InvalidArgument, "merge_bl_prisms: vertex_origin needs one entry per vertex");
+  if (!mesh.region.empty() && mesh.region.size() != nt)
+    return Status(Error::InvalidArgument, "merge_bl_prisms: region needs one entry per tet");
+  if (!mesh.prism.empty()) return Status(Error::InvalidArgument, "merge_bl_prisms: the mesh has prisms already");
+  for (uint32_t v : mesh.tet)
+    if (v >= nv) return Status(Error::BadIndex, "merge_bl_prisms: a tet refers to vertex " + std::to_string(v));
+  Result<Columns> columns = follow_columns(vertex_origin);
+  if (!columns.ok()) return Status(columns.status().code(), "merge_bl_prisms: " + columns.status().message());
+  const Columns& c = columns.value();
+  auto region = [&](size_t t) { return mesh.region.empty() ? 0 : mesh.region[t]; };
+
+  PrismMergeStats stats;
+  std::vector<TetKey> keys;
+  for (size_t t = 0; t < nt; ++t) {
+    if (region(t) < first_bl_region) continue;
+    ++stats.bl_tets;
+    if (std::optional<TetKey> k = key_of(mesh, c, vertex_origin, t)) keys.push_back(*k);
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<Candidate> cands;
+  for (size_t i = 0; i < keys.size();) {
+    size_t j = i + 1;
+    while (j < keys.size() && keys[j].same_prism(keys[i])) ++j;
+    if (j - i == 3) {
+      const uint32_t tets[3] = {keys[i].tet, keys[i + 1].tet, keys[i + 2].tet};
+      const bool one_region = region(tets[0]) == region(tets[1]) && region(tets[0]) == region(tets[2]);
+      if (one_region)
+        if (auto p = prism_of(mesh, vertex_origin, c, keys[i].roots, tets)) cands.push_back({*p, {tets[0], tets[1], tets[2]}});
+    }
+    i = j;
+  }
+  drop_unmatched_sides(mesh, cands);
+
+  std::vector<uint8_t> merged(nt, 0);
+  for (const Candidate& cand : cands) {
+    if (!cand.kept) continue;
+    for (uint32_t t : cand.tets) merged[t] = 1;
+    mesh.prism.insert(mesh.prism.end(), cand.v.begin(), cand.v.end());
+    if (!mesh.region.empty()) mesh.prism_region.push_back(mesh.region[cand.tets[0]]);
+    ++stats.prisms;
+  }
+  size_t out = 0;
+  for (size_t t = 0; t < nt; ++t) {
+    if (merged[t]) continue;
+    std::copy_n(&mesh.tet[4 * t], 4, &mesh.tet[4 * out]);
+    if (!mesh.region.empty()) mesh.region[out] = mesh.region[t];
+    ++out;
+  }
+  mesh.tet.resize(4 * out);
+  if (!mesh.region.empty()) mesh.region.resize(out);
+  stats.kept_tets = stats.bl_tets - 3 * stats.prisms;
+  return stats;
+}
+
+}  // namespace anitet
