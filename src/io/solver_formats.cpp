@@ -130,23 +130,30 @@ Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_nam
   const MeshFaces& faces = built.value();
   const size_t nt = mesh.num_tets();
 
-  // The patch of every boundary face of the tets, by index into `patches`.
+  const size_t np = mesh.num_prisms(), num_cells = nt + np;
+  auto first_face = [&](size_t c) { return c < nt ? 4 * c : 4 * nt + 5 * (c - nt); };
+  auto num_faces = [&](size_t c) { return c < nt ? 4 : 5; };
+
+  // The patch of every boundary face of the cells, by index into `patches`.
   constexpr uint32_t kUnset = ~uint32_t{0};
-  std::vector<uint32_t> face_patch(4 * nt, kUnset);
+  std::vector<uint32_t> face_patch(faces.across.size(), kUnset);
   for (size_t p = 0; p < patches.value().size(); ++p) {
     for (uint32_t b : patches.value()[p].tris) {
       const int64_t face = faces.bnd_face[b];
       if (face == MeshFaces::kNone) {
         return Status(Error::InvalidArgument, "boundary triangle " + std::to_string(b) +
-                                                  " is not a face of any tet: an OpenFOAM patch face must be");
+                                                  " is not a face of any cell: an OpenFOAM patch face must be");
       }
       if (faces.bnd_internal[b]) {
         return Status(Error::InvalidArgument, "boundary triangle " + std::to_string(b) + " (patch '" +
                                                   patches.value()[p].patch.name +
-                                                  "') is an internal face between two tets: OpenFOAM "
+                                                  "') is an internal face between two cells: OpenFOAM "
                                                   "patches hold boundary faces only");
       }
-      if (face_patch[size_t(face)] != kUnset) {
+      // A prism's quad side is given by two triangles of one patch (check_boundary_elements).
+      uint32_t v[4];
+      const bool quad = face_vertices(mesh, face, v) == 4;
+      if (face_patch[size_t(face)] != kUnset && !(quad && face_patch[size_t(face)] == p)) {
         return Status(Error::InvalidArgument, "boundary triangle " + std::to_string(b) +
                                                   " is listed twice (the same face as another boundary triangle)");
       }
@@ -155,55 +162,58 @@ Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_nam
   }
 
   PolyMesh pm;
-  auto push_face = [&](size_t t, int f) {
-    const uint32_t* v = &mesh.tet[4 * t];
-    for (int k = 0; k < 3; ++k) pm.face.push_back(v[kOutwardFace[f][k]]);
-    pm.owner.push_back(static_cast<uint32_t>(t));
+  auto push_face = [&](size_t face) {
+    uint32_t v[4];
+    const int n = face_vertices(mesh, int64_t(face), v);
+    pm.face.insert(pm.face.end(), v, v + n);
+    pm.face_size.push_back(static_cast<uint8_t>(n));
+    pm.owner.push_back(static_cast<uint32_t>(cell_of_face(mesh, int64_t(face))));
   };
-  // Internal faces: each once, owned by the lower tet, by owner then neighbour.
-  for (size_t t = 0; t < nt; ++t) {
-    std::array<std::pair<uint32_t, int>, 4> upper;
+  // Internal faces: each once, owned by the lower cell, by owner then neighbour.
+  for (size_t c = 0; c < num_cells; ++c) {
+    std::array<std::pair<uint32_t, size_t>, 5> upper;
     int count = 0;
-    for (int f = 0; f < 4; ++f) {
-      const int64_t other = faces.across[4 * t + size_t(f)];
+    for (size_t face = first_face(c); face < first_face(c) + num_faces(c); ++face) {
+      const int64_t other = faces.across[face];
       if (other == MeshFaces::kNone) {
-        if (face_patch[4 * t + size_t(f)] == kUnset) {
+        if (face_patch[face] == kUnset) {
           return Status(Error::InvalidArgument,
-                        "face " + std::to_string(f) + " of tet " + std::to_string(t) +
+                        "face " + std::to_string(face - first_face(c)) + " of cell " + std::to_string(c) +
                             " is on the mesh boundary but is no boundary triangle: every OpenFOAM "
                             "boundary face must be in a patch");
         }
         continue;
       }
-      const size_t u = size_t(other / 4);
-      if (u == t) return Status(Error::InvalidMesh, "tet " + std::to_string(t) + " has two equal faces");
-      if (u > t) upper[size_t(count++)] = {static_cast<uint32_t>(u), f};
+      const size_t u = cell_of_face(mesh, other);
+      if (u == c) return Status(Error::InvalidMesh, "cell " + std::to_string(c) + " has two equal faces");
+      if (u > c) upper[size_t(count++)] = {static_cast<uint32_t>(u), face};
     }
-    // By neighbour; at most 4 items (insertion sort: std::sort on this small array trips GCC 12's
+    // By neighbour; at most 5 items (insertion sort: std::sort on this small array trips GCC 12's
     // -Warray-bounds under the sanitizers).
     for (int i = 1; i < count; ++i) {
       for (int j = i; j > 0 && upper[size_t(j)] < upper[size_t(j - 1)]; --j) std::swap(upper[size_t(j)], upper[size_t(j - 1)]);
     }
     for (int i = 0; i < count; ++i) {
-      push_face(t, upper[size_t(i)].second);
+      push_face(upper[size_t(i)].second);
       pm.neighbour.push_back(upper[size_t(i)].first);
     }
   }
-  // Boundary faces, patch by patch, each patch's faces by tet.
+  // Boundary faces, patch by patch, each patch's faces by cell.
   std::vector<std::vector<size_t>> by_patch(patches.value().size());
-  for (size_t face = 0; face < 4 * nt; ++face) {
+  for (size_t face = 0; face < face_patch.size(); ++face) {
     if (face_patch[face] != kUnset) by_patch[face_patch[face]].push_back(face);
   }
   for (size_t p = 0; p < patches.value().size(); ++p) {
     const NamedPatch& named = patches.value()[p].patch;
     PolyMeshPatch patch{named.name, openfoam_type(named.kind, mesh, patches.value()[p].tris), pm.owner.size(), 0};
-    for (size_t face : by_patch[p]) push_face(face / 4, int(face % 4));
+    for (size_t face : by_patch[p]) push_face(face);
     patch.size = pm.owner.size() - patch.start;
     pm.patches.push_back(std::move(patch));
   }
-  if (!mesh.region.empty()) {
+  if (!mesh.region.empty() || !mesh.prism_region.empty()) {
     std::map<int32_t, std::vector<uint32_t>> zones;
     for (size_t t = 0; t < nt; ++t) zones[mesh.region[t]].push_back(static_cast<uint32_t>(t));
+    for (size_t p = 0; p < np; ++p) zones[mesh.prism_region[p]].push_back(static_cast<uint32_t>(nt + p));
     for (auto& [label, cells] : zones) pm.cell_zones.emplace_back(region_name(label), std::move(cells));
   }
   return pm;
@@ -240,19 +250,18 @@ Status write_openfoam(const VolumeMesh& mesh, const std::string& dir, const Patc
   append_foam_header(out, "faceList", "faces");
   append_line(out, uint64_t{nf});
   out += "(\n";
-  for (size_t f = 0; f < nf; ++f) {
-    out += "3(";
-    append_int(out, pm.face[3 * f]);
-    out += ' ';
-    append_int(out, pm.face[3 * f + 1]);
-    out += ' ';
-    append_int(out, pm.face[3 * f + 2]);
+  for (size_t f = 0, at = 0; f < nf; at += pm.face_size[f++]) {
+    out += pm.face_size[f] == 4 ? "4(" : "3(";
+    for (size_t k = 0; k < pm.face_size[f]; ++k) {
+      if (k) out += ' ';
+      append_int(out, pm.face[at + k]);
+    }
     out += ")\n";
   }
   out += ")\n";
   if (Status s = write_file_bytes(base + "faces", out); !s.ok()) return s;
 
-  const std::string note = "nPoints:" + std::to_string(nv) + "  nCells:" + std::to_string(mesh.num_tets()) +
+  const std::string note = "nPoints:" + std::to_string(nv) + "  nCells:" + std::to_string(mesh.num_tets() + mesh.num_prisms()) +
                            "  nFaces:" + std::to_string(nf) +
                            "  nInternalFaces:" + std::to_string(pm.num_internal_faces());
   out.clear();

@@ -4,6 +4,9 @@
 #include "core/tet_faces.hpp"
 #include "io/file_bytes.hpp"
 #include "io/gmf_format.hpp"
+#include "io/mesh_faces.hpp"
+
+#include <algorithm>
 
 namespace anitet {
 
@@ -28,7 +31,63 @@ std::string last_component(std::string path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
+// check_boundary_elements for a mesh with prisms: the cell faces matched by build_mesh_faces,
+// a prism's quad side on the boundary given by two triangles of one patch that split it along a
+// diagonal.
+Status check_mixed_boundary_elements(const VolumeMesh& mesh, bool cover) {
+  Result<MeshFaces> built = build_mesh_faces(mesh);
+  if (!built.ok()) return built.status();
+  const MeshFaces& faces = built.value();
+  const size_t nb = mesh.num_boundary_triangles();
+  std::vector<std::vector<uint32_t>> given(faces.across.size());  // boundary triangles per cell face
+  for (size_t b = 0; b < nb; ++b) {
+    const int64_t face = faces.bnd_face[b];
+    if (face == MeshFaces::kNone)
+      return Status(Error::InvalidMesh, "boundary triangle " + std::to_string(b + 1) + " (vertices " +
+                                            one_based(&mesh.bnd_tri[3 * b]) + ", 1-based) is no face of the cells");
+    given[size_t(face)].push_back(static_cast<uint32_t>(b));
+    // A shared face is also the other cell's.
+    if (faces.across[size_t(face)] != MeshFaces::kNone) given[size_t(faces.across[size_t(face)])].push_back(static_cast<uint32_t>(b));
+  }
+  for (size_t face = 0; face < faces.across.size(); ++face) {
+    uint32_t v[4];
+    const int n = face_vertices(mesh, int64_t(face), v);
+    const std::vector<uint32_t>& g = given[face];
+    auto where = [&] {
+      return std::string(n == 4 ? "the prism quad side " : "the face ") + one_based(v) +
+             (n == 4 ? " " + std::to_string(uint64_t{v[3]} + 1) : "") + " (1-based)";
+    };
+    if (g.empty()) {
+      if (cover && faces.across[face] == MeshFaces::kNone)
+        return Status(Error::InvalidMesh, "boundary face " + where() + " of the cells is no boundary triangle");
+      continue;
+    }
+    if (n == 3 && g.size() > 1)
+      return Status(Error::InvalidMesh, "boundary triangle " + std::to_string(uint64_t{g[1]} + 1) +
+                                            " repeats a face an earlier one gives: " + where());
+    if (n == 4) {
+      // Two triangles of one patch, leaving out opposite corners (0 and 2, or 1 and 3).
+      auto left_out = [&](uint32_t b) {
+        for (int i = 0; i < 4; ++i)
+          if (std::find(&mesh.bnd_tri[3 * size_t(b)], &mesh.bnd_tri[3 * size_t(b)] + 3, v[i]) == &mesh.bnd_tri[3 * size_t(b)] + 3)
+            return i;
+        return -1;
+      };
+      const bool split = g.size() == 2 && (left_out(g[0]) + 2) % 4 == left_out(g[1]) &&
+                         mesh.bnd_patch[g[0]] == mesh.bnd_patch[g[1]];
+      if (!split)
+        return Status(Error::InvalidMesh, where() + " is given by " + std::to_string(g.size()) +
+                                              " boundary triangles, not by two of one patch split along a diagonal");
+    }
+  }
+  return Status::success();
+}
+
 }  // namespace
+
+bool volume_format_writes_prisms(VolumeFormat f) {
+  return f == VolumeFormat::OpenFoam || f == VolumeFormat::Vtu;
+}
 
 Result<VolumeFormat> volume_format_from_path(const std::string& path) {
   if (last_component(path) == "polyMesh") return VolumeFormat::OpenFoam;
@@ -126,6 +185,10 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
                                                 "or a .../polyMesh directory)");
   }
   if (format.value() == VolumeFormat::TetGen) return check_writable_volume_path(path);
+  if (!mesh.prism.empty() && !volume_format_writes_prisms(format.value()))
+    return Status(Error::UnsupportedFormat, path + ": this format is written with tets only, and the mesh has " +
+                                                std::to_string(mesh.num_prisms()) + " prisms (prism cells: " +
+                                                kPrismFormats + ")");
   // Nothing wrong is written: the boundary elements are checked against the tets first.
   const bool cover = has_markers(format.value()) || !mesh.bnd_tri.empty();
   if (Status st = check_boundary_elements(mesh, cover); !st.ok()) {
@@ -159,9 +222,11 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
 }
 
 Status check_volume_arrays(const VolumeMesh& mesh) {
+  // Regions are given for every cell or for none.
+  const bool regions = !mesh.region.empty() || !mesh.prism_region.empty();
   if (mesh.xyz.size() % 3 != 0 || mesh.tet.size() % 4 != 0 || mesh.bnd_tri.size() % 3 != 0 ||
-      (!mesh.region.empty() && mesh.region.size() != mesh.num_tets()) ||
-      mesh.bnd_patch.size() != mesh.num_boundary_triangles()) {
+      mesh.prism.size() % 6 != 0 || mesh.bnd_patch.size() != mesh.num_boundary_triangles() ||
+      (regions && (mesh.region.size() != mesh.num_tets() || mesh.prism_region.size() != mesh.num_prisms()))) {
     return Status(Error::InvalidArgument, "volume mesh arrays of inconsistent sizes");
   }
   const size_t nv = mesh.num_vertices();
@@ -169,6 +234,12 @@ Status check_volume_arrays(const VolumeMesh& mesh) {
     if (mesh.tet[i] >= nv) {
       return Status(Error::BadIndex, "tetrahedron " + std::to_string(i / 4) + " refers to vertex " +
                                          std::to_string(mesh.tet[i]) + " of " + std::to_string(nv));
+    }
+  }
+  for (size_t i = 0; i < mesh.prism.size(); ++i) {
+    if (mesh.prism[i] >= nv) {
+      return Status(Error::BadIndex, "prism " + std::to_string(i / 6) + " refers to vertex " +
+                                         std::to_string(mesh.prism[i]) + " of " + std::to_string(nv));
     }
   }
   for (size_t i = 0; i < mesh.bnd_tri.size(); ++i) {
@@ -183,6 +254,7 @@ Status check_volume_arrays(const VolumeMesh& mesh) {
 
 Status check_boundary_elements(const VolumeMesh& mesh, bool cover) {
   if (Status st = check_volume_arrays(mesh); !st.ok()) return st;
+  if (!mesh.prism.empty()) return check_mixed_boundary_elements(mesh, cover);
   const FaceCensus faces = census_faces(mesh.tet.data(), mesh.num_tets(), mesh.num_vertices(), /*parallel=*/true,
                                         mesh.bnd_tri.data(), mesh.num_boundary_triangles());
   if (faces.shared_by_more_than_two > 0) {

@@ -20,6 +20,10 @@ enum class VolumeFormat { Medit, MeditBinary, Gmsh, TetGen, Vtu, Su2, OpenFoam, 
 // whose last component is "polyMesh" (e.g. CASE/constant/polyMesh, a trailing '/' allowed) is an
 // OpenFOAM polyMesh directory. Su2, OpenFoam, Cgns and Exodus are written only.
 Result<VolumeFormat> volume_format_from_path(const std::string& path);
+// Whether the format's writer writes VolumeMesh::prism (prism cells); the others refuse a mesh
+// with prisms (Error::UnsupportedFormat). kPrismFormats names them for messages.
+bool volume_format_writes_prisms(VolumeFormat f);
+inline constexpr const char* kPrismFormats = ".vtu and .../polyMesh";
 // Error::UnsupportedFormat unless the format of `path` can be written; Error::NotImplemented for
 // .cgns or .exo/.e when anitet was built without CGNS or Exodus II, or its library cannot be
 // opened.
@@ -103,7 +107,8 @@ Result<std::string> to_sol(const VolumeMesh& mesh);
 //   triangles (type 5). One zone: regions are not written.
 Result<std::string> to_su2(const VolumeMesh& mesh, const PatchNames& patch_names = {});
 
-// OpenFOAM polyMesh (ASCII, the layout of OpenFOAM's own writers): cells = tets in order; faces
+// OpenFOAM polyMesh (ASCII, the layout of OpenFOAM's own writers): cells = tets in order, then
+// prisms (their quad sides as quad faces, a boundary quad given by its two triangles); faces
 // in OpenFOAM's order: internal faces first, in upper-triangular order (by owner, then
 // neighbour; owner < neighbour), oriented from owner to neighbour; then the boundary faces patch
 // by patch (increasing label), oriented out of the domain. Every boundary face of the tets must
@@ -117,7 +122,8 @@ struct PolyMeshPatch {
   size_t start = 0, size = 0;
 };
 struct PolyMesh {
-  std::vector<uint32_t> face;       // 3 per face
+  std::vector<uint32_t> face;       // the faces' vertices one after another (3 per tet face)
+  std::vector<uint8_t> face_size;   // 1 per face: 3, or 4 for a prism's quad side
   std::vector<uint32_t> owner;      // 1 per face
   std::vector<uint32_t> neighbour;  // 1 per internal face
   std::vector<PolyMeshPatch> patches;

@@ -15,6 +15,10 @@ namespace {
 
 constexpr int kVtkTriangle = 5;
 constexpr int kVtkTetra = 10;
+constexpr int kVtkWedge = 13;
+// VolumeMesh::prism's vertex k is VTK wedge vertex kVtkWedgeOrder[k] (VTK's 0 1 2 face points away
+// from 3 4 5).
+constexpr int kVtkWedgeOrder[6] = {0, 2, 1, 3, 5, 4};
 
 // --- writer ---
 
@@ -312,6 +316,8 @@ Result<std::string> to_vtu(const VolumeMesh& mesh, const std::vector<TetScalar>&
   Status valid = check_volume_arrays(mesh);
   if (!valid.ok()) return valid;
   const size_t nv = mesh.num_vertices(), nt = mesh.num_tets(), nb = mesh.num_boundary_triangles();
+  // Cells: the tets, the prisms (nc - nb cells in all), then the boundary triangles.
+  const size_t np = mesh.num_prisms(), nc = nt + np + nb;
   for (const TetScalar& s : tet_scalars) {
     if (s.values.size() != nt || !valid_xml_name(s.name) || s.name == "region" ||
         s.name == "patch") {
@@ -330,7 +336,7 @@ Result<std::string> to_vtu(const VolumeMesh& mesh, const std::vector<TetScalar>&
   out += "    <Piece NumberOfPoints=\"";
   append_int(out, static_cast<int64_t>(nv));
   out += "\" NumberOfCells=\"";
-  append_int(out, static_cast<int64_t>(nt + nb));
+  append_int(out, static_cast<int64_t>(nc));
   out += "\">\n      <Points>\n";
   open_array(out, "Float64", "Points", 3);
   append_values(out, mesh.xyz.data(), mesh.xyz.size(), 3);
@@ -338,34 +344,42 @@ Result<std::string> to_vtu(const VolumeMesh& mesh, const std::vector<TetScalar>&
   out += "      </Points>\n      <Cells>\n";
   open_array(out, "Int64", "connectivity", 1);
   append_values(out, mesh.tet.data(), mesh.tet.size(), 4);
+  if (np > 0) {
+    std::vector<uint32_t> wedges(mesh.prism.size());
+    for (size_t p = 0; p < np; ++p)
+      for (int k = 0; k < 6; ++k) wedges[6 * p + size_t(k)] = mesh.prism[6 * p + size_t(kVtkWedgeOrder[k])];
+    append_values(out, wedges.data(), wedges.size(), 6);
+  }
   append_values(out, mesh.bnd_tri.data(), mesh.bnd_tri.size(), 3);
   out += kCloseArray;
   open_array(out, "Int64", "offsets", 1);
-  std::vector<uint64_t> offsets(nt + nb);
-  for (size_t c = 0; c < nt + nb; ++c) {
-    offsets[c] = c < nt ? 4 * (c + 1) : 4 * nt + 3 * (c - nt + 1);
+  std::vector<uint64_t> offsets(nc);
+  for (size_t c = 0; c < nc; ++c) {
+    offsets[c] = c < nt ? 4 * (c + 1) : c < nt + np ? 4 * nt + 6 * (c - nt + 1) : 4 * nt + 6 * np + 3 * (c - nt - np + 1);
   }
   append_values(out, offsets.data(), offsets.size(), 10);
   out += kCloseArray;
   open_array(out, "UInt8", "types", 1);
-  std::vector<int32_t> types(nt + nb, kVtkTriangle);
+  std::vector<int32_t> types(nc, kVtkTriangle);
   std::fill(types.begin(), types.begin() + static_cast<std::ptrdiff_t>(nt), kVtkTetra);
+  std::fill(types.begin() + static_cast<std::ptrdiff_t>(nt), types.begin() + static_cast<std::ptrdiff_t>(nt + np), kVtkWedge);
   append_values(out, types.data(), types.size(), 20);
   out += kCloseArray;
   out += "      </Cells>\n      <CellData>\n";
   // Labels on the cells they belong to, -1 on the other kind (VTK needs a value per cell).
-  std::vector<int32_t> labels(nt + nb, -1);
+  std::vector<int32_t> labels(nc, -1);
   for (size_t t = 0; t < nt; ++t) labels[t] = mesh.region.empty() ? 0 : mesh.region[t];
+  for (size_t p = 0; p < np; ++p) labels[nt + p] = mesh.prism_region.empty() ? 0 : mesh.prism_region[p];
   open_array(out, "Int32", "region", 1);
   append_values(out, labels.data(), labels.size(), 20);
   out += kCloseArray;
   std::fill(labels.begin(), labels.end(), -1);
-  for (size_t b = 0; b < nb; ++b) labels[nt + b] = mesh.bnd_patch[b];
+  for (size_t b = 0; b < nb; ++b) labels[nt + np + b] = mesh.bnd_patch[b];
   open_array(out, "Int32", "patch", 1);
   append_values(out, labels.data(), labels.size(), 20);
   out += kCloseArray;
   for (const TetScalar& s : tet_scalars) {
-    std::vector<double> values(nt + nb, -1.0);
+    std::vector<double> values(nc, -1.0);
     std::copy(s.values.begin(), s.values.end(), values.begin());
     open_array(out, "Float64", s.name, 1);
     append_values(out, values.data(), values.size(), 10);
