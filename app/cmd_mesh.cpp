@@ -19,6 +19,7 @@
 #include "commands.hpp"
 #include "cli_util.hpp"
 #include "exit_codes.hpp"
+#include "core/bl_prisms.hpp"
 #include "io/file_bytes.hpp"
 #include "io/volume_io.hpp"
 #include "metric/metric_field.hpp"
@@ -449,7 +450,11 @@ class MeshCommand {
     const bool write_now = !args_.metric.geodetic_output;
     int write_code = kExitOk;
     tbb::task_group writer;
-    if (write_now) writer.run([&] { write_code = write_outputs(args_, r.mesh); });
+    std::optional<VolumeMesh> with_prisms;
+    if (write_now) {
+      if (Status st = merge_prisms(r, with_prisms); !st.ok()) return internal_error(st);
+      writer.run([&] { write_code = write_outputs(args_, with_prisms ? *with_prisms : r.mesh); });
+    }
     struct WaitWriter {
       tbb::task_group& group;
       ~WaitWriter() { group.wait(); }
@@ -475,7 +480,10 @@ class MeshCommand {
     for (size_t v = 0; v < r.input_vertex.size() && 3 * v + 2 < input_xyz_.size(); ++v)
       if (r.input_vertex[v] != TetMesh::kNone) std::copy_n(&input_xyz_[3 * v], 3, &r.mesh.xyz[3 * size_t(r.input_vertex[v])]);
     writer.wait();
-    if (!write_now) write_code = write_outputs(args_, r.mesh);
+    if (!write_now) {
+      if (Status st = merge_prisms(r, with_prisms); !st.ok()) return internal_error(st);
+      write_code = write_outputs(args_, with_prisms ? *with_prisms : r.mesh);
+    }
     if (write_code != kExitOk) return write_code;
     if (!not_written_.empty()) {
       // The meshes are complete; say so, and which files are not, before the run's report.
@@ -487,10 +495,30 @@ class MeshCommand {
       print_json(r, quality.value());
     } else if (!args_.quiet) {
       print_summary(args_, r, quality.value(), not_written_.empty());
+      if (prisms_)
+        std::cout << "  written with --bl-cells prisms: " << prisms_->prisms << " prisms (3 BL tets each), "
+                  << prisms_->kept_tets << " of " << prisms_->bl_tets
+                  << " BL tets left as tets (no exact prism: a column that stopped, or a neighbour of one)\n";
       if (args_.verbose) print_details(r, quality.value());
       else std::cout << "  (-v: every stage's figures and the full quality report)\n";
     }
     return not_written_.empty() ? kExitOk : kExitReadError;
+  }
+
+  // --bl-cells prisms: the mesh to write, each BL prism's three tets merged into one prism cell
+  // (the report measures the tets).
+  Status merge_prisms(const MesherResult& r, std::optional<VolumeMesh>& out) {
+    if (args_.bl_cells != "prisms") return Status::success();
+    out = r.mesh;
+    Result<PrismMergeStats> merged = merge_bl_prisms(*out, r.bl_vertex_origin, r.bl_first_region);
+    if (!merged.ok()) return merged.status();
+    prisms_ = merged.value();
+    return Status::success();
+  }
+
+  int internal_error(const Status& st) const {
+    std::cerr << kCmd << ": internal error: " << st.message() << "\n";
+    return kExitInternal;
   }
 
   // The run's figures (mesher_result_json, as the C ABI gives them), the files and the quality.
@@ -502,6 +530,11 @@ class MeshCommand {
     out["report"] = args_.report_html;
     out["boundary_layer"]["first_height"] = args_.bl_first_height;
     out["boundary_layer"]["yplus"] = args_.bl_yplus;
+    if (prisms_) {
+      out["boundary_layer"]["cells"] = "prisms";
+      out["boundary_layer"]["prisms"] = prisms_->prisms;
+      out["boundary_layer"]["tets_kept"] = prisms_->kept_tets;
+    }
     out["quality"] = nlohmann::json::parse(quality_report_json(quality));
     out["ok"] = not_written_.empty();
     out["not_written"] = not_written_;
@@ -513,6 +546,7 @@ class MeshCommand {
   CheckedSurface checked_;
   std::optional<metric::VdbModulePreload> preload_;
   std::vector<double> input_xyz_;  // the input's coordinates as read (--geodetic-output)
+  std::optional<PrismMergeStats> prisms_;  // --bl-cells prisms: the merge's figures
   std::optional<geo::GeoFrame> frame_;
   MesherOptions options_;
   double free_bytes_ = 0;
@@ -545,6 +579,8 @@ int check_mesh_option_combinations(const CLI::App& cmd, const MeshArgs& a) {
       {"--bl-growth", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-layers", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-slide-patches", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-cells", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-cells", layers_only, "the whole pipeline (--stop-after layers writes stage 1's tets)"},
       {"--bl-reynolds", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
       {"--bl-ref-length", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
       {"--background", a.metric.metric.empty(), "a .sol --metric (it is the mesh the .sol's values are at)"},
@@ -698,6 +734,13 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
                   "meeting another patch is refused. The rest of the surface stays exactly as given")
       ->delimiter(',')
       ->group(bl_group);
+  cmd->add_option("--bl-cells", args.bl_cells,
+                  "How the boundary layer's prisms are written: tets (each split into the 3 tets the "
+                  "pipeline keeps, every format) or prisms (one prism cell each, for finite-volume "
+                  "solvers; .vtu and OpenFOAM polyMesh only, other outputs are refused)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"tets", "prisms"}))
+      ->group(bl_group);
   cmd->add_flag("--bl-sizing", args.bl_sizing,
                 "Refine the interior to continue the boundary layer's heights (normal size h0 + (r - 1) d "
                 "at distance d from the walls) instead of jumping to the surface's sizes; anisotropic near "
@@ -735,6 +778,15 @@ int run_mesh(const CLI::App& cmd, MeshArgs& args) {
                 << args.bl_ref_length << ": first height h0 = " << args.bl_first_height
                 << " (flat plate: Cf = 0.026 Re^(-1/7), h0 = y+ L / (Re sqrt(Cf/2)))\n";
   }
+  if (args.bl_cells == "prisms")
+    for (const std::string& path : output_paths(args)) {
+      Result<VolumeFormat> format = volume_format_from_path(path);
+      if (format.ok() && !volume_format_writes_prisms(format.value())) {
+        std::cerr << "anitet mesh: --bl-cells prisms: '" << path << "' is a format written with tets only; prism "
+                  << "cells are written to " << kPrismFormats << " (or give --bl-cells tets)\n";
+        return kExitUsage;
+      }
+    }
   if (args.stop_after == "layers" &&
       (wants_sizing_field(args.metric) || args.metric.geodetic || !args.metric.background.empty())) {
     std::cerr << "anitet mesh: the sizing and geographic options (--metric, --background, --hmin, "

@@ -539,6 +539,16 @@ class MeshingRun {
     std::vector<uint32_t> vertex_map;
     result_.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/true, surface_.tri, surface_.patch, &vertex_map);
     result_.input_vertex.assign(vertex_map.begin(), vertex_map.begin() + std::ptrdiff_t(surface_.num_vertices()));
+    if (bl.enabled()) {
+      // Stage 1's vertex ids are the final TetMesh's (BL vertices are locked).
+      result_.bl_first_region = bodies;
+      result_.bl_vertex_origin.assign(result_.mesh.num_vertices(), TetMesh::kNone);
+      for (size_t v = 0; v < t1_origin_.size() && v < vertex_map.size(); ++v) {
+        const uint32_t from = t1_origin_[v];
+        if (vertex_map[v] != TetMesh::kNone && from != TetMesh::kNone && vertex_map[from] != TetMesh::kNone)
+          result_.bl_vertex_origin[vertex_map[v]] = vertex_map[from];
+      }
+    }
     result_.stages.push_back({"output", since(t), result_.mesh.num_tets()});
     result_.notices = shortfalls(result_, o_);
   }

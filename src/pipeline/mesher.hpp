@@ -115,6 +115,11 @@ struct MesherResult {
   RecoveryStats recovery;
   CoupleStats couple;
   BoundaryLayerReport boundary_layer;  // zero without wall patches
+  // With wall patches, for merge_bl_prisms (core/bl_prisms.hpp): per vertex of `mesh`, the
+  // vertex its boundary-layer column pushed it from (~0u: none), and the first BL region (the
+  // BL tets of body k have region bl_first_region + k). Empty and 0 without wall patches.
+  std::vector<uint32_t> bl_vertex_origin;
+  int32_t bl_first_region = 0;
   // With slide patches: the boundary triangles (mesh.bnd_tri) are the input's but on those
   // patches, whose new triangles follow the input's others.
   SlideReport slide;
