@@ -1,0 +1,244 @@
+// Boundary-layer prisms as prism cells: merge_bl_prisms (core/bl_prisms.hpp) on a hand-built
+// two-layer slab split into tets as stage 1 splits them, and the writers that take prisms
+// (OpenFOAM polyMesh, VTU read back by meshio), the boundary check and the refusals.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <map>
+#include <string>
+
+#include "core/bl_prisms.hpp"
+#include "io/file_bytes.hpp"
+#include "io/volume_io.hpp"
+#include "io_test_util.hpp"
+
+namespace anitet {
+namespace {
+
+constexpr uint32_t kNo = ~uint32_t{0};
+
+double volume(const VolumeMesh& m, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
+  const double* p = m.point(a);
+  double u[3][3];
+  for (int k = 0; k < 3; ++k) {
+    u[0][k] = m.point(b)[k] - p[k];
+    u[1][k] = m.point(c)[k] - p[k];
+    u[2][k] = m.point(d)[k] - p[k];
+  }
+  return u[0][0] * (u[1][1] * u[2][2] - u[1][2] * u[2][1]) - u[0][1] * (u[1][0] * u[2][2] - u[1][2] * u[2][0]) +
+         u[0][2] * (u[1][0] * u[2][1] - u[1][1] * u[2][0]);
+}
+
+std::array<uint32_t, 3> sorted(std::array<uint32_t, 3> a) {
+  std::sort(a.begin(), a.end());
+  return a;
+}
+
+// A unit square wall (triangles 0 1 2 and 0 2 3, patch 1) under two layers of height 0.1 (patch 2
+// on top, 3 on the sides); vertex 4 k + i is wall vertex i pushed k times. Each prism ABC-A'B'C'
+// (A < B < C, the push order) is the tets A B C A', A' B C B', A' B' C C', all region 1.
+struct Slab {
+  VolumeMesh mesh;
+  std::vector<uint32_t> origin;
+};
+
+Slab slab() {
+  Slab s;
+  const double corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int k = 0; k < 3; ++k)
+    for (const auto& c : corner) s.mesh.xyz.insert(s.mesh.xyz.end(), {c[0], c[1], 0.1 * k});
+  s.origin.assign(12, kNo);
+  for (uint32_t v = 4; v < 12; ++v) s.origin[v] = v - 4;
+  for (uint32_t k = 0; k < 2; ++k)
+    for (const auto& t : {std::array<uint32_t, 3>{0, 1, 2}, std::array<uint32_t, 3>{0, 2, 3}}) {
+      const uint32_t a = 4 * k + t[0], b = 4 * k + t[1], c = 4 * k + t[2];
+      for (std::array<uint32_t, 4> tet : {std::array<uint32_t, 4>{a, b, c, a + 4}, {a + 4, b, c, b + 4},
+                                          {a + 4, b + 4, c, c + 4}}) {
+        if (volume(s.mesh, tet[0], tet[1], tet[2], tet[3]) < 0) std::swap(tet[0], tet[1]);
+        s.mesh.tet.insert(s.mesh.tet.end(), tet.begin(), tet.end());
+        s.mesh.region.push_back(1);
+      }
+    }
+  // Boundary: the faces of one tet; bottom patch 1, top 2, sides 3.
+  std::map<std::array<uint32_t, 3>, int> count;
+  for (size_t t = 0; t < s.mesh.num_tets(); ++t)
+    for (const auto& f : kOutwardFace)
+      ++count[sorted({s.mesh.tet[4 * t + size_t(f[0])], s.mesh.tet[4 * t + size_t(f[1])], s.mesh.tet[4 * t + size_t(f[2])]})];
+  for (const auto& [f, n] : count) {
+    if (n != 1) continue;
+    s.mesh.bnd_tri.insert(s.mesh.bnd_tri.end(), f.begin(), f.end());
+    s.mesh.bnd_patch.push_back(f[2] < 4 ? 1 : f[0] >= 8 ? 2 : 3);
+  }
+  return s;
+}
+
+TEST(PrismCells, MergesEachPrismsThreeTets) {
+  Slab s = slab();
+  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1);
+  ASSERT_TRUE(merged.ok()) << merged.status().message();
+  EXPECT_EQ(merged->bl_tets, 12u);
+  EXPECT_EQ(merged->prisms, 4u);
+  EXPECT_EQ(merged->kept_tets, 0u);
+  EXPECT_EQ(s.mesh.num_tets(), 0u);
+  ASSERT_EQ(s.mesh.num_prisms(), 4u);
+  EXPECT_EQ(s.mesh.prism_region, std::vector<int32_t>(4, 1));
+  for (size_t p = 0; p < 4; ++p) {
+    const uint32_t* v = &s.mesh.prism[6 * p];
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(s.origin[v[3 + i]], v[i]) << "prism " << p;  // edges 0-3, 1-4, 2-5
+    EXPECT_GT(volume(s.mesh, v[0], v[1], v[2], v[3]), 0) << "prism " << p;  // 0 1 2 ccw seen from the top
+  }
+  EXPECT_TRUE(check_boundary_elements(s.mesh, /*cover=*/true).ok());
+}
+
+TEST(PrismCells, KeepsTetsWhereNoExactPrism) {
+  Slab s = slab();
+  // Only the BL regions merge.
+  VolumeMesh other = s.mesh;
+  ASSERT_EQ(merge_bl_prisms(other, s.origin, 2)->prisms, 0u);
+  // A prism missing a tet stays tets, and so does a prism whose quad side would lie on its tets.
+  s.mesh.tet.erase(s.mesh.tet.begin(), s.mesh.tet.begin() + 4);
+  s.mesh.region.erase(s.mesh.region.begin());
+  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1);
+  ASSERT_TRUE(merged.ok());
+  EXPECT_EQ(merged->bl_tets, 11u);
+  EXPECT_GE(merged->prisms, 2u);  // the upper layer's at least
+  EXPECT_LE(merged->prisms, 3u);
+  EXPECT_EQ(merged->kept_tets, 11u - 3 * merged->prisms);
+  EXPECT_EQ(s.mesh.num_tets(), merged->kept_tets);
+  // No prism quad side on a face of the remaining tets.
+  std::map<std::array<uint32_t, 3>, int> tet_faces;
+  for (size_t t = 0; t < s.mesh.num_tets(); ++t)
+    for (const auto& f : kOutwardFace)
+      ++tet_faces[sorted({s.mesh.tet[4 * t + size_t(f[0])], s.mesh.tet[4 * t + size_t(f[1])], s.mesh.tet[4 * t + size_t(f[2])]})];
+  for (size_t p = 0; p < s.mesh.num_prisms(); ++p)
+    for (int f = 0; f < 3; ++f)
+      for (int skip = 0; skip < 4; ++skip) {
+        std::array<uint32_t, 3> t{};
+        for (int i = 0, n = 0; i < 4; ++i)
+          if (i != skip) t[size_t(n++)] = s.mesh.prism[6 * p + size_t(kPrismFace[f][i])];
+        EXPECT_EQ(tet_faces.count(sorted(t)), 0u) << "prism " << p << " side " << f;
+      }
+  // Bad provenance is an error, not a guess.
+  Slab bad = slab();
+  bad.origin[0] = 4;  // a cycle 0 -> 4 -> 0
+  EXPECT_EQ(merge_bl_prisms(bad.mesh, bad.origin, 1).status().code(), Error::InvalidArgument);
+  EXPECT_EQ(merge_bl_prisms(bad.mesh, {}, 1).status().code(), Error::InvalidArgument);
+}
+
+TEST(PrismCells, PolyMeshHasQuadFacesOwnedInOrder) {
+  Slab s = slab();
+  ASSERT_TRUE(merge_bl_prisms(s.mesh, s.origin, 1).ok());
+  Result<PolyMesh> pm = to_polymesh(s.mesh);
+  ASSERT_TRUE(pm.ok()) << pm.status().message();
+  // Internal: 2 caps between the layers, the diagonal quad in each layer. Boundary: 2 + 2 caps,
+  // 4 quads per layer on the sides.
+  ASSERT_EQ(pm->face_size.size(), 16u);
+  EXPECT_EQ(pm->num_internal_faces(), 4u);
+  EXPECT_EQ(std::count(pm->face_size.begin(), pm->face_size.end(), 4), 10);
+  EXPECT_EQ(pm->face.size(), 6u * 3 + 10u * 4);
+  for (size_t f = 0; f < pm->num_internal_faces(); ++f) {
+    EXPECT_LT(pm->owner[f], pm->neighbour[f]);
+    if (f > 0) {
+      EXPECT_LE(pm->owner[f - 1], pm->owner[f]);
+    }
+  }
+  EXPECT_EQ(*std::max_element(pm->owner.begin(), pm->owner.end()), 3u);
+  size_t boundary = 0;
+  for (const PolyMeshPatch& p : pm->patches) boundary += p.size;
+  EXPECT_EQ(boundary, 12u);
+  // Each face's normal points from its owner: the owner's centroid is behind it.
+  for (size_t f = 0, at = 0; f < pm->face_size.size(); at += pm->face_size[f++]) {
+    double c[3] = {0, 0, 0}, q[3] = {0, 0, 0};
+    const uint32_t* pv = &s.mesh.prism[6 * size_t(pm->owner[f])];
+    for (int i = 0; i < 6; ++i)
+      for (int k = 0; k < 3; ++k) c[k] += s.mesh.point(pv[i])[k] / 6;
+    for (size_t i = 0; i < pm->face_size[f]; ++i)
+      for (int k = 0; k < 3; ++k) q[k] += s.mesh.point(pm->face[at + i])[k] / pm->face_size[f];
+    const double* a = s.mesh.point(pm->face[at]);
+    const double* b = s.mesh.point(pm->face[at + 1]);
+    const double* d = s.mesh.point(pm->face[at + 2]);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    EXPECT_GT(n[0] * (q[0] - c[0]) + n[1] * (q[1] - c[1]) + n[2] * (q[2] - c[2]), 0) << "face " << f;
+  }
+}
+
+TEST(PrismCells, BoundaryCheckCoversQuadSides) {
+  Slab s = slab();
+  ASSERT_TRUE(merge_bl_prisms(s.mesh, s.origin, 1).ok());
+  // A side quad given by one triangle only: refused, naming the quad.
+  VolumeMesh half = s.mesh;
+  size_t side = 0;
+  while (half.bnd_patch[side] != 3) ++side;
+  half.bnd_tri.erase(half.bnd_tri.begin() + std::ptrdiff_t(3 * side), half.bnd_tri.begin() + std::ptrdiff_t(3 * side + 3));
+  half.bnd_patch.erase(half.bnd_patch.begin() + std::ptrdiff_t(side));
+  Status st = check_boundary_elements(half, true);
+  EXPECT_EQ(st.code(), Error::InvalidMesh);
+  EXPECT_NE(st.message().find("quad side"), std::string::npos) << st.message();
+  // Its two triangles on two patches: refused too.
+  VolumeMesh split = s.mesh;
+  split.bnd_patch[side] = 4;
+  EXPECT_EQ(check_boundary_elements(split, true).code(), Error::InvalidMesh);
+  // A cap missing: the cover check names it.
+  VolumeMesh capless = s.mesh;
+  capless.bnd_tri.erase(capless.bnd_tri.begin(), capless.bnd_tri.begin() + 3);
+  capless.bnd_patch.erase(capless.bnd_patch.begin());
+  EXPECT_EQ(check_boundary_elements(capless, true).code(), Error::InvalidMesh);
+}
+
+TEST(PrismCells, FormatsWithoutPrismsRefuse) {
+  Slab s = slab();
+  ASSERT_TRUE(merge_bl_prisms(s.mesh, s.origin, 1).ok());
+  const std::string dir = test::temp_dir();
+  for (const char* name : {"slab.su2", "slab.msh", "slab.mesh", "slab.meshb", "slab.cgns", "slab.exo"}) {
+    const Status st = write_volume_mesh(s.mesh, dir + "/" + name);
+    EXPECT_EQ(st.code(), Error::UnsupportedFormat) << name;
+    EXPECT_NE(st.message().find("prisms"), std::string::npos) << st.message();
+  }
+  EXPECT_TRUE(write_volume_mesh(s.mesh, dir + "/slab-prisms/constant/polyMesh").ok());
+  Result<std::string> faces = read_file_bytes(dir + "/slab-prisms/constant/polyMesh/faces");
+  ASSERT_TRUE(faces.ok());
+  EXPECT_NE(faces->find("\n4("), std::string::npos);
+}
+
+TEST(PrismCells, VtuWedgesReadByMeshio) {
+  if (std::system("/usr/bin/python3 -c 'import meshio' >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "/usr/bin/python3 has no meshio";
+  Slab s = slab();
+  ASSERT_TRUE(merge_bl_prisms(s.mesh, s.origin, 1).ok());
+  const std::string dir = test::temp_dir();
+  ASSERT_TRUE(write_volume_mesh(s.mesh, dir + "/slab.vtu").ok());
+  // In the file, VTK's wedge: 0 1 2's right-hand normal points away from 3 4 5. meshio reorders
+  // wedges to its own order (Gmsh's, and VolumeMesh::prism's), where it points towards them.
+  const std::string script = R"(
+import sys, warnings
+import xml.etree.ElementTree as ET
+import numpy as np
+import meshio
+warnings.simplefilter("ignore")
+path = sys.argv[1] + "/slab.vtu"
+m = meshio.read(path)
+kinds = {c.type: len(c.data) for c in m.cells}
+assert kinds == {"wedge": 4, "triangle": 20}, kinds
+p = m.points
+def towards_top(c):
+    n = np.cross(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]])
+    return np.dot(n, p[c[3:6]].mean(0) - p[c[:3]].mean(0))
+for c in m.get_cells_type("wedge"):
+    assert towards_top(c) > 0, c
+arrays = {a.get("Name"): a.text.split() for a in ET.parse(path).iter("DataArray")}
+raw = np.array(arrays["connectivity"], dtype=int)[:24].reshape(4, 6)
+for c in raw:
+    assert towards_top(c) < 0, c
+region = m.cell_data["region"][[c.type for c in m.cells].index("wedge")]
+assert list(region) == [1, 1, 1, 1], region
+print("meshio read the wedges")
+)";
+  ASSERT_TRUE(write_file_bytes(dir + "/check_wedges.py", script).ok());
+  EXPECT_EQ(std::system(("/usr/bin/python3 '" + dir + "/check_wedges.py' '" + dir + "' 1>&2").c_str()), 0);
+}
+
+}  // namespace
+}  // namespace anitet
