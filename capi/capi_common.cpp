@@ -22,6 +22,7 @@ size_t options_size(int32_t version) {
   // Each version's struct ends where the next version's first field starts.
   if (version == 1) return offsetof(anitet_options, layers);
   if (version == 2) return offsetof(anitet_options, attempts_seconds);
+  if (version == 3) return offsetof(anitet_options, bl_num_slide_patches);
   return sizeof(anitet_options);
 }
 
@@ -95,8 +96,11 @@ static_assert(offsetof(anitet_options, hmin) == offsetof(anitet_options, attempt
                   offsetof(anitet_options, bl_patches) == offsetof(anitet_options, anisotropic_cycles) + 8 &&
                   offsetof(anitet_options, bl_first_height) == offsetof(anitet_options, bl_patches) + sizeof(void*) &&
                   offsetof(anitet_options, push_tasks_min_vertices) == offsetof(anitet_options, bl_sizing) + 4 &&
-                  sizeof(anitet_options) == offsetof(anitet_options, reserved1) + sizeof(int32_t),
+                  offsetof(anitet_options, bl_num_slide_patches) == offsetof(anitet_options, reserved1) + sizeof(int32_t),
               "anitet_options (version 3) has padding");
+static_assert(offsetof(anitet_options, bl_slide_patches) == offsetof(anitet_options, bl_num_slide_patches) + 8 &&
+                  sizeof(anitet_options) == offsetof(anitet_options, bl_slide_patches) + sizeof(void*),
+              "anitet_options (version 4) has padding");
 static_assert(sizeof(anitet_run_stats) == offsetof(anitet_run_stats, bl_max_height_error) + sizeof(double) &&
                   offsetof(anitet_run_stats, vertices) == 8 * sizeof(int32_t) &&
                   offsetof(anitet_run_stats, bl_wall_vertices) == offsetof(anitet_run_stats, bl_layers) + 8,

@@ -64,6 +64,13 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
     if (!(o.bl_growth >= 1.0 && o.bl_growth <= 10.0)) return bad_option(function, "bl_growth must be in 1..10");
     if (o.bl_layers < 1 || o.bl_layers > 1000) return bad_option(function, "bl_layers must be in 1..1000");
   }
+  if (o.bl_num_slide_patches < 0) return bad_option(function, "bl_num_slide_patches is negative");
+  if (o.bl_num_slide_patches > 0) {
+    if (o.bl_slide_patches == nullptr)
+      return bad_option(function, "bl_slide_patches is NULL with bl_num_slide_patches > 0");
+    if (o.bl_num_patches == 0)
+      return bad_option(function, "bl_slide_patches needs boundary-layer walls (bl_num_patches > 0)");
+  }
   if (o.bl_sizing != 0 && (o.bl_num_patches == 0 || !(o.bl_growth > 1.0)))
     return bad_option(function, "bl_sizing needs boundary-layer walls (bl_num_patches > 0) and bl_growth above 1");
   if (o.push_tasks_min_vertices < 0) return bad_option(function, "push_tasks_min_vertices is negative");
@@ -90,12 +97,24 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
   if (o.bl_num_patches > 0) {
     anitet::BoundaryLayerOptions& bl = out.layers.boundary_layer;
     bl.wall_patches.assign(o.bl_patches, o.bl_patches + o.bl_num_patches);
+    if (o.bl_num_slide_patches > 0)
+      bl.slide_patches.assign(o.bl_slide_patches, o.bl_slide_patches + o.bl_num_slide_patches);
     bl.first_height = o.bl_first_height;
     bl.growth = o.bl_growth;
     bl.layers = o.bl_layers;
   }
   out.boundary_layer_sizing = o.bl_sizing != 0;
   return ANITET_OK;
+}
+
+// The pipeline's messages name the CLI's options where the caller can fix the input that way;
+// a caller of the ABI sets the options field instead.
+anitet::Status in_abi_words(const anitet::Status& status) {
+  std::string message = status.message();
+  const std::string cli = "--bl-slide-patches", abi = "options->bl_slide_patches";
+  for (size_t at = message.find(cli); at != std::string::npos; at = message.find(cli, at + abi.size()))
+    message.replace(at, cli.size(), abi);
+  return anitet::Status(status.code(), message);
 }
 
 void log_line(const anitet_options& o, int32_t level, const std::string& text) {
@@ -193,7 +212,7 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
     anitet::Result<anitet::MesherResult> run = anitet::Mesher(mo).run_validated(repaired);
     if (sizing && sizing->failed()) return metric_failed();
     if (!run.ok()) {
-      const int code = set_status(fn, run.status());
+      const int code = set_status(fn, in_abi_words(run.status()));
       log_line(opt, ANITET_LOG_ERROR, anitet_last_error_message());
       return code;
     }
@@ -234,7 +253,7 @@ int anitet_layers_run(const anitet_surface* surface, const anitet_options* optio
     anitet::Result<anitet::Stage1Result> built =
         in_arena(opt.num_threads, [&] { return anitet::run_stage1(repaired, mo.layers); });
     if (!built.ok()) {
-      const int code = set_status(fn, anitet::Status(built.status().code(), "stage 1 (layers): " + built.status().message()));
+      const int code = set_status(fn, in_abi_words(anitet::Status(built.status().code(), "stage 1 (layers): " + built.status().message())));
       log_line(opt, ANITET_LOG_ERROR, anitet_last_error_message());
       return code;
     }
@@ -243,6 +262,7 @@ int anitet_layers_run(const anitet_surface* surface, const anitet_options* optio
     run->layers = built->layers.stats;
     run->layers_used = mo.layers.layers;
     run->boundary_layer = built->boundary_layer;
+    run->slide = std::move(built->slide);
     run->stages.push_back({"layers", built->layers.stats.seconds, built->layers.stats.tets});
     run->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     log_stages(opt, *run);

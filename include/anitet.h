@@ -101,8 +101,9 @@ typedef struct anitet_geo_frame anitet_geo_frame; /**< a local Cartesian frame o
  * same name again, the fraction growing). Return 0 to continue, non-zero to cancel: the running
  * call then returns ANITET_ERR_CANCELLED and creates nothing. Stages are not interrupted in the
  * middle: cancelling takes effect at the next stage, and the callback is not called again.
- * The mesher's stages: "validate" (0), "layers", "recovery", "coupling", "sizing", "refine",
- * "optimize", "done" (1); later versions may add stages, so do not rely on the list. */
+ * The mesher's stages: "validate" (0), "slide patches" (with options->bl_slide_patches),
+ * "layers", "recovery", "coupling", "sizing", "refine", "optimize", "done" (1); later versions
+ * may add stages, so do not rely on the list. */
 typedef int (*anitet_progress_fn)(double fraction, const char* stage, void* user_data);
 /** Log: one message (valid only during the call) at an ANITET_LOG_* level. */
 typedef void (*anitet_log_fn)(int32_t level, const char* message, void* user_data);
@@ -114,7 +115,7 @@ typedef int (*anitet_metric_fn)(double x, double y, double z, double m[6], void*
  * Versioned options.
  * ------------------------------------------------------------------------------------------- */
 /** The newest version of anitet_options this header declares. */
-#define ANITET_OPTIONS_VERSION 3
+#define ANITET_OPTIONS_VERSION 4
 
 /** Values of anitet_options.layer_scheme (version 2). */
 #define ANITET_LAYERS_PUSH 0       /**< prism layers by vertex pushes only (the default) */
@@ -179,13 +180,27 @@ typedef struct anitet_options {
                                         vertices on two tasks (the same mesh either way;
                                         0: one by one; default 2000) */
   int32_t reserved1;                 /**< keep 0 (alignment; may gain a meaning later) */
-  /* Version 4 and later append fields here. */
+  /* Version 4 (read only when version >= 4; older callers get the defaults): */
+  int32_t bl_num_slide_patches;      /**< boundary layer: the number of labels in
+                                        bl_slide_patches (default 0: none); > 0 needs walls
+                                        (bl_num_patches > 0) */
+  int32_t reserved2;                 /**< keep 0 (alignment; may gain a meaning later) */
+  const int32_t* bl_slide_patches;   /**< the patch labels the walls meet that the layers'
+                                        columns may slide along (`anitet mesh
+                                        --bl-slide-patches`): a pipe's inlet and outlet, a
+                                        symmetry plane. Each is triangulated again inside the
+                                        band the layers cover, so the mesh's boundary triangles
+                                        with these labels differ from the surface's (the others
+                                        stay as given); planar where the layers slide. Read
+                                        during the call only (may be NULL when
+                                        bl_num_slide_patches is 0) */
+  /* Version 5 and later append fields here. */
 } anitet_options;
 
 /** Initializer of an anitet_options of version ANITET_OPTIONS_VERSION with the defaults. */
 #define ANITET_OPTIONS_INIT                                                                     \
   { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0, 1, ANITET_LAYERS_PUSH, 0.0, 1, 1, 1.0, \
-    240.0, 1, ANITET_RECOVERY_ALL, 0.0, 0.0, 0.0, 0.0, 2, 0, 0, 0.0, 1.2, 10, 0, 2000, 0 }
+    240.0, 1, ANITET_RECOVERY_ALL, 0.0, 0.0, 0.0, 0.0, 2, 0, 0, 0.0, 1.2, 10, 0, 2000, 0, 0, 0, 0 }
 
 /** Fills the fields of `version` (1 .. ANITET_OPTIONS_VERSION) of *options with their defaults
  * and sets options->version; a struct of an older version is not written past its end.
@@ -346,7 +361,8 @@ ANITET_API int anitet_metric_write(const anitet_metric* metric, const anitet_sur
 /** Meshes the inside of `surface` into a new mesh *out (*out is NULL after any error). The call
  * validates a copy of the surface with the options' repairs (`surface` itself is not changed),
  * then runs the stages: advancing-front layers (with a boundary layer first on the walls
- * options->bl_patches names), Delaunay with conforming boundary recovery, coupling, refinement
+ * options->bl_patches names, its columns sliding along the patches options->bl_slide_patches
+ * names where a wall meets them), Delaunay with conforming boundary recovery, coupling, refinement
  * to the sizes and quality optimization (options may skip the last two), every stage in one
  * task arena of options->num_threads threads (0: the library's default, all cores).
  * Sizes: refinement and optimization follow `metric` when not NULL (evaluated wherever they
@@ -356,22 +372,29 @@ ANITET_API int anitet_metric_write(const anitet_metric* metric, const anitet_sur
  * lengths. What the run did is kept with the mesh (anitet_mesh_get_run_stats,
  * anitet_mesh_run_json), including what it did otherwise than asked (notices).
  * The mesh: the (repaired) surface's points first and in order, positive tets, a region label
- * per body, the surface's triangles as boundary triangles with their patch labels. Same inputs
+ * per body, the surface's triangles as boundary triangles with their patch labels (with slide
+ * patches: the triangles of the other patches first, in order, then the slide patches' new
+ * triangulation; the layers' new points on them follow the surface's points). Same inputs
  * and options, same mesh, bit for bit. options may be NULL for the defaults; options->progress
  * is called on entering each stage and may cancel; options->log gets the repairs and problems
  * of the validation and one line per stage.
  * Errors: INVALID_ARGUMENT (NULL surface or out, bad options version or value, a wall label no
- * triangle has, more tets than options->max_tets; a metric callback that fails or returns a
- * tensor that is not positive definite: the message names the point), the validation's codes (OPEN_BOUNDARY, SELF_INTERSECTION, ...), CANCELLED,
- * RECOVERY_FAILED, INTERNAL (a stage failed), OUT_OF_MEMORY. */
+ * triangle has, a wall meeting a patch that is not a slide patch (the message names the label
+ * to add to bl_slide_patches), a label both a wall and a slide patch, more tets than
+ * options->max_tets; a metric callback that fails or returns a tensor that is not positive
+ * definite: the message names the point), the validation's codes (OPEN_BOUNDARY,
+ * SELF_INTERSECTION, ...), NOT_IMPLEMENTED (a slide patch not planar where the layers slide on
+ * it, a column sliding along two edges), CANCELLED, RECOVERY_FAILED, INTERNAL (a stage failed),
+ * OUT_OF_MEMORY. */
 ANITET_API int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric,
                                  const anitet_options* options, anitet_mesh** out);
 /** Stage 1 alone (`anitet mesh --stop-after layers`), to look at the layers: validates a copy of
  * the surface as anitet_mesher_run does, builds the advancing-front layers (options->layers,
- * layer_scheme, push_tasks_min_vertices and the boundary layer's bl_* fields; the other fields
- * of version 2 and 3 are not used) at the surface's own sizes, audits them, and returns T1 in
- * *out: the surface's points first and in order (those of no triangle dropped), the surface's
- * triangles as boundary triangles under their labels, the new front S1's triangles under one
+ * layer_scheme, push_tasks_min_vertices and the boundary layer's bl_* fields, slide patches
+ * included; the other fields of version 2 and 3 are not used) at the surface's own sizes, audits
+ * them, and returns T1 in *out: the surface's points first and in order (those of no triangle
+ * dropped), the surface's triangles as boundary triangles under their labels (the slide
+ * patches' as anitet_mesher_run gives them), the new front S1's triangles under one
  * more label (the largest label + 1, at least 1), the boundary layer's tets in region 1 and the
  * others in region 0. anitet_mesh_get_run_stats gives layers_used and the boundary layer's
  * figures measured on T1; anitet_mesh_run_json the stage's figures. Errors: as
@@ -438,6 +461,7 @@ ANITET_API int anitet_mesh_get_metric(const anitet_mesh* mesh, double* values,
  * copied. Errors: INVALID_ARGUMENT (NULL mesh, an invalid name, no boundary triangle with the
  * label). */
 ANITET_API int anitet_mesh_set_patch_name(anitet_mesh* mesh, int32_t label, const char* name);
+
 
 /** Replaces the per-vertex metric: components 1 (size, > 0) or 6 (xx xy yy xz yz zz) values per
  * point, values_len == components*num_points, all finite; components 0 removes it (values may

@@ -41,7 +41,7 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_LOG_WARNING = 1
   integer(c_int32_t), parameter, public :: ANITET_LOG_INFO = 2
   integer(c_int32_t), parameter, public :: ANITET_LOG_DEBUG = 3
-  integer(c_int32_t), parameter, public :: ANITET_OPTIONS_VERSION = 3
+  integer(c_int32_t), parameter, public :: ANITET_OPTIONS_VERSION = 4
   integer(c_int32_t), parameter, public :: ANITET_LAYERS_PUSH = 0
   integer(c_int32_t), parameter, public :: ANITET_LAYERS_FACE_PUSH = 1
   integer(c_int32_t), parameter, public :: ANITET_RECOVERY_ALL = 0
@@ -122,6 +122,11 @@ module anitet
     integer(c_int32_t) :: bl_sizing
     integer(c_int32_t) :: push_tasks_min_vertices
     integer(c_int32_t) :: reserved1
+    ! version 4
+    integer(c_int32_t) :: bl_num_slide_patches
+    integer(c_int32_t) :: reserved2
+    ! The slide patch labels: as bl_patches (or pass bl_slide_patches= to anitet_mesher_run).
+    type(c_ptr) :: bl_slide_patches
   end type
 
   ! What the run that made a mesh did (anitet_mesh_get_run_stats).
@@ -1331,18 +1336,21 @@ contains
   ! ---- meshing ----------------------------------------------------------------------------------
 
   ! bl_patches: the boundary layer's wall labels for this call, in place of options%bl_patches and
-  ! options%bl_num_patches (copied for the call: any integer(c_int32_t) array or expression will
-  ! do); the other bl_ fields (bl_first_height, ...) come from options.
-  integer function anitet_mesher_run(surface, mesh, metric, options, bl_patches) result(rc)
+  ! options%bl_num_patches; bl_slide_patches: the patches the layers may slide along, in place of
+  ! options%bl_slide_patches and options%bl_num_slide_patches (both copied for the call: any
+  ! integer(c_int32_t) array or expression will do); the other bl_ fields (bl_first_height, ...)
+  ! come from options.
+  integer function anitet_mesher_run(surface, mesh, metric, options, bl_patches, bl_slide_patches) &
+      result(rc)
     type(c_ptr), intent(in) :: surface
     type(c_ptr), intent(out) :: mesh
     type(c_ptr), intent(in), optional :: metric
     type(anitet_options_t), intent(in), optional, target :: options
-    integer(c_int32_t), intent(in), optional :: bl_patches(:)
-    type(anitet_options_t), target :: with_walls
-    integer(c_int32_t), allocatable, target :: walls(:)
+    integer(c_int32_t), intent(in), optional :: bl_patches(:), bl_slide_patches(:)
+    type(anitet_options_t), target :: with_labels
+    integer(c_int32_t), allocatable, target :: walls(:), slides(:)
     mesh = c_null_ptr
-    if (.not. present(bl_patches)) then
+    if (.not. present(bl_patches) .and. .not. present(bl_slide_patches)) then
       if (present(options)) then
         rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_loc(options), mesh)
       else
@@ -1350,23 +1358,26 @@ contains
       end if
       return
     end if
-    rc = options_with_walls("anitet_mesher_run", bl_patches, with_walls, walls, options)
+    rc = options_with_labels("anitet_mesher_run", with_labels, walls, slides, options, bl_patches, &
+                             bl_slide_patches)
     if (rc /= ANITET_OK) return
-    if (allocated(walls)) with_walls%bl_patches = c_loc(walls)
-    rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_loc(with_walls), mesh)
+    if (allocated(walls)) with_labels%bl_patches = c_loc(walls)
+    if (allocated(slides)) with_labels%bl_slide_patches = c_loc(slides)
+    rc = c_anitet_mesher_run(surface, opt_ptr(metric), c_loc(with_labels), mesh)
   end function
 
   ! Stage 1 alone (`anitet mesh --stop-after layers`): T1, with the surface's triangles under
-  ! their labels and the new front under the largest label + 1. bl_patches as anitet_mesher_run.
-  integer function anitet_layers_run(surface, mesh, options, bl_patches) result(rc)
+  ! their labels and the new front under the largest label + 1. bl_patches and bl_slide_patches
+  ! as anitet_mesher_run.
+  integer function anitet_layers_run(surface, mesh, options, bl_patches, bl_slide_patches) result(rc)
     type(c_ptr), intent(in) :: surface
     type(c_ptr), intent(out) :: mesh
     type(anitet_options_t), intent(in), optional, target :: options
-    integer(c_int32_t), intent(in), optional :: bl_patches(:)
-    type(anitet_options_t), target :: with_walls
-    integer(c_int32_t), allocatable, target :: walls(:)
+    integer(c_int32_t), intent(in), optional :: bl_patches(:), bl_slide_patches(:)
+    type(anitet_options_t), target :: with_labels
+    integer(c_int32_t), allocatable, target :: walls(:), slides(:)
     mesh = c_null_ptr
-    if (.not. present(bl_patches)) then
+    if (.not. present(bl_patches) .and. .not. present(bl_slide_patches)) then
       if (present(options)) then
         rc = c_anitet_layers_run(surface, c_loc(options), mesh)
       else
@@ -1374,36 +1385,52 @@ contains
       end if
       return
     end if
-    rc = options_with_walls("anitet_layers_run", bl_patches, with_walls, walls, options)
+    rc = options_with_labels("anitet_layers_run", with_labels, walls, slides, options, bl_patches, &
+                             bl_slide_patches)
     if (rc /= ANITET_OK) return
-    if (allocated(walls)) with_walls%bl_patches = c_loc(walls)
-    rc = c_anitet_layers_run(surface, c_loc(with_walls), mesh)
+    if (allocated(walls)) with_labels%bl_patches = c_loc(walls)
+    if (allocated(slides)) with_labels%bl_slide_patches = c_loc(slides)
+    rc = c_anitet_layers_run(surface, c_loc(with_labels), mesh)
   end function
 
-  ! The options (or the defaults) with bl_num_patches set for the wall labels, copied into
-  ! `walls` (not allocated when there are none); the caller points bl_patches at `walls`, which
-  ! must outlive the call that reads them.
-  integer function options_with_walls(caller, bl_patches, with_walls, walls, options) result(rc)
+  ! The options (or the defaults) with the counts set for the given wall and slide labels, copied
+  ! into `walls` and `slides` (not allocated when there are none); the caller points bl_patches
+  ! and bl_slide_patches at them, which must outlive the call that reads them.
+  integer function options_with_labels(caller, with_labels, walls, slides, options, bl_patches, &
+                                       bl_slide_patches) result(rc)
     character(len=*), intent(in) :: caller
-    integer(c_int32_t), intent(in) :: bl_patches(:)
-    type(anitet_options_t), intent(out) :: with_walls
-    integer(c_int32_t), allocatable, intent(out) :: walls(:)
+    type(anitet_options_t), intent(out) :: with_labels
+    integer(c_int32_t), allocatable, intent(out) :: walls(:), slides(:)
     type(anitet_options_t), intent(in), optional :: options
+    integer(c_int32_t), intent(in), optional :: bl_patches(:), bl_slide_patches(:)
     rc = ANITET_OK
     if (present(options)) then
-      with_walls = options
+      with_labels = options
     else
-      rc = c_anitet_options_init(with_walls, ANITET_OPTIONS_VERSION)
+      rc = c_anitet_options_init(with_labels, ANITET_OPTIONS_VERSION)
       if (rc /= ANITET_OK) return
     end if
-    if (with_walls%version < 3) then  ! older structs have no walls: the labels would be ignored
-      rc = c_anitet_set_last_error(ANITET_ERR_INVALID_ARGUMENT, caller // ": bl_patches " // &
-                                   "needs options of version 3 or later" // c_null_char)
-      return
+    ! Older structs have no such fields: the labels would be ignored.
+    if (present(bl_patches)) then
+      if (with_labels%version < 3) then
+        rc = c_anitet_set_last_error(ANITET_ERR_INVALID_ARGUMENT, caller // ": bl_patches " // &
+                                     "needs options of version 3 or later" // c_null_char)
+        return
+      end if
+      with_labels%bl_num_patches = size(bl_patches, kind=c_int32_t)
+      with_labels%bl_patches = c_null_ptr
+      if (size(bl_patches) > 0) walls = bl_patches
     end if
-    with_walls%bl_num_patches = size(bl_patches, kind=c_int32_t)
-    with_walls%bl_patches = c_null_ptr
-    if (size(bl_patches) > 0) walls = bl_patches
+    if (present(bl_slide_patches)) then
+      if (with_labels%version < 4) then
+        rc = c_anitet_set_last_error(ANITET_ERR_INVALID_ARGUMENT, caller // ": bl_slide_patches " // &
+                                     "needs options of version 4 or later" // c_null_char)
+        return
+      end if
+      with_labels%bl_num_slide_patches = size(bl_slide_patches, kind=c_int32_t)
+      with_labels%bl_slide_patches = c_null_ptr
+      if (size(bl_slide_patches) > 0) slides = bl_slide_patches
+    end if
   end function
 
   ! The first boundary-layer height h0 for a target y+ (flat-plate estimate; `--bl-yplus`).

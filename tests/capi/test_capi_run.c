@@ -1,6 +1,7 @@
-/* The C ABI's version 3 of anitet_options (the options of `anitet mesh`: boundary layer, size
- * bounds, recovery strategy, retries, tet cap) and what a run returns (anitet_run_stats,
- * anitet_mesh_run_json), patch names for the written files; every documented error. */
+/* The C ABI's versions 3 and 4 of anitet_options (the options of `anitet mesh`: boundary layer
+ * and its slide patches, size bounds, recovery strategy, retries, tet cap) and what a run returns
+ * (anitet_run_stats, anitet_mesh_run_json), patch names for the written files; every
+ * documented error. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -345,6 +346,172 @@ static void test_patch_names(void** state) {
   anitet_surface_destroy(s);
 }
 
+/* ---- options, version 4: slide patches ------------------------------------------------------ */
+
+static void test_options_v4_defaults(void** state) {
+  anitet_options a = ANITET_OPTIONS_INIT, b, v3;
+  const size_t v3_size = offsetof(anitet_options, bl_num_slide_patches);
+  const unsigned char* bytes = (const unsigned char*)&v3;
+  size_t i;
+  (void)state;
+  assert_int_equal(ANITET_OPTIONS_VERSION, 4);
+  memset(&b, 0x5a, sizeof b);
+  assert_int_equal(anitet_options_init(&b, 4), ANITET_OK);
+  assert_int_equal(b.version, 4);
+  assert_int_equal(b.bl_num_slide_patches, 0);
+  assert_int_equal(b.reserved2, 0);
+  assert_null(b.bl_slide_patches);
+  assert_int_equal(a.bl_num_slide_patches, 0);
+  assert_null(a.bl_slide_patches);
+  assert_int_equal(b.push_tasks_min_vertices, a.push_tasks_min_vertices);
+  /* Version 3: nothing written past its end. */
+  assert_int_equal(v3_size, offsetof(anitet_options, reserved1) + sizeof(int32_t));
+  memset(&v3, 0xff, sizeof v3);
+  assert_int_equal(anitet_options_init(&v3, 3), ANITET_OK);
+  assert_int_equal(v3.version, 3);
+  for (i = v3_size; i < sizeof v3; ++i) assert_int_equal(bytes[i], 0xff);
+  assert_int_equal(anitet_options_init(&b, 5), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "version 5"));
+}
+
+static void expect_same_mesh(const anitet_mesh* a, const anitet_mesh* b) {
+  int64_t np = 0, nt = 0, np2 = 0, nt2 = 0;
+  double *xa, *xb;
+  int32_t *ta, *tb;
+  assert_int_equal(anitet_mesh_get_counts(a, &np, &nt, NULL), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_counts(b, &np2, &nt2, NULL), ANITET_OK);
+  assert_int_equal(np, np2);
+  assert_int_equal(nt, nt2);
+  xa = malloc((size_t)(3 * np) * sizeof *xa), xb = malloc((size_t)(3 * np) * sizeof *xb);
+  ta = malloc((size_t)(4 * nt) * sizeof *ta), tb = malloc((size_t)(4 * nt) * sizeof *tb);
+  assert_true(xa && xb && ta && tb);
+  assert_int_equal(anitet_mesh_get_points(a, xa, 3 * np), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_points(b, xb, 3 * np), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_tets(a, ta, 4 * nt, 0), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_tets(b, tb, 4 * nt, 0), ANITET_OK);
+  assert_memory_equal(xa, xb, (size_t)(3 * np) * sizeof *xa);
+  assert_memory_equal(ta, tb, (size_t)(4 * nt) * sizeof *ta);
+  free(xa), free(xb), free(ta), free(tb);
+}
+
+/* A caller compiled against version 3: garbage past its struct's end is not read, and its
+ * boundary layer gives the same mesh, bit for bit, as the same options of version 4. */
+static void test_options_v3_caller(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  const int32_t walls[3] = {1, 2, 3};
+  anitet_options v3, v4 = ANITET_OPTIONS_INIT;
+  anitet_mesh *a, *b;
+  (void)state;
+  memset(&v3, 0xff, sizeof v3);
+  assert_int_equal(anitet_options_init(&v3, 3), ANITET_OK);
+  v3.bl_num_patches = v4.bl_num_patches = 3, v3.bl_patches = v4.bl_patches = walls;
+  v3.bl_first_height = v4.bl_first_height = 0.02, v3.bl_layers = v4.bl_layers = 3;
+  a = run_ok(s, &v3);
+  b = run_ok(s, &v4);
+  expect_same_mesh(a, b);
+  anitet_mesh_destroy(a);
+  anitet_mesh_destroy(b);
+  anitet_surface_destroy(s);
+}
+
+/* A pipe along z (radius 1, length 2, 16 segments, 6 rings apart): wall 1, inlet 2 (z = 0) and
+ * outlet 3 (z = 2), each cap a fan around its centre. */
+enum { PIPE_N = 16, PIPE_RINGS = 7, PIPE_NPOINTS = PIPE_N * PIPE_RINGS + 2,
+       PIPE_NTRI = 2 * PIPE_N * (PIPE_RINGS - 1) + 2 * PIPE_N };
+
+static anitet_surface* make_pipe(void) {
+  static double xyz[3 * PIPE_NPOINTS];
+  static int32_t tri[3 * PIPE_NTRI], patch[PIPE_NTRI];
+  const int32_t c0 = PIPE_N * PIPE_RINGS, c1 = c0 + 1, top = PIPE_N * (PIPE_RINGS - 1);
+  anitet_surface* s = NULL;
+  int i, j, t = 0;
+  for (j = 0; j < PIPE_RINGS; ++j)
+    for (i = 0; i < PIPE_N; ++i) {
+      const double a = 2.0 * 3.141592653589793 * i / PIPE_N;
+      double* p = &xyz[3 * (j * PIPE_N + i)];
+      p[0] = cos(a), p[1] = sin(a), p[2] = 2.0 * j / (PIPE_RINGS - 1);
+    }
+  xyz[3 * c0] = xyz[3 * c0 + 1] = xyz[3 * c0 + 2] = 0.0;
+  xyz[3 * c1] = xyz[3 * c1 + 1] = 0.0, xyz[3 * c1 + 2] = 2.0;
+  for (j = 0; j + 1 < PIPE_RINGS; ++j)
+    for (i = 0; i < PIPE_N; ++i) {
+      const int32_t a = j * PIPE_N + i, b = j * PIPE_N + (i + 1) % PIPE_N;
+      const int32_t q[6] = {a, b, b + PIPE_N, a, b + PIPE_N, a + PIPE_N};
+      memcpy(&tri[3 * t], q, sizeof q);
+      patch[t] = patch[t + 1] = 1;
+      t += 2;
+    }
+  for (i = 0; i < PIPE_N; ++i, t += 2) {
+    const int32_t q[6] = {i, c0, (i + 1) % PIPE_N, top + i, top + (i + 1) % PIPE_N, c1};
+    memcpy(&tri[3 * t], q, sizeof q);
+    patch[t] = 2, patch[t + 1] = 3;
+  }
+  assert_int_equal(t, PIPE_NTRI);
+  assert_int_equal(anitet_surface_create(xyz, PIPE_NPOINTS, tri, PIPE_NTRI, patch, 0, &s), ANITET_OK);
+  return s;
+}
+
+static void test_slide_patches(void** state) {
+  anitet_surface* s = make_pipe();
+  const int32_t wall[1] = {1}, caps[2] = {2, 3}, wall_and_cap[2] = {1, 2};
+  anitet_options o = ANITET_OPTIONS_INIT;
+  anitet_run_stats st = ANITET_RUN_STATS_INIT;
+  anitet_quality q = ANITET_QUALITY_INIT;
+  anitet_mesh *m, *t1 = NULL;
+  int64_t np = 0, nb = 0, i, on_caps = 0, on_wall = 0;
+  int32_t* patch;
+  char* json;
+  (void)state;
+  o.bl_num_patches = 1, o.bl_patches = wall;
+  o.bl_first_height = 0.01, o.bl_growth = 1.2, o.bl_layers = 4;
+  /* The wall meets the caps: refused without slide patches, naming the field and the label. */
+  expect_bad(s, &o, "options->bl_slide_patches 2");
+  o.bl_num_slide_patches = 2, o.bl_slide_patches = caps;
+  m = run_ok(s, &o);
+  assert_int_equal(anitet_mesh_get_run_stats(m, &st), ANITET_OK);
+  assert_int_equal(st.bl_layers, 4);
+  assert_int_equal(st.bl_wall_vertices, PIPE_N * PIPE_RINGS);
+  assert_int_equal(st.bl_full_columns, PIPE_N * PIPE_RINGS);
+  json = run_json(m);
+  assert_true(contains(json, "\"slide_patches\""));
+  assert_true(contains(json, "\"junction_vertices\": 32") || contains(json, "\"junction_vertices\":32"));
+  free(json);
+  /* The wall's triangles as given, first; the caps triangulated again around the columns. */
+  assert_int_equal(anitet_mesh_get_counts(m, &np, NULL, &nb), ANITET_OK);
+  assert_true(np > PIPE_NPOINTS);
+  patch = malloc((size_t)nb * sizeof *patch);
+  assert_non_null(patch);
+  assert_int_equal(anitet_mesh_get_boundary_patches(m, patch, nb), ANITET_OK);
+  for (i = 0; i < nb; ++i) {
+    on_wall += patch[i] == 1;
+    on_caps += patch[i] == 2 || patch[i] == 3;
+  }
+  for (i = 0; i < 2 * PIPE_N * (PIPE_RINGS - 1); ++i) assert_int_equal(patch[i], 1);
+  assert_int_equal(on_wall, 2 * PIPE_N * (PIPE_RINGS - 1));
+  assert_true(on_caps > 2 * PIPE_N);
+  assert_int_equal(on_wall + on_caps, nb);
+  free(patch);
+  assert_int_equal(anitet_mesh_quality(m, NULL, &q), ANITET_OK);
+  assert_int_equal(q.valid, 1);
+  anitet_mesh_destroy(m);
+  /* Stage 1 alone with slide patches. */
+  assert_int_equal(anitet_layers_run(s, &o, &t1), ANITET_OK);
+  json = run_json(t1);
+  assert_true(contains(json, "\"slide_patches\""));
+  free(json);
+  anitet_mesh_destroy(t1);
+  /* Errors: a negative count, NULL labels, slide patches without walls, a label both. */
+  o.bl_num_slide_patches = -1;
+  expect_bad(s, &o, "bl_num_slide_patches is negative");
+  o.bl_num_slide_patches = 2, o.bl_slide_patches = NULL;
+  expect_bad(s, &o, "bl_slide_patches is NULL");
+  o.bl_slide_patches = caps, o.bl_num_patches = 0;
+  expect_bad(s, &o, "needs boundary-layer walls");
+  o.bl_num_patches = 1, o.bl_slide_patches = wall_and_cap;
+  expect_bad(s, &o, "both as a wall and as a slide patch");
+  anitet_surface_destroy(s);
+}
+
 /* ---- stage 1 alone, y+ ------------------------------------------------------------------------ */
 
 static void test_layers_run(void** state) {
@@ -424,6 +591,8 @@ int main(void) {
       cmocka_unit_test(test_run_stats_errors),    cmocka_unit_test(test_boundary_layer),
       cmocka_unit_test(test_options_v3_used),     cmocka_unit_test(test_patch_names),
       cmocka_unit_test(test_layers_run),          cmocka_unit_test(test_bl_first_height),
+      cmocka_unit_test(test_options_v4_defaults), cmocka_unit_test(test_options_v3_caller),
+      cmocka_unit_test(test_slide_patches),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,9 +2,10 @@
 ! back; a volume mesh read from the tests' data and filled into allocatable arrays; the error
 ! paths a Fortran caller meets; the examples' sphere meshed with and without a metric, and with
 ! a metric from per-point values or a .sol on a background mesh; a mesh in parts; options
-! version 3, a boundary layer on the sphere inside a box and the run's report, patch names;
+! versions 3 and 4, a boundary layer on the sphere inside a box and the run's report, patch names;
 ! stage 1 alone, y+ to a first height, the surface's sizing field written and read back, a
-! metric sampled on a mesh and read on a mesh in memory, geographic frames.
+! metric sampled on a mesh and read on a mesh in memory, geographic frames; a boundary layer
+! sliding along a pipe's caps.
 ! Argument 1: the tests' data directory (tests/data).
 ! The analytic metric of check_sample_metric: a bind(c) procedure of a module, for c_funloc.
 module test_fortran_metrics
@@ -54,6 +55,7 @@ program test_fortran
   call check_surface_sizing()
   call check_sample_metric(trim(data_dir) // "/io/box.mesh")
   call check_geo_frames()
+  call check_slide_patches()
 
   if (failures > 0) then
     print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
@@ -251,9 +253,10 @@ contains
     call check(options%layers == 1 .and. options%layer_scheme == ANITET_LAYERS_PUSH, &
                "options v2 defaults")
     ! The struct's layout is the C one: version 1 ends after four pointers, version 2 adds
-    ! 2 * (4 + 4 + 8) bytes, version 3 seven 8-byte fields, eight 4-byte ones and a pointer.
+    ! 2 * (4 + 4 + 8) bytes, version 3 seven 8-byte fields, eight 4-byte ones and a pointer,
+    ! version 4 two 4-byte fields and a pointer.
     call check(c_sizeof(options) == 6 * 4 + 4 * c_sizeof(c_null_ptr) + 32 + 88 + &
-               c_sizeof(c_null_ptr), "options size")
+               c_sizeof(c_null_ptr) + 8 + c_sizeof(c_null_ptr), "options size")
     call check(options%refine == 1 .and. options%optimize == 1 .and. options%size_scale == 1d0, &
                "options v2 refine defaults")
     options%layers = 0
@@ -466,8 +469,10 @@ contains
   subroutine check_options_v3()
     type(anitet_options_t) :: o
     type(anitet_run_stats_t) :: st
-    call check(anitet_options_init(o) == ANITET_OK, "options v3")
-    call check(o%version == 3, "options v3: version")
+    call check(anitet_options_init(o) == ANITET_OK, "options v4")
+    call check(o%version == 4, "options v4: version")
+    call check(o%bl_num_slide_patches == 0 .and. o%reserved2 == 0 .and. &
+               .not. c_associated(o%bl_slide_patches), "options v4: no slide patches")
     call check(o%attempts_seconds == 240d0 .and. o%retry_layer_counts == 1 .and. &
                o%recovery == ANITET_RECOVERY_ALL, "options v3: attempts, retries, recovery")
     call check(o%hmin == 0d0 .and. o%hmax == 0d0 .and. o%hgrad == 0d0 .and. o%max_tets == 0d0, &
@@ -480,6 +485,8 @@ contains
                "options v3: push tasks from 2000 front vertices")
     ! 8 int32, 8 int64, 5 doubles, 2 int32, 5 int64, 5 doubles: no padding.
     call check(c_sizeof(st) == 224, "run stats size")
+    call check(anitet_options_init(o, 3) == ANITET_OK, "options v3 still")
+    call check(o%version == 3, "options v3: version")
     call check(anitet_options_init(o, 2) == ANITET_OK, "options v2 still")
     call check(o%version == 2, "options v2: version")
   end subroutine
@@ -845,6 +852,91 @@ contains
   end subroutine
 
   ! The whole file as one string.
+  ! A pipe along z (radius 1, length 2, 16 segments, 7 rings): wall 1, inlet 2 (z = 0), outlet 3
+  ! (z = 2), each cap a fan around its centre.
+  subroutine pipe_surface(surface)
+    type(c_ptr), intent(out) :: surface
+    integer, parameter :: n = 16, rings = 7, np = n * rings + 2, ntri = 2 * n * (rings - 1) + 2 * n
+    real(c_double) :: xyz(3, np), a
+    integer(c_int32_t) :: tri(3, ntri), patch(ntri)
+    integer :: i, j, t, c0, c1, top
+    c0 = n * rings + 1
+    c1 = c0 + 1
+    top = n * (rings - 1)
+    do j = 0, rings - 1
+      do i = 0, n - 1
+        a = 2 * acos(-1d0) * i / n
+        xyz(:, j * n + i + 1) = [cos(a), sin(a), 2d0 * j / (rings - 1)]
+      end do
+    end do
+    xyz(:, c0) = [0d0, 0d0, 0d0]
+    xyz(:, c1) = [0d0, 0d0, 2d0]
+    t = 0
+    do j = 0, rings - 2
+      do i = 0, n - 1
+        tri(:, t + 1) = [j * n + i, j * n + mod(i + 1, n), (j + 1) * n + mod(i + 1, n)] + 1
+        tri(:, t + 2) = [j * n + i, (j + 1) * n + mod(i + 1, n), (j + 1) * n + i] + 1
+        patch(t + 1:t + 2) = 1
+        t = t + 2
+      end do
+    end do
+    do i = 0, n - 1
+      tri(:, t + 1) = [i + 1, c0, mod(i + 1, n) + 1]
+      tri(:, t + 2) = [top + i + 1, top + mod(i + 1, n) + 1, c1]
+      patch(t + 1) = 2
+      patch(t + 2) = 3
+      t = t + 2
+    end do
+    call check(anitet_surface_create(xyz, tri, surface, patch) == ANITET_OK, "pipe surface")
+  end subroutine
+
+  ! Boundary layers on the pipe's wall sliding along its caps (options version 4).
+  subroutine check_slide_patches()
+    type(c_ptr) :: surface, mesh
+    type(anitet_options_t), target :: o
+    integer(c_int32_t), target :: caps(2) = [2, 3]
+    type(anitet_run_stats_t) :: st
+    integer(c_int32_t), allocatable :: patch(:)
+    character(len=:), allocatable :: json
+    call pipe_surface(surface)
+    call check(anitet_options_init(o) == ANITET_OK, "options")
+    o%bl_first_height = 0.01d0
+    o%bl_layers = 4
+    call check(anitet_mesher_run(surface, mesh, options=o, bl_patches=[1]) == &
+               ANITET_ERR_INVALID_ARGUMENT, "a wall meeting the caps without slide patches")
+    call check(index(anitet_last_error_message(), "bl_slide_patches 2") > 0, &
+               "without slide patches: message")
+    call check(anitet_mesher_run(surface, mesh, options=o, bl_patches=[1], bl_slide_patches=[2, 3]) &
+               == ANITET_OK, "slide patches by bl_slide_patches=")
+    call check(anitet_mesh_get_run_stats(mesh, st) == ANITET_OK, "slide: run stats")
+    call check(st%bl_layers == 4 .and. st%bl_wall_vertices == 16 * 7 .and. &
+               st%bl_full_columns == 16 * 7, "slide: every wall vertex a full column")
+    call check(anitet_mesh_run_json(mesh, json) == ANITET_OK, "slide: run json")
+    call check(index(json, '"slide_patches"') > 0, "slide: the report's slide patches")
+    call check(anitet_mesh_get_boundary_patches(mesh, patch) == ANITET_OK, "slide: patches")
+    call check(count(patch == 1) == 2 * 16 * 6 .and. count(patch == 2) > 16 .and. &
+               count(patch == 3) > 16, "slide: the wall as given, the caps triangulated again")
+    call anitet_mesh_destroy(mesh)
+    ! The labels by c_loc in the struct.
+    o%bl_num_slide_patches = size(caps)
+    o%bl_slide_patches = c_loc(caps)
+    call check(anitet_layers_run(surface, mesh, options=o, bl_patches=[1]) == ANITET_OK, &
+               "stage 1 with slide patches by c_loc")
+    call anitet_mesh_destroy(mesh)
+    ! Errors: slide patches without walls; with version 3 options.
+    call check(anitet_mesher_run(surface, mesh, options=o) == ANITET_ERR_INVALID_ARGUMENT, &
+               "slide patches without walls")
+    call check(index(anitet_last_error_message(), "needs boundary-layer walls") > 0, &
+               "slide patches without walls: message")
+    call check(anitet_options_init(o, 3) == ANITET_OK, "options v3")
+    o%bl_first_height = 0.01d0
+    call check(anitet_mesher_run(surface, mesh, options=o, bl_patches=[1], bl_slide_patches=[2, 3]) &
+               == ANITET_ERR_INVALID_ARGUMENT, "slide patches with version 3 options")
+    call check(index(anitet_last_error_message(), "version 4") > 0, "slide patches with v3: message")
+    call check(.not. c_associated(mesh), "no mesh on error")
+    call anitet_surface_destroy(surface)
+  end subroutine
+
   function file_text(path) result(text)
     character(len=*), intent(in) :: path
     character(len=:), allocatable :: text

@@ -92,22 +92,26 @@ class HeaderDrift(unittest.TestCase):
         self.assertEqual(self.ctypes_fields(_capi.CMesh2dOptions), self.struct_fields("anitet_mesh2d_options"))
         self.assertEqual(ctypes.sizeof(_capi.CRunStats), 224)
         # Version 1 ends after the four pointers; version 2 adds 32 bytes, version 3 seven 8-byte
-        # fields, eight 4-byte ones and a pointer.
+        # fields, eight 4-byte ones and a pointer, version 4 two 4-byte fields and a pointer.
         self.assertEqual(_capi.COptions.layers.offset, 24 + 4 * pointer)
         self.assertEqual(_capi.COptions.attempts_seconds.offset, _capi.COptions.layers.offset + 32)
-        self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.attempts_seconds.offset + 88 + pointer)
+        self.assertEqual(_capi.COptions.bl_num_slide_patches.offset,
+                         _capi.COptions.attempts_seconds.offset + 88 + pointer)
+        self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.bl_num_slide_patches.offset + 8 + pointer)
 
     def test_options_defaults_are_the_library_s(self):
         c = _capi.COptions()
         self.assertEqual(_capi.lib.anitet_options_init(ctypes.byref(c), _capi.OPTIONS_VERSION), 0)
         python = anitet.Options()
-        skip = ("version", "reserved0", "reserved1", "progress", "progress_user_data", "log", "log_user_data",
-                "bl_num_patches", "bl_patches")
+        skip = ("version", "reserved0", "reserved1", "reserved2", "progress", "progress_user_data", "log",
+                "log_user_data", "bl_num_patches", "bl_patches", "bl_num_slide_patches", "bl_slide_patches")
         for name, _ in _capi.COptions._fields_:
             if name not in skip:
                 self.assertEqual(getattr(python, name), getattr(c, name), name)
         self.assertEqual((c.bl_num_patches, bool(c.bl_patches)), (0, False))
+        self.assertEqual((c.bl_num_slide_patches, bool(c.bl_slide_patches)), (0, False))
         self.assertEqual(len(python.bl_patches), 0)
+        self.assertEqual(len(python.bl_slide_patches), 0)
 
 
 class Library(unittest.TestCase):
@@ -702,6 +706,72 @@ class Meshes(unittest.TestCase):
         m = anitet.Mesh.read(os.path.join(DATA, "io", "box.mesh"))
         self.assertEqual(m.counts(), (8, 6, 12))
         self.assertEqual(rows(m.tets(index_base=1))[0], (1, 2, 4, 8))
+
+
+def pipe(n=16, rings=7, length=2.0):
+    """A pipe along z (radius 1): wall 1, inlet 2 (z = 0), outlet 3 (z = length), fan caps."""
+    import math
+    points = [(math.cos(2 * math.pi * i / n), math.sin(2 * math.pi * i / n), length * j / (rings - 1))
+              for j in range(rings) for i in range(n)]
+    c0, c1, top = len(points), len(points) + 1, n * (rings - 1)
+    points += [(0.0, 0.0, 0.0), (0.0, 0.0, length)]
+    tris, labels = [], []
+    for j in range(rings - 1):
+        for i in range(n):
+            a, b = j * n + i, j * n + (i + 1) % n
+            tris += [(a, b, b + n), (a, b + n, a + n)]
+            labels += [1, 1]
+    for i in range(n):
+        tris += [(i, c0, (i + 1) % n), (top + i, top + (i + 1) % n, c1)]
+        labels += [2, 3]
+    return points, tris, labels
+
+
+class SlidePatches(unittest.TestCase):
+    """Options version 4: a boundary layer on a pipe's wall sliding along its caps."""
+
+    WALL = dict(bl_patches=[1], bl_first_height=0.01, bl_layers=4)
+
+    @classmethod
+    def setUpClass(cls):
+        cls.points, cls.tris, cls.labels = pipe()
+        cls.surface = anitet.Surface.from_arrays(cls.points, cls.tris, cls.labels)
+
+    def test_slide(self):
+        with self.assertRaises(anitet.AnitetError) as e:
+            self.surface.mesh(**self.WALL)
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        self.assertIn("options->bl_slide_patches 2", e.exception.message)
+        m = self.surface.mesh(bl_slide_patches=[2, 3], **self.WALL)
+        s = m.run_stats
+        self.assertEqual((s.bl_layers, s.bl_wall_vertices, s.bl_full_columns), (4, 16 * 7, 16 * 7))
+        report = m.run_report()["slide_patches"]
+        self.assertEqual([p["label"] for p in report["patches"]], [2, 3])
+        self.assertEqual(report["junction_vertices"], 32)
+        patches = rows(m.boundary_patches())
+        self.assertEqual(patches[:2 * 16 * 6], [1] * (2 * 16 * 6))
+        self.assertGreater(patches.count(2), 16)
+        self.assertTrue(m.quality().valid)
+        # An Options, one int, a NumPy array: the same struct.
+        scope = anitet._api._options_arg(anitet.Options(bl_slide_patches=3, **self.WALL), {})
+        self.assertEqual((scope.struct.bl_num_slide_patches, scope.struct.bl_slide_patches[0]), (1, 3))
+        if anitet.HAVE_NUMPY:
+            import numpy
+            caps = numpy.array([2, 3], dtype=numpy.int32)
+            scope = anitet._api._options_arg(None, dict(self.WALL, bl_slide_patches=caps))
+            self.assertEqual(ctypes.addressof(scope.struct.bl_slide_patches.contents), caps.ctypes.data)
+        t1 = self.surface.build_layers(bl_slide_patches=(2, 3), **self.WALL)
+        self.assertIn("slide_patches", t1.run_report())
+
+    def test_errors(self):
+        for fields, words in (({"bl_patches": []}, "needs boundary-layer walls"),
+                              ({"bl_slide_patches": [1, 2, 3]}, "both as a wall and as a slide patch")):
+            with self.assertRaises(anitet.AnitetError) as e:
+                self.surface.mesh(**dict(dict(self.WALL, bl_slide_patches=[2, 3]), **fields))
+            self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+            self.assertIn(words, e.exception.message)
+        with self.assertRaises(TypeError):
+            self.surface.mesh(bl_slide_patches=[2.5], **self.WALL)
 
 
 class Arrays(unittest.TestCase):

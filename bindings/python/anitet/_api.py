@@ -186,7 +186,7 @@ def _create(cls, call, *args):
 # ---- options -----------------------------------------------------------------------------------
 
 class Options:
-    """The mesher's and the validation's options (anitet_options version 3; the fields, their
+    """The mesher's and the validation's options (anitet_options version 4; the fields, their
     meaning and their defaults are the C struct's, with booleans for the 0/1 ones).
 
     progress(stage, fraction): called on entering each stage; return False to cancel (the call
@@ -201,6 +201,10 @@ class Options:
     bl_first_height (needed with walls; bl_first_height() gives it for a y+), bl_growth, bl_layers
     and bl_sizing; push_tasks_min_vertices (stage 1 pushes a layer of at least this many front
     vertices on two tasks, 0: one by one; the same mesh either way).
+
+    Version 4: bl_slide_patches, the patch labels the walls meet that the layers' columns may
+    slide along (a pipe's inlet and outlet, a symmetry plane; `anitet mesh --bl-slide-patches`),
+    as bl_patches. Those patches are triangulated again where the layers slide on them.
     """
 
     def __init__(self, num_threads=0, merge_duplicate_vertices=True, orient_shells=True,
@@ -209,7 +213,7 @@ class Options:
                  progress=None, log=None, *, attempts_seconds=240.0, retry_layer_counts=True,
                  recovery=_capi.RECOVERY_ALL, hmin=0.0, hmax=0.0, hgrad=0.0, max_tets=0.0,
                  anisotropic_cycles=2, bl_patches=(), bl_first_height=0.0, bl_growth=1.2,
-                 bl_layers=10, bl_sizing=False, push_tasks_min_vertices=2000):
+                 bl_layers=10, bl_sizing=False, push_tasks_min_vertices=2000, bl_slide_patches=()):
         self.num_threads = num_threads
         self.merge_duplicate_vertices = merge_duplicate_vertices
         self.orient_shells = orient_shells
@@ -236,6 +240,7 @@ class Options:
         self.bl_layers = bl_layers
         self.bl_sizing = bl_sizing
         self.push_tasks_min_vertices = push_tasks_min_vertices
+        self.bl_slide_patches = bl_slide_patches
 
 
 class _CallbackScope:
@@ -270,13 +275,14 @@ class _CallbackScope:
         s.bl_layers = options.bl_layers
         s.bl_sizing = int(bool(options.bl_sizing))
         s.push_tasks_min_vertices = options.push_tasks_min_vertices
-        walls = options.bl_patches
-        if walls is not None:
-            # self._walls owns the memory behind s.bl_patches until the call returns.
-            self._walls, pointer, count = _flat_input([walls] if isinstance(walls, int) else walls,
-                                                      1, c_int32, "bl_patches")
-            if count > 0:
-                s.bl_patches, s.bl_num_patches = pointer, count
+        # self._walls and self._slides own the memory behind the label pointers until the call
+        # returns.
+        self._walls, pointer, count = _labels(options.bl_patches, "bl_patches")
+        if count > 0:
+            s.bl_patches, s.bl_num_patches = pointer, count
+        self._slides, pointer, count = _labels(options.bl_slide_patches, "bl_slide_patches")
+        if count > 0:
+            s.bl_slide_patches, s.bl_num_slide_patches = pointer, count
         # The ctypes callback objects must outlive the call: they are attributes of self.
         if options.progress is not None:
             user_progress = options.progress
@@ -311,6 +317,13 @@ class _CallbackScope:
         if self.error is not None:
             raise self.error
         _check(rc)
+
+
+def _labels(labels, what):
+    """(keep-alive object, pointer, count) of patch labels: a sequence of ints, one int or None."""
+    if labels is None:
+        return None, None, 0
+    return _flat_input([labels] if isinstance(labels, int) else labels, 1, c_int32, what)
 
 
 def _options_arg(options, kwargs):

@@ -43,7 +43,7 @@ LOG_ERROR = 0
 LOG_WARNING = 1
 LOG_INFO = 2
 LOG_DEBUG = 3
-OPTIONS_VERSION = 3
+OPTIONS_VERSION = 4
 QUALITY_VERSION = 1
 RUN_STATS_VERSION = 1
 LAYERS_PUSH = 0
@@ -126,6 +126,10 @@ class COptions(Structure):
         ("bl_sizing", c_int32),
         ("push_tasks_min_vertices", c_int32),
         ("reserved1", c_int32),
+        # version 4
+        ("bl_num_slide_patches", c_int32),
+        ("reserved2", c_int32),
+        ("bl_slide_patches", POINTER(c_int32)),
     ]
 
 
