@@ -21,6 +21,25 @@ anitet::Result<anitet::QualityReport> measure(const anitet_mesh* mesh, const ani
   return anitet::compute_quality_report(mesh->mesh, input ? &input->mesh : nullptr, options);
 }
 
+bool has_patch(const anitet_mesh& mesh, int32_t label) {
+  const auto& labels = mesh.mesh.bnd_patch;
+  return std::find(labels.begin(), labels.end(), label) != labels.end();
+}
+
+int no_patch(const char* fn, int32_t label) {
+  return set_error(ANITET_ERR_INVALID_ARGUMENT,
+                   std::string(fn) + ": no boundary triangle has patch label " + std::to_string(label));
+}
+
+// ANITET_PATCH_TYPE_* are anitet::PatchKind's values.
+static_assert(ANITET_PATCH_TYPE_WALL == int(anitet::PatchKind::Wall) &&
+                  ANITET_PATCH_TYPE_INLET == int(anitet::PatchKind::Inlet) &&
+                  ANITET_PATCH_TYPE_OUTLET == int(anitet::PatchKind::Outlet) &&
+                  ANITET_PATCH_TYPE_FARFIELD == int(anitet::PatchKind::Farfield) &&
+                  ANITET_PATCH_TYPE_SYMMETRY == int(anitet::PatchKind::Symmetry) &&
+                  ANITET_PATCH_TYPE_PATCH == int(anitet::PatchKind::Patch),
+              "ANITET_PATCH_TYPE_* differ from anitet::PatchKind");
+
 }  // namespace
 
 extern "C" {
@@ -88,7 +107,8 @@ int anitet_mesh_write(const anitet_mesh* mesh, const char* path) {
   return guard(fn, [&] {
     if (mesh == nullptr) return null_argument(fn, "mesh");
     if (path == nullptr) return null_argument(fn, "path");
-    return set_status(fn, anitet::write_volume_mesh(mesh->mesh, std::string(path), mesh->patch_names));
+    return set_status(fn, anitet::write_volume_mesh(mesh->mesh, std::string(path), mesh->patch_names,
+                                                    mesh->patch_types));
   });
 }
 
@@ -113,10 +133,7 @@ int anitet_mesh_set_patch_name(anitet_mesh* mesh, int32_t label, const char* nam
   const char* const fn = __func__;
   return guard(fn, [&] {
     if (mesh == nullptr) return null_argument(fn, "mesh");
-    const auto& labels = mesh->mesh.bnd_patch;
-    if (std::find(labels.begin(), labels.end(), label) == labels.end())
-      return set_status(fn, anitet::Status(anitet::Error::InvalidArgument,
-                                           "no boundary triangle has patch label " + std::to_string(label)));
+    if (!has_patch(*mesh, label)) return no_patch(fn, label);
     if (name == nullptr) {
       mesh->patch_names.erase(label);
       return ok();
@@ -124,6 +141,32 @@ int anitet_mesh_set_patch_name(anitet_mesh* mesh, int32_t label, const char* nam
     std::string n(name);
     if (anitet::Status s = anitet::check_patch_name(n); !s.ok()) return set_status(fn, s);
     mesh->patch_names[label] = std::move(n);
+    return ok();
+  });
+}
+
+int anitet_mesh_set_patch_type(anitet_mesh* mesh, int32_t label, int32_t type) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (mesh == nullptr) return null_argument(fn, "mesh");
+    if (type < ANITET_PATCH_TYPE_FROM_NAME || type > ANITET_PATCH_TYPE_PATCH)
+      return set_error(ANITET_ERR_INVALID_ARGUMENT, std::string(fn) + ": type is " + std::to_string(type) +
+                                                        ", not an ANITET_PATCH_TYPE_* value (-1..5)");
+    if (!has_patch(*mesh, label)) return no_patch(fn, label);
+    if (type == ANITET_PATCH_TYPE_FROM_NAME) mesh->patch_types.erase(label);
+    else mesh->patch_types[label] = static_cast<anitet::PatchKind>(type);
+    return ok();
+  });
+}
+
+int anitet_mesh_get_patch_type(const anitet_mesh* mesh, int32_t label, int32_t* type) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (mesh == nullptr) return null_argument(fn, "mesh");
+    if (type == nullptr) return null_argument(fn, "type");
+    if (!has_patch(*mesh, label)) return no_patch(fn, label);
+    *type = static_cast<int32_t>(
+        anitet::patch_kind(mesh->patch_types, label, anitet::patch_name(mesh->patch_names, label)));
     return ok();
   });
 }

@@ -26,6 +26,7 @@ struct anitet_surface {
 struct anitet_mesh {
   anitet::VolumeMesh mesh;
   anitet::PatchNames patch_names;              // anitet_mesh_set_patch_name; used by anitet_mesh_write
+  anitet::PatchTypes patch_types;              // anitet_mesh_set_patch_type; used by anitet_mesh_write
   std::unique_ptr<anitet::MesherResult> run;   // anitet_mesher_run's figures (its mesh moved out)
 };
 

@@ -426,8 +426,12 @@ ANITET_API int anitet_mesh_read(const char* path, anitet_mesh** out);
 ANITET_API void anitet_mesh_destroy(anitet_mesh* mesh);
 /** Writes by extension: .mesh (Medit), .meshb (binary Medit, GMF), .msh (Gmsh 4.1), .vtu, or
  *  for solvers .su2, .cgns, .exo/.e (Exodus II) and a path ending in polyMesh (an OpenFOAM
- *  polyMesh directory); the boundary patches are named patch<label> (the ABI cannot name them
- *  yet). NOT_IMPLEMENTED for .cgns or .exo when the library was built without CGNS or Exodus II. */
+ *  polyMesh directory). The boundary patches carry the names of anitet_mesh_set_patch_name
+ *  (others patch<label>) and, in OpenFOAM, CGNS and Exodus II, the types of
+ *  anitet_mesh_set_patch_type. Errors: INVALID_ARGUMENT (NULL; two labels with one name;
+ *  boundary triangles that are not faces of the tets), UNSUPPORTED_FORMAT (another extension),
+ *  FILE_NOT_FOUND (cannot create the file), NOT_IMPLEMENTED for .cgns or .exo when the library
+ *  was built without CGNS or Exodus II. Nothing is written after an error. */
 ANITET_API int anitet_mesh_write(const anitet_mesh* mesh, const char* path);
 /** Writes the per-vertex metric as a Medit .sol (a binary GMF .solb when the path ends in .solb).
  *  INVALID_ARGUMENT when the mesh has none. */
@@ -462,6 +466,36 @@ ANITET_API int anitet_mesh_get_metric(const anitet_mesh* mesh, double* values,
  * label). */
 ANITET_API int anitet_mesh_set_patch_name(anitet_mesh* mesh, int32_t label, const char* name);
 
+/* The boundary condition a patch stands for (anitet_mesh_set_patch_type, `anitet mesh
+ * --patch-types`), as the solver formats type their patches:
+ *   type      OpenFOAM (boundary file)            CGNS               Exodus II side-set property
+ *   WALL      wall                                BCWall             WALL
+ *   INLET     patch                               BCInflow           INLET
+ *   OUTLET    patch                               BCOutflow          OUTLET
+ *   FARFIELD  patch                               BCFarfield         FARFIELD
+ *   SYMMETRY  symmetryPlane (symmetry if curved)  BCSymmetryPlane    SYMMETRY
+ *   PATCH     patch                               BCGeneral          PATCH
+ * The other formats have no patch types. A label without a type set gets the one its name
+ * implies: a name containing "inlet" or "inflow" (any case) an inlet, "outlet" or "outflow" an
+ * outlet, "farfield" a farfield, "symmetry" a symmetry plane; any other name (patch<label> too)
+ * a wall. */
+#define ANITET_PATCH_TYPE_FROM_NAME (-1) /**< no type set: the one the patch's name implies */
+#define ANITET_PATCH_TYPE_WALL 0         /**< a wall (OpenFOAM wall, CGNS BCWall) */
+#define ANITET_PATCH_TYPE_INLET 1        /**< an inlet (OpenFOAM patch, CGNS BCInflow) */
+#define ANITET_PATCH_TYPE_OUTLET 2       /**< an outlet (OpenFOAM patch, CGNS BCOutflow) */
+#define ANITET_PATCH_TYPE_FARFIELD 3     /**< a far field (OpenFOAM patch, CGNS BCFarfield) */
+#define ANITET_PATCH_TYPE_SYMMETRY 4     /**< a symmetry plane (OpenFOAM symmetryPlane) */
+#define ANITET_PATCH_TYPE_PATCH 5        /**< any other open boundary (CGNS BCGeneral) */
+
+/** Sets the type (ANITET_PATCH_TYPE_*) of the boundary patch `label` in the files
+ * anitet_mesh_write writes; ANITET_PATCH_TYPE_FROM_NAME removes it (the name then implies the
+ * type). Errors: INVALID_ARGUMENT (NULL mesh, an unknown type, no boundary triangle with the
+ * label). */
+ANITET_API int anitet_mesh_set_patch_type(anitet_mesh* mesh, int32_t label, int32_t type);
+/** The type anitet_mesh_write gives the patch `label` into *type: the one set, else the one its
+ * name (given or patch<label>) implies; never ANITET_PATCH_TYPE_FROM_NAME. Errors:
+ * INVALID_ARGUMENT (NULL, no boundary triangle with the label). */
+ANITET_API int anitet_mesh_get_patch_type(const anitet_mesh* mesh, int32_t label, int32_t* type);
 
 /** Replaces the per-vertex metric: components 1 (size, > 0) or 6 (xx xy yy xz yz zz) values per
  * point, values_len == components*num_points, all finite; components 0 removes it (values may

@@ -51,6 +51,14 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_QUALITY_VERSION = 1
   integer(c_int32_t), parameter, public :: ANITET_GEO_ENU = 0
   integer(c_int32_t), parameter, public :: ANITET_GEO_UTM = 1
+  ! patch types (anitet_mesh_set_patch_type)
+  integer(c_int32_t), parameter, public :: ANITET_PATCH_TYPE_FROM_NAME = -1
+  integer(c_int32_t), parameter, public :: ANITET_PATCH_TYPE_WALL = 0
+  integer(c_int32_t), parameter, public :: ANITET_PATCH_TYPE_INLET = 1
+  integer(c_int32_t), parameter, public :: ANITET_PATCH_TYPE_OUTLET = 2
+  integer(c_int32_t), parameter, public :: ANITET_PATCH_TYPE_FARFIELD = 3
+  integer(c_int32_t), parameter, public :: ANITET_PATCH_TYPE_SYMMETRY = 4
+  integer(c_int32_t), parameter, public :: ANITET_PATCH_TYPE_PATCH = 5
   ! partitions
   integer(c_int32_t), parameter, public :: ANITET_PARTITION_OPTIONS_VERSION = 1
   integer(c_int32_t), parameter, public :: ANITET_PARTITION_INFO_VERSION = 1
@@ -245,6 +253,7 @@ module anitet
   public :: c_anitet_mesh_get_metric_components, c_anitet_mesh_get_metric, c_anitet_mesh_set_metric
   public :: c_anitet_mesh_set_patch_name, c_anitet_mesh_get_run_stats, c_anitet_mesh_run_json
   public :: c_anitet_mesh_sample_metric, c_anitet_mesh_quality, c_anitet_mesh_quality_json
+  public :: c_anitet_mesh_set_patch_type, c_anitet_mesh_get_patch_type
   public :: c_anitet_geo_frame_create, c_anitet_geo_frame_create_centred, c_anitet_geo_frame_destroy
   public :: c_anitet_geo_frame_get, c_anitet_surface_to_local, c_anitet_mesh_to_local
   public :: c_anitet_mesh_to_geodetic
@@ -586,6 +595,21 @@ module anitet
       type(c_ptr), value :: mesh
       integer(c_int32_t), value :: label
       type(c_ptr), value :: name  ! a NUL-terminated string, or c_null_ptr to remove the name
+    end function
+
+    integer(c_int) function c_anitet_mesh_set_patch_type(mesh, label, type) &
+        bind(c, name="anitet_mesh_set_patch_type")
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), value :: label, type
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_patch_type(mesh, label, type) &
+        bind(c, name="anitet_mesh_get_patch_type")
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), value :: label
+      integer(c_int32_t), intent(out) :: type
     end function
 
     integer(c_int) function c_anitet_mesh_get_run_stats(mesh, out) &
@@ -1034,6 +1058,7 @@ module anitet
   public :: anitet_mesh_get_metric, anitet_mesh_set_metric, anitet_mesh_quality
   public :: anitet_mesh_quality_json, anitet_mesh_set_patch_name, anitet_mesh_get_run_stats
   public :: anitet_mesh_run_json, anitet_mesh_sample_metric
+  public :: anitet_mesh_set_patch_type, anitet_mesh_get_patch_type
   public :: anitet_geo_frame_create, anitet_geo_frame_create_centred, anitet_geo_frame_destroy
   public :: anitet_geo_frame_get, anitet_surface_to_local, anitet_mesh_to_local
   public :: anitet_mesh_to_geodetic
@@ -1633,6 +1658,25 @@ contains
     else
       rc = c_anitet_mesh_set_patch_name(mesh, int(label, c_int32_t), c_null_ptr)
     end if
+  end function
+
+  ! Sets the type (ANITET_PATCH_TYPE_*) of the boundary patch `label` in the files
+  ! anitet_mesh_write writes (OpenFOAM, CGNS, Exodus II); ANITET_PATCH_TYPE_FROM_NAME removes it.
+  integer function anitet_mesh_set_patch_type(mesh, label, type) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer, intent(in) :: label, type
+    rc = c_anitet_mesh_set_patch_type(mesh, int(label, c_int32_t), int(type, c_int32_t))
+  end function
+
+  ! The type anitet_mesh_write gives the patch `label`: the one set, else the one its name implies.
+  integer function anitet_mesh_get_patch_type(mesh, label, type) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer, intent(in) :: label
+    integer, intent(out) :: type
+    integer(c_int32_t) :: t
+    t = ANITET_PATCH_TYPE_FROM_NAME
+    rc = c_anitet_mesh_get_patch_type(mesh, int(label, c_int32_t), t)
+    type = int(t)
   end function
 
   ! The figures of the run that made the mesh (an error for a mesh read or made from arrays).

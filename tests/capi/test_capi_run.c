@@ -1,6 +1,6 @@
 /* The C ABI's versions 3 and 4 of anitet_options (the options of `anitet mesh`: boundary layer
  * and its slide patches, size bounds, recovery strategy, retries, tet cap) and what a run returns
- * (anitet_run_stats, anitet_mesh_run_json), patch names for the written files; every
+ * (anitet_run_stats, anitet_mesh_run_json), patch names and types for the written files; every
  * documented error. */
 #include <math.h>
 #include <setjmp.h>
@@ -301,15 +301,19 @@ static void test_options_v3_used(void** state) {
 
 /* ---- patch names ---------------------------------------------------------------------------- */
 
-static int file_contains(const char* path, const char* part) {
+static int64_t read_file(const char* path, char* text, size_t size) {
   FILE* f = fopen(path, "rb");
-  static char text[1 << 20];
   size_t n;
-  if (!f) return 0;
-  n = fread(text, 1, sizeof text - 1, f);
+  if (!f) return -1;
+  n = fread(text, 1, size - 1, f);
   fclose(f);
   text[n] = '\0';
-  return contains(text, part);
+  return (int64_t)n;
+}
+
+static int file_contains(const char* path, const char* part) {
+  static char text[1 << 20];
+  return read_file(path, text, sizeof text) >= 0 && contains(text, part);
 }
 
 static void test_patch_names(void** state) {
@@ -342,6 +346,63 @@ static void test_patch_names(void** state) {
   assert_int_equal(anitet_mesh_write(m, path), ANITET_ERR_INVALID_ARGUMENT);
   assert_true(contains(anitet_last_error_message(), "farfield"));
   assert_false(file_contains(path, "NELEM"));
+  anitet_mesh_destroy(m);
+  anitet_surface_destroy(s);
+}
+
+/* ---- patch types ---------------------------------------------------------------------------- */
+
+/* The OpenFOAM boundary file's entry of `patch` has type `type`. */
+static void expect_foam_type(const char* boundary, const char* patch, const char* type) {
+  char entry[256];
+  snprintf(entry, sizeof entry, "    %s\n    {\n        type            %s;\n", patch, type);
+  if (!contains(boundary, entry)) fail_msg("no '%s' of type %s in:\n%s", patch, type, boundary);
+}
+
+static void test_patch_types(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  anitet_mesh* m = run_ok(s, NULL);
+  static char boundary[1 << 16];
+  char dir[4096], path[4200];
+  int32_t type = -7;
+  (void)state;
+  /* Without a type: the one the name implies (patch<label>: a wall). */
+  assert_int_equal(anitet_mesh_get_patch_type(m, 4, &type), ANITET_OK);
+  assert_int_equal(type, ANITET_PATCH_TYPE_WALL);
+  assert_int_equal(anitet_mesh_set_patch_name(m, 4, "farfield"), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_patch_type(m, 4, &type), ANITET_OK);
+  assert_int_equal(type, ANITET_PATCH_TYPE_FARFIELD);
+  /* A type set wins over the name, FROM_NAME removes it. */
+  assert_int_equal(anitet_mesh_set_patch_type(m, 4, ANITET_PATCH_TYPE_SYMMETRY), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_patch_type(m, 4, &type), ANITET_OK);
+  assert_int_equal(type, ANITET_PATCH_TYPE_SYMMETRY);
+  assert_int_equal(anitet_mesh_set_patch_type(m, 1, ANITET_PATCH_TYPE_INLET), ANITET_OK);
+  assert_int_equal(anitet_mesh_set_patch_type(m, 3, ANITET_PATCH_TYPE_PATCH), ANITET_OK);
+  assert_int_equal(anitet_mesh_set_patch_type(m, 3, ANITET_PATCH_TYPE_FROM_NAME), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_patch_type(m, 3, &type), ANITET_OK);
+  assert_int_equal(type, ANITET_PATCH_TYPE_WALL);
+  /* In the written files: OpenFOAM's boundary (the box's six faces are not one plane). */
+  snprintf(dir, sizeof dir, "%s/capi_patch_types/constant/polyMesh", ANITET_TEST_OUTPUT_DIR);
+  assert_int_equal(anitet_mesh_write(m, dir), ANITET_OK);
+  snprintf(path, sizeof path, "%s/boundary", dir);
+  assert_true(read_file(path, boundary, sizeof boundary) > 0);
+  expect_foam_type(boundary, "farfield", "symmetry");
+  expect_foam_type(boundary, "patch1", "patch");
+  expect_foam_type(boundary, "patch2", "wall");
+  expect_foam_type(boundary, "patch3", "wall");
+  /* Errors: NULLs, an unknown type, a label no boundary triangle has. */
+  assert_int_equal(anitet_mesh_set_patch_type(NULL, 4, ANITET_PATCH_TYPE_WALL), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_set_patch_type(m, 4, 6), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "type is 6"));
+  assert_int_equal(anitet_mesh_set_patch_type(m, 4, -2), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_set_patch_type(m, 9, ANITET_PATCH_TYPE_WALL), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "patch label 9"));
+  assert_int_equal(anitet_mesh_get_patch_type(m, 9, &type), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_get_patch_type(m, 4, NULL), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_get_patch_type(NULL, 4, &type), ANITET_ERR_INVALID_ARGUMENT);
+  /* The type stays as set after a failed call. */
+  assert_int_equal(anitet_mesh_get_patch_type(m, 4, &type), ANITET_OK);
+  assert_int_equal(type, ANITET_PATCH_TYPE_SYMMETRY);
   anitet_mesh_destroy(m);
   anitet_surface_destroy(s);
 }
@@ -591,8 +652,8 @@ int main(void) {
       cmocka_unit_test(test_run_stats_errors),    cmocka_unit_test(test_boundary_layer),
       cmocka_unit_test(test_options_v3_used),     cmocka_unit_test(test_patch_names),
       cmocka_unit_test(test_layers_run),          cmocka_unit_test(test_bl_first_height),
-      cmocka_unit_test(test_options_v4_defaults), cmocka_unit_test(test_options_v3_caller),
-      cmocka_unit_test(test_slide_patches),
+      cmocka_unit_test(test_patch_types),         cmocka_unit_test(test_options_v4_defaults),
+      cmocka_unit_test(test_options_v3_caller),   cmocka_unit_test(test_slide_patches),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

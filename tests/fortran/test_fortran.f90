@@ -5,7 +5,7 @@
 ! versions 3 and 4, a boundary layer on the sphere inside a box and the run's report, patch names;
 ! stage 1 alone, y+ to a first height, the surface's sizing field written and read back, a
 ! metric sampled on a mesh and read on a mesh in memory, geographic frames; a boundary layer
-! sliding along a pipe's caps.
+! sliding along a pipe's caps, patch types.
 ! Argument 1: the tests' data directory (tests/data).
 ! The analytic metric of check_sample_metric: a bind(c) procedure of a module, for c_funloc.
 module test_fortran_metrics
@@ -56,6 +56,7 @@ program test_fortran
   call check_sample_metric(trim(data_dir) // "/io/box.mesh")
   call check_geo_frames()
   call check_slide_patches()
+  call check_patch_types(trim(data_dir) // "/io/box.mesh")
 
   if (failures > 0) then
     print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
@@ -935,6 +936,40 @@ contains
     call check(index(anitet_last_error_message(), "version 4") > 0, "slide patches with v3: message")
     call check(.not. c_associated(mesh), "no mesh on error")
     call anitet_surface_destroy(surface)
+  end subroutine
+
+  ! Patch types of the box's six faces in OpenFOAM's boundary file.
+  subroutine check_patch_types(path)
+    character(len=*), intent(in) :: path
+    type(c_ptr) :: mesh
+    integer :: type, rc
+    character(len=:), allocatable :: boundary
+    character(len=*), parameter :: entry = new_line("a") // "    {" // new_line("a") // &
+                                           "        type            "
+    call check(anitet_mesh_read(path, mesh) == ANITET_OK, "read " // path)
+    rc = anitet_mesh_get_patch_type(mesh, 3, type)
+    call check(rc == ANITET_OK .and. type == ANITET_PATCH_TYPE_WALL, "patch 3: a wall by default")
+    call check(anitet_mesh_set_patch_name(mesh, 2, "inlet") == ANITET_OK, "name patch 2")
+    rc = anitet_mesh_get_patch_type(mesh, 2, type)
+    call check(rc == ANITET_OK .and. type == ANITET_PATCH_TYPE_INLET, "patch 2: an inlet by its name")
+    call check(anitet_mesh_set_patch_type(mesh, 1, ANITET_PATCH_TYPE_SYMMETRY) == ANITET_OK, &
+               "patch 1 a symmetry plane")
+    call check(anitet_mesh_set_patch_type(mesh, 4, ANITET_PATCH_TYPE_FARFIELD) == ANITET_OK, &
+               "patch 4 a farfield")
+    call check(anitet_mesh_set_patch_type(mesh, 4, ANITET_PATCH_TYPE_FROM_NAME) == ANITET_OK, &
+               "patch 4 from its name again")
+    rc = anitet_mesh_get_patch_type(mesh, 4, type)
+    call check(rc == ANITET_OK .and. type == ANITET_PATCH_TYPE_WALL, "patch 4: a wall again")
+    call check(anitet_mesh_write(mesh, "fortran_types/constant/polyMesh") == ANITET_OK, "write polyMesh")
+    boundary = file_text("fortran_types/constant/polyMesh/boundary")
+    call check(index(boundary, "patch1" // entry // "symmetryPlane;") > 0, "patch1 symmetryPlane")
+    call check(index(boundary, "inlet" // entry // "patch;") > 0, "inlet patch")
+    call check(index(boundary, "patch3" // entry // "wall;") > 0, "patch3 wall")
+    call check(anitet_mesh_set_patch_type(mesh, 1, 6) == ANITET_ERR_INVALID_ARGUMENT, "type 6")
+    call check(anitet_mesh_set_patch_type(mesh, 9, ANITET_PATCH_TYPE_WALL) == &
+               ANITET_ERR_INVALID_ARGUMENT, "no patch 9")
+    call check(index(anitet_last_error_message(), "patch label 9") > 0, "no patch 9: message")
+    call anitet_mesh_destroy(mesh)
   end subroutine
 
   function file_text(path) result(text)

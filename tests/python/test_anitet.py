@@ -57,7 +57,8 @@ class HeaderDrift(unittest.TestCase):
         pattern = (r"#define ANITET_((?:ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|RECOVERY_[A-Z]+|GEO_[A-Z]+|"
                    r"VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|RUN_STATS_VERSION|"
                    r"PARTITION_[A-Z]+_VERSION|"
-                   r"HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+)) \(?(-?\d+)\)?")
+                   r"HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+|"
+                   r"PATCH_TYPE_[A-Z_]+)) \(?(-?\d+)\)?")
         found = re.findall(pattern, self.header)
         self.assertGreater(len(found), 25)
         for name, value in found:
@@ -772,6 +773,35 @@ class SlidePatches(unittest.TestCase):
             self.assertIn(words, e.exception.message)
         with self.assertRaises(TypeError):
             self.surface.mesh(bl_slide_patches=[2.5], **self.WALL)
+
+
+class PatchTypes(unittest.TestCase):
+    def test_types_in_openfoam(self):
+        m = anitet.Mesh.read(os.path.join(DATA, "io", "box.mesh"))
+        self.assertEqual(m.patch_type(3), "wall")
+        m.patch_names[2] = "inlet"
+        self.assertEqual(m.patch_type(2), "inlet")
+        m.set_patch_type(1, "symmetry")
+        m.set_patch_type(4, anitet.PATCH_TYPE_FARFIELD)
+        self.assertEqual(m.patch_type(4), "farfield")
+        m.set_patch_type(4, None)
+        self.assertEqual(m.patch_type(4), "wall")
+        m.set_patch_type(5, "Outlet")
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "case", "constant", "polyMesh")
+            m.write(path)
+            with open(os.path.join(path, "boundary")) as f:
+                types = dict(re.findall(r"^    (\w+)\n    \{\n        type +(\w+);", f.read(), re.M))
+        self.assertEqual(types, {"patch1": "symmetryPlane", "inlet": "patch", "patch3": "wall",
+                                 "patch4": "wall", "patch5": "patch", "patch6": "wall"})
+        for label, type_, error in ((1, "slip", ValueError), (1, 6, anitet.AnitetError),
+                                    (9, "wall", anitet.AnitetError)):
+            with self.assertRaises(error) as e:
+                m.set_patch_type(label, type_)
+        self.assertIn("patch label 9", e.exception.message)
+        with self.assertRaises(anitet.AnitetError):
+            m.patch_type(9)
+        self.assertEqual(m.patch_type(1), "symmetry")  # unchanged by the errors
 
 
 class Arrays(unittest.TestCase):

@@ -10,6 +10,7 @@ of this package, then the system's loader (libanitet.so.0). NumPy is optional.
     print(mesh.counts(), mesh.quality(surface), mesh.run_stats)
     t1 = anitet.build_layers(surface, bl_patches=[0], bl_first_height=0.01)  # stage 1 alone
     mesh.patch_names[0] = "wall"                           # an OFF file: every triangle label 0
+    mesh.set_patch_type(0, "wall")                         # OpenFOAM/CGNS/Exodus patch types
     mesh.write("fandisk.su2")
     partition = mesh.partition(4)                          # parts for 4 ranks, NumPy views
 
@@ -29,16 +30,18 @@ from ._capi import (ERR_BAD_INDEX, ERR_BUFFER_TOO_SMALL, ERR_CANCELLED, ERR_DEGE
                     RUN_STATS_VERSION, VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH,
                     HALO_TET_RECV, HALO_TET_SEND, HALO_VERTEX_RECV, HALO_VERTEX_SEND,
                     PARTITION_INFO_VERSION, PARTITION_OPTIONS_VERSION, TYPE_DOUBLE, TYPE_INT32,
-                    TYPE_INT64, MESH2D_OPTIONS_VERSION)
+                    TYPE_INT64, MESH2D_OPTIONS_VERSION, PATCH_TYPE_FROM_NAME, PATCH_TYPE_WALL,
+                    PATCH_TYPE_INLET, PATCH_TYPE_OUTLET, PATCH_TYPE_FARFIELD, PATCH_TYPE_SYMMETRY,
+                    PATCH_TYPE_PATCH)
 from ._capi import (PART_BOUNDARY_GLOBAL_IDS, PART_BOUNDARY_PATCHES, PART_BOUNDARY_TRIANGLES,  # noqa: F401
                     PART_NEIGHBOURS, PART_POINTS, PART_REGIONS, PART_TET_GLOBAL_IDS, PART_TET_LAYERS,
                     PART_TET_OWNERS, PART_TET_RECV, PART_TET_RECV_OFFSETS, PART_TET_SEND,
                     PART_TET_SEND_OFFSETS, PART_TETS, PART_VERTEX_GLOBAL_IDS, PART_VERTEX_OWNERS,
                     PART_VERTEX_RECV, PART_VERTEX_RECV_OFFSETS, PART_VERTEX_SEND,
                     PART_VERTEX_SEND_OFFSETS)
-from ._api import (HAVE_NUMPY, AnitetError, Mesh, Metric, Options, PatchNames, Quality, RunStats,
-                   Surface, bl_first_height, build_layers, error_name, mesh_surface, version,
-                   version_number, Pslg, Mesh2d, mesh2d)
+from ._api import (HAVE_NUMPY, PATCH_TYPES, AnitetError, Mesh, Metric, Options, PatchNames, Quality,
+                   RunStats, Surface, bl_first_height, build_layers, error_name, mesh_surface,
+                   version, version_number, Pslg, Mesh2d, mesh2d)
 from ._geo import GeoFrame
 from ._partition import Part, Partition, PartitionInfo, partition_mesh
 

@@ -515,6 +515,9 @@ class Metric(_Handle):
 
 # ---- volume meshes -----------------------------------------------------------------------------
 
+# The names of the PATCH_TYPE_* values, indexed by them.
+PATCH_TYPES = ("wall", "inlet", "outlet", "farfield", "symmetry", "patch")
+
 class _Figures:
     """The figures of a C struct as attributes: FIELDS, those in FLAGS as booleans."""
 
@@ -618,7 +621,7 @@ class Mesh(_Handle):
     def write(self, path):
         """Writes by extension: .mesh .meshb .msh .vtu, or for solvers .su2 .cgns .exo/.e and a
         path ending in polyMesh (OpenFOAM), the patches named as patch_names says (others
-        patch<label>)."""
+        patch<label>) and typed as set_patch_type says."""
         _check(lib.anitet_mesh_write(self, _path(path)))
 
     def set_patch_name(self, label, name):
@@ -631,6 +634,26 @@ class Mesh(_Handle):
             self._patch_names.pop(label, None)
         else:
             self._patch_names[label] = name
+
+    def set_patch_type(self, label, type):  # noqa: A002 - the C argument's name
+        """Sets the type of the boundary patch `label` in the files write() writes (OpenFOAM, CGNS,
+        Exodus II): "wall", "inlet", "outlet", "farfield", "symmetry", "patch" or a PATCH_TYPE_*
+        value; None (PATCH_TYPE_FROM_NAME) removes it, the name then implies the type."""
+        if type is None:
+            type = _capi.PATCH_TYPE_FROM_NAME
+        elif isinstance(type, str):
+            try:
+                type = PATCH_TYPES.index(type.lower())
+            except ValueError:
+                raise ValueError("unknown patch type %r (one of %s)" % (type, ", ".join(PATCH_TYPES))) from None
+        _check(lib.anitet_mesh_set_patch_type(self, label, type))
+
+    def patch_type(self, label):
+        """The type write() gives the patch `label`, a name of PATCH_TYPES: the one set, else the
+        one its name implies ("inlet" or "inflow" in it: inlet, ...; any other name: wall)."""
+        t = c_int32()
+        _check(lib.anitet_mesh_get_patch_type(self, label, byref(t)))
+        return PATCH_TYPES[t.value]
 
     @property
     def patch_names(self):

@@ -53,6 +53,13 @@ RECOVERY_SPLIT = 1
 RECOVERY_FUZZY = 2
 GEO_ENU = 0
 GEO_UTM = 1
+PATCH_TYPE_FROM_NAME = -1
+PATCH_TYPE_WALL = 0
+PATCH_TYPE_INLET = 1
+PATCH_TYPE_OUTLET = 2
+PATCH_TYPE_FARFIELD = 3
+PATCH_TYPE_SYMMETRY = 4
+PATCH_TYPE_PATCH = 5
 PARTITION_OPTIONS_VERSION = 1
 PARTITION_INFO_VERSION = 1
 HALO_VERTEX_SEND = 0
@@ -288,6 +295,8 @@ _PROTOTYPES = {
     "anitet_mesh_get_metric_components": (c_int, [_P, _I32]),
     "anitet_mesh_get_metric": (c_int, [_P, _D, c_int64]),
     "anitet_mesh_set_patch_name": (c_int, [_P, c_int32, c_char_p]),
+    "anitet_mesh_set_patch_type": (c_int, [_P, c_int32, c_int32]),
+    "anitet_mesh_get_patch_type": (c_int, [_P, c_int32, _I32]),
     "anitet_mesh_set_metric": (c_int, [_P, _D, c_int64, c_int32]),
     "anitet_mesh_sample_metric": (c_int, [_P, _P]),
     "anitet_mesh_get_run_stats": (c_int, [_P, POINTER(CRunStats)]),
