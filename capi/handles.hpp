@@ -10,7 +10,9 @@
 #include "core/surface_mesh.hpp"
 #include "core/volume_mesh.hpp"
 #include "geo/geodetic.hpp"
+#include "core/vertex_fields.hpp"
 #include "io/patch_names.hpp"
+#include "metric/field_transfer.hpp"
 #include "partition/partition.hpp"
 #include "pipeline/mesher.hpp"
 #include "mesh2d/mesher2.hpp"
@@ -39,6 +41,11 @@ struct anitet_metric {
   // Field: a metric/ field read from a file or built on a background mesh (immutable, its
   // metric() may be called from several threads at once).
   std::shared_ptr<const anitet::SizingField> field;
+};
+
+struct anitet_fields {
+  anitet::VertexFields fields;
+  std::unique_ptr<anitet::metric::TransferReport> transfer;  // anitet_mesh_transfer_fields' findings
 };
 
 struct anitet_geo_frame {

@@ -510,6 +510,85 @@ ANITET_API int anitet_mesh_set_metric(anitet_mesh* mesh, const double* values, i
 ANITET_API int anitet_mesh_sample_metric(anitet_mesh* mesh, const anitet_metric* metric);
 
 /* ---------------------------------------------------------------------------------------------
+ * Per-vertex fields (a solver's solution, a metric) and their transfer from one mesh to another
+ * (docs/gmf-and-fields.md has the method). An anitet_fields holds any number of fields given at
+ * the vertices of some mesh, vertex by vertex: one record per vertex holding every field's
+ * components in field order, as a Medit .sol / GMF .solb SolAtVertices block holds them.
+ * ------------------------------------------------------------------------------------------- */
+typedef struct anitet_fields anitet_fields; /**< per-vertex fields (values at a mesh's vertices) */
+
+/* Kinds of a field (the GMF type codes of a .sol/.solb). */
+#define ANITET_FIELD_KIND_SCALAR 1     /**< 1 component */
+#define ANITET_FIELD_KIND_VECTOR 2     /**< 3 components: x y z */
+#define ANITET_FIELD_KIND_SYM_TENSOR 3 /**< 6 components: xx xy yy xz yz zz (Medit's order) */
+
+/* How anitet_mesh_transfer_fields interpolates the symmetric tensor fields. */
+#define ANITET_TENSORS_AUTO 0          /**< in log space when every tensor of the field is
+                                            positive definite (a metric), else linearly */
+#define ANITET_TENSORS_LOG_EUCLIDEAN 1 /**< in log space (exp of the weighted mean of log M:
+                                            always SPD); a tensor that is not SPD is an error */
+#define ANITET_TENSORS_LINEAR 2        /**< component by component (stresses) */
+
+/** Fields from caller arrays, copied: num_fields kinds (ANITET_FIELD_KIND_*) and num_values
+ * values, a whole number of records (the sum of the kinds' components per vertex). Errors:
+ * INVALID_ARGUMENT (NULL out, kinds or values; num_fields < 1; an unknown kind; num_values
+ * negative or not a whole number of records), EMPTY_INPUT (no value). */
+ANITET_API int anitet_fields_create(const int32_t* kinds, int32_t num_fields, const double* values,
+                                    int64_t num_values, anitet_fields** out);
+/** Fields from a Medit .sol (ASCII, Dimension 3) or a GMF .solb (binary, libMeshb versions 1 to
+ * 4, either byte order), by extension: its SolAtVertices block. Errors: INVALID_ARGUMENT,
+ * FILE_NOT_FOUND, PARSE (malformed or truncated: the message names the line or the keyword),
+ * UNSUPPORTED_FORMAT (another extension, Dimension 2, a full-matrix field), EMPTY_INPUT (no
+ * SolAtVertices). */
+ANITET_API int anitet_fields_read(const char* path, anitet_fields** out);
+/** Writes the fields as a Medit .sol (every double written so that it reads back to the same
+ * bits) or a GMF .solb, by extension. Errors: INVALID_ARGUMENT (NULL), UNSUPPORTED_FORMAT,
+ * FILE_NOT_FOUND (cannot create the file). */
+ANITET_API int anitet_fields_write(const anitet_fields* fields, const char* path);
+/** Frees fields; NULL is accepted. */
+ANITET_API void anitet_fields_destroy(anitet_fields* fields);
+/** The number of fields, the components per vertex (the record size) and the number of
+ * vertices (records); any output pointer may be NULL. */
+ANITET_API int anitet_fields_get_counts(const anitet_fields* fields, int32_t* num_fields,
+                                        int32_t* record_size, int64_t* num_vertices);
+/** Fills kinds (kinds_len >= num_fields) with the fields' ANITET_FIELD_KIND_* values. */
+ANITET_API int anitet_fields_get_kinds(const anitet_fields* fields, int32_t* kinds,
+                                       int64_t kinds_len);
+/** Fills values (values_len >= record_size * num_vertices) with the records, vertex by vertex. */
+ANITET_API int anitet_fields_get_values(const anitet_fields* fields, double* values,
+                                        int64_t values_len);
+/** Lends the values without a copy: *data points to *count doubles (the records, vertex by
+ * vertex), valid and unchanged while `fields` lives. Read only. Errors: INVALID_ARGUMENT (NULL). */
+ANITET_API int anitet_fields_get_data(const anitet_fields* fields, const double** data,
+                                      int64_t* count);
+
+/** Carries `fields`, given at the vertices of `from` (one record per vertex, in its point order),
+ * to the vertices of `to`: a new anitet_fields *out (NULL after any error) with the same kinds
+ * and one record per point of `to`. Each point of `to` is located in `from`'s tets and every
+ * field interpolated with its barycentric weights: linearly for scalars and vectors (a linear
+ * field is carried exactly, to rounding), symmetric tensors as `tensors` says
+ * (ANITET_TENSORS_AUTO, _LOG_EUCLIDEAN or _LINEAR). A point outside `from` (a boundary that moved onto the curved geometry)
+ * takes the value at the closest point of `from`'s boundary; such points are counted
+ * (anitet_fields_get_transfer_report). `from`, `fields` and `to` are only read. Runs on every
+ * core; the result does not depend on the number of threads. Errors: INVALID_ARGUMENT (NULL; an
+ * unknown `tensors`; fields without one record per point of `from`, "a field of another mesh";
+ * a tensor that is not SPD with ANITET_TENSORS_LOG_EUCLIDEAN, naming its vertex; a point of `to`
+ * that is not finite), EMPTY_INPUT (`from` has no tet), BAD_INDEX, INVALID_MESH (a face of
+ * `from` shared by more than two tets), OUT_OF_MEMORY. */
+ANITET_API int anitet_mesh_transfer_fields(const anitet_mesh* from, const anitet_fields* fields,
+                                           const anitet_mesh* to, int32_t tensors,
+                                           anitet_fields** out);
+/** What the transfer that made `fields` found (any output pointer may be NULL): the points
+ * outside the old mesh and their largest distance to it, and per field (log_euclidean_len >=
+ * num_fields, or NULL) 1 when it was interpolated in log space, else 0. Errors:
+ * INVALID_ARGUMENT (NULL fields; fields not made by anitet_mesh_transfer_fields),
+ * BUFFER_TOO_SMALL. */
+ANITET_API int anitet_fields_get_transfer_report(const anitet_fields* fields, int64_t* outside,
+                                                 double* max_outside_distance,
+                                                 int32_t* log_euclidean,
+                                                 int64_t log_euclidean_len);
+
+/* ---------------------------------------------------------------------------------------------
  * What a meshing run did (meshes made by anitet_mesher_run).
  * ------------------------------------------------------------------------------------------- */
 /** The newest version of anitet_run_stats this header declares. */

@@ -59,6 +59,13 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_PATCH_TYPE_FARFIELD = 3
   integer(c_int32_t), parameter, public :: ANITET_PATCH_TYPE_SYMMETRY = 4
   integer(c_int32_t), parameter, public :: ANITET_PATCH_TYPE_PATCH = 5
+  ! per-vertex fields and their transfer
+  integer(c_int32_t), parameter, public :: ANITET_FIELD_KIND_SCALAR = 1
+  integer(c_int32_t), parameter, public :: ANITET_FIELD_KIND_VECTOR = 2
+  integer(c_int32_t), parameter, public :: ANITET_FIELD_KIND_SYM_TENSOR = 3
+  integer(c_int32_t), parameter, public :: ANITET_TENSORS_AUTO = 0
+  integer(c_int32_t), parameter, public :: ANITET_TENSORS_LOG_EUCLIDEAN = 1
+  integer(c_int32_t), parameter, public :: ANITET_TENSORS_LINEAR = 2
   ! partitions
   integer(c_int32_t), parameter, public :: ANITET_PARTITION_OPTIONS_VERSION = 1
   integer(c_int32_t), parameter, public :: ANITET_PARTITION_INFO_VERSION = 1
@@ -254,6 +261,9 @@ module anitet
   public :: c_anitet_mesh_set_patch_name, c_anitet_mesh_get_run_stats, c_anitet_mesh_run_json
   public :: c_anitet_mesh_sample_metric, c_anitet_mesh_quality, c_anitet_mesh_quality_json
   public :: c_anitet_mesh_set_patch_type, c_anitet_mesh_get_patch_type
+  public :: c_anitet_fields_create, c_anitet_fields_read, c_anitet_fields_write, c_anitet_fields_destroy
+  public :: c_anitet_fields_get_counts, c_anitet_fields_get_kinds, c_anitet_fields_get_values
+  public :: c_anitet_fields_get_data, c_anitet_mesh_transfer_fields, c_anitet_fields_get_transfer_report
   public :: c_anitet_geo_frame_create, c_anitet_geo_frame_create_centred, c_anitet_geo_frame_destroy
   public :: c_anitet_geo_frame_get, c_anitet_surface_to_local, c_anitet_mesh_to_local
   public :: c_anitet_mesh_to_geodetic
@@ -610,6 +620,85 @@ module anitet
       type(c_ptr), value :: mesh
       integer(c_int32_t), value :: label
       integer(c_int32_t), intent(out) :: type
+    end function
+
+    integer(c_int) function c_anitet_fields_create(kinds, num_fields, values, num_values, out) &
+        bind(c, name="anitet_fields_create")
+      import :: c_int, c_int32_t, c_int64_t, c_double, c_ptr
+      integer(c_int32_t), intent(in) :: kinds(*)
+      integer(c_int32_t), value :: num_fields
+      real(c_double), intent(in) :: values(*)
+      integer(c_int64_t), value :: num_values
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_fields_read(path, out) bind(c, name="anitet_fields_read")
+      import :: c_int, c_char, c_ptr
+      character(kind=c_char), intent(in) :: path(*)
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_fields_write(fields, path) bind(c, name="anitet_fields_write")
+      import :: c_int, c_char, c_ptr
+      type(c_ptr), value :: fields
+      character(kind=c_char), intent(in) :: path(*)
+    end function
+
+    subroutine c_anitet_fields_destroy(fields) bind(c, name="anitet_fields_destroy")
+      import :: c_ptr
+      type(c_ptr), value :: fields
+    end subroutine
+
+    integer(c_int) function c_anitet_fields_get_counts(fields, num_fields, record_size, &
+        num_vertices) bind(c, name="anitet_fields_get_counts")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: fields
+      integer(c_int32_t), intent(out) :: num_fields, record_size
+      integer(c_int64_t), intent(out) :: num_vertices
+    end function
+
+    integer(c_int) function c_anitet_fields_get_kinds(fields, kinds, kinds_len) &
+        bind(c, name="anitet_fields_get_kinds")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: fields
+      integer(c_int32_t), intent(out) :: kinds(*)
+      integer(c_int64_t), value :: kinds_len
+    end function
+
+    integer(c_int) function c_anitet_fields_get_values(fields, values, values_len) &
+        bind(c, name="anitet_fields_get_values")
+      import :: c_int, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: fields
+      real(c_double), intent(out) :: values(*)
+      integer(c_int64_t), value :: values_len
+    end function
+
+    ! Lends the values without a copy: c_f_pointer the data into a real(c_double) pointer.
+    integer(c_int) function c_anitet_fields_get_data(fields, data, count) &
+        bind(c, name="anitet_fields_get_data")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: fields
+      type(c_ptr), intent(out) :: data
+      integer(c_int64_t), intent(out) :: count
+    end function
+
+    integer(c_int) function c_anitet_mesh_transfer_fields(from, fields, to, tensors, out) &
+        bind(c, name="anitet_mesh_transfer_fields")
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: from, fields, to
+      integer(c_int32_t), value :: tensors
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_fields_get_transfer_report(fields, outside, &
+        max_outside_distance, log_euclidean, log_euclidean_len) &
+        bind(c, name="anitet_fields_get_transfer_report")
+      import :: c_int, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: fields
+      integer(c_int64_t), intent(out) :: outside
+      real(c_double), intent(out) :: max_outside_distance
+      type(c_ptr), value :: log_euclidean  ! int32_t(log_euclidean_len), or c_null_ptr
+      integer(c_int64_t), value :: log_euclidean_len
     end function
 
     integer(c_int) function c_anitet_mesh_get_run_stats(mesh, out) &
@@ -1059,6 +1148,9 @@ module anitet
   public :: anitet_mesh_quality_json, anitet_mesh_set_patch_name, anitet_mesh_get_run_stats
   public :: anitet_mesh_run_json, anitet_mesh_sample_metric
   public :: anitet_mesh_set_patch_type, anitet_mesh_get_patch_type
+  public :: anitet_fields_create, anitet_fields_read, anitet_fields_write, anitet_fields_destroy
+  public :: anitet_fields_get_counts, anitet_fields_get_kinds, anitet_fields_get_values
+  public :: anitet_fields_get_data, anitet_mesh_transfer_fields, anitet_fields_get_transfer_report
   public :: anitet_geo_frame_create, anitet_geo_frame_create_centred, anitet_geo_frame_destroy
   public :: anitet_geo_frame_get, anitet_surface_to_local, anitet_mesh_to_local
   public :: anitet_mesh_to_geodetic
@@ -1723,6 +1815,125 @@ contains
     allocate(buf(needed))
     rc = c_anitet_mesh_quality_json(mesh, opt_ptr(input), c_loc(buf), needed, written)
     if (rc == ANITET_OK) text = buffer_text(buf, needed)
+  end function
+
+  ! ---- per-vertex fields ------------------------------------------------------------------------
+
+  ! Fields from kinds(num_fields) (ANITET_FIELD_KIND_*) and values(record_size, num_vertices):
+  ! each column one vertex's record, every field's components in field order (copied).
+  integer function anitet_fields_create(kinds, values, fields) result(rc)
+    integer(c_int32_t), intent(in) :: kinds(:)
+    real(c_double), intent(in) :: values(:, :)
+    type(c_ptr), intent(out) :: fields
+    rc = c_anitet_fields_create(kinds, size(kinds, kind=c_int32_t), values, &
+                                size(values, kind=c_int64_t), fields)
+  end function
+
+  ! Fields from a Medit .sol or GMF .solb (by extension): its SolAtVertices block.
+  integer function anitet_fields_read(path, fields) result(rc)
+    character(len=*), intent(in) :: path
+    type(c_ptr), intent(out) :: fields
+    rc = c_anitet_fields_read(to_c_string(path), fields)
+  end function
+
+  integer function anitet_fields_write(fields, path) result(rc)
+    type(c_ptr), intent(in) :: fields
+    character(len=*), intent(in) :: path
+    rc = c_anitet_fields_write(fields, to_c_string(path))
+  end function
+
+  subroutine anitet_fields_destroy(fields)
+    type(c_ptr), intent(inout) :: fields
+    call c_anitet_fields_destroy(fields)
+    fields = c_null_ptr
+  end subroutine
+
+  integer function anitet_fields_get_counts(fields, num_fields, record_size, num_vertices) result(rc)
+    type(c_ptr), intent(in) :: fields
+    integer, intent(out), optional :: num_fields, record_size
+    integer(c_int64_t), intent(out), optional :: num_vertices
+    integer(c_int32_t) :: nf, rs
+    integer(c_int64_t) :: nv
+    rc = c_anitet_fields_get_counts(fields, nf, rs, nv)
+    if (present(num_fields)) num_fields = int(nf)
+    if (present(record_size)) record_size = int(rs)
+    if (present(num_vertices)) num_vertices = nv
+  end function
+
+  ! kinds(num_fields): the fields' ANITET_FIELD_KIND_* values.
+  integer function anitet_fields_get_kinds(fields, kinds) result(rc)
+    type(c_ptr), intent(in) :: fields
+    integer(c_int32_t), allocatable, intent(out) :: kinds(:)
+    integer(c_int32_t) :: nf, rs
+    integer(c_int64_t) :: nv
+    rc = c_anitet_fields_get_counts(fields, nf, rs, nv)
+    if (rc /= ANITET_OK) return
+    allocate(kinds(nf))
+    rc = c_anitet_fields_get_kinds(fields, kinds, size(kinds, kind=c_int64_t))
+  end function
+
+  ! values(record_size, num_vertices), a copy.
+  integer function anitet_fields_get_values(fields, values) result(rc)
+    type(c_ptr), intent(in) :: fields
+    real(c_double), allocatable, intent(out) :: values(:, :)
+    integer(c_int32_t) :: nf, rs
+    integer(c_int64_t) :: nv
+    rc = c_anitet_fields_get_counts(fields, nf, rs, nv)
+    if (rc /= ANITET_OK) return
+    allocate(values(rs, nv))
+    if (size(values) == 0) return
+    rc = c_anitet_fields_get_values(fields, values, size(values, kind=c_int64_t))
+  end function
+
+  ! data(record_size, num_vertices) pointing at the library's values, no copy: read only, valid
+  ! while `fields` lives.
+  integer function anitet_fields_get_data(fields, data) result(rc)
+    type(c_ptr), intent(in) :: fields
+    real(c_double), pointer, intent(out) :: data(:, :)
+    integer(c_int32_t) :: nf, rs
+    integer(c_int64_t) :: nv, count
+    type(c_ptr) :: p
+    nullify(data)
+    rc = c_anitet_fields_get_counts(fields, nf, rs, nv)
+    if (rc /= ANITET_OK) return
+    rc = c_anitet_fields_get_data(fields, p, count)
+    if (rc /= ANITET_OK) return
+    call c_f_pointer(p, data, [int(rs, c_int64_t), nv])
+  end function
+
+  ! `fields` (at the points of `from`) carried to the points of `to` in a new `out`; tensors:
+  ! ANITET_TENSORS_* (default ANITET_TENSORS_AUTO: metrics in log space).
+  integer function anitet_mesh_transfer_fields(from, fields, to, out, tensors) result(rc)
+    type(c_ptr), intent(in) :: from, fields, to
+    type(c_ptr), intent(out) :: out
+    integer, intent(in), optional :: tensors
+    integer(c_int32_t) :: t
+    t = ANITET_TENSORS_AUTO
+    if (present(tensors)) t = int(tensors, c_int32_t)
+    rc = c_anitet_mesh_transfer_fields(from, fields, to, t, out)
+  end function
+
+  ! What the transfer that made `fields` found: points outside the old mesh, their largest
+  ! distance to it and, per field, whether it went through log space.
+  integer function anitet_fields_get_transfer_report(fields, outside, max_outside_distance, &
+                                                     log_euclidean) result(rc)
+    type(c_ptr), intent(in) :: fields
+    integer(c_int64_t), intent(out), optional :: outside
+    real(c_double), intent(out), optional :: max_outside_distance
+    logical, allocatable, intent(out), optional :: log_euclidean(:)
+    integer(c_int32_t) :: nf, rs
+    integer(c_int64_t) :: nv, n_out
+    real(c_double) :: distance
+    integer(c_int32_t), allocatable, target :: flags(:)
+    rc = c_anitet_fields_get_counts(fields, nf, rs, nv)
+    if (rc /= ANITET_OK) return
+    allocate(flags(max(nf, 1_c_int32_t)))
+    rc = c_anitet_fields_get_transfer_report(fields, n_out, distance, c_loc(flags), &
+                                             size(flags, kind=c_int64_t))
+    if (rc /= ANITET_OK) return
+    if (present(outside)) outside = n_out
+    if (present(max_outside_distance)) max_outside_distance = distance
+    if (present(log_euclidean)) log_euclidean = flags(1:nf) /= 0
   end function
 
   ! ---- geographic frames ------------------------------------------------------------------------

@@ -45,7 +45,7 @@ foreach(b IN LISTS binds)
 endforeach()
 
 # Integer constants: "#define ANITET_X (-n)" or "#define ANITET_X n".
-string(REGEX MATCHALL "#define (ANITET_(ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|RECOVERY_[A-Z]+|VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|RUN_STATS_VERSION|PARTITION_[A-Z]+_VERSION|HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|FIELD_[A-Z_]+|PATCH_TYPE_[A-Z_]+|MPI_EXCHANGE_TAG|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+)) \\(?-?[0-9]+\\)?" defines "${header}")
+string(REGEX MATCHALL "#define (ANITET_(ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|RECOVERY_[A-Z]+|VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|RUN_STATS_VERSION|PARTITION_[A-Z]+_VERSION|HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|FIELD_[A-Z_]+|PATCH_TYPE_[A-Z_]+|TENSORS_[A-Z_]+|MPI_EXCHANGE_TAG|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+)) \\(?-?[0-9]+\\)?" defines "${header}")
 set(mismatched "")
 foreach(d IN LISTS defines)
   string(REGEX MATCH "#define (ANITET_[A-Z0-9_]+) \\(?(-?[0-9]+)\\)?" m "${d}")

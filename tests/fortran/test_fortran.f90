@@ -5,7 +5,7 @@
 ! versions 3 and 4, a boundary layer on the sphere inside a box and the run's report, patch names;
 ! stage 1 alone, y+ to a first height, the surface's sizing field written and read back, a
 ! metric sampled on a mesh and read on a mesh in memory, geographic frames; a boundary layer
-! sliding along a pipe's caps, patch types.
+! sliding along a pipe's caps, patch types, per-vertex fields and their transfer.
 ! Argument 1: the tests' data directory (tests/data).
 ! The analytic metric of check_sample_metric: a bind(c) procedure of a module, for c_funloc.
 module test_fortran_metrics
@@ -57,6 +57,7 @@ program test_fortran
   call check_geo_frames()
   call check_slide_patches()
   call check_patch_types(trim(data_dir) // "/io/box.mesh")
+  call check_fields(trim(data_dir) // "/io/box.mesh")
 
   if (failures > 0) then
     print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
@@ -970,6 +971,76 @@ contains
                ANITET_ERR_INVALID_ARGUMENT, "no patch 9")
     call check(index(anitet_last_error_message(), "patch label 9") > 0, "no patch 9: message")
     call anitet_mesh_destroy(mesh)
+  end subroutine
+
+  ! Linear fields on the box carried to its own points and to a mesh twice as large; a .solb
+  ! round trip; the errors.
+  subroutine check_fields(path)
+    character(len=*), intent(in) :: path
+    type(c_ptr) :: box, big, fields, moved, back
+    real(c_double), allocatable :: xyz(:, :), values(:, :), got(:, :)
+    real(c_double), pointer :: data(:, :)
+    integer(c_int32_t), allocatable :: kinds(:)
+    logical, allocatable :: log_euclidean(:)
+    integer(c_int64_t) :: nv, outside
+    real(c_double) :: distance
+    integer :: nf, record, i, rc
+    call check(anitet_mesh_read(path, box) == ANITET_OK, "read " // path)
+    call check(anitet_mesh_get_points(box, xyz) == ANITET_OK, "box points")
+    allocate(values(4, size(xyz, 2)))
+    do i = 1, size(xyz, 2)
+      values(:, i) = [1 + 2 * xyz(1, i) - xyz(2, i) + 3 * xyz(3, i), xyz(:, i)]
+    end do
+    call check(anitet_fields_create([ANITET_FIELD_KIND_SCALAR, ANITET_FIELD_KIND_VECTOR], values, &
+                                    fields) == ANITET_OK, "fields from arrays")
+    rc = anitet_fields_get_counts(fields, nf, record, nv)
+    call check(rc == ANITET_OK .and. nf == 2 .and. record == 4 .and. nv == 8, "fields counts")
+    call check(anitet_fields_get_kinds(fields, kinds) == ANITET_OK, "fields kinds")
+    call check(all(kinds == [ANITET_FIELD_KIND_SCALAR, ANITET_FIELD_KIND_VECTOR]), "kinds values")
+    call check(anitet_fields_get_data(fields, data) == ANITET_OK, "fields data, no copy")
+    call check(all(shape(data) == [4, 8]) .and. all(data == values), "fields data values")
+    ! To the box's own points: the same values; to a mesh twice as large: points outside.
+    call check(anitet_mesh_transfer_fields(box, fields, box, moved) == ANITET_OK, "transfer")
+    call check(anitet_fields_get_values(moved, got) == ANITET_OK, "transferred values")
+    call check(all(shape(got) == [4, 8]) .and. maxval(abs(got - values)) < 1d-12, &
+               "transfer to the same points")
+    rc = anitet_fields_get_transfer_report(moved, outside, distance, log_euclidean)
+    call check(rc == ANITET_OK .and. outside == 0 .and. distance == 0d0, "transfer report")
+    call check(allocated(log_euclidean), "transfer report: per field")
+    if (allocated(log_euclidean)) call check(size(log_euclidean) == 2 .and. .not. any(log_euclidean), &
+                                             "transfer report: no field in log space")
+    call anitet_fields_destroy(moved)
+    call check(anitet_mesh_read(path, big) == ANITET_OK, "read the box again")
+    call scale_mesh(big, 2d0)
+    call check(anitet_mesh_transfer_fields(box, fields, big, moved, ANITET_TENSORS_LINEAR) == &
+               ANITET_OK, "transfer to a larger mesh")
+    rc = anitet_fields_get_transfer_report(moved, outside=outside, max_outside_distance=distance)
+    call check(rc == ANITET_OK .and. outside > 0 .and. distance > 0d0, "points outside counted")
+    call anitet_fields_destroy(moved)
+    ! A .solb round trip.
+    call check(anitet_fields_write(fields, "fortran_fields.solb") == ANITET_OK, "write .solb")
+    call check(anitet_fields_read("fortran_fields.solb", back) == ANITET_OK, "read .solb")
+    call check(anitet_fields_get_values(back, got) == ANITET_OK, ".solb: values")
+    call check(all(got == values), ".solb: the same values")
+    call anitet_fields_destroy(back)
+    ! Errors: fields of another mesh, an unknown tensor mode, a report of fields not transferred.
+    call check(anitet_mesh_transfer_fields(big, fields, box, moved, 7) == ANITET_ERR_INVALID_ARGUMENT, &
+               "tensors 7")
+    call anitet_fields_destroy(fields)
+    call check(anitet_fields_create([ANITET_FIELD_KIND_SCALAR], values(1:1, 1:7), fields) == &
+               ANITET_OK, "7 values")
+    call check(anitet_mesh_transfer_fields(box, fields, big, moved) == ANITET_ERR_INVALID_ARGUMENT, &
+               "fields of another mesh")
+    call check(index(anitet_last_error_message(), "another mesh") > 0, "another mesh: message")
+    call check(.not. c_associated(moved), "no fields on error")
+    call check(anitet_fields_get_transfer_report(fields, outside) == ANITET_ERR_INVALID_ARGUMENT, &
+               "no transfer report")
+    call anitet_fields_destroy(fields)
+    call check(.not. c_associated(fields), "destroyed")
+    call check(anitet_fields_read("fortran_fields.txt", fields) == ANITET_ERR_UNSUPPORTED_FORMAT, &
+               "fields: unknown extension")
+    call anitet_mesh_destroy(big)
+    call anitet_mesh_destroy(box)
   end subroutine
 
   function file_text(path) result(text)

@@ -58,7 +58,7 @@ class HeaderDrift(unittest.TestCase):
                    r"VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|RUN_STATS_VERSION|"
                    r"PARTITION_[A-Z]+_VERSION|"
                    r"HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+|"
-                   r"PATCH_TYPE_[A-Z_]+)) \(?(-?\d+)\)?")
+                   r"PATCH_TYPE_[A-Z_]+|FIELD_KIND_[A-Z_]+|TENSORS_[A-Z_]+)) \(?(-?\d+)\)?")
         found = re.findall(pattern, self.header)
         self.assertGreater(len(found), 25)
         for name, value in found:
@@ -802,6 +802,107 @@ class PatchTypes(unittest.TestCase):
         with self.assertRaises(anitet.AnitetError):
             m.patch_type(9)
         self.assertEqual(m.patch_type(1), "symmetry")  # unchanged by the errors
+
+
+class Fields(unittest.TestCase):
+    """Per-vertex fields: arrays, .sol/.solb files, transfer between meshes."""
+
+    @staticmethod
+    def grid(n, size):
+        """A mesh of n^3 cubes of side size/n, six tets each."""
+        points = [(size * i / n, size * j / n, size * k / n)
+                  for k in range(n + 1) for j in range(n + 1) for i in range(n + 1)]
+        tets = []
+        at = lambda i, j, k: (k * (n + 1) + j) * (n + 1) + i  # noqa: E731
+        for k in range(n):
+            for j in range(n):
+                for i in range(n):
+                    c = [at(i + (v & 1), j + (v >> 1 & 1), k + (v >> 2 & 1)) for v in range(8)]
+                    for a, b in ((1, 3), (3, 2), (2, 6), (6, 4), (4, 5), (5, 1)):
+                        tets.append((c[0], c[a], c[b], c[7]))
+        tets = [t if Fields.volume(points, t) > 0 else (t[0], t[2], t[1], t[3]) for t in tets]
+        return anitet.Mesh.from_arrays(points, tets), points
+
+    @staticmethod
+    def volume(p, t):
+        a, b, c, d = (p[v] for v in t)
+        u, v, w = [[q[i] - a[i] for i in range(3)] for q in (b, c, d)]
+        return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                u[2] * (v[0] * w[1] - v[1] * w[0]))
+
+    @staticmethod
+    def record(p):
+        x, y, z = p
+        return (1 + 2 * x - y + 3 * z, x, y - z, 2 * z, 10 + x, 0.5, 10 + y, 0.0, 0.25 * z, 10 + z)
+
+    KINDS = ("scalar", "vector", "tensor")
+
+    def test_arrays_and_files(self):
+        values = [self.record((i, 2 * i, 3 * i)) for i in range(5)]
+        f = anitet.Fields.from_arrays(self.KINDS, values)
+        self.assertEqual(f.counts(), (3, 10, 5))
+        self.assertEqual(f.kinds, [anitet.FIELD_KIND_SCALAR, anitet.FIELD_KIND_VECTOR,
+                                   anitet.FIELD_KIND_SYM_TENSOR])
+        self.assertEqual(rows(f.values), values)
+        self.assertEqual(rows(f.field(0)), [v[0] for v in values])
+        self.assertEqual(rows(f.field(1)), [v[1:4] for v in values])
+        with tempfile.TemporaryDirectory() as d:
+            for name in ("f.sol", "f.solb"):
+                f.write(os.path.join(d, name))
+                back = anitet.Fields.read(os.path.join(d, name))
+                self.assertEqual(rows(back.values), values)
+            with self.assertRaises(anitet.AnitetError) as e:
+                f.write(os.path.join(d, "f.txt"))
+            self.assertEqual(e.exception.code, anitet.ERR_UNSUPPORTED_FORMAT)
+        with self.assertRaises(anitet.AnitetError) as e:
+            f.transfer_report()
+        self.assertIn("not made by anitet_mesh_transfer_fields", e.exception.message)
+        with self.assertRaises(ValueError):
+            anitet.Fields.from_arrays(["scalar", "vector"], [(1, 2, 3)])  # 3 values, records of 4
+        with self.assertRaises(ValueError):
+            anitet.Fields.from_arrays(["matrix"], [1.0])
+        with self.assertRaises(anitet.AnitetError) as e:
+            anitet.Fields.from_arrays([4], [1.0])
+        self.assertIn("kind 0 is 4", e.exception.message)
+
+    @unittest.skipUnless(anitet.HAVE_NUMPY, "views need NumPy")
+    def test_views_without_copy(self):
+        import numpy
+        f = anitet.Fields.from_arrays(["vector"], numpy.arange(12.0).reshape(4, 3))
+        v = f.values
+        self.assertFalse(v.flags.writeable)
+        self.assertFalse(v.flags.owndata)
+        self.assertEqual(v.ctypes.data, f.values.ctypes.data)  # the library's memory each time
+        f.close()
+        del f
+        self.assertEqual(v[3].tolist(), [9.0, 10.0, 11.0])  # the view keeps the memory
+
+    def test_transfer(self):
+        old, old_points = self.grid(4, 4.0)
+        new, new_points = self.grid(3, 3.0)
+        fields = anitet.Fields.from_arrays(self.KINDS, [self.record(p) for p in old_points])
+        moved = old.transfer_fields(fields, new, tensors="linear")
+        self.assertEqual(moved.counts(), (3, 10, len(new_points)))
+        worst = max(abs(a - b) for p, r in zip(new_points, rows(moved.values)) for a, b in zip(r, self.record(p)))
+        self.assertLess(worst, 1e-12)
+        self.assertEqual(moved.transfer_report(), anitet.TransferReport(0, 0.0, [False, False, False]))
+        auto = anitet.transfer_fields(old, fields, new)
+        self.assertEqual(auto.transfer_report().log_euclidean, [False, False, True])
+        # Points outside: a mesh reaching past the old one.
+        big, _ = self.grid(2, 6.0)
+        report = old.transfer_fields(fields, big, anitet.TENSORS_AUTO).transfer_report()
+        self.assertGreater(report.outside, 0)
+        self.assertAlmostEqual(report.max_outside_distance, 2 * 3 ** 0.5)
+        # Errors: fields of another mesh, a tensor mode, handles of the wrong kind.
+        with self.assertRaises(anitet.AnitetError) as e:
+            new.transfer_fields(fields, old)
+        self.assertIn("another mesh", e.exception.message)
+        with self.assertRaises(ValueError):
+            old.transfer_fields(fields, new, tensors="cubic")
+        with self.assertRaises(anitet.AnitetError):
+            old.transfer_fields(fields, new, tensors=5)
+        with self.assertRaises(TypeError):
+            anitet.transfer_fields(old, [1.0], new)
 
 
 class Arrays(unittest.TestCase):

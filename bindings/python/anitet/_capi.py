@@ -60,6 +60,12 @@ PATCH_TYPE_OUTLET = 2
 PATCH_TYPE_FARFIELD = 3
 PATCH_TYPE_SYMMETRY = 4
 PATCH_TYPE_PATCH = 5
+FIELD_KIND_SCALAR = 1
+FIELD_KIND_VECTOR = 2
+FIELD_KIND_SYM_TENSOR = 3
+TENSORS_AUTO = 0
+TENSORS_LOG_EUCLIDEAN = 1
+TENSORS_LINEAR = 2
 PARTITION_OPTIONS_VERSION = 1
 PARTITION_INFO_VERSION = 1
 HALO_VERTEX_SEND = 0
@@ -299,6 +305,16 @@ _PROTOTYPES = {
     "anitet_mesh_get_patch_type": (c_int, [_P, c_int32, _I32]),
     "anitet_mesh_set_metric": (c_int, [_P, _D, c_int64, c_int32]),
     "anitet_mesh_sample_metric": (c_int, [_P, _P]),
+    "anitet_fields_create": (c_int, [_I32, c_int32, _D, c_int64, _PP]),
+    "anitet_fields_read": (c_int, [c_char_p, _PP]),
+    "anitet_fields_write": (c_int, [_P, c_char_p]),
+    "anitet_fields_destroy": (None, [_P]),
+    "anitet_fields_get_counts": (c_int, [_P, _I32, _I32, _I64]),
+    "anitet_fields_get_kinds": (c_int, [_P, _I32, c_int64]),
+    "anitet_fields_get_values": (c_int, [_P, _D, c_int64]),
+    "anitet_fields_get_data": (c_int, [_P, POINTER(_D), _I64]),
+    "anitet_mesh_transfer_fields": (c_int, [_P, _P, _P, c_int32, _PP]),
+    "anitet_fields_get_transfer_report": (c_int, [_P, _I64, _D, _I32, c_int64]),
     "anitet_mesh_get_run_stats": (c_int, [_P, POINTER(CRunStats)]),
     "anitet_mesh_run_json": (c_int, [_P, c_char_p, c_int64, _I64]),
     "anitet_mesh_quality": (c_int, [_P, _P, POINTER(CQuality)]),
