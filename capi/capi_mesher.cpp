@@ -253,7 +253,8 @@ int anitet_layers_run(const anitet_surface* surface, const anitet_options* optio
     anitet::Result<anitet::Stage1Result> built =
         in_arena(opt.num_threads, [&] { return anitet::run_stage1(repaired, mo.layers); });
     if (!built.ok()) {
-      const int code = set_status(fn, in_abi_words(anitet::Status(built.status().code(), "stage 1 (layers): " + built.status().message())));
+      const anitet::Status failed(built.status().code(), "stage 1 (layers): " + built.status().message());
+      const int code = set_status(fn, in_abi_words(failed));
       log_line(opt, ANITET_LOG_ERROR, anitet_last_error_message());
       return code;
     }

@@ -567,9 +567,9 @@ ANITET_API int anitet_fields_get_data(const anitet_fields* fields, const double*
  * and one record per point of `to`. Each point of `to` is located in `from`'s tets and every
  * field interpolated with its barycentric weights: linearly for scalars and vectors (a linear
  * field is carried exactly, to rounding), symmetric tensors as `tensors` says
- * (ANITET_TENSORS_AUTO, _LOG_EUCLIDEAN or _LINEAR). A point outside `from` (a boundary that moved onto the curved geometry)
- * takes the value at the closest point of `from`'s boundary; such points are counted
- * (anitet_fields_get_transfer_report). `from`, `fields` and `to` are only read. Runs on every
+ * (ANITET_TENSORS_AUTO, _LOG_EUCLIDEAN or _LINEAR). A point outside `from` (a boundary that
+ * moved onto the curved geometry) takes the value at the closest point of `from`'s boundary;
+ * such points are counted (anitet_fields_get_transfer_report). `from`, `fields` and `to` are only read. Runs on every
  * core; the result does not depend on the number of threads. Errors: INVALID_ARGUMENT (NULL; an
  * unknown `tensors`; fields without one record per point of `from`, "a field of another mesh";
  * a tensor that is not SPD with ANITET_TENSORS_LOG_EUCLIDEAN, naming its vertex; a point of `to`

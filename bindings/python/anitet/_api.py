@@ -518,6 +518,7 @@ class Metric(_Handle):
 # The names of the PATCH_TYPE_* values, indexed by them.
 PATCH_TYPES = ("wall", "inlet", "outlet", "farfield", "symmetry", "patch")
 
+
 class _Figures:
     """The figures of a C struct as attributes: FIELDS, those in FLAGS as booleans."""
 
