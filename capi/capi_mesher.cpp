@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <memory>
 #include <mutex>
@@ -356,6 +357,16 @@ void fill_run_stats(const anitet::MesherResult& r, const anitet::VolumeMesh& m, 
   s.bl_first_height_max = bl.first_height_max;
   s.bl_growth_mean = bl.growth_mean;
   s.bl_max_height_error = bl.max_height_error;
+  s.slide_junction_columns = int64_t(r.slide.junction_vertices);
+  s.slide_lowered_columns = int64_t(r.slide.reduced_columns);
+  for (const anitet::SlidePatchChange& c : r.slide.changes)
+    s.slide_triangles_added += int64_t(c.triangles_after) - int64_t(c.triangles_before);
+}
+
+// Bytes of an anitet_run_stats of `version` (a valid one): each version's struct ends where the
+// next version's first field starts.
+size_t run_stats_size(int32_t version) {
+  return version == 1 ? offsetof(anitet_run_stats, slide_junction_columns) : sizeof(anitet_run_stats);
 }
 
 int no_run(const char* fn) {
@@ -378,7 +389,7 @@ int anitet_mesh_get_run_stats(const anitet_mesh* mesh, anitet_run_stats* out) {
     anitet_run_stats full = ANITET_RUN_STATS_INIT;
     fill_run_stats(*mesh->run, mesh->mesh, full);
     full.version = out->version;
-    std::memcpy(out, &full, sizeof full);  // version 1 is the whole struct
+    std::memcpy(out, &full, run_stats_size(out->version));  // never past the caller's version
     return ok();
   });
 }

@@ -47,7 +47,7 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_RECOVERY_ALL = 0
   integer(c_int32_t), parameter, public :: ANITET_RECOVERY_SPLIT = 1
   integer(c_int32_t), parameter, public :: ANITET_RECOVERY_FUZZY = 2
-  integer(c_int32_t), parameter, public :: ANITET_RUN_STATS_VERSION = 1
+  integer(c_int32_t), parameter, public :: ANITET_RUN_STATS_VERSION = 2
   integer(c_int32_t), parameter, public :: ANITET_QUALITY_VERSION = 1
   integer(c_int32_t), parameter, public :: ANITET_GEO_ENU = 0
   integer(c_int32_t), parameter, public :: ANITET_GEO_UTM = 1
@@ -179,6 +179,10 @@ module anitet
     real(c_double) :: bl_first_height_max
     real(c_double) :: bl_growth_mean
     real(c_double) :: bl_max_height_error
+    ! version 2
+    integer(c_int64_t) :: slide_junction_columns
+    integer(c_int64_t) :: slide_lowered_columns
+    integer(c_int64_t) :: slide_triangles_added
   end type
 
   type, bind(c), public :: anitet_quality_t

@@ -209,6 +209,33 @@ static void test_run_stats_plain(void** state) {
   anitet_surface_destroy(s);
 }
 
+/* A caller compiled against version 1 of anitet_run_stats: nothing written past its end, the
+ * same version 1 figures; version 2's slide figures 0 without slide patches. */
+static void test_run_stats_v1_caller(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  anitet_mesh* m = run_ok(s, NULL);
+  anitet_run_stats v1, v2 = ANITET_RUN_STATS_INIT;
+  const size_t v1_size = offsetof(anitet_run_stats, slide_junction_columns);
+  const unsigned char* bytes = (const unsigned char*)&v1;
+  size_t i;
+  (void)state;
+  assert_int_equal(ANITET_RUN_STATS_VERSION, 2);
+  assert_int_equal(v1_size, offsetof(anitet_run_stats, bl_max_height_error) + sizeof(double));
+  memset(&v1, 0xff, sizeof v1);
+  v1.version = 1;
+  assert_int_equal(anitet_mesh_get_run_stats(m, &v1), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_run_stats(m, &v2), ANITET_OK);
+  for (i = v1_size; i < sizeof v1; ++i) assert_int_equal(bytes[i], 0xff);
+  assert_int_equal(v1.version, 1);
+  v1.version = 2;
+  assert_memory_equal(&v1, &v2, v1_size);
+  assert_int_equal(v2.slide_junction_columns, 0);
+  assert_int_equal(v2.slide_lowered_columns, 0);
+  assert_int_equal(v2.slide_triangles_added, 0);
+  anitet_mesh_destroy(m);
+  anitet_surface_destroy(s);
+}
+
 static void test_run_stats_errors(void** state) {
   anitet_surface* s = make_sphere_in_box();
   anitet_mesh *m = run_ok(s, NULL), *made = NULL;
@@ -533,6 +560,8 @@ static void test_slide_patches(void** state) {
   assert_int_equal(st.bl_layers, 4);
   assert_int_equal(st.bl_wall_vertices, PIPE_N * PIPE_RINGS);
   assert_int_equal(st.bl_full_columns, PIPE_N * PIPE_RINGS);
+  assert_int_equal(st.slide_junction_columns, 2 * PIPE_N);
+  assert_int_equal(st.slide_lowered_columns, 0);
   json = run_json(m);
   assert_true(contains(json, "\"slide_patches\""));
   assert_true(contains(json, "\"junction_vertices\": 32") || contains(json, "\"junction_vertices\":32"));
@@ -550,6 +579,7 @@ static void test_slide_patches(void** state) {
   for (i = 0; i < 2 * PIPE_N * (PIPE_RINGS - 1); ++i) assert_int_equal(patch[i], 1);
   assert_int_equal(on_wall, 2 * PIPE_N * (PIPE_RINGS - 1));
   assert_true(on_caps > 2 * PIPE_N);
+  assert_int_equal(st.slide_triangles_added, on_caps - 2 * PIPE_N);
   assert_int_equal(on_wall + on_caps, nb);
   free(patch);
   assert_int_equal(anitet_mesh_quality(m, NULL, &q), ANITET_OK);
@@ -654,6 +684,7 @@ int main(void) {
       cmocka_unit_test(test_layers_run),          cmocka_unit_test(test_bl_first_height),
       cmocka_unit_test(test_patch_types),         cmocka_unit_test(test_options_v4_defaults),
       cmocka_unit_test(test_options_v3_caller),   cmocka_unit_test(test_slide_patches),
+      cmocka_unit_test(test_run_stats_v1_caller),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -485,8 +485,8 @@ contains
                o%bl_sizing == 0, "options v3: boundary layer defaults")
     call check(o%push_tasks_min_vertices == 2000 .and. o%reserved1 == 0, &
                "options v3: push tasks from 2000 front vertices")
-    ! 8 int32, 8 int64, 5 doubles, 2 int32, 5 int64, 5 doubles: no padding.
-    call check(c_sizeof(st) == 224, "run stats size")
+    ! 8 int32, 8 int64, 5 doubles, 2 int32, 5 int64, 5 doubles, 3 int64: no padding.
+    call check(c_sizeof(st) == 248, "run stats size")
     call check(anitet_options_init(o, 3) == ANITET_OK, "options v3 still")
     call check(o%version == 3, "options v3: version")
     call check(anitet_options_init(o, 2) == ANITET_OK, "options v2 still")
@@ -913,6 +913,8 @@ contains
     call check(anitet_mesh_get_run_stats(mesh, st) == ANITET_OK, "slide: run stats")
     call check(st%bl_layers == 4 .and. st%bl_wall_vertices == 16 * 7 .and. &
                st%bl_full_columns == 16 * 7, "slide: every wall vertex a full column")
+    call check(st%slide_junction_columns == 32 .and. st%slide_lowered_columns == 0 .and. &
+               st%slide_triangles_added > 0, "slide: run stats version 2")
     call check(anitet_mesh_run_json(mesh, json) == ANITET_OK, "slide: run json")
     call check(index(json, '"slide_patches"') > 0, "slide: the report's slide patches")
     call check(anitet_mesh_get_boundary_patches(mesh, patch) == ANITET_OK, "slide: patches")

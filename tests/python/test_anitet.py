@@ -91,7 +91,7 @@ class HeaderDrift(unittest.TestCase):
         self.assertEqual(ctypes.sizeof(_capi.CPartitionOptions), 24 + pointer + 8)
         self.assertEqual(ctypes.sizeof(_capi.CPartitionInfo), 64)
         self.assertEqual(self.ctypes_fields(_capi.CMesh2dOptions), self.struct_fields("anitet_mesh2d_options"))
-        self.assertEqual(ctypes.sizeof(_capi.CRunStats), 224)
+        self.assertEqual(ctypes.sizeof(_capi.CRunStats), 248)
         # Version 1 ends after the four pointers; version 2 adds 32 bytes, version 3 seven 8-byte
         # fields, eight 4-byte ones and a pointer, version 4 two 4-byte fields and a pointer.
         self.assertEqual(_capi.COptions.layers.offset, 24 + 4 * pointer)
@@ -746,7 +746,10 @@ class SlidePatches(unittest.TestCase):
         m = self.surface.mesh(bl_slide_patches=[2, 3], **self.WALL)
         s = m.run_stats
         self.assertEqual((s.bl_layers, s.bl_wall_vertices, s.bl_full_columns), (4, 16 * 7, 16 * 7))
+        self.assertEqual((s.slide_junction_columns, s.slide_lowered_columns), (32, 0))
         report = m.run_report()["slide_patches"]
+        self.assertEqual(s.slide_triangles_added,
+                         sum(p["triangles_after"] - p["triangles_before"] for p in report["patches"]))
         self.assertEqual([p["label"] for p in report["patches"]], [2, 3])
         self.assertEqual(report["junction_vertices"], 32)
         patches = rows(m.boundary_patches())

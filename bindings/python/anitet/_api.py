@@ -547,9 +547,10 @@ class Quality(_Figures):
 
 
 class RunStats(_Figures):
-    """The numbers of anitet_run_stats (version 1): what the run that made a mesh did.
+    """The numbers of anitet_run_stats (version 2): what the run that made a mesh did.
     recovery_strategy is RECOVERY_SPLIT or RECOVERY_FUZZY (the strategy that worked); the bl_*
-    figures are 0 without a boundary layer. Mesh.run_report() has everything else."""
+    figures are 0 without a boundary layer, the slide_* ones without slide patches.
+    Mesh.run_report() has everything else."""
 
     FIELDS = tuple(name for name, _ in _capi.CRunStats._fields_ if name not in ("version", "reserved0"))
     FLAGS = ("refine_stopped_at_pass_cap",)

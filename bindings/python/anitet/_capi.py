@@ -45,7 +45,7 @@ LOG_INFO = 2
 LOG_DEBUG = 3
 OPTIONS_VERSION = 4
 QUALITY_VERSION = 1
-RUN_STATS_VERSION = 1
+RUN_STATS_VERSION = 2
 LAYERS_PUSH = 0
 LAYERS_FACE_PUSH = 1
 RECOVERY_ALL = 0
@@ -181,6 +181,10 @@ class CRunStats(Structure):
         ("bl_first_height_max", c_double),
         ("bl_growth_mean", c_double),
         ("bl_max_height_error", c_double),
+        # version 2
+        ("slide_junction_columns", c_int64),
+        ("slide_lowered_columns", c_int64),
+        ("slide_triangles_added", c_int64),
     ]
 
 
