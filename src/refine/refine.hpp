@@ -74,7 +74,8 @@ struct RefineOptions {
   bool collapse = true;
   // Each collapse pass first tries every short edge's collapse on every core against the mesh
   // as the pass starts, then makes them in order (the edges next to a collapse made meanwhile
-  // tried again). false: each edge tried in turn, one by one. The same mesh either way.
+  // tried again). false: each edge tried in turn, one by one, as on one thread. The same mesh
+  // either way.
   bool collapse_trials = true;
   // A split point whose Delaunay cavity (Euclidean or metric) would take a frozen tet (negative
   // region: the halo of a part in distributed/) behind a protected facet is put off

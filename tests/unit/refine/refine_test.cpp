@@ -419,7 +419,7 @@ TEST(Refine, CoarseningIsTheSameWithOneThreadOrMany) {
 }
 
 // The collapse trials (on every core, against the mesh as the pass starts) make the collapses
-// that trying each edge in turn makes.
+// that trying each edge in turn makes. Two threads for the trials: on one, they are skipped.
 TEST(Refine, CollapseTrialsMakeTheCollapsesOneByOneMakes) {
   TetMesh m[2] = {coupled_sphere(), coupled_sphere()};
   size_t collapses[2] = {0, 0};
@@ -427,6 +427,7 @@ TEST(Refine, CollapseTrialsMakeTheCollapsesOneByOneMakes) {
     RefineOptions o;
     ASSERT_TRUE(refine_mesh(m[k], test::ConstantSizing(0.15), o).ok());
     o.collapse_trials = k == 0;
+    o.num_threads = 2;
     Result<RefineStats> r = refine_mesh(m[k], test::ConstantSizing(0.4), o);
     ASSERT_TRUE(r.ok()) << r.status().message();
     collapses[k] = r->collapses;
