@@ -7,8 +7,9 @@
 #   bench/peers/ab_cpu.sh [-r ROUNDS] OLD NEW INPUT[@SIZE] ...
 #
 # INPUT: `sphere` (out/bench-one-core/sphere/sphere.off, made by one_core.sh) or a file name in
-# ../shared/data/surfaces; @SIZE adds `--size SIZE`. ROUNDS default 3. Outputs under
-# out/bench-ab. Not run by CI.
+# ../shared/data/surfaces; @SIZE adds `--size SIZE`. ROUNDS default 3. ARGS (environment): more
+# options for both runs, e.g. ARGS='--threads 2' (two threads on the one core: the CPU time is
+# then all the work of a two-thread run). Outputs under out/bench-ab. Not run by CI.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 rounds=3
@@ -31,7 +32,7 @@ for ((r = 1; r <= rounds; ++r)); do
       [[ $which == new ]] && bin=$new
       load=$(cut -d' ' -f1 /proc/loadavg)
       taskset -c 0 /usr/bin/time -f '%e %U %S %M' -o "$out/time" "$bin" mesh "$in" -o "$out/$which-${s%.*}.mesh" \
-        ${size:+--size "$size"} > "$out/$which.log" 2>&1 || { echo "$which failed on $arg: $(tail -1 "$out/$which.log")"; exit 1; }
+        ${size:+--size "$size"} ${ARGS:-} > "$out/$which.log" 2>&1 || { echo "$which failed on $arg: $(tail -1 "$out/$which.log")"; exit 1; }
       read -r wall user sys rss < <(tail -1 "$out/time")
       printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$arg" "$which" "$wall" "$(echo "$user + $sys" | bc)" "$rss" "$load" >> "$tsv"
       printf 'round %d %-22s %s: wall %6.2f s, CPU %6.2f s, %s kB, load %s\n' "$r" "$arg" "$which" "$wall" \
