@@ -925,14 +925,14 @@ size_t Refiner::collapse_pass(const refine_detail::EdgeList& edges) {
   // pass at once: an edge a collapse before it skips is not tried (airplane at --size 1.542 tried
   // 104k edges for 19k sequential attempts with one block). Not on one thread: there the trials
   // only add work.
-  constexpr size_t kTrialBlock = 2048;
+  const size_t block = std::max<size_t>(1, options_.collapse_trial_block);
   const bool trials = options_.collapse_trials && tbb::this_task_arena::max_concurrency() > 1;
-  std::vector<int8_t> trial(std::min(shorts.size(), kTrialBlock));
+  std::vector<int8_t> trial(std::min(shorts.size(), block));
   tbb::enumerable_thread_specific<CollapseScratch> scratches;
   collapse_changed_.assign(mesh_.num_vertices(), 0);
   size_t done = 0;
-  for (size_t b0 = 0; b0 < shorts.size(); b0 += kTrialBlock) {
-    const size_t b1 = std::min(shorts.size(), b0 + kTrialBlock);
+  for (size_t b0 = 0; b0 < shorts.size(); b0 += block) {
+    const size_t b1 = std::min(shorts.size(), b0 + block);
     ++collapse_block_;
     std::fill(trial.begin(), trial.end(), int8_t(kTrialUnknown));
     if (trials)

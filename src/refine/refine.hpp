@@ -72,11 +72,12 @@ struct RefineOptions {
   int max_passes = 30;
   double stop_fraction = 1e-3;  // stop when a pass changes fewer than this share of the edges
   bool collapse = true;
-  // Each collapse pass first tries every short edge's collapse on every core against the mesh
-  // as the pass starts, then makes them in order (the edges next to a collapse made meanwhile
-  // tried again). false: each edge tried in turn, one by one, as on one thread. The same mesh
-  // either way.
+  // Each collapse pass takes its short edges in blocks of collapse_trial_block (in length order):
+  // it first tries each edge's collapse on every core against the mesh as the block starts, then
+  // makes them in order (the edges next to a collapse made meanwhile tried again). false: each
+  // edge tried in turn, one by one, as on one thread. The same mesh either way.
   bool collapse_trials = true;
+  size_t collapse_trial_block = 2048;
   // A split point whose Delaunay cavity (Euclidean or metric) would take a frozen tet (negative
   // region: the halo of a part in distributed/) behind a protected facet is put off
   // (InsertOptions::refuse_frozen_conflict), so that each part stays Delaunay up to its frozen

@@ -418,8 +418,9 @@ TEST(Refine, CoarseningIsTheSameWithOneThreadOrMany) {
   refine_with_one_thread_or_many(m, 0.15, 0.4, &RefineStats::collapses, 100);
 }
 
-// The collapse trials (on every core, against the mesh as the pass starts) make the collapses
-// that trying each edge in turn makes. Two threads for the trials: on one, they are skipped.
+// The collapse trials (on every core, against the mesh as each block of edges starts) make the
+// collapses that trying each edge in turn makes. Two threads for the trials (on one, they are
+// skipped); small blocks, so that a pass has many.
 TEST(Refine, CollapseTrialsMakeTheCollapsesOneByOneMakes) {
   TetMesh m[2] = {coupled_sphere(), coupled_sphere()};
   size_t collapses[2] = {0, 0};
@@ -427,6 +428,7 @@ TEST(Refine, CollapseTrialsMakeTheCollapsesOneByOneMakes) {
     RefineOptions o;
     ASSERT_TRUE(refine_mesh(m[k], test::ConstantSizing(0.15), o).ok());
     o.collapse_trials = k == 0;
+    o.collapse_trial_block = 64;
     o.num_threads = 2;
     Result<RefineStats> r = refine_mesh(m[k], test::ConstantSizing(0.4), o);
     ASSERT_TRUE(r.ok()) << r.status().message();
