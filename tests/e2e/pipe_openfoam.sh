@@ -38,7 +38,7 @@ header() { printf 'FoamFile\n{\n    version 2.0;\n    format ascii;\n    class %
   printf 'application simpleFoam;\nstartFrom startTime;\nstartTime 0;\nstopAt endTime;\nendTime 1000;\n'
   printf 'deltaT 1;\nwriteControl timeStep;\nwriteInterval 100000;\npurgeWrite 0;\nwriteFormat ascii;\n'
   printf 'writePrecision 8;\nrunTimeModifiable false;\n'; } >"$c/system/controlDict"
-# Tets with thin BL cells (dual faces up to ~90 deg non-orthogonal): limited non-orthogonal
+# Thin BL prisms under tets (non-orthogonality up to ~55 deg as prism cells): limited non-orthogonal
 # correction, upwind convection, SIMPLE under-relaxed.
 { header dictionary fvSchemes
   printf 'ddtSchemes { default steadyState; }\ngradSchemes { default cellLimited Gauss linear 1; }\n'
@@ -89,7 +89,7 @@ done
 # prisms under non-orthogonal tets, the velocity potentialFoam reconstructs from its fluxes is far
 # off (up to ~400 in the layers for a uniform inflow of 1; Gmsh's all-tet pipe gives up to ~50),
 # and SIMPLE started there stalls in a limit cycle near 1e-3; from rest it converges in ~100-260
-# iterations on the same mesh and case (docs/boundary-layers.md, Limits).
+# iterations on the same mesh and case (docs/boundary-layers.md, "Running simpleFoam on the layers").
 cp -r "$c" "$work/potential" || fail "cannot copy the case"
 run potentialFoam "$work/potential" || { rc=$?; tail -30 "$work/potentialFoam.log"; fail "potentialFoam exited $rc"; }
 last=$(grep -E "Solving for Phi" "$work/potentialFoam.log" | tail -1)
