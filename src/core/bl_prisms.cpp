@@ -227,7 +227,7 @@ void drop_unmatched_sides(const VolumeMesh& mesh, std::vector<Candidate>& cands)
 }  // namespace
 
 Result<PrismMergeStats> merge_bl_prisms(VolumeMesh& mesh, const std::vector<uint32_t>& vertex_origin,
-                                        int32_t first_bl_region) {
+                                        int32_t first_bl_region, std::vector<int32_t>* tet_prism) {
   const size_t nv = mesh.num_vertices(), nt = mesh.num_tets();
   if (vertex_origin.size() != nv)
     return Status(Error::InvalidArgument, "merge_bl_prisms: vertex_origin needs one entry per vertex");
@@ -264,9 +264,13 @@ Result<PrismMergeStats> merge_bl_prisms(VolumeMesh& mesh, const std::vector<uint
   drop_unmatched_sides(mesh, cands);
 
   std::vector<uint8_t> merged(nt, 0);
+  if (tet_prism) tet_prism->assign(nt, -1);
   for (const Candidate& cand : cands) {
     if (!cand.kept) continue;
-    for (uint32_t t : cand.tets) merged[t] = 1;
+    for (uint32_t t : cand.tets) {
+      merged[t] = 1;
+      if (tet_prism) (*tet_prism)[t] = int32_t(stats.prisms);
+    }
     mesh.prism.insert(mesh.prism.end(), cand.v.begin(), cand.v.end());
     if (!mesh.region.empty()) mesh.prism_region.push_back(mesh.region[cand.tets[0]]);
     ++stats.prisms;

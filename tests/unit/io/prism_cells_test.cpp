@@ -92,6 +92,32 @@ TEST(PrismCells, MergesEachPrismsThreeTets) {
   EXPECT_TRUE(check_boundary_elements(s.mesh, /*cover=*/true).ok());
 }
 
+TEST(PrismCells, TellsEachTetsPrism) {
+  Slab s = slab();
+  const VolumeMesh before = s.mesh;
+  s.mesh.tet.erase(s.mesh.tet.begin(), s.mesh.tet.begin() + 4);  // the first prism stays tets
+  s.mesh.region.erase(s.mesh.region.begin());
+  std::vector<int32_t> tet_prism;
+  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1, &tet_prism);
+  ASSERT_TRUE(merged.ok());
+  ASSERT_EQ(tet_prism.size(), 11u);
+  std::vector<int> tets_of(merged->prisms, 0);
+  size_t kept = 0;
+  for (size_t t = 0; t < 11; ++t) {
+    if (tet_prism[t] < 0) {
+      ++kept;
+      continue;
+    }
+    ASSERT_LT(size_t(tet_prism[t]), merged->prisms);
+    ++tets_of[size_t(tet_prism[t])];
+    // The tet's vertices are its prism's (tet t of the mesh given is tet t + 1 of the slab).
+    const uint32_t* p = &s.mesh.prism[6 * size_t(tet_prism[t])];
+    for (int i = 0; i < 4; ++i) EXPECT_NE(std::find(p, p + 6, before.tet[4 * (t + 1) + size_t(i)]), p + 6);
+  }
+  EXPECT_EQ(kept, merged->kept_tets);
+  EXPECT_EQ(tets_of, std::vector<int>(merged->prisms, 3));
+}
+
 TEST(PrismCells, KeepsTetsWhereNoExactPrism) {
   Slab s = slab();
   // Only the BL regions merge.
