@@ -9,6 +9,7 @@
 #include "handles.hpp"
 #include "io/volume_io.hpp"
 #include "metric/sol_field.hpp"
+#include "prism_cells.hpp"
 #include "quality/quality_report.hpp"
 #include "shim.hpp"
 
@@ -107,7 +108,11 @@ int anitet_mesh_write(const anitet_mesh* mesh, const char* path) {
   return guard(fn, [&] {
     if (mesh == nullptr) return null_argument(fn, "mesh");
     if (path == nullptr) return null_argument(fn, "path");
-    return set_status(fn, anitet::write_volume_mesh(mesh->mesh, std::string(path), mesh->patch_names,
+    if (mesh->prism.empty())
+      return set_status(fn, anitet::write_volume_mesh(mesh->mesh, std::string(path), mesh->patch_names,
+                                                      mesh->patch_types));
+    // The mesher's options asked for prism cells (bl_cells): a format of tets only refuses them.
+    return set_status(fn, anitet::write_volume_mesh(written_cells(*mesh), std::string(path), mesh->patch_names,
                                                     mesh->patch_types));
   });
 }

@@ -20,6 +20,7 @@
 #include "pipeline/mesher.hpp"
 #include "pipeline/result_json.hpp"
 #include "pipeline/stage1.hpp"
+#include "prism_cells.hpp"
 #include "shim.hpp"
 
 using namespace anitet::capi;
@@ -72,6 +73,11 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
     if (o.bl_num_patches == 0)
       return bad_option(function, "bl_slide_patches needs boundary-layer walls (bl_num_patches > 0)");
   }
+  if (o.bl_cells != ANITET_BL_CELLS_TETS && o.bl_cells != ANITET_BL_CELLS_PRISMS)
+    return bad_option(function, "bl_cells is " + std::to_string(o.bl_cells) +
+                                    ", not ANITET_BL_CELLS_TETS (0) or ANITET_BL_CELLS_PRISMS (1)");
+  if (o.bl_cells == ANITET_BL_CELLS_PRISMS && o.bl_num_patches == 0)
+    return bad_option(function, "bl_cells ANITET_BL_CELLS_PRISMS needs boundary-layer walls (bl_num_patches > 0)");
   if (o.bl_sizing != 0 && (o.bl_num_patches == 0 || !(o.bl_growth > 1.0)))
     return bad_option(function, "bl_sizing needs boundary-layer walls (bl_num_patches > 0) and bl_growth above 1");
   if (o.push_tasks_min_vertices < 0) return bad_option(function, "push_tasks_min_vertices is negative");
@@ -222,6 +228,9 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
     auto mesh = std::make_unique<anitet_mesh>();
     mesh->mesh = std::move(run->mesh);
     mesh->run = std::make_unique<anitet::MesherResult>(std::move(run).value());
+    if (opt.bl_cells == ANITET_BL_CELLS_PRISMS)
+      if (anitet::Status st = make_prism_cells(*mesh); !st.ok())
+        return set_error(ANITET_ERR_INTERNAL, std::string(fn) + ": bl_cells prisms: " + st.message());
     if (sizing) {
       // The metric the mesh was made for, at its vertices (anitet_mesh_get_metric, .sol).
       anitet::VolumeMesh& v = mesh->mesh;
@@ -244,6 +253,9 @@ int anitet_layers_run(const anitet_surface* surface, const anitet_options* optio
     if (const int code = read_options(fn, options, opt); code != ANITET_OK) return code;
     anitet::MesherOptions mo;
     if (const int code = to_mesher_options(fn, opt, mo); code != ANITET_OK) return code;
+    if (opt.bl_cells == ANITET_BL_CELLS_PRISMS)
+      return bad_option(fn, "bl_cells ANITET_BL_CELLS_PRISMS applies to anitet_mesher_run (the whole pipeline); "
+                            "stage 1's tets are in region 1");
     const auto start = std::chrono::steady_clock::now();
     if (opt.progress && opt.progress(0.0, "validate", opt.progress_user_data) != 0)
       return set_error(ANITET_ERR_CANCELLED, std::string(fn) + ": cancelled by the progress callback before validation");

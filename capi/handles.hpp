@@ -30,6 +30,12 @@ struct anitet_mesh {
   anitet::PatchNames patch_names;              // anitet_mesh_set_patch_name; used by anitet_mesh_write
   anitet::PatchTypes patch_types;              // anitet_mesh_set_patch_type; used by anitet_mesh_write
   std::unique_ptr<anitet::MesherResult> run;   // anitet_mesher_run's figures (its mesh moved out)
+  // options->bl_cells ANITET_BL_CELLS_PRISMS: the boundary layer's prism cells (VolumeMesh::prism
+  // order) and their regions, and per tet its prism or -1; `mesh` keeps every tet, and
+  // anitet_mesh_write writes the prisms in place of their tets (capi_prisms.cpp).
+  std::vector<uint32_t> prism;
+  std::vector<int32_t> prism_region;
+  std::vector<int32_t> tet_prism;
 };
 
 struct anitet_metric {

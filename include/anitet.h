@@ -126,6 +126,10 @@ typedef int (*anitet_metric_fn)(double x, double y, double z, double m[6], void*
 #define ANITET_RECOVERY_SPLIT 1  /**< split constraints only (fast, every decision combinatorial) */
 #define ANITET_RECOVERY_FUZZY 2  /**< the fuzzy-face strategies only */
 
+/** Values of anitet_options.bl_cells (version 4): the cells the boundary layer is written as. */
+#define ANITET_BL_CELLS_TETS 0    /**< each prism as the 3 tets the pipeline keeps (the default) */
+#define ANITET_BL_CELLS_PRISMS 1  /**< each prism as one prism cell (anitet_mesh_get_prisms) */
+
 /** Options of the validation and the mesher, a versioned struct: set it with
  * ANITET_OPTIONS_INIT or anitet_options_init(), then change fields. */
 typedef struct anitet_options {
@@ -184,7 +188,14 @@ typedef struct anitet_options {
   int32_t bl_num_slide_patches;      /**< boundary layer: the number of labels in
                                         bl_slide_patches (default 0: none); > 0 needs walls
                                         (bl_num_patches > 0) */
-  int32_t reserved2;                 /**< keep 0 (alignment; may gain a meaning later) */
+  int32_t bl_cells;                  /**< how anitet_mesh_write writes the boundary layer:
+                                        ANITET_BL_CELLS_TETS (default: 3 tets per prism, every
+                                        format) or ANITET_BL_CELLS_PRISMS (`anitet mesh
+                                        --bl-cells prisms`: one prism cell each, .vtu and
+                                        OpenFOAM polyMesh only; needs walls, bl_num_patches > 0;
+                                        anitet_mesher_run only). In version 4's reserved2 slot
+                                        (same layout, 0 the default): version 4 was not released
+                                        before it, so no version 5 was needed */
   const int32_t* bl_slide_patches;   /**< the patch labels the walls meet that the layers'
                                         columns may slide along (`anitet mesh
                                         --bl-slide-patches`): a pipe's inlet and outlet, a
@@ -429,7 +440,9 @@ ANITET_API void anitet_mesh_destroy(anitet_mesh* mesh);
  *  polyMesh directory). The boundary patches carry the names of anitet_mesh_set_patch_name
  *  (others patch<label>) and, in OpenFOAM, CGNS and Exodus II, the types of
  *  anitet_mesh_set_patch_type. Errors: INVALID_ARGUMENT (NULL; two labels with one name;
- *  boundary triangles that are not faces of the tets), UNSUPPORTED_FORMAT (another extension),
+ *  boundary triangles that are not faces of the tets), UNSUPPORTED_FORMAT (another extension;
+ *  a mesh with prism cells, anitet_mesh_get_prism_count > 0, to a format other than .vtu and
+ *  polyMesh: the message says so),
  *  FILE_NOT_FOUND (cannot create the file), NOT_IMPLEMENTED for .cgns or .exo when the library
  *  was built without CGNS or Exodus II. Nothing is written after an error. */
 ANITET_API int anitet_mesh_write(const anitet_mesh* mesh, const char* path);
@@ -454,6 +467,24 @@ ANITET_API int anitet_mesh_get_boundary_triangles(const anitet_mesh* mesh, int32
 /** Fills patch (patch_len >= num_boundary_triangles). */
 ANITET_API int anitet_mesh_get_boundary_patches(const anitet_mesh* mesh, int32_t* patch,
                                                 int64_t patch_len);
+/* Prism cells (a mesh of anitet_mesher_run with options->bl_cells ANITET_BL_CELLS_PRISMS): the
+ * mesh keeps every tet (anitet_mesh_get_tets, the quality, partition and field transfer work on
+ * them); anitet_mesh_write writes each boundary-layer prism's 3 tets as one prism cell instead,
+ * the other tets as tets (a BL tet with no exact prism, where a column stopped, stays a tet). */
+/** The number of prism cells into *num_prisms: 0 for a mesh without (bl_cells TETS, read or
+ * created from arrays). */
+ANITET_API int anitet_mesh_get_prism_count(const anitet_mesh* mesh, int64_t* num_prisms);
+/** Fills prisms (prisms_len >= 6*num_prisms) with indices counted from index_base: per prism the
+ * wall-side triangle a b c, then the triangle its columns reach, a' b' c' (edges a-a', b-b',
+ * c-c'); a b c is counter-clockwise seen from a' b' c', so the tet a b c a' is positive (VTK's
+ * wedge is a c b a' c' b'). */
+ANITET_API int anitet_mesh_get_prisms(const anitet_mesh* mesh, int32_t* prisms, int64_t prisms_len,
+                                      int32_t index_base);
+/** Fills tet_prism (tet_prism_len >= num_tets): per tet of anitet_mesh_get_tets, the prism it is
+ * one of the 3 tets of, counted from index_base, or -1 for a tet written as a tet. A prism's
+ * region is its tets'. */
+ANITET_API int anitet_mesh_get_tet_prisms(const anitet_mesh* mesh, int32_t* tet_prism,
+                                          int64_t tet_prism_len, int32_t index_base);
 /** Values per vertex of the mesh's metric: 0 (none), 1 (size) or 6 (xx xy yy xz yz zz). */
 ANITET_API int anitet_mesh_get_metric_components(const anitet_mesh* mesh, int32_t* components);
 /** Fills values (values_len >= components*num_points). */

@@ -450,7 +450,8 @@ static void test_options_v4_defaults(void** state) {
   assert_int_equal(anitet_options_init(&b, 4), ANITET_OK);
   assert_int_equal(b.version, 4);
   assert_int_equal(b.bl_num_slide_patches, 0);
-  assert_int_equal(b.reserved2, 0);
+  assert_int_equal(b.bl_cells, ANITET_BL_CELLS_TETS);
+  assert_int_equal(a.bl_cells, ANITET_BL_CELLS_TETS);
   assert_null(b.bl_slide_patches);
   assert_int_equal(a.bl_num_slide_patches, 0);
   assert_null(a.bl_slide_patches);
@@ -667,6 +668,129 @@ static void test_layers_run(void** state) {
   anitet_surface_destroy(s);
 }
 
+/* ---- bl_cells: prism cells ------------------------------------------------------------------ */
+
+/* The sphere's boundary layer as prism cells, on the cheapest run (2 layers, no refinement or
+ * optimization): the mesh keeps every tet, each prism is 3 of them, the .vtu and polyMesh get the
+ * prisms, a format of tets only refuses the mesh. */
+static void test_bl_cells_prisms(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  const int32_t walls[3] = {1, 2, 3};
+  anitet_options o = ANITET_OPTIONS_INIT;
+  anitet_run_stats st = ANITET_RUN_STATS_INIT;
+  anitet_mesh* m;
+  int64_t np = 0, nt = 0, nb = 0, nprisms = -1, i, kept = 0;
+  int32_t *tets, *regions, *prisms, *tet_prism, *count;
+  static char owner[1 << 12];
+  char path[4096], note[128];
+  (void)state;
+  o.bl_num_patches = 3, o.bl_patches = walls;
+  o.bl_first_height = 0.02, o.bl_growth = 1.25, o.bl_layers = 2;
+  o.refine = 0, o.optimize = 0, o.bl_cells = ANITET_BL_CELLS_PRISMS;
+  m = run_ok(s, &o);
+  assert_int_equal(anitet_mesh_get_counts(m, &np, &nt, &nb), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_run_stats(m, &st), ANITET_OK);
+  assert_int_equal(st.tets, nt); /* every tet kept */
+  assert_int_equal(anitet_mesh_get_prism_count(m, &nprisms), ANITET_OK);
+  assert_int_equal(nprisms, 2 * SPHERE_NTRI); /* every column full: one prism per wall triangle and layer */
+  tets = malloc((size_t)(4 * nt) * sizeof *tets), regions = malloc((size_t)nt * sizeof *regions);
+  prisms = malloc((size_t)(6 * nprisms) * sizeof *prisms), tet_prism = malloc((size_t)nt * sizeof *tet_prism);
+  count = calloc((size_t)nprisms, sizeof *count);
+  assert_int_equal(anitet_mesh_get_tets(m, tets, 4 * nt, 1), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_regions(m, regions, nt), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_prisms(m, prisms, 6 * nprisms, 1), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_tet_prisms(m, tet_prism, nt, 0), ANITET_OK);
+  for (i = 0; i < 6 * nprisms; ++i) assert_true(prisms[i] >= 1 && prisms[i] <= np);
+  /* Each prism is 3 tets of the boundary layer (region 1) whose vertices are the prism's. */
+  for (i = 0; i < nt; ++i) {
+    int k, j, p = tet_prism[i];
+    if (p < 0) {
+      ++kept;
+      continue;
+    }
+    assert_true(p < nprisms);
+    ++count[p];
+    assert_int_equal(regions[i], 1);
+    for (k = 0; k < 4; ++k) {
+      int found = 0;
+      for (j = 0; j < 6; ++j) found |= prisms[6 * p + j] == tets[4 * i + k];
+      assert_true(found);
+    }
+  }
+  for (i = 0; i < nprisms; ++i) assert_int_equal(count[i], 3);
+  assert_int_equal(kept, nt - 3 * nprisms);
+  /* Buffer and argument errors. */
+  assert_int_equal(anitet_mesh_get_prisms(m, prisms, 6 * nprisms - 1, 0), ANITET_ERR_BUFFER_TOO_SMALL);
+  assert_int_equal(anitet_mesh_get_prisms(m, prisms, 6 * nprisms, 2), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_get_tet_prisms(m, tet_prism, nt - 1, 0), ANITET_ERR_BUFFER_TOO_SMALL);
+  /* index_base 1: the same prisms counted from 1, -1 stays -1. */
+  for (i = 0; i < nt; ++i) tets[i] = tet_prism[i];
+  assert_int_equal(anitet_mesh_get_tet_prisms(m, tet_prism, nt, 1), ANITET_OK);
+  for (i = 0; i < nt; ++i) assert_int_equal(tet_prism[i], tets[i] < 0 ? -1 : tets[i] + 1);
+  assert_int_equal(anitet_mesh_get_prism_count(m, NULL), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_get_prism_count(NULL, &nprisms), ANITET_ERR_INVALID_ARGUMENT);
+  /* polyMesh: the prisms in place of their tets. */
+  snprintf(path, sizeof path, "%s/capi_bl_prisms/constant/polyMesh", ANITET_TEST_OUTPUT_DIR);
+  assert_int_equal(anitet_mesh_write(m, path), ANITET_OK);
+  snprintf(path, sizeof path, "%s/capi_bl_prisms/constant/polyMesh/owner", ANITET_TEST_OUTPUT_DIR);
+  assert_true(read_file(path, owner, sizeof owner) > 0);
+  snprintf(note, sizeof note, "nCells:%lld", (long long)(kept + nprisms));
+  if (!contains(owner, note)) fail_msg("no '%s' in:\n%s", note, owner);
+  /* .vtu: VTK_WEDGE (13) cells. */
+  snprintf(path, sizeof path, "%s/capi_bl_prisms.vtu", ANITET_TEST_OUTPUT_DIR);
+  assert_int_equal(anitet_mesh_write(m, path), ANITET_OK);
+  snprintf(note, sizeof note, "NumberOfCells=\"%lld\"", (long long)(kept + nprisms + nb));
+  assert_true(file_contains(path, note));
+  assert_true(file_contains(path, "13 13 13"));
+  /* A format of tets only: refused, nothing written. */
+  snprintf(path, sizeof path, "%s/capi_bl_prisms.mesh", ANITET_TEST_OUTPUT_DIR);
+  remove(path);
+  assert_int_equal(anitet_mesh_write(m, path), ANITET_ERR_UNSUPPORTED_FORMAT);
+  if (!contains(anitet_last_error_message(), "prisms"))
+    fail_msg("message '%s' lacks 'prisms'", anitet_last_error_message());
+  assert_false(file_contains(path, "Tetrahedra"));
+  free(tets), free(regions), free(prisms), free(tet_prism), free(count);
+  anitet_mesh_destroy(m);
+  anitet_surface_destroy(s);
+}
+
+/* A mesh without prism cells: 0 prisms, every tet -1. */
+static void test_bl_cells_tets(void** state) {
+  anitet_mesh* m = NULL;
+  int64_t nprisms = -1;
+  int32_t tet_prism[6] = {0, 0, 0, 0, 0, 0};
+  int i;
+  (void)state;
+  assert_int_equal(anitet_mesh_create(kCubeXyz, 8, (const int32_t[]){0, 1, 3, 4}, 1, NULL, NULL, 0, NULL, 0, &m),
+                   ANITET_OK);
+  assert_int_equal(anitet_mesh_get_prism_count(m, &nprisms), ANITET_OK);
+  assert_int_equal(nprisms, 0);
+  assert_int_equal(anitet_mesh_get_prisms(m, NULL, 0, 0), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_tet_prisms(m, tet_prism, 6, 1), ANITET_OK);
+  assert_int_equal(tet_prism[0], -1);
+  for (i = 1; i < 6; ++i) assert_int_equal(tet_prism[i], 0);
+  anitet_mesh_destroy(m);
+}
+
+/* bl_cells errors: an unknown value, prisms without walls (as `anitet mesh --bl-cells` without
+ * --bl-patches), prisms for stage 1 alone. */
+static void test_bl_cells_errors(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  const int32_t walls[3] = {1, 2, 3};
+  anitet_options o = ANITET_OPTIONS_INIT;
+  anitet_mesh* m = (anitet_mesh*)1;
+  (void)state;
+  o.bl_cells = 2;
+  expect_bad(s, &o, "bl_cells is 2");
+  o.bl_cells = ANITET_BL_CELLS_PRISMS;
+  expect_bad(s, &o, "needs boundary-layer walls");
+  o.bl_num_patches = 3, o.bl_patches = walls, o.bl_first_height = 0.02;
+  assert_int_equal(anitet_layers_run(s, &o, &m), ANITET_ERR_INVALID_ARGUMENT);
+  assert_null(m);
+  assert_true(contains(anitet_last_error_message(), "anitet_mesher_run"));
+  anitet_surface_destroy(s);
+}
+
 static void test_bl_first_height(void** state) {
   double h0 = 0.0;
   (void)state;
@@ -688,7 +812,8 @@ int main(void) {
       cmocka_unit_test(test_layers_run),          cmocka_unit_test(test_bl_first_height),
       cmocka_unit_test(test_patch_types),         cmocka_unit_test(test_options_v4_defaults),
       cmocka_unit_test(test_options_v3_caller),   cmocka_unit_test(test_slide_patches),
-      cmocka_unit_test(test_run_stats_v1_caller),
+      cmocka_unit_test(test_run_stats_v1_caller), cmocka_unit_test(test_bl_cells_prisms),
+      cmocka_unit_test(test_bl_cells_tets),       cmocka_unit_test(test_bl_cells_errors),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
