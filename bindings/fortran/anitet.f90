@@ -47,6 +47,9 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_RECOVERY_ALL = 0
   integer(c_int32_t), parameter, public :: ANITET_RECOVERY_SPLIT = 1
   integer(c_int32_t), parameter, public :: ANITET_RECOVERY_FUZZY = 2
+  ! options%bl_cells: the cells anitet_mesh_write writes the boundary layer as
+  integer(c_int32_t), parameter, public :: ANITET_BL_CELLS_TETS = 0
+  integer(c_int32_t), parameter, public :: ANITET_BL_CELLS_PRISMS = 1
   integer(c_int32_t), parameter, public :: ANITET_RUN_STATS_VERSION = 2
   integer(c_int32_t), parameter, public :: ANITET_QUALITY_VERSION = 1
   integer(c_int32_t), parameter, public :: ANITET_GEO_ENU = 0
@@ -139,7 +142,7 @@ module anitet
     integer(c_int32_t) :: reserved1
     ! version 4
     integer(c_int32_t) :: bl_num_slide_patches
-    integer(c_int32_t) :: reserved2
+    integer(c_int32_t) :: bl_cells  ! ANITET_BL_CELLS_TETS (default) or ANITET_BL_CELLS_PRISMS
     ! The slide patch labels: as bl_patches (or pass bl_slide_patches= to anitet_mesher_run).
     type(c_ptr) :: bl_slide_patches
   end type
@@ -265,6 +268,7 @@ module anitet
   public :: c_anitet_mesh_set_patch_name, c_anitet_mesh_get_run_stats, c_anitet_mesh_run_json
   public :: c_anitet_mesh_sample_metric, c_anitet_mesh_quality, c_anitet_mesh_quality_json
   public :: c_anitet_mesh_set_patch_type, c_anitet_mesh_get_patch_type
+  public :: c_anitet_mesh_get_prism_count, c_anitet_mesh_get_prisms, c_anitet_mesh_get_tet_prisms
   public :: c_anitet_fields_create, c_anitet_fields_read, c_anitet_fields_write, c_anitet_fields_destroy
   public :: c_anitet_fields_get_counts, c_anitet_fields_get_kinds, c_anitet_fields_get_values
   public :: c_anitet_fields_get_data, c_anitet_mesh_transfer_fields, c_anitet_fields_get_transfer_report
@@ -571,6 +575,31 @@ module anitet
       type(c_ptr), value :: mesh
       integer(c_int32_t), intent(out) :: patch(*)
       integer(c_int64_t), value :: patch_len
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_prism_count(mesh, num_prisms) &
+        bind(c, name="anitet_mesh_get_prism_count")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int64_t), intent(out) :: num_prisms
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_prisms(mesh, prisms, prisms_len, index_base) &
+        bind(c, name="anitet_mesh_get_prisms")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), intent(out) :: prisms(*)
+      integer(c_int64_t), value :: prisms_len
+      integer(c_int32_t), value :: index_base
+    end function
+
+    integer(c_int) function c_anitet_mesh_get_tet_prisms(mesh, tet_prism, tet_prism_len, &
+        index_base) bind(c, name="anitet_mesh_get_tet_prisms")
+      import :: c_int, c_int32_t, c_int64_t, c_ptr
+      type(c_ptr), value :: mesh
+      integer(c_int32_t), intent(out) :: tet_prism(*)
+      integer(c_int64_t), value :: tet_prism_len
+      integer(c_int32_t), value :: index_base
     end function
 
     integer(c_int) function c_anitet_mesh_get_metric_components(mesh, components) &
@@ -1152,6 +1181,7 @@ module anitet
   public :: anitet_mesh_quality_json, anitet_mesh_set_patch_name, anitet_mesh_get_run_stats
   public :: anitet_mesh_run_json, anitet_mesh_sample_metric
   public :: anitet_mesh_set_patch_type, anitet_mesh_get_patch_type
+  public :: anitet_mesh_get_prism_count, anitet_mesh_get_prisms, anitet_mesh_get_tet_prisms
   public :: anitet_fields_create, anitet_fields_read, anitet_fields_write, anitet_fields_destroy
   public :: anitet_fields_get_counts, anitet_fields_get_kinds, anitet_fields_get_values
   public :: anitet_fields_get_data, anitet_mesh_transfer_fields, anitet_fields_get_transfer_report
@@ -1695,6 +1725,40 @@ contains
     if (rc /= ANITET_OK) return
     allocate(patch(nb))
     rc = c_anitet_mesh_get_boundary_patches(mesh, patch, size(patch, kind=c_int64_t))
+  end function
+
+  ! Prism cells (options%bl_cells = ANITET_BL_CELLS_PRISMS): how many (0 without).
+  integer function anitet_mesh_get_prism_count(mesh, num_prisms) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int64_t), intent(out) :: num_prisms
+    rc = c_anitet_mesh_get_prism_count(mesh, num_prisms)
+  end function
+
+  ! prisms(6, num_prisms): the wall-side triangle, then the one its columns reach; 1-based
+  ! unless index_base = 0.
+  integer function anitet_mesh_get_prisms(mesh, prisms, index_base) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: prisms(:, :)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: n
+    rc = c_anitet_mesh_get_prism_count(mesh, n)
+    if (rc /= ANITET_OK) return
+    allocate(prisms(6, n))
+    rc = c_anitet_mesh_get_prisms(mesh, prisms, size(prisms, kind=c_int64_t), base_of(index_base))
+  end function
+
+  ! tet_prism(num_tets): per tet, the prism it is one of the 3 tets of, or
+  ! -1 for a tet written as a tet; 1-based unless index_base = 0.
+  integer function anitet_mesh_get_tet_prisms(mesh, tet_prism, index_base) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    integer(c_int32_t), allocatable, intent(out) :: tet_prism(:)
+    integer, intent(in), optional :: index_base
+    integer(c_int64_t) :: np, nt, nb
+    rc = c_anitet_mesh_get_counts(mesh, np, nt, nb)
+    if (rc /= ANITET_OK) return
+    allocate(tet_prism(nt))
+    rc = c_anitet_mesh_get_tet_prisms(mesh, tet_prism, size(tet_prism, kind=c_int64_t), &
+                                      base_of(index_base))
   end function
 
   integer function anitet_mesh_get_metric_components(mesh, components) result(rc)

@@ -5,7 +5,8 @@
 ! versions 3 and 4, a boundary layer on the sphere inside a box and the run's report, patch names;
 ! stage 1 alone, y+ to a first height, the surface's sizing field written and read back, a
 ! metric sampled on a mesh and read on a mesh in memory, geographic frames; a boundary layer
-! sliding along a pipe's caps, patch types, per-vertex fields and their transfer.
+! sliding along a pipe's caps, patch types, per-vertex fields and their transfer, the boundary
+! layer as prism cells.
 ! Argument 1: the tests' data directory (tests/data).
 ! The analytic metric of check_sample_metric: a bind(c) procedure of a module, for c_funloc.
 module test_fortran_metrics
@@ -58,6 +59,7 @@ program test_fortran
   call check_slide_patches()
   call check_patch_types(trim(data_dir) // "/io/box.mesh")
   call check_fields(trim(data_dir) // "/io/box.mesh")
+  call check_bl_prisms()
 
   if (failures > 0) then
     print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
@@ -473,7 +475,7 @@ contains
     type(anitet_run_stats_t) :: st
     call check(anitet_options_init(o) == ANITET_OK, "options v4")
     call check(o%version == 4, "options v4: version")
-    call check(o%bl_num_slide_patches == 0 .and. o%reserved2 == 0 .and. &
+    call check(o%bl_num_slide_patches == 0 .and. o%bl_cells == ANITET_BL_CELLS_TETS .and. &
                .not. c_associated(o%bl_slide_patches), "options v4: no slide patches")
     call check(o%attempts_seconds == 240d0 .and. o%retry_layer_counts == 1 .and. &
                o%recovery == ANITET_RECOVERY_ALL, "options v3: attempts, retries, recovery")
@@ -495,6 +497,63 @@ contains
 
   ! The sphere (patches 1-3) inside the box [-3, 3]^3 (patch 4) with a boundary layer on the
   ! sphere: the walls given as a c_loc, then through bl_patches=; the report; patch names.
+  ! The sphere's boundary layer as prism cells (options%bl_cells), on the cheapest run: each
+  ! prism is 3 of the mesh's tets; polyMesh gets them, a format of tets only refuses the mesh.
+  subroutine check_bl_prisms()
+    real(c_double) :: xyz(3, SPHERE_IN_BOX_NPOINTS)
+    integer(c_int32_t) :: tri(3, SPHERE_IN_BOX_NTRI), patch(SPHERE_IN_BOX_NTRI)
+    type(c_ptr) :: surface, mesh
+    type(anitet_options_t) :: o
+    integer(c_int64_t) :: np, nt, nb, nprisms
+    integer(c_int32_t), allocatable :: tets(:, :), prisms(:, :), tet_prism(:)
+    integer :: t, k, p
+    logical :: inside
+    character(len=:), allocatable :: owner
+    character(len=64) :: note
+    call sphere_in_box_build(xyz, tri, patch)
+    call check(anitet_surface_create(xyz, tri, surface, patch) == ANITET_OK, "prisms: sphere in box")
+    call check(anitet_options_init(o) == ANITET_OK, "prisms: options")
+    o%bl_first_height = 0.02d0
+    o%bl_layers = 2
+    o%refine = 0
+    o%optimize = 0
+    o%bl_cells = ANITET_BL_CELLS_PRISMS
+    call check(anitet_mesher_run(surface, mesh, options=o) == ANITET_ERR_INVALID_ARGUMENT, &
+               "prisms without walls refused")
+    call check(index(anitet_last_error_message(), "needs boundary-layer walls") > 0, &
+               "prisms without walls: the message")
+    call check(anitet_mesher_run(surface, mesh, options=o, bl_patches=[1, 2, 3]) == ANITET_OK, &
+               "prisms: run")
+    call check(anitet_mesh_get_counts(mesh, np, nt, nb) == ANITET_OK, "prisms: counts")
+    call check(anitet_mesh_get_prism_count(mesh, nprisms) == ANITET_OK .and. &
+               nprisms == 2 * SPHERE_NTRI, "prisms: one per wall triangle and layer")
+    call check(anitet_mesh_get_tets(mesh, tets) == ANITET_OK, "prisms: tets")
+    call check(anitet_mesh_get_prisms(mesh, prisms) == ANITET_OK, "prisms: get")
+    call check(anitet_mesh_get_tet_prisms(mesh, tet_prism) == ANITET_OK, "prisms: tet_prism")
+    call check(size(prisms, 2) == nprisms .and. size(tet_prism) == nt .and. &
+               count(tet_prism > 0) == 3 * nprisms .and. count(tet_prism == -1) == nt - 3 * nprisms, &
+               "prisms: 3 tets each")
+    inside = .true.
+    do t = 1, int(nt)
+      p = tet_prism(t)
+      if (p < 1) cycle
+      do k = 1, 4
+        inside = inside .and. any(prisms(:, p) == tets(k, t))  ! both 1-based
+      end do
+    end do
+    call check(inside, "prisms: each tet's vertices are its prism's")
+    call check(anitet_mesh_write(mesh, "fortran_prisms/constant/polyMesh") == ANITET_OK, &
+               "prisms: write polyMesh")
+    owner = file_text("fortran_prisms/constant/polyMesh/owner")
+    write(note, '(a, i0)') "nCells:", nt - 2 * nprisms
+    call check(index(owner, trim(note)) > 0, "prisms: polyMesh cells")
+    call check(anitet_mesh_write(mesh, "fortran_prisms.su2") == ANITET_ERR_UNSUPPORTED_FORMAT, &
+               "prisms: .su2 refused")
+    call check(index(anitet_last_error_message(), "prisms") > 0, "prisms: .su2 refused, the message")
+    call anitet_mesh_destroy(mesh)
+    call anitet_surface_destroy(surface)
+  end subroutine
+
   subroutine check_boundary_layer()
     real(c_double) :: xyz(3, SPHERE_IN_BOX_NPOINTS)
     integer(c_int32_t) :: tri(3, SPHERE_IN_BOX_NTRI), patch(SPHERE_IN_BOX_NTRI)
