@@ -5,6 +5,7 @@ Environment: PYTHONPATH with bindings/python, ANITET_LIBRARY (the built library)
 ANITET_TEST_DATA_DIR (tests/data), ANITET_METRIC_VDB_DIR (the .vdb files of the fixture
 make_metric_vdb; optional). ANITET_PYTHON_NUMPY=0 runs the same tests without NumPy.
 """
+import collections
 import ctypes
 import os
 import re
@@ -58,7 +59,7 @@ class HeaderDrift(unittest.TestCase):
                    r"VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|RUN_STATS_VERSION|"
                    r"PARTITION_[A-Z]+_VERSION|"
                    r"HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+|"
-                   r"PATCH_TYPE_[A-Z_]+|FIELD_KIND_[A-Z_]+|TENSORS_[A-Z_]+)) \(?(-?\d+)\)?")
+                   r"PATCH_TYPE_[A-Z_]+|FIELD_KIND_[A-Z_]+|TENSORS_[A-Z_]+|BL_CELLS_[A-Z]+)) \(?(-?\d+)\)?")
         found = re.findall(pattern, self.header)
         self.assertGreater(len(found), 25)
         for name, value in found:
@@ -104,7 +105,7 @@ class HeaderDrift(unittest.TestCase):
         c = _capi.COptions()
         self.assertEqual(_capi.lib.anitet_options_init(ctypes.byref(c), _capi.OPTIONS_VERSION), 0)
         python = anitet.Options()
-        skip = ("version", "reserved0", "reserved1", "reserved2", "progress", "progress_user_data", "log",
+        skip = ("version", "reserved0", "reserved1", "progress", "progress_user_data", "log",
                 "log_user_data", "bl_num_patches", "bl_patches", "bl_num_slide_patches", "bl_slide_patches")
         for name, _ in _capi.COptions._fields_:
             if name not in skip:
@@ -442,6 +443,55 @@ class BoundaryLayers(unittest.TestCase):
             with self.assertRaises(anitet.AnitetError) as e:
                 anitet.bl_first_height(*args)
             self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+
+
+class BlCells(unittest.TestCase):
+    """Options.bl_cells "prisms": the sphere's boundary layer as prism cells, on the cheapest run
+    (2 layers, no refinement or optimization)."""
+
+    def test_prisms(self):
+        surface = anitet.Surface.from_arrays(*boundary_layer.sphere_in_box())
+        mesh = surface.mesh(bl_patches=[1, 2, 3], bl_first_height=0.02, bl_layers=2, refine=False,
+                            optimize=False, bl_cells="prisms")
+        nt = mesh.num_tets
+        self.assertEqual(mesh.run_stats.tets, nt)  # the mesh keeps every tet
+        self.assertEqual(mesh.num_prisms, 2 * mesh_sphere.NTRI)
+        prisms, tets, regions = rows(mesh.prisms()), rows(mesh.tets()), list(mesh.regions())
+        tet_prism = list(mesh.tet_prisms())
+        self.assertEqual(len(tet_prism), nt)
+        for t, p in enumerate(tet_prism):
+            if p >= 0:
+                self.assertTrue(set(tets[t]) <= set(prisms[p]), t)
+                self.assertEqual(regions[t], 1)
+        self.assertEqual(sorted(collections.Counter(p for p in tet_prism if p >= 0).values()),
+                         [3] * mesh.num_prisms)
+        self.assertEqual(list(mesh.tet_prisms(index_base=1)), [p + 1 if p >= 0 else -1 for p in tet_prism])
+        self.assertEqual(rows(mesh.prisms(index_base=1))[0], tuple(v + 1 for v in prisms[0]))
+        with tempfile.TemporaryDirectory() as tmp:
+            foam = os.path.join(tmp, "case", "constant", "polyMesh")
+            mesh.write(foam)
+            with open(os.path.join(foam, "owner")) as f:
+                self.assertIn("nCells:%d " % (nt - 2 * mesh.num_prisms), f.read())
+            with self.assertRaises(anitet.AnitetError) as caught:
+                mesh.write(os.path.join(tmp, "bl.mesh"))
+            self.assertEqual(caught.exception.code, anitet.ERR_UNSUPPORTED_FORMAT)
+            self.assertIn("prisms", str(caught.exception))
+            self.assertFalse(os.path.exists(os.path.join(tmp, "bl.mesh")))
+
+    def test_errors(self):
+        surface = anitet.Surface.from_arrays(*boundary_layer.sphere_in_box())
+        with self.assertRaises(anitet.AnitetError) as caught:
+            surface.mesh(bl_cells="prisms")
+        self.assertEqual(caught.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        self.assertIn("needs boundary-layer walls", str(caught.exception))
+        with self.assertRaises(ValueError):
+            surface.mesh(bl_patches=[1, 2, 3], bl_first_height=0.02, bl_cells="hexes")
+        with self.assertRaises(anitet.AnitetError) as caught:
+            anitet.build_layers(surface, bl_patches=[1, 2, 3], bl_first_height=0.02, bl_cells="prisms")
+        self.assertIn("anitet_mesher_run", str(caught.exception))
+        mesh = anitet.Mesh.from_arrays([CUBE_POINTS[i] for i in (0, 1, 3, 4)], [(0, 1, 2, 3)])
+        self.assertEqual((mesh.num_prisms, len(mesh.prisms())), (0, 0))
+        self.assertEqual(list(mesh.tet_prisms()), [-1])
 
 
 class Metrics(unittest.TestCase):

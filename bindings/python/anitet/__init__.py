@@ -19,7 +19,7 @@ of this package, then the system's loader (libanitet.so.0). NumPy is optional.
     tri = anitet.mesh2d(lake, hsize=0.01)                  # every segment kept whole
     print(tri.counts(), tri.quality())
 """
-from ._capi import (ERR_BAD_INDEX, ERR_BUFFER_TOO_SMALL, ERR_CANCELLED, ERR_DEGENERATE_TRIANGLE,
+from ._capi import (BL_CELLS_PRISMS, BL_CELLS_TETS, ERR_BAD_INDEX, ERR_BUFFER_TOO_SMALL, ERR_CANCELLED, ERR_DEGENERATE_TRIANGLE,
                     ERR_DUPLICATE_POINT, ERR_DUPLICATE_TRIANGLE, ERR_EMPTY_INPUT,
                     ERR_FILE_NOT_FOUND, ERR_INCONSISTENT_ORIENTATION, ERR_INTERNAL,
                     ERR_INTERSECTING_SHELLS, ERR_INVALID_ARGUMENT, ERR_INVALID_MESH,
@@ -41,7 +41,7 @@ from ._capi import (PART_BOUNDARY_GLOBAL_IDS, PART_BOUNDARY_PATCHES, PART_BOUNDA
                     PART_TET_SEND_OFFSETS, PART_TETS, PART_VERTEX_GLOBAL_IDS, PART_VERTEX_OWNERS,
                     PART_VERTEX_RECV, PART_VERTEX_RECV_OFFSETS, PART_VERTEX_SEND,
                     PART_VERTEX_SEND_OFFSETS)
-from ._api import (HAVE_NUMPY, PATCH_TYPES, AnitetError, Mesh, Metric, Options, PatchNames, Quality,
+from ._api import (BL_CELLS, HAVE_NUMPY, PATCH_TYPES, AnitetError, Mesh, Metric, Options, PatchNames, Quality,
                    RunStats, Surface, bl_first_height, build_layers, error_name, mesh_surface,
                    version, version_number, Pslg, Mesh2d, mesh2d)
 from ._geo import GeoFrame

@@ -205,6 +205,10 @@ class Options:
     Version 4: bl_slide_patches, the patch labels the walls meet that the layers' columns may
     slide along (a pipe's inlet and outlet, a symmetry plane; `anitet mesh --bl-slide-patches`),
     as bl_patches. Those patches are triangulated again where the layers slide on them.
+    bl_cells: "tets" (BL_CELLS_TETS, the default) or "prisms" (BL_CELLS_PRISMS; `anitet mesh
+    --bl-cells prisms`, needs bl_patches): Mesh.write() writes each boundary-layer prism as one
+    prism cell instead of its 3 tets, to .vtu and OpenFOAM polyMesh only (another format raises
+    ERR_UNSUPPORTED_FORMAT); the mesh keeps its tets (Mesh.prisms(), Mesh.tet_prisms()).
     """
 
     def __init__(self, num_threads=0, merge_duplicate_vertices=True, orient_shells=True,
@@ -213,7 +217,8 @@ class Options:
                  progress=None, log=None, *, attempts_seconds=240.0, retry_layer_counts=True,
                  recovery=_capi.RECOVERY_ALL, hmin=0.0, hmax=0.0, hgrad=0.0, max_tets=0.0,
                  anisotropic_cycles=2, bl_patches=(), bl_first_height=0.0, bl_growth=1.2,
-                 bl_layers=10, bl_sizing=False, push_tasks_min_vertices=2000, bl_slide_patches=()):
+                 bl_layers=10, bl_sizing=False, push_tasks_min_vertices=2000, bl_slide_patches=(),
+                 bl_cells=_capi.BL_CELLS_TETS):
         self.num_threads = num_threads
         self.merge_duplicate_vertices = merge_duplicate_vertices
         self.orient_shells = orient_shells
@@ -241,6 +246,7 @@ class Options:
         self.bl_sizing = bl_sizing
         self.push_tasks_min_vertices = push_tasks_min_vertices
         self.bl_slide_patches = bl_slide_patches
+        self.bl_cells = bl_cells
 
 
 class _CallbackScope:
@@ -275,6 +281,7 @@ class _CallbackScope:
         s.bl_layers = options.bl_layers
         s.bl_sizing = int(bool(options.bl_sizing))
         s.push_tasks_min_vertices = options.push_tasks_min_vertices
+        s.bl_cells = _bl_cells(options.bl_cells)
         # self._walls and self._slides own the memory behind the label pointers until the call
         # returns.
         self._walls, pointer, count = _labels(options.bl_patches, "bl_patches")
@@ -317,6 +324,19 @@ class _CallbackScope:
         if self.error is not None:
             raise self.error
         _check(rc)
+
+
+BL_CELLS = ("tets", "prisms")  # names of the BL_CELLS_* values, in order
+
+
+def _bl_cells(value):
+    """An Options.bl_cells as its BL_CELLS_* value (a name of BL_CELLS, or the value itself)."""
+    if isinstance(value, str):
+        try:
+            return BL_CELLS.index(value.lower())
+        except ValueError:
+            raise ValueError("unknown bl_cells %r (one of %s)" % (value, ", ".join(BL_CELLS))) from None
+    return value
 
 
 def _labels(labels, what):
@@ -721,6 +741,25 @@ class Mesh(_Handle):
     def regions(self):
         return _output(self.num_tets, 1, c_int32,
                        lambda p, n: lib.anitet_mesh_get_regions(self, p, n))
+
+    @property
+    def num_prisms(self):
+        """Prism cells (Options.bl_cells "prisms"): how many; 0 for a mesh without."""
+        n = c_int64()
+        _check(lib.anitet_mesh_get_prism_count(self, byref(n)))
+        return n.value
+
+    def prisms(self, index_base=0):
+        """The prism cells write() writes in place of their tets, num_prisms x 6: the wall-side
+        triangle a b c, then a' b' c' where its columns reach (edges a-a', b-b', c-c')."""
+        b = _base(index_base)
+        return _output(self.num_prisms, 6, c_int32, lambda p, n: lib.anitet_mesh_get_prisms(self, p, n, b))
+
+    def tet_prisms(self, index_base=0):
+        """Per tet of tets(), the prism it is one of the 3 tets of (counted from index_base), or -1
+        for a tet written as a tet."""
+        b = _base(index_base)
+        return _output(self.num_tets, 1, c_int32, lambda p, n: lib.anitet_mesh_get_tet_prisms(self, p, n, b))
 
     def boundary_triangles(self, index_base=0):
         b = _base(index_base)

@@ -51,6 +51,8 @@ LAYERS_FACE_PUSH = 1
 RECOVERY_ALL = 0
 RECOVERY_SPLIT = 1
 RECOVERY_FUZZY = 2
+BL_CELLS_TETS = 0
+BL_CELLS_PRISMS = 1
 GEO_ENU = 0
 GEO_UTM = 1
 PATCH_TYPE_FROM_NAME = -1
@@ -141,7 +143,7 @@ class COptions(Structure):
         ("reserved1", c_int32),
         # version 4
         ("bl_num_slide_patches", c_int32),
-        ("reserved2", c_int32),
+        ("bl_cells", c_int32),
         ("bl_slide_patches", POINTER(c_int32)),
     ]
 
@@ -298,6 +300,9 @@ _PROTOTYPES = {
     "anitet_mesh_write_metric": (c_int, [_P, c_char_p]),
     "anitet_mesh_get_counts": (c_int, [_P, _I64, _I64, _I64]),
     "anitet_mesh_get_points": (c_int, [_P, _D, c_int64]),
+    "anitet_mesh_get_prism_count": (c_int, [_P, _I64]),
+    "anitet_mesh_get_prisms": (c_int, [_P, _I32, c_int64, c_int32]),
+    "anitet_mesh_get_tet_prisms": (c_int, [_P, _I32, c_int64, c_int32]),
     "anitet_mesh_get_tets": (c_int, [_P, _I32, c_int64, c_int32]),
     "anitet_mesh_get_regions": (c_int, [_P, _I32, c_int64]),
     "anitet_mesh_get_boundary_triangles": (c_int, [_P, _I32, c_int64, c_int32]),
