@@ -680,7 +680,7 @@ static void test_bl_cells_prisms(void** state) {
   anitet_run_stats st = ANITET_RUN_STATS_INIT;
   anitet_mesh* m;
   int64_t np = 0, nt = 0, nb = 0, nprisms = -1, i, kept = 0;
-  int32_t *tets, *regions, *prisms, *tet_prism, *count;
+  int32_t *tets, *regions, *prisms, *tet_prism, *tet_prism0, *count;
   static char owner[1 << 12];
   char path[4096], note[128];
   (void)state;
@@ -695,7 +695,7 @@ static void test_bl_cells_prisms(void** state) {
   assert_int_equal(nprisms, 2 * SPHERE_NTRI); /* every column full: one prism per wall triangle and layer */
   tets = malloc((size_t)(4 * nt) * sizeof *tets), regions = malloc((size_t)nt * sizeof *regions);
   prisms = malloc((size_t)(6 * nprisms) * sizeof *prisms), tet_prism = malloc((size_t)nt * sizeof *tet_prism);
-  count = calloc((size_t)nprisms, sizeof *count);
+  count = calloc((size_t)nprisms, sizeof *count), tet_prism0 = malloc((size_t)nt * sizeof *tet_prism0);
   assert_int_equal(anitet_mesh_get_tets(m, tets, 4 * nt, 1), ANITET_OK);
   assert_int_equal(anitet_mesh_get_regions(m, regions, nt), ANITET_OK);
   assert_int_equal(anitet_mesh_get_prisms(m, prisms, 6 * nprisms, 1), ANITET_OK);
@@ -724,9 +724,9 @@ static void test_bl_cells_prisms(void** state) {
   assert_int_equal(anitet_mesh_get_prisms(m, prisms, 6 * nprisms, 2), ANITET_ERR_INVALID_ARGUMENT);
   assert_int_equal(anitet_mesh_get_tet_prisms(m, tet_prism, nt - 1, 0), ANITET_ERR_BUFFER_TOO_SMALL);
   /* index_base 1: the same prisms counted from 1, -1 stays -1. */
-  for (i = 0; i < nt; ++i) tets[i] = tet_prism[i];
+  memcpy(tet_prism0, tet_prism, (size_t)nt * sizeof *tet_prism);
   assert_int_equal(anitet_mesh_get_tet_prisms(m, tet_prism, nt, 1), ANITET_OK);
-  for (i = 0; i < nt; ++i) assert_int_equal(tet_prism[i], tets[i] < 0 ? -1 : tets[i] + 1);
+  for (i = 0; i < nt; ++i) assert_int_equal(tet_prism[i], tet_prism0[i] < 0 ? -1 : tet_prism0[i] + 1);
   assert_int_equal(anitet_mesh_get_prism_count(m, NULL), ANITET_ERR_INVALID_ARGUMENT);
   assert_int_equal(anitet_mesh_get_prism_count(NULL, &nprisms), ANITET_ERR_INVALID_ARGUMENT);
   /* polyMesh: the prisms in place of their tets. */
@@ -749,7 +749,7 @@ static void test_bl_cells_prisms(void** state) {
   if (!contains(anitet_last_error_message(), "prisms"))
     fail_msg("message '%s' lacks 'prisms'", anitet_last_error_message());
   assert_false(file_contains(path, "Tetrahedra"));
-  free(tets), free(regions), free(prisms), free(tet_prism), free(count);
+  free(tets), free(regions), free(prisms), free(tet_prism), free(tet_prism0), free(count);
   anitet_mesh_destroy(m);
   anitet_surface_destroy(s);
 }
