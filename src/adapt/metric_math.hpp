@@ -1,0 +1,58 @@
+// The measures adaptation works with, those of the UGAWG benchmark (Ibanez et al. 2017, and
+// /work/shared/data/ugawg/SOURCES.md), so that what the operations aim at is what is measured:
+//   - edge length: l = (la - lb) / ln(la / lb) (la, lb: the length in the metric at either end;
+//     the exact length when the size varies linearly along the edge), (la + lb) / 2 when they
+//     are within 1e-3;
+//   - tet quality: the mean ratio (V_M / V_eq)^(2/3) / mean(l_M^2) in the metric M of the corner
+//     with the largest det M (the finest), 1 for the regular tet of the metric, <= 0 when flat or
+//     inverted.
+// Metrics are 6 doubles xx xy yy xz yz zz.
+#pragma once
+
+#include <cmath>
+
+namespace anitet::adapt {
+
+inline double quad_form(const double m[6], const double v[3]) {
+  return m[0] * v[0] * v[0] + m[2] * v[1] * v[1] + m[5] * v[2] * v[2] +
+         2.0 * (m[1] * v[0] * v[1] + m[3] * v[0] * v[2] + m[4] * v[1] * v[2]);
+}
+
+inline double metric_det(const double m[6]) {
+  // | xx xy xz ; xy yy yz ; xz yz zz |
+  return m[0] * (m[2] * m[5] - m[4] * m[4]) - m[1] * (m[1] * m[5] - m[4] * m[3]) +
+         m[3] * (m[1] * m[4] - m[2] * m[3]);
+}
+
+// Length from the two end lengths (see the top).
+inline double combine_lengths(double la, double lb) {
+  const double d = la - lb;
+  if (std::fabs(d) <= 1e-3) return 0.5 * (la + lb);
+  return d / std::log(la / lb);
+}
+
+inline double edge_length(const double* pa, const double* pb, const double ma[6], const double mb[6]) {
+  const double v[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+  return combine_lengths(std::sqrt(quad_form(ma, v)), std::sqrt(quad_form(mb, v)));
+}
+
+// Mean ratio of (a b c d) in the metric m of determinant det_m (see the top).
+inline double mean_ratio(const double* a, const double* b, const double* c, const double* d, const double m[6],
+                         double det_m) {
+  const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double ad[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  const double vol6 = ab[0] * (ac[1] * ad[2] - ac[2] * ad[1]) - ab[1] * (ac[0] * ad[2] - ac[2] * ad[0]) +
+                      ab[2] * (ac[0] * ad[1] - ac[1] * ad[0]);
+  if (!(vol6 > 0.0) || !(det_m > 0.0)) return vol6 > 0.0 ? 0.0 : -1.0;
+  const double bc[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+  const double bd[3] = {d[0] - b[0], d[1] - b[1], d[2] - b[2]};
+  const double cd[3] = {d[0] - c[0], d[1] - c[1], d[2] - c[2]};
+  const double l2 = quad_form(m, ab) + quad_form(m, ac) + quad_form(m, ad) + quad_form(m, bc) + quad_form(m, bd) +
+                    quad_form(m, cd);
+  // V_eq = 1 / (6 sqrt 2): (V sqrt(det) / V_eq)^(2/3) = (vol6 sqrt(2 det))^(2/3).
+  const double x = vol6 * std::sqrt(2.0 * det_m);
+  return 6.0 * std::cbrt(x * x) / l2;
+}
+
+}  // namespace anitet::adapt

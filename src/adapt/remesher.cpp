@@ -1,0 +1,165 @@
+#include "adapt/remesher.hpp"
+
+#include <algorithm>
+
+#include "adapt/surface_geometry.hpp"
+
+namespace anitet::adapt {
+
+double Remesher::quality(const uint32_t v[4], uint32_t moved, const double* pos, const double* met, double det) const {
+  const double* p[4];
+  const double* m = nullptr;
+  double best = -1.0;
+  for (int i = 0; i < 4; ++i) {
+    double d;
+    const double* mi;
+    if (v[i] == moved) {
+      p[i] = pos;
+      d = det;
+      mi = met;
+    } else {
+      p[i] = mesh_.p(v[i]);
+      d = mesh_.mdet[v[i]];
+      mi = mesh_.m(v[i]);
+    }
+    if (d > best) best = d, m = mi;
+  }
+  return mean_ratio(p[0], p[1], p[2], p[3], m, best);
+}
+
+const double* Remesher::side_normal(uint32_t v, const double face_n[3]) const {
+  const uint8_t tag = mesh_.tag[v];
+  if (tag & ptag::kFrozen) return face_n;
+  const double* n1 = &mesh_.nrm[3 * size_t(v)];
+  if (!(tag & ptag::kRidge)) return n1;
+  const double* n2 = &mesh_.nrm2[3 * size_t(v)];
+  return std::fabs(geom::dot(n1, face_n)) >= std::fabs(geom::dot(n2, face_n)) ? n1 : n2;
+}
+
+void Remesher::collect_edges(double below, double above, std::vector<EdgeRec>& out) {
+  out.clear();
+  std::vector<uint32_t>& ball = ball2_;
+  for (uint32_t v = 0; v < mesh_.num_points(); ++v) {
+    if (mesh_.tag[v] & ptag::kRemoved) continue;
+    mesh_.ball(v, ball);
+    // ball() raised the stamp: points marked with it are seen for v.
+    for (uint32_t t : ball) {
+      const uint32_t* w = mesh_.verts(t);
+      for (int i = 0; i < 4; ++i) {
+        const uint32_t x = w[i];
+        if (x <= v || mesh_.point_marked(x)) continue;
+        mesh_.mark_point(x);
+        const double l = length(v, x);
+        if (l < below || l > above) out.push_back({l, v, x, t});
+      }
+    }
+  }
+}
+
+bool Remesher::replace(const std::vector<uint32_t>& old, const std::vector<TetVerts>& fresh, bool surface_change,
+                       int32_t surface_label) {
+  if (old.empty() || fresh.empty()) return false;
+  const int32_t region = mesh_.region[old[0]];
+  mesh_.next_stamp();
+  for (uint32_t t : old) {
+    if (mesh_.region[t] != region) return false;
+    mesh_.mark_tet(t);
+  }
+  match_.clear();
+  outer_.clear();
+  auto key_of = [](uint32_t x, uint32_t y, uint32_t z) {
+    std::array<uint32_t, 3> k = {x, y, z};
+    if (k[0] > k[1]) std::swap(k[0], k[1]);
+    if (k[1] > k[2]) std::swap(k[1], k[2]);
+    if (k[0] > k[1]) std::swap(k[0], k[1]);
+    return k;
+  };
+  for (uint32_t t : old) {
+    const uint32_t* w = mesh_.verts(t);
+    for (int i = 0; i < 4; ++i) {
+      const uint32_t a = mesh_.adj[4 * size_t(t) + i];
+      if (a != kNone && mesh_.tet_marked(adj_tet(a))) {
+        if (mesh_.is_bnd_face(t, i)) return false;  // an inner boundary face would vanish
+        continue;
+      }
+      match_.push_back({key_of(w[kFaceVertex[i][0]], w[kFaceVertex[i][1]], w[kFaceVertex[i][2]]),
+                        uint32_t(outer_.size()), false});
+      outer_.push_back({a, mesh_.is_bnd_face(t, i), mesh_.fref[4 * size_t(t) + i]});
+    }
+  }
+  for (uint32_t n = 0; n < fresh.size(); ++n)
+    for (int i = 0; i < 4; ++i) {
+      const TetVerts& w = fresh[n];
+      match_.push_back({key_of(w[size_t(kFaceVertex[i][0])], w[size_t(kFaceVertex[i][1])], w[size_t(kFaceVertex[i][2])]),
+                        4 * n + uint32_t(i), true});
+    }
+  std::sort(match_.begin(), match_.end(), [](const FaceMatch& x, const FaceMatch& y) {
+    return x.key != y.key ? x.key < y.key : x.is_new < y.is_new;
+  });
+  // Validate: pairs (old, new) or (new, new); alone: a new hull face or a vanishing old hull face
+  // of a surface change.
+  size_t new_alone = 0, old_alone = 0;
+  for (size_t k = 0; k < match_.size();) {
+    size_t e = k + 1;
+    while (e < match_.size() && match_[e].key == match_[k].key) ++e;
+    if (e - k > 2) return false;
+    if (e - k == 2) {
+      if (!match_[k + 1].is_new) return false;
+    } else if (!surface_change) {
+      return false;
+    } else if (match_[k].is_new) {
+      ++new_alone;
+    } else {
+      const OuterFace& f = outer_[match_[k].src];
+      if (f.adj != kNone || !f.bnd) return false;
+      ++old_alone;
+    }
+    k = e;
+  }
+  if (new_alone != old_alone) return false;
+  for (uint32_t t : old) mesh_.delete_tet(t);
+  created_.resize(fresh.size());
+  for (size_t n = 0; n < fresh.size(); ++n) {
+    const TetVerts& w = fresh[n];
+    created_[n] = mesh_.new_tet(w[0], w[1], w[2], w[3], region);
+  }
+  for (size_t k = 0; k < match_.size();) {
+    size_t e = k + 1;
+    while (e < match_.size() && match_[e].key == match_[k].key) ++e;
+    const FaceMatch& x = match_[k];
+    if (e - k == 2) {
+      const FaceMatch& y = match_[k + 1];  // new
+      const uint32_t ty = created_[y.src >> 2];
+      const int iy = int(y.src & 3u);
+      if (x.is_new) {
+        const uint32_t tx = created_[x.src >> 2];
+        const int ix = int(x.src & 3u);
+        mesh_.adj[4 * size_t(tx) + ix] = 4 * ty + uint32_t(iy);
+        mesh_.adj[4 * size_t(ty) + iy] = 4 * tx + uint32_t(ix);
+      } else {
+        const OuterFace& f = outer_[x.src];
+        mesh_.adj[4 * size_t(ty) + iy] = f.adj;
+        if (f.adj != kNone) mesh_.adj[f.adj] = 4 * ty + uint32_t(iy);
+        if (f.bnd) {
+          mesh_.bnd[ty] |= uint8_t(1u << iy);
+          mesh_.fref[4 * size_t(ty) + iy] = f.label;
+        }
+      }
+    } else if (x.is_new) {  // a new hull face
+      const uint32_t tx = created_[x.src >> 2];
+      const int ix = int(x.src & 3u);
+      mesh_.adj[4 * size_t(tx) + ix] = kNone;
+      mesh_.bnd[tx] |= uint8_t(1u << ix);
+      mesh_.fref[4 * size_t(tx) + ix] = surface_label;
+    }
+    k = e;
+  }
+  for (uint32_t t : created_) {
+    const uint32_t* w = mesh_.verts(t);
+    for (int i = 0; i < 4; ++i) mesh_.ptet[w[i]] = t;
+    update_quality(t);
+  }
+  return true;
+}
+
+}  // namespace anitet::adapt

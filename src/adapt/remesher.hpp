@@ -1,0 +1,118 @@
+// The local operations of adaptation and their sweeps over the mesh (internal to src/adapt):
+//   split.cpp    edges longer than split_length cut at their metric midpoint (on the surface
+//                curve for a surface edge, on the ridge curve for a ridge);
+//   collapse.cpp edges shorter than collapse_length removed by merging one end into the other;
+//   swap.cpp     edge removal (the shell of an edge re-triangulated, 3-2, 4-4, 5-6 ... flips),
+//                2-3 face flips, and surface edge swaps, each when it raises the worst quality;
+//   smooth.cpp   vertex moves towards the mean of the points that would make each tet of the
+//                ball regular in the metric (surface points along the surface, ridge points
+//                along the ridge).
+// Every operation checks that the tets it makes are positive (exact orient3d) before it changes
+// anything, so a refused operation leaves the mesh as it was.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "adapt/adapt.hpp"
+#include "adapt/adapt_mesh.hpp"
+#include "adapt/metric_math.hpp"
+#include "adapt/metric_source.hpp"
+
+namespace anitet::adapt {
+
+using TetVerts = std::array<uint32_t, 4>;
+
+class Remesher {
+ public:
+  Remesher(AdaptMesh& mesh, const MetricSource& metric, const AdaptOptions& options, AdaptStats& stats)
+      : mesh_(mesh), metric_(metric), opt_(options), stats_(stats) {}
+
+  // ---- measures ----
+  double length(uint32_t a, uint32_t b) const {
+    return edge_length(mesh_.p(a), mesh_.p(b), mesh_.m(a), mesh_.m(b));
+  }
+  // The quality of the tet (a b c d) with point `moved` (when not kNone) at pos with metric
+  // met/det.
+  double quality(const uint32_t v[4], uint32_t moved = kNone, const double* pos = nullptr,
+                 const double* met = nullptr, double det = 0.0) const;
+  double quality(uint32_t t) const { return quality(mesh_.verts(t)); }
+  void update_quality(uint32_t t) { mesh_.qual[t] = quality(t); }
+
+  // ---- operations (true when made) ----
+  bool split_edge(uint32_t a, uint32_t b, uint32_t t0);
+  // p removed, merged into q (q moved to the metric midpoint with to_midpoint: inner points only).
+  bool collapse_edge(uint32_t p, uint32_t q, uint32_t t_pq, bool to_midpoint = false);
+  bool swap_edge(uint32_t a, uint32_t b, uint32_t t0);        // removes edge ab if better
+  bool swap_face(uint32_t t, int i);                          // 2-3 flip of face i of t if better
+  bool move_point(uint32_t v);
+
+  // ---- sweeps (counts of operations made) ----
+  size_t split_sweep();
+  size_t collapse_sweep();
+  size_t swap_sweep(double below);  // around tets of quality below `below`
+  size_t smooth_sweep();
+
+  // Replaces `old` tets by `fresh` (positive, same region), matching faces; the old boundary's
+  // faces carry their neighbours and boundary flags over. With surface_label set, faces of the new
+  // tets that match nothing become hull boundary faces with that label and old hull faces may
+  // vanish (a surface swap). False, the mesh unchanged, when the faces do not match.
+  bool replace(const std::vector<uint32_t>& old, const std::vector<TetVerts>& fresh, bool surface_change = false,
+               int32_t surface_label = 0);
+
+  // The edges of the mesh (a < b) with a tet each and their lengths, longer than `above` or
+  // shorter than `below`.
+  struct EdgeRec {
+    double length;
+    uint32_t a, b, t;
+  };
+  void collect_edges(double below, double above, std::vector<EdgeRec>& out);
+
+  // The surface normal of boundary point v on the side of a face of normal `face_n`.
+  const double* side_normal(uint32_t v, const double face_n[3]) const;
+
+ private:
+  // Whether p may go onto q by its tags and the edge's shell.
+  bool collapse_allowed(uint32_t p, uint32_t q, const Shell& s) const;
+  // The surface checks of a collapse of boundary point p (ball: p's) onto q.
+  bool surface_collapse_fits(uint32_t p, uint32_t q, const Shell& s, const std::vector<uint32_t>& ball);
+  // Makes the collapse of p onto q (ball: p's): faces glued across the edge's tets, p renamed.
+  void apply_collapse(uint32_t p, uint32_t q, const std::vector<uint32_t>& ball);
+  bool move_interior(uint32_t v, const std::vector<uint32_t>& ball);
+  bool move_surface(uint32_t v, const std::vector<uint32_t>& ball);
+  bool move_ridge(uint32_t v, const std::vector<uint32_t>& ball);
+  // Tries v at pos (metric evaluated there) with the geometry `nrm`/`nrm2`/`tng` (null: kept):
+  // made when every tet of the ball stays positive and its qualities improve.
+  bool try_move(uint32_t v, const std::vector<uint32_t>& ball, const double pos[3], const double* nrm,
+                const double* nrm2, const double* tng, bool surface);
+  // The ideal point of v over face i of t (the apex making it regular in the metric m).
+  bool ideal_point(uint32_t t, int i, const double m[6], double out[3]) const;
+
+  AdaptMesh& mesh_;
+  const MetricSource& metric_;
+  const AdaptOptions& opt_;
+  AdaptStats& stats_;
+  // Scratch.
+  Shell shell_;
+  std::vector<uint32_t> ball_, ball2_, moved_ball_, created_;
+  std::vector<TetVerts> fresh_;
+  std::vector<uint32_t> fresh_tets_;  // the tets a swap replaces
+  std::vector<double> newq_;
+  std::vector<EdgeRec> edges_;
+  struct FaceMatch {
+    std::array<uint32_t, 3> key;
+    uint32_t src;  // new: 4 n + i; old: index into outer_
+    bool is_new;
+  };
+  struct OuterFace {
+    uint32_t adj;  // neighbour half-face or kNone
+    bool bnd;
+    int32_t label;
+  };
+  std::vector<FaceMatch> match_;
+  std::vector<OuterFace> outer_;
+};
+
+}  // namespace anitet::adapt
