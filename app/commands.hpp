@@ -66,6 +66,17 @@ int run_quality(const QualityArgs& args);
 // `report`: run_quality with the HTML page at MESH with .html unless -o names it.
 int run_report(QualityArgs& args);
 
+// `adapt` (cmd_adapt.cpp): a volume mesh adapted to a metric, fields carried over.
+struct AdaptArgs {
+  std::string input, output, metric;
+  std::vector<std::string> fields;  // --field: carried to OUTSTEM.FIELDFILE
+  bool keep_surface = false;
+  double ridge_angle = 45.0;
+  bool quiet = false, json = false;
+};
+CLI::App* add_adapt_command(CLI::App& app, AdaptArgs& args);
+int run_adapt(const AdaptArgs& args);
+
 // `mesh` and `recover` (recover uses the input, output and recovery options only).
 struct MeshArgs {
   std::string command;  // "mesh" or "recover", for messages

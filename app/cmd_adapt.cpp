@@ -1,0 +1,199 @@
+// `anitet adapt IN -o OUT --metric M [--field F]...`: anisotropic adaptation of a volume mesh to a
+// metric (adapt/adapt.hpp), the fields carried to the new mesh (metric/field_transfer.hpp).
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "adapt/adapt.hpp"
+#include "cli_util.hpp"
+#include "commands.hpp"
+#include "exit_codes.hpp"
+#include "io/sol_io.hpp"
+#include "io/volume_io.hpp"
+#include "metric/field_transfer.hpp"
+#include "metric/metric_field.hpp"
+#include "metric/sol_field.hpp"
+
+namespace anitet::cli {
+
+namespace {
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// Where a carried field goes: beside OUT, "OUTSTEM.FIELDNAME" (p2.meshb and --field sol.solb:
+// p2.sol.solb).
+std::string field_output(const std::string& out, const std::string& field) {
+  const std::filesystem::path o(out);
+  return (o.parent_path() / (o.stem().string() + "." + std::filesystem::path(field).filename().string())).string();
+}
+
+struct LoadedField {
+  std::string path, output;
+  VertexFields fields;
+};
+
+}  // namespace
+
+int run_adapt(const AdaptArgs& args) {
+  const std::string me = "anitet adapt";
+  if (Status st = check_writable_volume_path(args.output); !st.ok()) {
+    std::cerr << me << ": -o '" << args.output << "': " << st.message() << "\n";
+    return st.code() == Error::NotImplemented ? kExitNotImplemented : kExitUsage;
+  }
+  if (const int code = check_output_file("adapt", args.output); code != kExitOk) return code;
+  std::vector<LoadedField> fields;
+  for (const std::string& f : args.fields) {
+    if (!is_sol_path(f)) {
+      std::cerr << me << ": --field '" << f << "': expected a .sol or .solb file\n";
+      return kExitUsage;
+    }
+    LoadedField lf;
+    lf.path = f;
+    lf.output = field_output(args.output, f);
+    if (lf.output == f || lf.output == args.output) {
+      std::cerr << me << ": --field '" << f << "' would be overwritten by its own output '" << lf.output << "'\n";
+      return kExitUsage;
+    }
+    if (const int code = check_output_file("adapt", lf.output); code != kExitOk) return code;
+    fields.push_back(std::move(lf));
+  }
+  Result<VolumeMesh> in = read_volume_mesh(args.input);
+  if (!in.ok()) {
+    std::cerr << me << ": cannot read mesh '" << args.input << "': " << in.status().message() << " ["
+              << error_name(in.status().code()) << "]\n";
+    return in.status().code() == Error::FileNotFound ? kExitReadError : kExitInvalidInput;
+  }
+  const size_t nv = in.value().num_vertices();
+  for (LoadedField& lf : fields) {
+    Result<VertexFields> r = read_vertex_fields(lf.path);
+    if (!r.ok()) {
+      std::cerr << me << ": cannot read field '" << lf.path << "': " << r.status().message() << "\n";
+      return r.status().code() == Error::FileNotFound ? kExitReadError : kExitInvalidInput;
+    }
+    if (r.value().num_vertices() != nv) {
+      std::cerr << me << ": field '" << lf.path << "' has " << r.value().num_vertices() << " vertex records but mesh '"
+                << args.input << "' has " << nv << " vertices: a field on another mesh\n";
+      return kExitInvalidInput;
+    }
+    lf.fields = std::move(r).value();
+  }
+  AdaptOptions options;
+  options.keep_surface = args.keep_surface;
+  options.ridge_angle_deg = args.ridge_angle;
+  ProgressLine bar(!args.quiet && !args.json);
+  options.progress = [&](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
+  Result<AdaptResult> result = Status(Error::Internal, "not run");
+  const std::string m = lower(args.metric);
+  if (ends_with(m, ".sol") || ends_with(m, ".solb")) {
+    Result<metric::SolField> sol = metric::read_sol(args.metric);
+    if (!sol.ok()) {
+      std::cerr << me << ": cannot read metric '" << args.metric << "': " << sol.status().message() << "\n";
+      return sol.status().code() == Error::FileNotFound ? kExitReadError : kExitInvalidInput;
+    }
+    if (sol.value().num_vertices() != nv) {
+      std::cerr << me << ": metric '" << args.metric << "' has " << sol.value().num_vertices()
+                << " vertex values but mesh '" << args.input << "' has " << nv << " vertices\n";
+      return kExitInvalidInput;
+    }
+    result = adapt_mesh(in.value(), sol.value().values, options);
+  } else if (ends_with(m, ".vdb")) {
+    Result<metric::MetricField> f = metric::read_metric_vdb(args.metric);
+    if (!f.ok()) {
+      std::cerr << me << ": cannot read metric '" << args.metric << "': " << f.status().message() << "\n";
+      return f.status().code() == Error::FileNotFound ? kExitReadError : kExitInvalidInput;
+    }
+    result = adapt_mesh(in.value(), f.value(), options);
+  } else {
+    std::cerr << me << ": --metric '" << args.metric << "': expected a .sol, .solb or .vdb file\n";
+    return kExitUsage;
+  }
+  bar.update("done", 1.0);
+  if (!result.ok()) {
+    const Error e = result.status().code();
+    std::cerr << me << ": '" << args.input << "': " << result.status().message() << "\n";
+    return e == Error::InvalidArgument || e == Error::InvalidMesh || e == Error::EmptyInput ? kExitInvalidInput
+                                                                                              : kExitInternal;
+  }
+  AdaptResult& r = result.value();
+  VolumeMesh out = r.mesh;
+  out.vertex_metric.clear();  // the mesh file holds no metric
+  if (Status st = write_volume_mesh(out, args.output); !st.ok()) {
+    std::cerr << me << ": cannot write '" << args.output << "': " << st.message() << "\n";
+    return kExitReadError;
+  }
+  for (const LoadedField& lf : fields) {
+    Result<VertexFields> carried = metric::transfer_fields(in.value(), lf.fields, r.mesh.xyz);
+    if (!carried.ok()) {
+      std::cerr << me << ": cannot carry field '" << lf.path << "': " << carried.status().message() << "\n";
+      return kExitInvalidInput;
+    }
+    if (Status st = write_vertex_fields(carried.value(), lf.output); !st.ok()) {
+      std::cerr << me << ": cannot write '" << lf.output << "': " << st.message() << "\n";
+      return kExitReadError;
+    }
+  }
+  const AdaptStats& s = r.stats;
+  if (args.json) {
+    nlohmann::json j = {{"ok", true},
+                        {"input", args.input},
+                        {"output", args.output},
+                        {"vertices", s.vertices_out},
+                        {"tets", s.tets_out},
+                        {"boundary_triangles", s.boundary_triangles_out},
+                        {"cycles", s.cycles},
+                        {"seconds", s.seconds_total}};
+    std::cout << j.dump(1) << "\n";
+  } else if (!args.quiet) {
+    std::cout << me << ": wrote '" << args.output << "': " << s.vertices_out << " vertices, " << s.tets_out << " tets, "
+              << s.boundary_triangles_out << " boundary triangles (from " << s.vertices_in << ", " << s.tets_in << ", "
+              << s.boundary_triangles_in << ")\n"
+              << "  " << s.cycles << " cycles: " << s.splits << " splits (" << s.surface_splits << " on the surface), "
+              << s.collapses << " collapses (" << s.surface_collapses << "), " << s.swaps << " swaps ("
+              << s.surface_swaps << "), " << s.moves << " moves (" << s.surface_moves << ")\n"
+              << "  time: " << format_seconds(s.seconds_total) << " (setup " << s.seconds_setup << " s, split "
+              << s.seconds_split << " s, collapse " << s.seconds_collapse << " s, swap " << s.seconds_swap
+              << " s, smooth " << s.seconds_smooth << " s, output " << s.seconds_output << " s)\n";
+    for (const LoadedField& lf : fields) std::cout << "  field '" << lf.path << "' carried to '" << lf.output << "'\n";
+  }
+  return kExitOk;
+}
+
+CLI::App* add_adapt_command(CLI::App& app, AdaptArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "adapt", "Adapt a volume mesh to a metric (anisotropic): split, collapse, swap and move in the metric, the "
+               "surface too (on its smooth reconstruction), fields carried over");
+  cmd->add_option("input", args.input, "Volume mesh (.mesh .meshb .msh .vtu .su2)")->required();
+  cmd->add_option("-o,--output", args.output, "Output mesh (.mesh .meshb .msh .vtu .su2 ...)")->required();
+  cmd->add_option("--metric", args.metric,
+                  "The metric: a .sol/.solb at the input's vertices (sizes or tensors xx xy yy xz yz zz), or a .vdb")
+      ->required();
+  cmd->add_option("--field", args.fields,
+                  "A .sol/.solb of fields at the input's vertices, carried to the output's (written beside it as "
+                  "OUTSTEM.FIELDFILE, e.g. p2.sol.solb); repeatable");
+  cmd->add_flag("--keep-surface", args.keep_surface,
+                "Keep the input's boundary triangles exactly: no point added, moved or removed on the surface");
+  cmd->add_option("--ridge-angle", args.ridge_angle,
+                  "Boundary edges whose faces meet at a dihedral angle over this (degrees) are ridges")
+      ->capture_default_str()
+      ->check(in_range(0.0, 180.0));
+  cmd->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
+  cmd->add_flag("--json", args.json, "Print the result as JSON");
+  cmd->footer(
+      "Examples:\n"
+      "  anitet adapt in.meshb -o out.meshb --metric in.solb\n"
+      "  anitet adapt p1.mesh -o p2.mesh --metric m1.sol --field u1.solb   (writes p2.u1.solb)\n"
+      "  anitet adapt in.mesh -o out.mesh --metric m.sol --keep-surface");
+  return cmd;
+}
+
+}  // namespace anitet::cli
