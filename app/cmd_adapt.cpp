@@ -92,6 +92,7 @@ int run_adapt(const AdaptArgs& args) {
   options.ridge_angle_deg = args.ridge_angle;
   ProgressLine bar(!args.quiet && !args.json);
   options.progress = [&](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
+  if (args.verbose) options.log = [](const std::string& line) { std::cerr << "  " << line << "\n"; };
   Result<AdaptResult> result = Status(Error::Internal, "not run");
   const std::string m = lower(args.metric);
   if (ends_with(m, ".sol") || ends_with(m, ".solb")) {
@@ -188,6 +189,7 @@ CLI::App* add_adapt_command(CLI::App& app, AdaptArgs& args) {
       ->check(in_range(0.0, 180.0));
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
   cmd->add_flag("--json", args.json, "Print the result as JSON");
+  cmd->add_flag("-v,--verbose", args.verbose, "Print a line per sweep on stderr (operations, tets, time)");
   cmd->footer(
       "Examples:\n"
       "  anitet adapt in.meshb -o out.meshb --metric in.solb\n"

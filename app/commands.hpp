@@ -72,7 +72,7 @@ struct AdaptArgs {
   std::vector<std::string> fields;  // --field: carried to OUTSTEM.FIELDFILE
   bool keep_surface = false;
   double ridge_angle = 45.0;
-  bool quiet = false, json = false;
+  bool quiet = false, json = false, verbose = false;
 };
 CLI::App* add_adapt_command(CLI::App& app, AdaptArgs& args);
 int run_adapt(const AdaptArgs& args);

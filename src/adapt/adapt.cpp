@@ -54,14 +54,18 @@ class Run {
     for (int c = 0; c < opt_.max_cycles; ++c) {
       if (!progress("adapt, cycle " + std::to_string(c + 1), double(c) / total)) return cancelled();
       const size_t before = mesh_.num_tets();
+      mesh_.epoch = uint32_t(c + 1);
       const size_t splits = timed(st.seconds_split, [&] { return r.split_sweep(); });
       if (Status s = check("split"); !s.ok()) return s;
       const size_t collapses = timed(st.seconds_collapse, [&] { return r.collapse_sweep(); });
       if (Status s = check("collapse"); !s.ok()) return s;
-      timed(st.seconds_swap, [&] { return r.swap_sweep(kSwapCycle); });
+      const size_t swaps = timed(st.seconds_swap, [&] { return r.swap_sweep(kSwapCycle); });
       if (Status s = check("swap"); !s.ok()) return s;
-      timed(st.seconds_smooth, [&] { return r.smooth_sweep(); });
+      const size_t moves = timed(st.seconds_smooth, [&] { return r.smooth_sweep(false); });
       if (Status s = check("smooth"); !s.ok()) return s;
+      log("cycle " + std::to_string(c + 1) + ": " + std::to_string(splits) + " splits, " + std::to_string(collapses) +
+          " collapses, " + std::to_string(swaps) + " swaps, " + std::to_string(moves) + " moves, " +
+          std::to_string(mesh_.num_tets()) + " tets, " + std::to_string(since(t0)) + " s");
       st.cycles = c + 1;
       // Done when a cycle changes next to nothing.
       if (double(splits + collapses) < 1e-3 * double(before)) break;
@@ -69,9 +73,11 @@ class Run {
     for (int c = 0; c < opt_.optimize_cycles; ++c) {
       if (!progress("optimize, sweep " + std::to_string(c + 1), double(opt_.max_cycles + c) / total))
         return cancelled();
-      timed(st.seconds_swap, [&] { return r.swap_sweep(kSwapOptimize); });
-      timed(st.seconds_smooth, [&] { return r.smooth_sweep(); });
+      const size_t swaps = timed(st.seconds_swap, [&] { return r.swap_sweep(kSwapOptimize); });
+      const size_t moves = timed(st.seconds_smooth, [&] { return r.smooth_sweep(true); });
       if (Status s = check("optimize"); !s.ok()) return s;
+      log("optimize " + std::to_string(c + 1) + ": " + std::to_string(swaps) + " swaps, " + std::to_string(moves) +
+          " moves, " + std::to_string(since(t0)) + " s");
     }
     const auto t1 = Clock::now();
     out.mesh = adapt::export_mesh(mesh_);
@@ -93,6 +99,9 @@ class Run {
   }
   bool progress(const std::string& stage, double fraction) const {
     return !opt_.progress || opt_.progress(stage, fraction);
+  }
+  void log(const std::string& line) const {
+    if (opt_.log) opt_.log(line);
   }
   static Status cancelled() { return Status(Error::Cancelled, "adaptation cancelled"); }
   Status check(const char* after) const {

@@ -49,6 +49,8 @@ struct AdaptOptions {
   // Called between sweeps with what runs and the fraction done (a rough estimate); returning
   // false cancels (Error::Cancelled). May be empty.
   std::function<bool(const std::string& stage, double fraction)> progress;
+  // Called with one line per sweep (counts, tets, time), when set.
+  std::function<void(const std::string& line)> log;
 };
 
 struct AdaptStats {

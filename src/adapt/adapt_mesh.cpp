@@ -34,6 +34,7 @@ uint32_t AdaptMesh::add_point(const double x[3], const double mm[6], uint8_t t, 
   tag.push_back(t);
   ptet.push_back(kNone);
   hint.push_back(h);
+  touched.push_back(epoch);
   pmark_.push_back(0);
   return v;
 }

@@ -73,6 +73,10 @@ class AdaptMesh {
   std::vector<uint8_t> tag;
   std::vector<uint32_t> ptet;  // a live tet holding the point (kNone: removed)
   std::vector<uint32_t> hint;  // where the background metric last found it
+  // The cycle in which an operation last changed the point's tets (its edges, its ball); sweeps
+  // of cycle `epoch` look at the points changed in it or the cycle before (active()).
+  std::vector<uint32_t> touched;
+  uint32_t epoch = 1;
   // Tets.
   std::vector<uint32_t> tv;     // 4 per tet
   std::vector<uint32_t> adj;    // 4 per tet
@@ -96,6 +100,12 @@ class AdaptMesh {
     const uint32_t* w = verts(t);
     return w[0] == v ? 0 : w[1] == v ? 1 : w[2] == v ? 2 : w[3] == v ? 3 : -1;
   }
+
+  void touch(uint32_t v) { touched[v] = epoch; }
+  void touch_tet(uint32_t t) {
+    for (int i = 0; i < 4; ++i) touched[tv[4 * size_t(t) + size_t(i)]] = epoch;
+  }
+  bool active(uint32_t v) const { return touched[v] + 1 >= epoch; }
 
   bool is_ridge(uint32_t a, uint32_t b) const {
     const uint32_t r = ridge.find(edge_key(a, b));

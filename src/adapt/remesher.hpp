@@ -50,10 +50,12 @@ class Remesher {
   bool move_point(uint32_t v);
 
   // ---- sweeps (counts of operations made) ----
+  // Split and collapse sweeps look at the edges of active points (AdaptMesh::active); the
+  // smoothing sweep at active points, or all with all_points.
   size_t split_sweep();
   size_t collapse_sweep();
   size_t swap_sweep(double below);  // around tets of quality below `below`
-  size_t smooth_sweep();
+  size_t smooth_sweep(bool all_points);
 
   // Replaces `old` tets by `fresh` (positive, same region), matching faces; the old boundary's
   // faces carry their neighbours and boundary flags over. With surface_label set, faces of the new
@@ -62,7 +64,7 @@ class Remesher {
   bool replace(const std::vector<uint32_t>& old, const std::vector<TetVerts>& fresh, bool surface_change = false,
                int32_t surface_label = 0);
 
-  // The edges of the mesh (a < b) with a tet each and their lengths, longer than `above` or
+  // The edges of the active points with a tet each and their lengths, longer than `above` or
   // shorter than `below`.
   struct EdgeRec {
     double length;
@@ -101,6 +103,8 @@ class Remesher {
   std::vector<uint32_t> fresh_tets_;  // the tets a swap replaces
   std::vector<double> newq_;
   std::vector<EdgeRec> edges_;
+  FlatKeyMap tried_;  // edges a swap sweep tried
+  uint32_t first_new_ = 0;  // the first point the running split sweep made
   struct FaceMatch {
     std::array<uint32_t, 3> key;
     uint32_t src;  // new: 4 n + i; old: index into outer_

@@ -60,6 +60,7 @@ Status build_adapt_mesh(const VolumeMesh& in, AdaptMesh& out) {
   out.tag.assign(nv, ptag::kRemoved);  // points of no tet stay removed
   out.ptet.assign(nv, kNone);
   out.hint.assign(nv, kNone);
+  out.touched.assign(nv, 0);
   out.tv = in.tet;
   out.adj.assign(4 * nt, kNone);
   out.fref.assign(4 * nt, 0);

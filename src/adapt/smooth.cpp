@@ -114,6 +114,7 @@ bool Remesher::try_move(uint32_t v, const std::vector<uint32_t>& ball, const dou
     if (tng) mesh_.tng[3 * size_t(v) + size_t(k)] = tng[k];
   }
   for (size_t k = 0; k < ball.size(); ++k) mesh_.qual[ball[k]] = newq_[k];
+  mesh_.touch(v);
   ++stats_.moves;
   if (surface) ++stats_.surface_moves;
   return true;
@@ -268,9 +269,10 @@ bool Remesher::move_point(uint32_t v) {
   return move_surface(v, ball);
 }
 
-size_t Remesher::smooth_sweep() {
+size_t Remesher::smooth_sweep(bool all_points) {
   size_t made = 0;
-  for (uint32_t v = 0; v < mesh_.num_points(); ++v) made += move_point(v);
+  for (uint32_t v = 0; v < mesh_.num_points(); ++v)
+    if (all_points || mesh_.active(v)) made += move_point(v);
   return made;
 }
 

@@ -147,12 +147,17 @@ bool Remesher::swap_face(uint32_t t, int i) {
 size_t Remesher::swap_sweep(double below) {
   size_t made = 0;
   const size_t slots = mesh_.num_slots();
+  tried_.clear();  // each edge once per sweep
   for (uint32_t t = 0; t < slots; ++t) {
     if (mesh_.dead(t) || !(mesh_.qual[t] < below)) continue;
     bool done = false;
     for (int k = 0; k < 6 && !done; ++k) {
       const uint32_t* w = mesh_.verts(t);
-      done = swap_edge(w[kEdgeVertex[k][0]], w[kEdgeVertex[k][1]], t);
+      const uint32_t a = w[kEdgeVertex[k][0]], b = w[kEdgeVertex[k][1]];
+      uint32_t& seen = tried_.find_or_insert(edge_key(a, b), 0);
+      if (seen) continue;
+      seen = 1;
+      done = swap_edge(a, b, t);
     }
     for (int i = 0; i < 4 && !done; ++i) done = swap_face(t, i);
     made += done;
