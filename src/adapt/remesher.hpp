@@ -43,6 +43,9 @@ class Remesher {
 
   // ---- operations (true when made) ----
   bool split_edge(uint32_t a, uint32_t b, uint32_t t0);
+  // The point pos (metric met) inserted on the inner edge of shell s by the metric Delaunay
+  // kernel (cavity.cpp).
+  bool insert_on_inner_edge(const Shell& s, const double pos[3], const double met[6], uint32_t hint);
   // p removed, merged into q (q moved to the metric midpoint with to_midpoint: inner points only).
   bool collapse_edge(uint32_t p, uint32_t q, uint32_t t_pq, bool to_midpoint = false);
   bool swap_edge(uint32_t a, uint32_t b, uint32_t t0);        // removes edge ab if better
@@ -98,7 +101,8 @@ class Remesher {
   AdaptStats& stats_;
   // Scratch.
   Shell shell_;
-  std::vector<uint32_t> ball_, ball2_, moved_ball_, created_;
+  std::vector<uint32_t> ball_, ball2_, moved_ball_, created_, cavity_;
+  std::vector<uint8_t> incav_;  // per tet: 1 in the cavity, 2 a seed (zero between insertions)
   std::vector<TetVerts> fresh_;
   std::vector<uint32_t> fresh_tets_;  // the tets a swap replaces
   std::vector<double> newq_;

@@ -41,6 +41,10 @@ bool Remesher::split_edge(uint32_t a, uint32_t b, uint32_t t0) {
   uint8_t tag = 0;
   if (!surface) {
     for (int k = 0; k < 3; ++k) pos[k] = pa[k] + tpar * ab[k];
+    double met[6];
+    uint32_t hint = mesh_.hint[a];
+    metric_.eval(pos, hint, met);
+    return insert_on_inner_edge(s, pos, met, hint);
   } else {
     tag = ptag::kBoundary;
     // The boundary faces through ab (the first two): their normals choose the ends' sides.
@@ -71,7 +75,7 @@ bool Remesher::split_edge(uint32_t a, uint32_t b, uint32_t t0) {
   for (uint32_t r : s.ring) {
     double d[3];
     geom::sub(mesh_.p(r), pos, d);
-    if (std::sqrt(std::sqrt(quad_form(mesh_.m(a), d) * quad_form(mesh_.m(b), d))) < (r >= first_new_ ? kSpacing : kNearRing)) {
+    if (std::sqrt(std::sqrt(quad_form(mesh_.m(a), d) * quad_form(mesh_.m(b), d))) < (r >= first_new_ ? kSpacing : 0.0)) {
       ++stats_.split_refused;
       return false;
     }
