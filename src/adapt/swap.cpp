@@ -108,12 +108,20 @@ bool Remesher::swap_edge(uint32_t a, uint32_t b, uint32_t t0) {
       normals = 1.0;
       for (uint32_t w : {x, y, u}) normals = std::min(normals, std::fabs(geom::dot(n1, side_normal(w, n1))));
       for (uint32_t w : {x, y, v}) normals = std::min(normals, std::fabs(geom::dot(n2, side_normal(w, n2))));
-      return std::fabs(geom::dot(n1, n2));
+      return -geom::dot(n1, n2);  // the two faces, oriented alike, turn by this cosine
     };
     double normals_before, normals_after;
     const double flat_before = flatness(a, b, r0, rk, normals_before);
     const double flat_after = flatness(r0, rk, a, b, normals_after);
     if (flat_after < std::min(flat_before, kFlat) || normals_after < std::min(normals_before, kFlat)) return false;
+    // The new edges (the diagonals of the ring's triangulation, r0 rk among them) must be new: in
+    // a thin layer, two ring points may be joined already outside the shell.
+    for (const auto& tr : tris)
+      for (int e = 0; e < 3; ++e) {
+        const uint32_t i = tr[size_t(e)], j = tr[size_t((e + 1) % 3)];
+        if (std::max(i, j) - std::min(i, j) < 2) continue;  // a side of the ring
+        if (mesh_.edge_tet(s.ring[i], s.ring[j], ball2_) != kNone) return false;
+      }
   }
   fresh_tets_ = s.tets;
   if (!replace(fresh_tets_, fresh_, surface, surface ? s.bnd_label[0] : 0)) return false;
