@@ -1,6 +1,7 @@
 #include "adapt/adapt_mesh.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "adapt/metric_math.hpp"
@@ -256,6 +257,68 @@ std::string AdaptMesh::check() const {
         return out.str();
       }
     }
+  }
+  {  // The tets fill the region the hull faces bound: the volumes agree (an overlap adds volume).
+    long double vt = 0, vs = 0, scale = 0;
+    for (uint32_t t = 0; t < num_slots(); ++t) {
+      if (dead(t)) continue;
+      const double *a = p(verts(t)[0]), *b = p(verts(t)[1]), *c = p(verts(t)[2]), *d = p(verts(t)[3]);
+      const long double v = ((long double)(b[0] - a[0]) * ((c[1] - a[1]) * (d[2] - a[2]) - (c[2] - a[2]) * (d[1] - a[1])) -
+                             (long double)(b[1] - a[1]) * ((c[0] - a[0]) * (d[2] - a[2]) - (c[2] - a[2]) * (d[0] - a[0])) +
+                             (long double)(b[2] - a[2]) * ((c[0] - a[0]) * (d[1] - a[1]) - (c[1] - a[1]) * (d[0] - a[0]))) / 6;
+      vt += v;
+      scale += std::fabs((double)v);
+      for (int i = 0; i < 4; ++i) {
+        if (adj[4 * size_t(t) + i] != kNone) continue;
+        // Out of the tet: kFaceVertex reversed; volume of the cone from the origin.
+        const double *x = p(verts(t)[kFaceVertex[i][0]]), *y = p(verts(t)[kFaceVertex[i][2]]), *z = p(verts(t)[kFaceVertex[i][1]]);
+        vs += ((long double)x[0] * (y[1] * z[2] - y[2] * z[1]) - (long double)x[1] * (y[0] * z[2] - y[2] * z[0]) +
+               (long double)x[2] * (y[0] * z[1] - y[1] * z[0])) / 6;
+      }
+    }
+    if (std::fabs((double)(vt - vs)) > 1e-9 * (double)scale) {
+      out << "the tets' volume " << (double)vt << " is not the hull's " << (double)vs << " (an overlap)";
+      return out.str();
+    }
+  }
+  {  // The hull is a closed manifold: each of its edges in two hull faces.
+    std::vector<uint64_t> e;
+    for (uint32_t t = 0; t < num_slots(); ++t) {
+      if (dead(t)) continue;
+      for (int i = 0; i < 4; ++i) {
+        if (adj[4 * size_t(t) + i] != kNone) continue;
+        for (int j = 0; j < 3; ++j)
+          e.push_back(edge_key(verts(t)[kFaceVertex[i][j]], verts(t)[kFaceVertex[i][(j + 1) % 3]]));
+      }
+    }
+    std::sort(e.begin(), e.end());
+    for (size_t k = 0; k < e.size();) {
+      size_t j = k + 1;
+      while (j < e.size() && e[j] == e[k]) ++j;
+      if (j - k != 2) {
+        out << "hull edge " << (e[k] >> 32) << " " << (e[k] & 0xffffffffu) << " is in " << (j - k) << " hull faces";
+        return out.str();
+      }
+      k = j;
+    }
+  }
+  {  // No face of three tets (one with its face on the hull while two others share it).
+    std::vector<std::array<uint32_t, 4>> keys;
+    for (uint32_t t = 0; t < num_slots(); ++t) {
+      if (dead(t)) continue;
+      for (int i = 0; i < 4; ++i) {
+        std::array<uint32_t, 4> k = {verts(t)[kFaceVertex[i][0]], verts(t)[kFaceVertex[i][1]], verts(t)[kFaceVertex[i][2]], t};
+        std::sort(k.begin(), k.begin() + 3);
+        keys.push_back(k);
+      }
+    }
+    std::sort(keys.begin(), keys.end());
+    for (size_t k = 2; k < keys.size(); ++k)
+      if (keys[k][0] == keys[k - 2][0] && keys[k][1] == keys[k - 2][1] && keys[k][2] == keys[k - 2][2]) {
+        out << "face (" << keys[k][0] << " " << keys[k][1] << " " << keys[k][2] << ") of tets " << keys[k - 2][3] << " "
+            << keys[k - 1][3] << " " << keys[k][3];
+        return out.str();
+      }
   }
   for (uint32_t v = 0; v < num_points(); ++v) {
     if (tag[v] & ptag::kRemoved) continue;
