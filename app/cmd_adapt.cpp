@@ -51,6 +51,13 @@ int run_adapt(const AdaptArgs& args) {
     return st.code() == Error::NotImplemented ? kExitNotImplemented : kExitUsage;
   }
   if (const int code = check_output_file("adapt", args.output); code != kExitOk) return code;
+  if (!args.write_metric.empty()) {
+    if (!is_sol_path(args.write_metric)) {
+      std::cerr << me << ": --write-metric '" << args.write_metric << "': expected a .sol or .solb file\n";
+      return kExitUsage;
+    }
+    if (const int code = check_output_file("adapt", args.write_metric); code != kExitOk) return code;
+  }
   std::vector<LoadedField> fields;
   for (const std::string& f : args.fields) {
     if (!is_sol_path(f)) {
@@ -90,6 +97,7 @@ int run_adapt(const AdaptArgs& args) {
   AdaptOptions options;
   options.keep_surface = args.keep_surface;
   options.ridge_angle_deg = args.ridge_angle;
+  options.max_cycles = args.max_cycles;
   ProgressLine bar(!args.quiet && !args.json);
   options.progress = [&](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
   if (args.verbose) options.log = [](const std::string& line) { std::cerr << "  " << line << "\n"; };
@@ -131,6 +139,12 @@ int run_adapt(const AdaptArgs& args) {
   if (Status st = write_volume_mesh(out, args.output); !st.ok()) {
     std::cerr << me << ": cannot write '" << args.output << "': " << st.message() << "\n";
     return kExitReadError;
+  }
+  if (!args.write_metric.empty()) {
+    if (Status st = write_sol(r.mesh, args.write_metric); !st.ok()) {
+      std::cerr << me << ": cannot write '" << args.write_metric << "': " << st.message() << "\n";
+      return kExitReadError;
+    }
   }
   for (const LoadedField& lf : fields) {
     Result<VertexFields> carried = metric::transfer_fields(in.value(), lf.fields, r.mesh.xyz);
@@ -181,12 +195,19 @@ CLI::App* add_adapt_command(CLI::App& app, AdaptArgs& args) {
   cmd->add_option("--field", args.fields,
                   "A .sol/.solb of fields at the input's vertices, carried to the output's (written beside it as "
                   "OUTSTEM.FIELDFILE, e.g. p2.sol.solb); repeatable");
+  cmd->add_option("--write-metric", args.write_metric,
+                  "Also write the metric at the output's vertices (.sol/.solb; interpolated from --metric)");
   cmd->add_flag("--keep-surface", args.keep_surface,
                 "Keep the input's boundary triangles exactly: no point added, moved or removed on the surface");
   cmd->add_option("--ridge-angle", args.ridge_angle,
                   "Boundary edges whose faces meet at a dihedral angle over this (degrees) are ridges")
       ->capture_default_str()
       ->check(in_range(0.0, 180.0));
+  cmd->add_option("--max-cycles", args.max_cycles,
+                  "Refinement/coarsening cycles at most (each: splits, collapses, swaps, moves); they stop "
+                  "earlier when a cycle changes fewer than 0.1% of the tets")
+      ->capture_default_str()
+      ->check(in_range(0, 1000));
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
   cmd->add_flag("--json", args.json, "Print the result as JSON");
   cmd->add_flag("-v,--verbose", args.verbose, "Print a line per sweep on stderr (operations, tets, time)");

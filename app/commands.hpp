@@ -13,6 +13,7 @@
 #include "core/tet_mesh.hpp"
 #include "core/volume_mesh.hpp"
 #include "io/patch_names.hpp"
+#include "adapt/adapt.hpp"
 #include "layers/layers.hpp"
 #include "optimize/optimize.hpp"
 #include "refine/refine.hpp"
@@ -70,8 +71,10 @@ int run_report(QualityArgs& args);
 struct AdaptArgs {
   std::string input, output, metric;
   std::vector<std::string> fields;  // --field: carried to OUTSTEM.FIELDFILE
+  std::string write_metric;         // --write-metric: the metric at OUT's vertices (.sol/.solb)
   bool keep_surface = false;
   double ridge_angle = 45.0;
+  int max_cycles = AdaptOptions().max_cycles;
   bool quiet = false, json = false, verbose = false;
 };
 CLI::App* add_adapt_command(CLI::App& app, AdaptArgs& args);
