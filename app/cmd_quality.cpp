@@ -156,13 +156,13 @@ CLI::App* add_quality_command(CLI::App& app, QualityArgs& args) {
       ->check(positive())
       ->needs(report_opt);
   cmd->add_option("--metric", args.metric_sol,
-                          "Per-vertex Medit .sol of MESH (sizes or tensors, as `mesh --write-metric` "
-                          "writes): the report's edge lengths are measured in it")
-      ->needs(report_opt);
+                  "Per-vertex .sol/.solb of MESH (sizes or tensors, as `mesh --write-metric` writes): the "
+                  "report adds the UGAWG measures in it (edge lengths, share in [1/sqrt2, sqrt2], mean ratio)");
   cmd->footer(
       "Examples:\n"
       "  anitet quality part.mesh --surface part.stl         # valid? surface kept? shape figures\n"
-      "  anitet quality part.mesh --strict --json            # exit 4 when invalid or not kept");
+      "  anitet quality part.mesh --strict --json            # exit 4 when invalid or not kept\n"
+      "  anitet quality out.mesh --metric out.sol             # + UGAWG measures in the metric");
   return cmd;
 }
 
@@ -180,7 +180,8 @@ CLI::App* add_report_command(CLI::App& app, QualityArgs& args) {
   cmd->add_option("--cut-max", args.cut_max, "Cross-sections drawn per cut view at most")
       ->capture_default_str()
       ->check(positive());
-  cmd->add_option("--metric", args.metric_sol, "Per-vertex Medit .sol of MESH: edge lengths in it");
+  cmd->add_option("--metric", args.metric_sol,
+                  "Per-vertex .sol/.solb of MESH: edge lengths in it, and the UGAWG measures");
   cmd->footer(
       "Examples:\n"
       "  anitet report part.mesh --surface part.stl          # writes part.html\n"

@@ -17,7 +17,7 @@
 //
 // The metric: one tensor (or size) per input vertex, interpolated at new points in log-Euclidean
 // space in the input mesh (metric/field_transfer's rule), or a SizingField evaluated anywhere.
-// Measures (metric_math.hpp) are the UGAWG benchmark's. Single-threaded; deterministic.
+// Measures (core/metric_measures.hpp) are the UGAWG benchmark's. Single-threaded; deterministic.
 // Errors as values (no exception leaves this module).
 #pragma once
 

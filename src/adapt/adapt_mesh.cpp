@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "adapt/metric_math.hpp"
+#include "core/metric_measures.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet::adapt {

@@ -131,7 +131,7 @@ bool Remesher::collapse_edge(uint32_t p, uint32_t q, uint32_t t_pq, bool to_midp
       const uint32_t y = nw[i];
       if (mesh_.point_marked(y)) continue;
       mesh_.mark_point(y);
-      if (edge_length(qp, mesh_.p(y), qm, mesh_.m(y)) > kMaxCollapseLength) return false;
+      if (ugawg_edge_length(qp, mesh_.p(y), qm, mesh_.m(y)) > kMaxCollapseLength) return false;
     }
     return true;
   };

@@ -24,7 +24,7 @@ double Remesher::quality(const uint32_t v[4], uint32_t moved, const double* pos,
     }
     if (d > best) best = d, m = mi;
   }
-  return mean_ratio(p[0], p[1], p[2], p[3], m, best);
+  return ugawg_mean_ratio(p[0], p[1], p[2], p[3], m, best);
 }
 
 const double* Remesher::side_normal(uint32_t v, const double face_n[3]) const {

@@ -18,7 +18,7 @@
 
 #include "adapt/adapt.hpp"
 #include "adapt/adapt_mesh.hpp"
-#include "adapt/metric_math.hpp"
+#include "core/metric_measures.hpp"
 #include "adapt/metric_source.hpp"
 
 namespace anitet::adapt {
@@ -32,7 +32,7 @@ class Remesher {
 
   // ---- measures ----
   double length(uint32_t a, uint32_t b) const {
-    return edge_length(mesh_.p(a), mesh_.p(b), mesh_.m(a), mesh_.m(b));
+    return ugawg_edge_length(mesh_.p(a), mesh_.p(b), mesh_.m(a), mesh_.m(b));
   }
   // The quality of the tet (a b c d) with point `moved` (when not kNone) at pos with metric
   // met/det.

@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/buckets.hpp"
+#include "core/metric_measures.hpp"
 #include "quality/parallel_for.hpp"
 #include "quality/report_detail.hpp"
 #include "quality/tet_measures.hpp"
@@ -259,24 +260,18 @@ bool cross_section(const double* const p[4], int axis, double c, Poly& out) {
   return true;
 }
 
+// The edge's length: in the vertex metric by the UGAWG rule (core/metric_measures.hpp) when
+// there is one (metric_kind 1: sizes, 6: tensors), else Euclidean.
 double edge_length(const VolumeMesh& mesh, uint32_t a, uint32_t b, int metric_kind) {
   const double *p = mesh.point(a), *q = mesh.point(b);
   const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
   const double l2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
   if (metric_kind == 1) {
-    const double ha = mesh.vertex_metric[a], hb = mesh.vertex_metric[b];
     const double l = std::sqrt(l2);
-    return 0.5 * (l / ha + l / hb);
+    return combine_lengths(l / mesh.vertex_metric[a], l / mesh.vertex_metric[b]);
   }
-  if (metric_kind == 6) {
-    auto len = [&](uint32_t v) {
-      const double* m = &mesh.vertex_metric[6 * size_t(v)];  // xx xy yy xz yz zz
-      const double q2 = m[0] * e[0] * e[0] + m[2] * e[1] * e[1] + m[5] * e[2] * e[2] +
-                        2.0 * (m[1] * e[0] * e[1] + m[3] * e[0] * e[2] + m[4] * e[1] * e[2]);
-      return std::sqrt(std::max(q2, 0.0));
-    };
-    return 0.5 * (len(a) + len(b));
-  }
+  if (metric_kind == 6)
+    return ugawg_edge_length(p, q, &mesh.vertex_metric[6 * size_t(a)], &mesh.vertex_metric[6 * size_t(b)]);
   return std::sqrt(l2);
 }
 
@@ -704,6 +699,20 @@ void write_run_table(std::ostringstream& h, const HtmlReportOptions& opt) {
   h << "</table>\n";
 }
 
+// The UGAWG measures when the mesh carries a metric: edges in range, lengths, mean ratio.
+void write_metric_table(std::ostringstream& h, const MetricQuality& m) {
+  auto row = [&](const std::string& k, const std::string& v) { table_row(h, k, v); };
+  h << "<table><tr><th colspan=\"2\">In the metric (UGAWG measures)</th></tr>\n";
+  row("edges with a length in [1/&radic;2, &radic;2]", num("%.2f%%", 100.0 * m.in_range) + " (" +
+                                                            num("%.2f%%", 100.0 * m.shorter) + " shorter, " +
+                                                            num("%.2f%%", 100.0 * m.longer) + " longer)");
+  row("edge length: min / mean / max",
+      num("%.4g", m.edge_length.min) + " / " + num("%.4g", m.edge_length.mean) + " / " + num("%.4g", m.edge_length.max));
+  row("mean ratio in the metric: min / 1st percentile / mean",
+      num("%.4f", m.mean_ratio.min) + " / " + num("%.4f", m.mean_ratio.p01) + " / " + num("%.4f", m.mean_ratio.mean));
+  h << "</table>\n";
+}
+
 // The mesh against the input surface it was made from.
 void write_surface_table(std::ostringstream& h, const SurfaceMatchReport& s) {
   auto row = [&](const std::string& k, const std::string& v) { table_row(h, k, v); };
@@ -739,6 +748,12 @@ void write_histograms(std::ostringstream& h, const HtmlReport& out, const PageDa
                 out.metric_edge_lengths ? "metric length (1 = the prescribed size)"
                                         : "length (no metric in the mesh file: Euclidean)",
                 page.edges.hist, 0.0, page.edges.max, "%.3g", et);
+  if (out.report.metric.present) {
+    Hist metric_mr(int(out.report.metric.mean_ratio_histogram.size()));
+    metric_mr.all = out.report.metric.mean_ratio_histogram;
+    h << hist_svg("metric-mean-ratio", "Mean ratio in the metric (per tet)", "mean ratio (UGAWG: the finest corner's metric)",
+                  metric_mr, 0.0, 1.0, "%.1f", qt);
+  }
   h << "</div>\n";
 }
 
@@ -765,6 +780,7 @@ std::string page_html(const HtmlReport& out, const PageData& page, const HtmlRep
   write_mesh_table(h, out, page);
   write_quality_table(h, out.report, page);
   if (!opt.run_rows.empty()) write_run_table(h, opt);
+  if (out.report.metric.present) write_metric_table(h, out.report.metric);
   if (out.report.surface.present) write_surface_table(h, out.report.surface);
   write_histograms(h, out, page, opt);
   write_cut_views(h, out, page, opt);

@@ -195,6 +195,9 @@ Result<QualityReport> report_scaled(const VolumeMesh& mesh, const SurfaceMesh* s
                                     quality_detail::TetData& data, std::vector<uint32_t>& boundary, int k) {
   VolumeMesh m = mesh;
   for (double& x : m.xyz) x = std::ldexp(x, k);
+  // Metric lengths stay the same: sizes scaled with the coordinates, tensors by the inverse square.
+  const bool sizes = m.vertex_metric.size() == m.num_vertices();
+  for (double& x : m.vertex_metric) x = std::ldexp(x, sizes ? k : -2 * k);
   SurfaceMesh s;
   if (surface) {
     s = *surface;
@@ -314,6 +317,8 @@ Result<QualityReport> quality_detail::compute_quality_report_keep(const VolumeMe
   if (input_surface != nullptr) {
     quality_detail::match_surface(mesh, *input_surface, boundary, used, d, options, r);
   }
+  if (Status s = quality_detail::measure_metric(mesh, options.histogram_bins, options.parallel, r.metric); !s.ok())
+    return s;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return r;
 }

@@ -69,6 +69,22 @@ struct SurfaceMatchReport {
   QualitySplit interior;          // the others
 };
 
+// The UGAWG measures (core/metric_measures.hpp) of a mesh that carries a metric
+// (VolumeMesh::vertex_metric: a size or a tensor per vertex).
+struct MetricQuality {
+  bool present = false;
+  size_t edges = 0;
+  Stats edge_length;            // metric edge length (l_a - l_b) / ln(l_a / l_b)
+  double in_range = 0.0;        // share of the edges with a length in [1/sqrt 2, sqrt 2]
+  double shorter = 0.0, longer = 0.0;  // shares below and above that range
+  // Histogram of the edge lengths: length_histogram[i] counts lengths in
+  // [length_bin_edges[i], length_bin_edges[i + 1]) (the last bin open above).
+  std::vector<double> length_bin_edges;
+  std::vector<size_t> length_histogram;
+  Stats mean_ratio;  // per tet, in the metric of its finest corner (largest det)
+  std::vector<size_t> mean_ratio_histogram;  // over [0, 1], histogram_bins equal bins
+};
+
 struct QualityReport {
   size_t vertices = 0;
   size_t tets = 0;
@@ -100,18 +116,23 @@ struct QualityReport {
   std::vector<RegionQuality> by_region;
 
   SurfaceMatchReport surface;
+  MetricQuality metric;  // when the mesh carries a vertex metric
   double seconds = 0.0;  // time spent computing
 };
 
 // The report. input_surface may be null. Fails (InvalidArgument / BadIndex / NonFiniteCoordinate)
 // only when the mesh itself cannot be measured: a tet refers to a vertex that does not exist, or
-// a used coordinate is NaN/Inf; an empty mesh gives a report with zero tets.
+// a used coordinate is NaN/Inf, or its vertex metric has a value count other than 1 or 6 per
+// vertex, a size <= 0 or a tensor that is not SPD (the vertex named, 1-based); an empty mesh
+// gives a report with zero tets. With a vertex metric, report.metric has the UGAWG measures.
 Result<QualityReport> compute_quality_report(const VolumeMesh& mesh,
                                              const SurfaceMesh* input_surface,
                                              const QualityOptions& options = {});
 
 // A readable multi-line report with a text histogram.
 std::string quality_report_text(const QualityReport& report);
+// Its part on the metric (the UGAWG measures and their histograms).
+std::string metric_quality_text(const MetricQuality& metric);
 // The report as a JSON object (meshcheck.py's keys where they mean the same), pretty-printed.
 std::string quality_report_json(const QualityReport& report, int indent = 1);
 // The radius-ratio histogram as CSV (lo,hi,count), as meshcheck.py --hist writes it.

@@ -36,4 +36,8 @@ Result<QualityReport> compute_quality_report_keep(const VolumeMesh& mesh, const 
                                                   const QualityOptions& options, TetData& data,
                                                   std::vector<uint32_t>& boundary);
 
+// The UGAWG measures of a mesh with a vertex metric (1 or 6 values per vertex) into `out`;
+// nothing without one. Errors as compute_quality_report says.
+Status measure_metric(const VolumeMesh& mesh, int histogram_bins, bool parallel, MetricQuality& out);
+
 }  // namespace anitet::quality_detail

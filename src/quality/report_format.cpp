@@ -56,6 +56,35 @@ std::string id_list(const std::vector<T>& ids, size_t total) {
 
 }  // namespace
 
+std::string metric_quality_text(const MetricQuality& m) {
+  std::ostringstream os;
+  os << "in the metric (UGAWG measures): " << m.edges << " edges, " << fmt("%.2f", 100.0 * m.in_range)
+     << "% of lengths in [1/sqrt2, sqrt2] (" << fmt("%.2f", 100.0 * m.shorter) << "% shorter, "
+     << fmt("%.2f", 100.0 * m.longer) << "% longer)\n";
+  os << stats_line("  edge length ", m.edge_length);
+  os << stats_line("  mean ratio  ", m.mean_ratio);
+  os << "  edge length histogram:\n";
+  const size_t peak = std::max<size_t>(1, *std::max_element(m.length_histogram.begin(), m.length_histogram.end()));
+  constexpr size_t kWidth = 40;
+  for (size_t i = 0; i < m.length_histogram.size(); ++i) {
+    const size_t c = m.length_histogram[i];
+    const size_t bar = (c * kWidth + peak - 1) / peak;
+    const std::string hi = i + 1 < m.length_bin_edges.size() ? fmt("%-6.4g", m.length_bin_edges[i + 1]) : "      ";
+    os << "    " << fmt("%6.4g", m.length_bin_edges[i]) << "-" << hi << " |" << std::string(bar, '#')
+       << std::string(kWidth - bar, ' ') << " " << c << "\n";
+  }
+  os << "  mean ratio histogram:\n";
+  const size_t n = m.mean_ratio_histogram.size();
+  const size_t qpeak = std::max<size_t>(1, *std::max_element(m.mean_ratio_histogram.begin(), m.mean_ratio_histogram.end()));
+  for (size_t i = 0; i < n; ++i) {
+    const size_t c = m.mean_ratio_histogram[i];
+    const size_t bar = (c * kWidth + qpeak - 1) / qpeak;
+    os << "    " << fmt("%.2f", bin_edge(i, n)) << "-" << fmt("%.2f", bin_edge(i + 1, n)) << " |" << std::string(bar, '#')
+       << std::string(kWidth - bar, ' ') << " " << c << "\n";
+  }
+  return os.str();
+}
+
 std::string quality_report_json(const QualityReport& r, int indent) {
   nlohmann::ordered_json j;
   j["vertices"] = r.vertices;
@@ -114,6 +143,24 @@ std::string quality_report_json(const QualityReport& r, int indent) {
     if (s.interior.tets > 0) j["quality_interior"] = split_json(s.interior);
     j["input_triangle_quality_min"] = s.input_triangle_quality_min;
   }
+  const MetricQuality& m = r.metric;
+  if (m.present) {
+    nlohmann::ordered_json hist = nlohmann::ordered_json::array();
+    for (size_t i = 0; i < m.length_histogram.size(); ++i) {
+      const bool last = i + 1 == m.length_bin_edges.size();
+      hist.push_back({{"lo", m.length_bin_edges[i]},
+                      {"hi", last ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(m.length_bin_edges[i + 1])},
+                      {"count", m.length_histogram[i]}});
+    }
+    j["metric"] = {{"edges", m.edges},
+                   {"edge_length", stats_json(m.edge_length)},
+                   {"edges_in_range", m.in_range},
+                   {"edges_shorter", m.shorter},
+                   {"edges_longer", m.longer},
+                   {"edge_length_histogram", hist},
+                   {"mean_ratio", stats_json(m.mean_ratio)},
+                   {"mean_ratio_histogram", m.mean_ratio_histogram}};
+  }
   j["valid"] = r.valid;
   j["seconds"] = r.seconds;
   return j.dump(indent);
@@ -165,6 +212,7 @@ std::string quality_report_text(const QualityReport& r) {
       os << split_line(name.c_str(), q.quality);
     }
   }
+  if (r.metric.present) os << metric_quality_text(r.metric);
   const SurfaceMatchReport& s = r.surface;
   if (s.present) {
     os << "input surface: " << s.input_vertices << " vertices, " << s.input_triangles << " triangles\n";

@@ -373,3 +373,46 @@ TEST(QualityFormat, JsonUsesMeshcheckKeys) {
 
 }  // namespace
 }  // namespace anitet
+
+namespace anitet {
+namespace {
+
+// The UGAWG measures of a mesh with a vertex metric: the regular tet of edge h is 1 in the metric
+// I / h^2 by both measures; stretching the metric along x changes the lengths along x only.
+TEST(QualityReport, MetricMeasuresFollowUgawg) {
+  VolumeMesh tet;
+  const double h = 0.25;
+  tet.xyz = {0, 0, 0, h, 0, 0, h / 2, h * std::sqrt(3.0) / 2, 0, h / 2, h * std::sqrt(3.0) / 6, h * std::sqrt(2.0 / 3.0)};
+  test::add_positive_tet(tet, 0, 1, 2, 3);
+  tet.vertex_metric.assign(4, h);  // sizes
+  QualityReport r = report_of(tet, nullptr);
+  ASSERT_TRUE(r.metric.present);
+  EXPECT_EQ(r.metric.edges, 6u);
+  EXPECT_NEAR(r.metric.edge_length.min, 1.0, 1e-12);
+  EXPECT_NEAR(r.metric.edge_length.max, 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(r.metric.in_range, 1.0);
+  EXPECT_NEAR(r.metric.mean_ratio.min, 1.0, 1e-12);
+  // Tensors: x twice as fine at vertex 1 only. Edge 0-1 along x: la = 1, lb = 2, l = 1 / ln 2.
+  tet.vertex_metric.assign(24, 0.0);
+  for (int v = 0; v < 4; ++v) {
+    double* m = &tet.vertex_metric[6 * size_t(v)];
+    m[0] = (v == 1 ? 4.0 : 1.0) / (h * h);
+    m[2] = m[5] = 1.0 / (h * h);
+  }
+  r = report_of(tet, nullptr);
+  EXPECT_NEAR(r.metric.edge_length.max, 1.0 / std::log(2.0), 1e-12);
+  EXPECT_EQ(r.metric.length_histogram.size(), r.metric.length_bin_edges.size());
+  EXPECT_EQ(std::accumulate(r.metric.length_histogram.begin(), r.metric.length_histogram.end(), size_t(0)), 6u);
+  EXPECT_LT(r.metric.mean_ratio.min, 1.0);  // measured in vertex 1's metric, where it is stretched
+  const nlohmann::json j = nlohmann::json::parse(quality_report_json(r));
+  EXPECT_EQ(j["metric"]["edges"], 6);
+  EXPECT_NE(quality_report_text(r).find("UGAWG"), std::string::npos);
+  // A tensor that is not SPD is named.
+  tet.vertex_metric[6 * 2 + 0] = -1.0;
+  const Result<QualityReport> bad = compute_quality_report(tet, nullptr);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().message().find("vertex 3"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace anitet

@@ -1,5 +1,7 @@
-// The measures adaptation works with, those of the UGAWG benchmark (Ibanez et al. 2017, and
-// /work/shared/data/ugawg/SOURCES.md), so that what the operations aim at is what is measured:
+// Metric measures of the UGAWG benchmark (Ibanez et al., "First benchmark of the Unstructured
+// Grid Adaptation Working Group", IMR 2017; /work/shared/data/ugawg/SOURCES.md): what adaptation
+// (src/adapt) aims at and what the quality report (src/quality) measures when a mesh carries a
+// metric:
 //   - edge length: l = (la - lb) / ln(la / lb) (la, lb: the length in the metric at either end;
 //     the exact length when the size varies linearly along the edge), (la + lb) / 2 when they
 //     are within 1e-3;
@@ -13,7 +15,7 @@
 #include <cstdint>
 #include <cstring>
 
-namespace anitet::adapt {
+namespace anitet {
 
 inline double quad_form(const double m[6], const double v[3]) {
   return m[0] * v[0] * v[0] + m[2] * v[1] * v[1] + m[5] * v[2] * v[2] +
@@ -48,13 +50,13 @@ inline double combine_lengths(double la, double lb) {
   return d / std::log(la / lb);
 }
 
-inline double edge_length(const double* pa, const double* pb, const double ma[6], const double mb[6]) {
+inline double ugawg_edge_length(const double* pa, const double* pb, const double ma[6], const double mb[6]) {
   const double v[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
   return combine_lengths(std::sqrt(quad_form(ma, v)), std::sqrt(quad_form(mb, v)));
 }
 
 // Mean ratio of (a b c d) in the metric m of determinant det_m (see the top).
-inline double mean_ratio(const double* a, const double* b, const double* c, const double* d, const double m[6],
+inline double ugawg_mean_ratio(const double* a, const double* b, const double* c, const double* d, const double m[6],
                          double det_m) {
   const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
@@ -72,4 +74,4 @@ inline double mean_ratio(const double* a, const double* b, const double* c, cons
   return 6.0 * cbrt_positive(x * x) / l2;
 }
 
-}  // namespace anitet::adapt
+}  // namespace anitet
