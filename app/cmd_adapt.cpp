@@ -1,5 +1,6 @@
 // `anitet adapt IN -o OUT --metric M [--field F]...`: anisotropic adaptation of a volume mesh to a
 // metric (adapt/adapt.hpp), the fields carried to the new mesh (metric/field_transfer.hpp).
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,11 +12,14 @@
 #include "cli_util.hpp"
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "io/file_bytes.hpp"
 #include "io/sol_io.hpp"
 #include "io/volume_io.hpp"
 #include "metric/field_transfer.hpp"
 #include "metric/metric_field.hpp"
 #include "metric/sol_field.hpp"
+#include "quality/html_report.hpp"
+#include "quality/quality_report.hpp"
 
 namespace anitet::cli {
 
@@ -37,6 +41,23 @@ std::string field_output(const std::string& out, const std::string& field) {
   return (o.parent_path() / (o.stem().string() + "." + std::filesystem::path(field).filename().string())).string();
 }
 
+std::string fixed3(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", x);
+  return buf;
+}
+
+// The run's figures for the HTML report's "Meshing run" table.
+std::vector<std::pair<std::string, std::string>> run_rows(const AdaptStats& s) {
+  return {{"input", std::to_string(s.vertices_in) + " vertices, " + std::to_string(s.tets_in) + " tets"},
+          {"cycles", std::to_string(s.cycles)},
+          {"splits (on the surface)", std::to_string(s.splits) + " (" + std::to_string(s.surface_splits) + ")"},
+          {"collapses (on the surface)", std::to_string(s.collapses) + " (" + std::to_string(s.surface_collapses) + ")"},
+          {"swaps (on the surface)", std::to_string(s.swaps) + " (" + std::to_string(s.surface_swaps) + ")"},
+          {"moves (on the surface)", std::to_string(s.moves) + " (" + std::to_string(s.surface_moves) + ")"},
+          {"time", fixed3(s.seconds_total) + " s"}};
+}
+
 struct LoadedField {
   std::string path, output;
   VertexFields fields;
@@ -51,6 +72,8 @@ int run_adapt(const AdaptArgs& args) {
     return st.code() == Error::NotImplemented ? kExitNotImplemented : kExitUsage;
   }
   if (const int code = check_output_file("adapt", args.output); code != kExitOk) return code;
+  if (!args.report_html.empty())
+    if (const int code = check_output_file("adapt", args.report_html); code != kExitOk) return code;
   if (!args.write_metric.empty()) {
     if (!is_sol_path(args.write_metric)) {
       std::cerr << me << ": --write-metric '" << args.write_metric << "': expected a .sol or .solb file\n";
@@ -158,15 +181,60 @@ int run_adapt(const AdaptArgs& args) {
     }
   }
   const AdaptStats& s = r.stats;
+  // The output measured in the metric carried to its vertices (the UGAWG measures).
+  MetricQuality measures;
+  if (args.json || !args.quiet || !args.report_html.empty()) {
+    QualityReport q;
+    if (args.report_html.empty()) {
+      Result<QualityReport> qr = compute_quality_report(r.mesh, nullptr);
+      if (!qr.ok()) {
+        std::cerr << me << ": cannot measure '" << args.output << "': " << qr.status().message() << "\n";
+        return kExitInternal;
+      }
+      q = std::move(qr).value();
+    } else {
+      HtmlReportOptions html;
+      html.title = "anitet adapt: " + std::filesystem::path(args.output).filename().string();
+      html.mesh_name = args.output;
+      html.run_rows = run_rows(r.stats);
+      Result<HtmlReport> h = quality_report_html(r.mesh, nullptr, QualityOptions(), html);
+      if (!h.ok()) {
+        std::cerr << me << ": cannot measure '" << args.output << "': " << h.status().message() << "\n";
+        return kExitInternal;
+      }
+      if (Status st = write_file_bytes(args.report_html, h.value().html); !st.ok()) {
+        std::cerr << me << ": cannot write report '" << args.report_html << "': " << st.message() << "\n";
+        return kExitReadError;
+      }
+      q = std::move(h).value().report;
+    }
+    measures = q.metric;
+  }
   if (args.json) {
-    nlohmann::json j = {{"ok", true},
-                        {"input", args.input},
-                        {"output", args.output},
-                        {"vertices", s.vertices_out},
-                        {"tets", s.tets_out},
-                        {"boundary_triangles", s.boundary_triangles_out},
-                        {"cycles", s.cycles},
-                        {"seconds", s.seconds_total}};
+    nlohmann::ordered_json fj = nlohmann::ordered_json::array();
+    for (const LoadedField& lf : fields) fj.push_back({{"input", lf.path}, {"output", lf.output}});
+    nlohmann::ordered_json j = {
+        {"ok", true},
+        {"input", args.input},
+        {"output", args.output},
+        {"vertices", s.vertices_out},
+        {"tets", s.tets_out},
+        {"boundary_triangles", s.boundary_triangles_out},
+        {"input_mesh", {{"vertices", s.vertices_in}, {"tets", s.tets_in}, {"boundary_triangles", s.boundary_triangles_in}}},
+        {"features", {{"ridge_edges", s.ridge_edges}, {"corners", s.corners}}},
+        {"cycles", s.cycles},
+        {"operations",
+         {{"splits", s.splits}, {"surface_splits", s.surface_splits}, {"collapses", s.collapses},
+          {"surface_collapses", s.surface_collapses}, {"swaps", s.swaps}, {"surface_swaps", s.surface_swaps},
+          {"moves", s.moves}, {"surface_moves", s.surface_moves}, {"splits_refused", s.split_refused},
+          {"collapses_refused", s.collapse_refused}}},
+        {"seconds",
+         {{"total", s.seconds_total}, {"setup", s.seconds_setup}, {"split", s.seconds_split},
+          {"collapse", s.seconds_collapse}, {"swap", s.seconds_swap}, {"smooth", s.seconds_smooth},
+          {"output", s.seconds_output}}},
+        {"metric", nlohmann::ordered_json::parse(metric_quality_json(measures))},
+        {"fields", fj}};
+    if (!args.report_html.empty()) j["report"] = args.report_html;
     std::cout << j.dump(1) << "\n";
   } else if (!args.quiet) {
     std::cout << me << ": wrote '" << args.output << "': " << s.vertices_out << " vertices, " << s.tets_out << " tets, "
@@ -174,11 +242,15 @@ int run_adapt(const AdaptArgs& args) {
               << s.boundary_triangles_in << ")\n"
               << "  " << s.cycles << " cycles: " << s.splits << " splits (" << s.surface_splits << " on the surface), "
               << s.collapses << " collapses (" << s.surface_collapses << "), " << s.swaps << " swaps ("
-              << s.surface_swaps << "), " << s.moves << " moves (" << s.surface_moves << ")\n"
-              << "  time: " << format_seconds(s.seconds_total) << " (setup " << s.seconds_setup << " s, split "
-              << s.seconds_split << " s, collapse " << s.seconds_collapse << " s, swap " << s.seconds_swap
-              << " s, smooth " << s.seconds_smooth << " s, output " << s.seconds_output << " s)\n";
+              << s.surface_swaps << "), " << s.moves << " moves (" << s.surface_moves << "); " << s.ridge_edges
+              << " ridge edges and " << s.corners << " corners in the input\n"
+              << "  time: " << format_seconds(s.seconds_total) << " (setup " << fixed3(s.seconds_setup) << " s, split "
+              << fixed3(s.seconds_split) << " s, collapse " << fixed3(s.seconds_collapse) << " s, swap "
+              << fixed3(s.seconds_swap) << " s, smooth " << fixed3(s.seconds_smooth) << " s, output "
+              << fixed3(s.seconds_output) << " s)\n"
+              << metric_quality_text(measures);
     for (const LoadedField& lf : fields) std::cout << "  field '" << lf.path << "' carried to '" << lf.output << "'\n";
+    if (!args.report_html.empty()) std::cout << "  html report: " << args.report_html << "\n";
   }
   return kExitOk;
 }
@@ -208,6 +280,8 @@ CLI::App* add_adapt_command(CLI::App& app, AdaptArgs& args) {
                   "earlier when a cycle changes fewer than 0.1% of the tets")
       ->capture_default_str()
       ->check(in_range(0, 1000));
+  cmd->add_option("--report", args.report_html,
+                  "Also write the HTML quality report of the output, with the UGAWG measures in the metric");
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
   cmd->add_flag("--json", args.json, "Print the result as JSON");
   cmd->add_flag("-v,--verbose", args.verbose, "Print a line per sweep on stderr (operations, tets, time)");

@@ -72,6 +72,7 @@ struct AdaptArgs {
   std::string input, output, metric;
   std::vector<std::string> fields;  // --field: carried to OUTSTEM.FIELDFILE
   std::string write_metric;         // --write-metric: the metric at OUT's vertices (.sol/.solb)
+  std::string report_html;          // --report: the HTML quality report of OUT
   bool keep_surface = false;
   double ridge_angle = 45.0;
   int max_cycles = AdaptOptions().max_cycles;

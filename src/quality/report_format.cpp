@@ -31,6 +31,24 @@ nlohmann::ordered_json split_json(const QualitySplit& q) {
           {"bad_fraction_rr_lt_0.1", q.bad_fraction}};
 }
 
+nlohmann::ordered_json metric_json(const MetricQuality& m) {
+  nlohmann::ordered_json hist = nlohmann::ordered_json::array();
+  for (size_t i = 0; i < m.length_histogram.size(); ++i) {
+    const bool last = i + 1 == m.length_bin_edges.size();
+    hist.push_back({{"lo", m.length_bin_edges[i]},
+                    {"hi", last ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(m.length_bin_edges[i + 1])},
+                    {"count", m.length_histogram[i]}});
+  }
+  return {{"edges", m.edges},
+          {"edge_length", stats_json(m.edge_length)},
+          {"edges_in_range", m.in_range},
+          {"edges_shorter", m.shorter},
+          {"edges_longer", m.longer},
+          {"edge_length_histogram", hist},
+          {"mean_ratio", stats_json(m.mean_ratio)},
+          {"mean_ratio_histogram", m.mean_ratio_histogram}};
+}
+
 double bin_edge(size_t i, size_t bins) { return double(i) / double(bins); }
 
 std::string stats_line(const char* name, const Stats& s) {
@@ -84,6 +102,8 @@ std::string metric_quality_text(const MetricQuality& m) {
   }
   return os.str();
 }
+
+std::string metric_quality_json(const MetricQuality& m, int indent) { return metric_json(m).dump(indent); }
 
 std::string quality_report_json(const QualityReport& r, int indent) {
   nlohmann::ordered_json j;
@@ -143,24 +163,7 @@ std::string quality_report_json(const QualityReport& r, int indent) {
     if (s.interior.tets > 0) j["quality_interior"] = split_json(s.interior);
     j["input_triangle_quality_min"] = s.input_triangle_quality_min;
   }
-  const MetricQuality& m = r.metric;
-  if (m.present) {
-    nlohmann::ordered_json hist = nlohmann::ordered_json::array();
-    for (size_t i = 0; i < m.length_histogram.size(); ++i) {
-      const bool last = i + 1 == m.length_bin_edges.size();
-      hist.push_back({{"lo", m.length_bin_edges[i]},
-                      {"hi", last ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(m.length_bin_edges[i + 1])},
-                      {"count", m.length_histogram[i]}});
-    }
-    j["metric"] = {{"edges", m.edges},
-                   {"edge_length", stats_json(m.edge_length)},
-                   {"edges_in_range", m.in_range},
-                   {"edges_shorter", m.shorter},
-                   {"edges_longer", m.longer},
-                   {"edge_length_histogram", hist},
-                   {"mean_ratio", stats_json(m.mean_ratio)},
-                   {"mean_ratio_histogram", m.mean_ratio_histogram}};
-  }
+  if (r.metric.present) j["metric"] = metric_json(r.metric);
   j["valid"] = r.valid;
   j["seconds"] = r.seconds;
   return j.dump(indent);
