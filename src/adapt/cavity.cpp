@@ -49,6 +49,19 @@ bool Remesher::insert_on_inner_edge(const Shell& s, const double pos[3], const d
   double l[6];
   if (!cholesky(met, l)) return false;
   if (incav_.size() < mesh_.num_slots()) incav_.resize(mesh_.num_slots(), 0);
+  // A point of the cavity too near refuses the insertion: checked as each point comes in, so a
+  // refusal costs little (they are most insertions tried in a stretched layer).
+  auto too_near = [&](uint32_t x) {
+    double d[3];
+    const double* px = mesh_.p(x);
+    for (int c = 0; c < 3; ++c) d[c] = px[c] - pos[c];
+    return std::sqrt(quad_form(met, d)) < (x >= first_new_ ? kSpacing : kNear);
+  };
+  auto refuse = [&] {
+    for (uint32_t t : cavity_) incav_[t] = 0;
+    ++stats_.split_refused;
+    return false;
+  };
   std::vector<uint32_t>& cav = cavity_;
   cav.clear();
   mesh_.next_stamp();
@@ -57,6 +70,8 @@ bool Remesher::insert_on_inner_edge(const Shell& s, const double pos[3], const d
     incav_[t] = 2;  // a seed: must stay
     cav.push_back(t);
   }
+  for (uint32_t r : s.ring)
+    if (too_near(r)) return refuse();
   // Growth: neighbours across inner faces whose circumsphere in the metric holds the point.
   for (size_t k = 0; k < cav.size() && cav.size() < kMaxCavity; ++k) {
     const uint32_t t = cav[k];
@@ -75,6 +90,7 @@ bool Remesher::insert_on_inner_edge(const Shell& s, const double pos[3], const d
       }
       const double origin[3] = {0, 0, 0};
       if (predicates::insphere(y[0], y[1], y[2], y[3], origin) > 0) {
+        if (too_near(w[adj_face(a)])) return refuse();  // the point the tet brings in
         incav_[n] = 1;
         cav.push_back(n);
       }
@@ -107,23 +123,6 @@ bool Remesher::insert_on_inner_edge(const Shell& s, const double pos[3], const d
         break;
       }
       if (!ok) break;
-    }
-  }
-  // The cavity's points: none too near.
-  if (ok) {
-    mesh_.next_stamp();
-    for (uint32_t t : cav) {
-      if (!incav_[t] || !ok) continue;
-      for (int j = 0; j < 4 && ok; ++j) {
-        const uint32_t x = mesh_.verts(t)[j];
-        if (mesh_.point_marked(x)) continue;
-        mesh_.mark_point(x);
-        double d[3];
-        const double* px = mesh_.p(x);
-        for (int c = 0; c < 3; ++c) d[c] = px[c] - pos[c];
-        const double len = std::sqrt(quad_form(met, d));
-        if (len < (x >= first_new_ ? kSpacing : kNear)) ok = false;
-      }
     }
   }
   size_t kept = 0;
