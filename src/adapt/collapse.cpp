@@ -9,7 +9,8 @@
 //   - no new edge (or moved one) is longer than kMaxCollapseLength: a collapse must not undo splits;
 //   - on the surface: q and p share no boundary neighbour but the two opposite pq (the surface
 //     stays a manifold), and every boundary face that changes keeps its orientation within
-//     kSurfaceTurn of what it was.
+//     kSurfaceTurn of what it was and fits the smooth surface as well as it did (surface_fit:
+//     no fold).
 // By the orientation test, the changed tets then fill the old ones' region exactly (each point of
 // it is covered once: positive cones from q over the region's boundary), so the mesh stays valid.
 #include <algorithm>
@@ -51,13 +52,22 @@ bool Remesher::surface_collapse_fits(uint32_t p, uint32_t q, const Shell& s, con
       for (int j = 0; j < 3; ++j)
         if (w[f[j]] != p && w[f[j]] != q) nb_p.push_back(w[f[j]]);
       if (has_q) continue;
+      // kFaceVertex turns the normal into the tet: negated, out of it.
       double before[3], after[3];
-      const double* x[3] = {mesh_.p(w[f[0]]), mesh_.p(w[f[1]]), mesh_.p(w[f[2]])};
+      uint32_t fv[3] = {w[f[0]], w[f[1]], w[f[2]]};
+      const double* x[3] = {mesh_.p(fv[0]), mesh_.p(fv[1]), mesh_.p(fv[2])};
       geom::triangle_normal(x[0], x[1], x[2], before);
       for (int j = 0; j < 3; ++j)
-        if (w[f[j]] == p) x[j] = mesh_.p(q);
+        if (fv[j] == p) x[j] = mesh_.p(q);
       geom::triangle_normal(x[0], x[1], x[2], after);
       if (geom::dot(before, after) < kSurfaceTurn) return false;
+      const bool hull = mesh_.adj[4 * size_t(t) + i] == kNone;
+      for (double& c : before) c = -c;
+      for (double& c : after) c = -c;
+      const double fit_before = surface_fit(fv, before, hull);
+      for (uint32_t& y : fv)
+        if (y == p) y = q;
+      if (surface_fit(fv, after, hull) < std::min(fit_before, kSurfaceFit)) return false;
     }
   }
   std::vector<uint32_t>& ball_q = ball2_;

@@ -36,6 +36,23 @@ const double* Remesher::side_normal(uint32_t v, const double face_n[3]) const {
   return std::fabs(geom::dot(n1, face_n)) >= std::fabs(geom::dot(n2, face_n)) ? n1 : n2;
 }
 
+double Remesher::surface_fit(const uint32_t v[3], const double n[3], bool oriented,
+                             const PointGeometry* moved) const {
+  double fit = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    const bool m = moved && v[k] == moved->id;
+    const uint8_t tag = m ? moved->tag : mesh_.tag[v[k]];
+    if (tag & ptag::kFrozen) continue;  // a corner: any plane through it fits
+    const double* n1 = m ? moved->nrm : &mesh_.nrm[3 * size_t(v[k])];
+    const double* n2 = m ? moved->nrm2 : &mesh_.nrm2[3 * size_t(v[k])];
+    auto cosine = [&](const double* x) { return oriented ? geom::dot(n, x) : std::fabs(geom::dot(n, x)); };
+    double c = cosine(n1);
+    if ((tag & ptag::kRidge) && n2) c = std::max(c, cosine(n2));  // the nearer side of the ridge
+    fit = std::min(fit, c);
+  }
+  return fit;
+}
+
 void Remesher::collect_edges(double below, double above, std::vector<EdgeRec>& out) {
   out.clear();
   std::vector<uint32_t>& ball = ball2_;

@@ -77,6 +77,21 @@ class Remesher {
 
   // The surface normal of boundary point v on the side of a face of normal `face_n`.
   const double* side_normal(uint32_t v, const double face_n[3]) const;
+  // A point an operation is about to move or make, for surface_fit: its id (a new point: any id
+  // not yet used), tag and normals.
+  struct PointGeometry {
+    uint32_t id;
+    uint8_t tag;
+    const double* nrm;
+    const double* nrm2;  // a ridge point's second side (may be null)
+  };
+  // How well a boundary face lies on the smooth surface: the smallest cosine between its unit
+  // normal n (out of the mesh when `oriented`: a hull face; an interface's normals have no side)
+  // and the surface normals at its points v[0..2] (`moved`'s taken from it). 1: tangent to the
+  // surface everywhere; near or below 0: folded. Operations keep it at least
+  // min(what it was, kSurfaceFit).
+  double surface_fit(const uint32_t v[3], const double n[3], bool oriented, const PointGeometry* moved = nullptr) const;
+  static constexpr double kSurfaceFit = 0.7071067811865476;  // 45 degrees
 
  private:
   // Whether p may go onto q by its tags and the edge's shell.

@@ -4,7 +4,8 @@
 // point moves in its tangent plane and lands on the PN triangle of the boundary face it crosses
 // into; a ridge point moves along the ridge curve. A move is made when every tet of the ball
 // stays positive (exact orient3d), the worst quality of the ball does not fall and the sum
-// rises (or the worst rises), and on the surface no boundary face turns by more than kSurfaceTurn.
+// rises (or the worst rises), and on the surface no boundary face turns by more than kSurfaceTurn
+// or fits the smooth surface worse than it did (surface_fit).
 #include <algorithm>
 #include <cmath>
 
@@ -95,13 +96,21 @@ bool Remesher::try_move(uint32_t v, const std::vector<uint32_t>& ball, const dou
       for (int i = 0; i < 4; ++i) {
         if (i == iv || !mesh_.is_bnd_face(t, i)) continue;
         const double* x[3];
-        for (int j = 0; j < 3; ++j) x[j] = mesh_.p(w[kFaceVertex[i][j]]);
+        const uint32_t fv[3] = {w[kFaceVertex[i][0]], w[kFaceVertex[i][1]], w[kFaceVertex[i][2]]};
+        for (int j = 0; j < 3; ++j) x[j] = mesh_.p(fv[j]);
         double before[3], after[3];
         geom::triangle_normal(x[0], x[1], x[2], before);
         for (int j = 0; j < 3; ++j)
-          if (w[kFaceVertex[i][j]] == v) x[j] = pos;
+          if (fv[j] == v) x[j] = pos;
         geom::triangle_normal(x[0], x[1], x[2], after);
         if (geom::dot(before, after) < kSurfaceTurn) return false;
+        // Out of the tet (kFaceVertex turns it in): no fold against the surface normals.
+        const bool hull = mesh_.adj[4 * size_t(t) + i] == kNone;
+        for (double& c : before) c = -c;
+        for (double& c : after) c = -c;
+        const PointGeometry g{v, mesh_.tag[v], nrm ? nrm : &mesh_.nrm[3 * size_t(v)],
+                              nrm2 ? nrm2 : &mesh_.nrm2[3 * size_t(v)]};
+        if (surface_fit(fv, after, hull, &g) < std::min(surface_fit(fv, before, hull), kSurfaceFit)) return false;
       }
     }
   }

@@ -89,6 +89,35 @@ bool Remesher::split_edge(uint32_t a, uint32_t b, uint32_t t0) {
       return false;
     }
   }
+  // The halves of the boundary faces through ab fit the smooth surface as well as they did.
+  const PointGeometry g{uint32_t(mesh_.num_points()), tag, n1, (tag & ptag::kRidge) ? n2 : nullptr};
+  for (const uint32_t t : s.tets) {
+    if (!mesh_.bnd[t]) continue;
+    const uint32_t* w = mesh_.verts(t);
+    for (int f = 0; f < 4; ++f) {
+      if (!mesh_.is_bnd_face(t, f) || w[f] == a || w[f] == b) continue;  // faces through ab only
+      uint32_t fv[3] = {w[kFaceVertex[f][0]], w[kFaceVertex[f][1]], w[kFaceVertex[f][2]]};
+      const bool hull = mesh_.adj[4 * size_t(t) + f] == kNone;
+      double n[3];
+      geom::triangle_normal(mesh_.p(fv[0]), mesh_.p(fv[1]), mesh_.p(fv[2]), n);
+      for (double& c : n) c = -c;  // out of the tet
+      const double before = std::min(surface_fit(fv, n, hull), kSurfaceFit);
+      for (uint32_t end : {a, b}) {
+        uint32_t half[3] = {fv[0], fv[1], fv[2]};
+        const double* x[3];
+        for (int j = 0; j < 3; ++j) {
+          if (half[j] == end) half[j] = g.id;
+          x[j] = half[j] == g.id ? pos : mesh_.p(half[j]);
+        }
+        geom::triangle_normal(x[0], x[1], x[2], n);
+        for (double& c : n) c = -c;
+        if (surface_fit(half, n, hull, &g) < before) {
+          ++stats_.split_refused;
+          return false;
+        }
+      }
+    }
+  }
   double met[6];
   uint32_t hint = mesh_.hint[a];
   metric_.eval(pos, hint, met);

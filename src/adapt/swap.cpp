@@ -98,22 +98,28 @@ bool Remesher::swap_edge(uint32_t a, uint32_t b, uint32_t t0) {
   for (const TetVerts& w : fresh_)
     if (predicates::orient3d(mesh_.p(w[0]), mesh_.p(w[1]), mesh_.p(w[2]), mesh_.p(w[3])) <= 0) return false;
   if (surface) {
-    // The surface before, (a b r0) and (a b rk), and after, (a r0 rk) and (b r0 rk): as flat and
-    // as close to the normals.
+    // The surface before, (a b r0) and (a b rk), and after, (r0 rk a) and (r0 rk b): as flat (the
+    // signed cosine of the faces' normals out of the mesh) and as close to the surface normals
+    // (surface_fit: no fold).
     const uint32_t r0 = s.ring.front(), rk = s.ring.back();
-    auto flatness = [&](uint32_t x, uint32_t y, uint32_t u, uint32_t v, double& normals) {
-      double n1[3], n2[3];
-      geom::triangle_normal(mesh_.p(x), mesh_.p(y), mesh_.p(u), n1);
-      geom::triangle_normal(mesh_.p(x), mesh_.p(y), mesh_.p(v), n2);
-      normals = 1.0;
-      for (uint32_t w : {x, y, u}) normals = std::min(normals, std::fabs(geom::dot(n1, side_normal(w, n1))));
-      for (uint32_t w : {x, y, v}) normals = std::min(normals, std::fabs(geom::dot(n2, side_normal(w, n2))));
-      return -geom::dot(n1, n2);  // the two faces, oriented alike, turn by this cosine
+    // The unit normal of face (x y z) pointing away from w (a point of its tet).
+    auto outward = [&](uint32_t x, uint32_t y, uint32_t z, uint32_t w, double nrm[3]) {
+      geom::triangle_normal(mesh_.p(x), mesh_.p(y), mesh_.p(z), nrm);
+      double d[3];
+      geom::sub(mesh_.p(w), mesh_.p(x), d);
+      if (geom::dot(nrm, d) > 0) nrm[0] = -nrm[0], nrm[1] = -nrm[1], nrm[2] = -nrm[2];
     };
-    double normals_before, normals_after;
-    const double flat_before = flatness(a, b, r0, rk, normals_before);
-    const double flat_after = flatness(r0, rk, a, b, normals_after);
-    if (flat_after < std::min(flat_before, kFlat) || normals_after < std::min(normals_before, kFlat)) return false;
+    const uint32_t rm = s.ring[tris[0][1]];  // best_triangulation gives (0 m n-1) first
+    double b0[3], b1[3], a0[3], a1[3];
+    outward(a, b, r0, s.ring[1], b0);
+    outward(a, b, rk, s.ring[k - 1], b1);
+    outward(r0, rk, a, rm, a0);
+    outward(r0, rk, b, rm, a1);
+    const uint32_t fb0[3] = {a, b, r0}, fb1[3] = {a, b, rk}, fa0[3] = {r0, rk, a}, fa1[3] = {r0, rk, b};
+    const double flat_before = geom::dot(b0, b1), flat_after = geom::dot(a0, a1);
+    const double fit_before = std::min(surface_fit(fb0, b0, true), surface_fit(fb1, b1, true));
+    const double fit_after = std::min(surface_fit(fa0, a0, true), surface_fit(fa1, a1, true));
+    if (flat_after < std::min(flat_before, kFlat) || fit_after < std::min(fit_before, kSurfaceFit)) return false;
     // The new edges (the diagonals of the ring's triangulation, r0 rk among them) must be new: in
     // a thin layer, two ring points may be joined already outside the shell.
     for (const auto& tr : tris)
