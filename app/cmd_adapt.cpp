@@ -152,11 +152,22 @@ int run_adapt(const AdaptArgs& args) {
   bar.update("done", 1.0);
   if (!result.ok()) {
     const Error e = result.status().code();
-    std::cerr << me << ": '" << args.input << "': " << result.status().message() << "\n";
+    std::cerr << me << ": '" << args.input << "' with metric '" << args.metric << "': " << result.status().message()
+              << "\n";
     return e == Error::InvalidArgument || e == Error::InvalidMesh || e == Error::EmptyInput ? kExitInvalidInput
                                                                                               : kExitInternal;
   }
   AdaptResult& r = result.value();
+  // Fields carried before anything is written: a field that cannot be carried leaves no file.
+  std::vector<VertexFields> carried_fields;
+  for (const LoadedField& lf : fields) {
+    Result<VertexFields> carried = metric::transfer_fields(in.value(), lf.fields, r.mesh.xyz);
+    if (!carried.ok()) {
+      std::cerr << me << ": cannot carry field '" << lf.path << "': " << carried.status().message() << "\n";
+      return kExitInvalidInput;
+    }
+    carried_fields.push_back(std::move(carried).value());
+  }
   VolumeMesh out = r.mesh;
   out.vertex_metric.clear();  // the mesh file holds no metric
   if (Status st = write_volume_mesh(out, args.output); !st.ok()) {
@@ -169,17 +180,11 @@ int run_adapt(const AdaptArgs& args) {
       return kExitReadError;
     }
   }
-  for (const LoadedField& lf : fields) {
-    Result<VertexFields> carried = metric::transfer_fields(in.value(), lf.fields, r.mesh.xyz);
-    if (!carried.ok()) {
-      std::cerr << me << ": cannot carry field '" << lf.path << "': " << carried.status().message() << "\n";
-      return kExitInvalidInput;
-    }
-    if (Status st = write_vertex_fields(carried.value(), lf.output); !st.ok()) {
-      std::cerr << me << ": cannot write '" << lf.output << "': " << st.message() << "\n";
+  for (size_t i = 0; i < fields.size(); ++i)
+    if (Status st = write_vertex_fields(carried_fields[i], fields[i].output); !st.ok()) {
+      std::cerr << me << ": cannot write '" << fields[i].output << "': " << st.message() << "\n";
       return kExitReadError;
     }
-  }
   const AdaptStats& s = r.stats;
   // The output measured in the metric carried to its vertices (the UGAWG measures).
   MetricQuality measures;
