@@ -91,7 +91,7 @@ class Remesher {
   // surface everywhere; near or below 0: folded. Operations keep it at least
   // min(what it was, kSurfaceFit).
   double surface_fit(const uint32_t v[3], const double n[3], bool oriented, const PointGeometry* moved = nullptr) const;
-  static constexpr double kSurfaceFit = 0.7071067811865476;  // 45 degrees
+  static constexpr double kSurfaceFit = 0.9396926207859084;  // 20 degrees
 
  private:
   // Whether p may go onto q by its tags and the edge's shell.
