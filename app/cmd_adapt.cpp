@@ -25,15 +25,6 @@ namespace anitet::cli {
 
 namespace {
 
-bool ends_with(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // Where a carried field goes: beside OUT, "OUTSTEM.FIELDNAME" (p2.meshb and --field sol.solb:
 // p2.sol.solb).
 std::string field_output(const std::string& out, const std::string& field) {
@@ -125,8 +116,7 @@ int run_adapt(const AdaptArgs& args) {
   options.progress = [&](const std::string& stage, double fraction) { return bar.update(stage, fraction); };
   if (args.verbose) options.log = [](const std::string& line) { std::cerr << "  " << line << "\n"; };
   Result<AdaptResult> result = Status(Error::Internal, "not run");
-  const std::string m = lower(args.metric);
-  if (ends_with(m, ".sol") || ends_with(m, ".solb")) {
+  if (is_sol_path(args.metric)) {
     Result<metric::SolField> sol = metric::read_sol(args.metric);
     if (!sol.ok()) {
       std::cerr << me << ": cannot read metric '" << args.metric << "': " << sol.status().message() << "\n";
@@ -138,7 +128,7 @@ int run_adapt(const AdaptArgs& args) {
       return kExitInvalidInput;
     }
     result = adapt_mesh(in.value(), sol.value().values, options);
-  } else if (ends_with(m, ".vdb")) {
+  } else if (lower_extension(args.metric) == "vdb") {
     Result<metric::MetricField> f = metric::read_metric_vdb(args.metric);
     if (!f.ok()) {
       std::cerr << me << ": cannot read metric '" << args.metric << "': " << f.status().message() << "\n";
