@@ -272,7 +272,8 @@ CLI::App* add_adapt_command(CLI::App& app, AdaptArgs& args) {
       ->check(in_range(0.0, 180.0));
   cmd->add_option("--max-cycles", args.max_cycles,
                   "Refinement/coarsening cycles at most (each: splits, collapses, swaps, moves); they stop "
-                  "earlier when a cycle changes fewer than 0.1% of the tets")
+                  "earlier when a cycle changes fewer than 0.1% of the tets, or when its splits and collapses "
+                  "are over 90% of those five cycles before (they undo each other)")
       ->capture_default_str()
       ->check(in_range(0, 1000));
   cmd->add_option("--report", args.report_html,
