@@ -40,12 +40,9 @@ struct AdaptOptions {
   double collapse_length = 0.7071067811865476; // edges shorter than this are collapsed
   int max_cycles = 30;           // refinement/coarsening cycles at most
   int optimize_cycles = 3;       // swap and smoothing sweeps after them
-  // check() of the working mesh after every sweep (on by default in debug builds).
-#ifdef NDEBUG
+  // AdaptMesh::check() of the working mesh after every sweep, a broken mesh an Error::Internal
+  // naming the sweep (costly: for tests and debugging).
   bool check_each_sweep = false;
-#else
-  bool check_each_sweep = false;
-#endif
   // Called between sweeps with what runs and the fraction done (a rough estimate); returning
   // false cancels (Error::Cancelled). May be empty.
   std::function<bool(const std::string& stage, double fraction)> progress;
