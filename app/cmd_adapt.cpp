@@ -243,7 +243,7 @@ int run_adapt(const AdaptArgs& args) {
               << fixed3(s.seconds_split) << " s, collapse " << fixed3(s.seconds_collapse) << " s, swap "
               << fixed3(s.seconds_swap) << " s, smooth " << fixed3(s.seconds_smooth) << " s, output "
               << fixed3(s.seconds_output) << " s)\n"
-              << metric_quality_text(measures);
+              << metric_quality_text(measures, args.verbose);
     for (const LoadedField& lf : fields) std::cout << "  field '" << lf.path << "' carried to '" << lf.output << "'\n";
     if (!args.report_html.empty()) std::cout << "  html report: " << args.report_html << "\n";
   }
@@ -280,7 +280,7 @@ CLI::App* add_adapt_command(CLI::App& app, AdaptArgs& args) {
                   "Also write the HTML quality report of the output, with the UGAWG measures in the metric");
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
   cmd->add_flag("--json", args.json, "Print the result as JSON");
-  cmd->add_flag("-v,--verbose", args.verbose, "Print a line per sweep on stderr (operations, tets, time)");
+  cmd->add_flag("-v,--verbose", args.verbose, "Print a line per sweep on stderr (operations, tets, time) and the histograms of the measures");
   cmd->footer(
       "Examples:\n"
       "  anitet adapt in.meshb -o out.meshb --metric in.solb\n"

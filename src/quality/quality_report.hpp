@@ -133,7 +133,7 @@ Result<QualityReport> compute_quality_report(const VolumeMesh& mesh,
 std::string quality_report_text(const QualityReport& report);
 // Its part on the metric (the UGAWG measures and their histograms), as text and as the JSON
 // report's "metric" object.
-std::string metric_quality_text(const MetricQuality& metric);
+std::string metric_quality_text(const MetricQuality& metric, bool histograms = true);
 std::string metric_quality_json(const MetricQuality& metric, int indent = 1);
 // The report as a JSON object (meshcheck.py's keys where they mean the same), pretty-printed.
 std::string quality_report_json(const QualityReport& report, int indent = 1);

@@ -74,13 +74,14 @@ std::string id_list(const std::vector<T>& ids, size_t total) {
 
 }  // namespace
 
-std::string metric_quality_text(const MetricQuality& m) {
+std::string metric_quality_text(const MetricQuality& m, bool histograms) {
   std::ostringstream os;
   os << "in the metric (UGAWG measures): " << m.edges << " edges, " << fmt("%.2f", 100.0 * m.in_range)
      << "% of lengths in [1/sqrt2, sqrt2] (" << fmt("%.2f", 100.0 * m.shorter) << "% shorter, "
      << fmt("%.2f", 100.0 * m.longer) << "% longer)\n";
   os << stats_line("  edge length ", m.edge_length);
   os << stats_line("  mean ratio  ", m.mean_ratio);
+  if (!histograms) return os.str();
   os << "  edge length histogram:\n";
   const size_t peak = std::max<size_t>(1, *std::max_element(m.length_histogram.begin(), m.length_histogram.end()));
   constexpr size_t kWidth = 40;
