@@ -104,6 +104,20 @@ void sym_exp(const double l[6], double out[6]) {
   for (int i = 0; i < 6; ++i) out[i] = r[i] * e;
 }
 
+bool cholesky(const double m[6], double l[6]) {
+  const double l00 = std::sqrt(m[0]);
+  if (!(l00 > 0.0)) return false;
+  const double l10 = m[1] / l00, l20 = m[3] / l00;
+  const double d11 = m[2] - l10 * l10;
+  if (!(d11 > 0.0)) return false;
+  const double l11 = std::sqrt(d11);
+  const double l21 = (m[4] - l20 * l10) / l11;
+  const double d22 = m[5] - l20 * l20 - l21 * l21;
+  if (!(d22 > 0.0)) return false;
+  l[0] = l00, l[1] = l10, l[2] = l11, l[3] = l20, l[4] = l21, l[5] = std::sqrt(d22);
+  return true;
+}
+
 bool is_spd(const double m[6]) {
   for (int i = 0; i < 6; ++i)
     if (!std::isfinite(m[i])) return false;

@@ -19,6 +19,9 @@ void sym_exp(const double l[6], double out[6]);
 
 // True when m is symmetric positive definite (all Cholesky pivots > 0).
 bool is_spd(const double m[6]);
+// M = L L^T with L lower triangular, l = l00 l10 l11 l20 l21 l22 (y = L^T x measures x in M:
+// |y| = sqrt(x^T M x)). False, with l untouched, when a pivot is not > 0.
+bool cholesky(const double m[6], double l[6]);
 // The smallest eigenvalue of a symmetric tensor.
 double min_eigenvalue(const double m[6]);
 

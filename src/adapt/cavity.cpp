@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "adapt/remesher.hpp"
+#include "metric/spd.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet::adapt {
@@ -20,21 +21,6 @@ namespace {
 constexpr double kNear = 0.5;
 constexpr double kSpacing = 0.7;
 constexpr size_t kMaxCavity = 512;
-
-// M = L L^T (L lower triangular, l = l00 l10 l11 l20 l21 l22); false when M is not SPD.
-bool cholesky(const double m[6], double l[6]) {
-  const double l00 = m[0] > 0 ? std::sqrt(m[0]) : -1.0;
-  if (!(l00 > 0)) return false;
-  const double l10 = m[1] / l00, l20 = m[3] / l00;
-  const double d1 = m[2] - l10 * l10;
-  if (!(d1 > 0)) return false;
-  const double l11 = std::sqrt(d1);
-  const double l21 = (m[4] - l20 * l10) / l11;
-  const double d2 = m[5] - l20 * l20 - l21 * l21;
-  if (!(d2 > 0)) return false;
-  l[0] = l00, l[1] = l10, l[2] = l11, l[3] = l20, l[4] = l21, l[5] = std::sqrt(d2);
-  return true;
-}
 
 // y = L^T x: lengths of y are lengths in M.
 void map_point(const double l[6], const double x[3], double y[3]) {
@@ -47,7 +33,7 @@ void map_point(const double l[6], const double x[3], double y[3]) {
 
 bool Remesher::insert_on_inner_edge(const Shell& s, const double pos[3], const double met[6], uint32_t hint) {
   double l[6];
-  if (!cholesky(met, l)) return false;
+  if (!metric::cholesky(met, l)) return false;
   if (incav_.size() < mesh_.num_slots()) incav_.resize(mesh_.num_slots(), 0);
   // A point of the cavity too near refuses the insertion: checked as each point comes in, so a
   // refusal costs little (they are most insertions tried in a stretched layer).

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/sizing.hpp"
+#include "metric/spd.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet::meshops {
@@ -104,23 +105,8 @@ double min_quality(const TetMesh& mesh, const std::vector<uint32_t>& tets) {
 MetricMap MetricMap::of(const double m[6]) {
   MetricMap map;
   if (metric_is_isotropic(m)) return map;
-  // M = L L^T with L lower triangular; a non positive pivot (M not SPD) keeps the identity.
-  const double l00 = std::sqrt(m[0]);
-  if (!(l00 > 0.0)) return map;
-  const double l10 = m[1] / l00, l20 = m[3] / l00;
-  const double d11 = m[2] - l10 * l10;
-  if (!(d11 > 0.0)) return map;
-  const double l11 = std::sqrt(d11);
-  const double l21 = (m[4] - l20 * l10) / l11;
-  const double d22 = m[5] - l20 * l20 - l21 * l21;
-  if (!(d22 > 0.0)) return map;
-  map.identity = false;
-  map.l[0] = l00;
-  map.l[1] = l10;
-  map.l[2] = l11;
-  map.l[3] = l20;
-  map.l[4] = l21;
-  map.l[5] = std::sqrt(d22);
+  // A non positive pivot (M not SPD) keeps the identity.
+  map.identity = !metric::cholesky(m, map.l);
   return map;
 }
 
