@@ -68,24 +68,29 @@ Status check_patch_name(const std::string& name) {
   return Status::success();
 }
 
-Result<PatchNames> parse_patch_names(const std::string& spec) {
-  PatchNames names;
-  std::set<std::string> seen;
-  size_t start = 0;
+namespace {
+
+// Splits "LABEL=VALUE,LABEL=VALUE,..." (one trailing comma allowed) and calls
+// on_item(item, label_text, label, value) for each item, values trimmed; stops at the first
+// error, its or on_item's. `value_kind` names VALUE in the messages ("NAME", "TYPE").
+template <class OnItem>
+Status for_each_label_item(const std::string& spec, const char* value_kind, OnItem&& on_item) {
+  size_t start = 0, items = 0;
   while (start <= spec.size()) {
     size_t comma = spec.find(',', start);
     if (comma == std::string::npos) comma = spec.size();
     const std::string item = trim(spec.substr(start, comma - start));
     start = comma + 1;
     if (item.empty()) {
-      if (comma == spec.size() && !names.empty()) break;  // a trailing comma
-      return Status(Error::InvalidArgument, "'" + spec + "': empty item (expected LABEL=NAME,...)");
+      if (comma == spec.size() && items > 0) break;  // a trailing comma
+      return Status(Error::InvalidArgument,
+                    "'" + spec + "': empty item (expected LABEL=" + value_kind + ",...)");
     }
     const size_t eq = item.find('=');
     if (eq == std::string::npos) {
-      return Status(Error::InvalidArgument, "'" + item + "' is not LABEL=NAME");
+      return Status(Error::InvalidArgument, "'" + item + "' is not LABEL=" + value_kind);
     }
-    const std::string label_text = trim(item.substr(0, eq)), name = trim(item.substr(eq + 1));
+    const std::string label_text = trim(item.substr(0, eq)), value = trim(item.substr(eq + 1));
     int32_t label = 0;
     const char* first = label_text.data();
     const char* last = first + label_text.size();
@@ -94,6 +99,19 @@ Result<PatchNames> parse_patch_names(const std::string& spec) {
       return Status(Error::InvalidArgument, "'" + item + "': '" + label_text +
                                                 "' is not an integer patch label");
     }
+    if (Status s = on_item(item, label_text, label, value); !s.ok()) return s;
+    ++items;
+  }
+  return Status::success();
+}
+
+}  // namespace
+
+Result<PatchNames> parse_patch_names(const std::string& spec) {
+  PatchNames names;
+  std::set<std::string> seen;
+  Status parsed = for_each_label_item(spec, "NAME", [&](const std::string& item, const std::string& label_text,
+                                                        int32_t label, const std::string& name) -> Status {
     if (Status s = check_patch_name(name); !s.ok()) {
       return Status(Error::InvalidArgument, "'" + item + "': " + s.message());
     }
@@ -104,7 +122,9 @@ Result<PatchNames> parse_patch_names(const std::string& spec) {
       return Status(Error::InvalidArgument, "the name '" + name + "' is given twice");
     }
     names[label] = name;
-  }
+    return Status::success();
+  });
+  if (!parsed.ok()) return parsed;
   return names;
 }
 
@@ -199,25 +219,9 @@ const char* patch_kind_name(PatchKind kind) {
 
 Result<PatchTypes> parse_patch_types(const std::string& spec) {
   PatchTypes types;
-  size_t start = 0;
-  while (start <= spec.size()) {
-    size_t comma = spec.find(',', start);
-    if (comma == std::string::npos) comma = spec.size();
-    const std::string item = trim(spec.substr(start, comma - start));
-    start = comma + 1;
-    if (item.empty()) {
-      if (comma == spec.size() && !types.empty()) break;  // a trailing comma
-      return Status(Error::InvalidArgument, "'" + spec + "': empty item (expected LABEL=TYPE,...)");
-    }
-    const size_t eq = item.find('=');
-    if (eq == std::string::npos) return Status(Error::InvalidArgument, "'" + item + "' is not LABEL=TYPE");
-    const std::string label_text = trim(item.substr(0, eq)), type = lower(trim(item.substr(eq + 1)));
-    int32_t label = 0;
-    const char* first = label_text.data();
-    const char* last = first + label_text.size();
-    auto [ptr, ec] = std::from_chars(first, last, label);
-    if (label_text.empty() || ec != std::errc() || ptr != last)
-      return Status(Error::InvalidArgument, "'" + item + "': '" + label_text + "' is not an integer patch label");
+  Status parsed = for_each_label_item(spec, "TYPE", [&](const std::string& item, const std::string& label_text,
+                                                        int32_t label, const std::string& value) -> Status {
+    const std::string type = lower(value);
     bool known = false;
     for (PatchKind kind : {PatchKind::Wall, PatchKind::Inlet, PatchKind::Outlet, PatchKind::Farfield,
                            PatchKind::Symmetry, PatchKind::Patch})
@@ -229,7 +233,9 @@ Result<PatchTypes> parse_patch_types(const std::string& spec) {
     if (!known)
       return Status(Error::InvalidArgument, "'" + item + "': unknown type '" + type +
                                                 "' (wall, inlet, outlet, farfield, symmetry or patch)");
-  }
+    return Status::success();
+  });
+  if (!parsed.ok()) return parsed;
   return types;
 }
 
