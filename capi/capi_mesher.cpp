@@ -162,6 +162,18 @@ int validated_copy(const char* fn, const anitet_surface& surface, const anitet_o
   return report.ok() ? ANITET_OK : set_status(fn, report.status());
 }
 
+// What every entry point on a surface and options checks first: out given (and cleared), the
+// surface given, the options read and converted.
+template <class Out>
+int begin_run(const char* fn, const anitet_surface* surface, const anitet_options* options, Out** out,
+              anitet_options& opt, anitet::MesherOptions& mo) {
+  if (out == nullptr) return null_argument(fn, "out");
+  *out = nullptr;
+  if (surface == nullptr) return null_argument(fn, "surface");
+  if (const int code = read_options(fn, options, opt); code != ANITET_OK) return code;
+  return to_mesher_options(fn, opt, mo);
+}
+
 }  // namespace
 
 extern "C" {
@@ -170,13 +182,9 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
                       const anitet_options* options, anitet_mesh** out) {
   const char* const fn = __func__;
   return guard(fn, [&] {
-    if (out == nullptr) return null_argument(fn, "out");
-    *out = nullptr;
-    if (surface == nullptr) return null_argument(fn, "surface");
     anitet_options opt;
-    if (const int code = read_options(fn, options, opt); code != ANITET_OK) return code;
     anitet::MesherOptions mo;
-    if (const int code = to_mesher_options(fn, opt, mo); code != ANITET_OK) return code;
+    if (const int code = begin_run(fn, surface, options, out, opt, mo); code != ANITET_OK) return code;
     std::unique_ptr<CallerSizing> sizing;
     if (metric != nullptr) {
       sizing = std::make_unique<CallerSizing>(*metric, bounding_diagonal(surface->mesh));
@@ -246,13 +254,9 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
 int anitet_layers_run(const anitet_surface* surface, const anitet_options* options, anitet_mesh** out) {
   const char* const fn = __func__;
   return guard(fn, [&] {
-    if (out == nullptr) return null_argument(fn, "out");
-    *out = nullptr;
-    if (surface == nullptr) return null_argument(fn, "surface");
     anitet_options opt;
-    if (const int code = read_options(fn, options, opt); code != ANITET_OK) return code;
     anitet::MesherOptions mo;
-    if (const int code = to_mesher_options(fn, opt, mo); code != ANITET_OK) return code;
+    if (const int code = begin_run(fn, surface, options, out, opt, mo); code != ANITET_OK) return code;
     if (opt.bl_cells == ANITET_BL_CELLS_PRISMS)
       return bad_option(fn, "bl_cells ANITET_BL_CELLS_PRISMS applies to anitet_mesher_run (the whole pipeline); "
                             "stage 1's tets are in region 1");
@@ -305,13 +309,9 @@ int anitet_metric_create_surface_sizing(const anitet_surface* surface, const ani
                                         anitet_metric** out) {
   const char* const fn = __func__;
   return guard(fn, [&] {
-    if (out == nullptr) return null_argument(fn, "out");
-    *out = nullptr;
-    if (surface == nullptr) return null_argument(fn, "surface");
     anitet_options opt;
-    if (const int code = read_options(fn, options, opt); code != ANITET_OK) return code;
     anitet::MesherOptions mo;
-    if (const int code = to_mesher_options(fn, opt, mo); code != ANITET_OK) return code;
+    if (const int code = begin_run(fn, surface, options, out, opt, mo); code != ANITET_OK) return code;
     anitet::SurfaceMesh repaired;
     if (const int code = validated_copy(fn, *surface, opt, mo, repaired); code != ANITET_OK) return code;
     anitet::Result<std::unique_ptr<anitet::SizingField>> built = in_arena(opt.num_threads, [&] {
