@@ -63,13 +63,15 @@ size_t split_corner(Triangulation& m, VertexMetrics& vm, std::vector<uint8_t>& f
 size_t split_sharp_corners(Triangulation& m, VertexMetrics& vm, std::vector<uint8_t>& fixed, uint32_t count) {
   std::vector<uint32_t> ends;
   size_t splits = 0;
-  for (uint32_t v = 0; v < count; ++v) {
+  auto at = [&](uint32_t v) {
     double shortest;
-    if (!sharp_corner(m, v, ends, shortest)) continue;
+    if (!sharp_corner(m, v, ends, shortest)) return;
     const double h = 1.0 / std::sqrt(std::max(vm.at[v].xx, vm.at[v].yy));
     const double d = std::exp2(std::floor(std::log2(std::min(0.5 * shortest, h))));
     splits += split_corner(m, vm, fixed, v, d);
-  }
+  };
+  for (uint32_t v = 0; v < count; ++v) at(v);
+  for (const auto& copy : m.copies) at(copy.first);  // a pinched input point's other fans
   return splits;
 }
 

@@ -21,8 +21,8 @@ bool sharp_corner(const Triangulation& mesh, uint32_t v, std::vector<uint32_t>& 
 // the new points are fixed (they keep the shells concentric). Returns the points inserted.
 size_t split_corner(Triangulation& mesh, VertexMetrics& metrics, std::vector<uint8_t>& fixed, uint32_t v, double d);
 
-// The first shells: at each sharp corner among the vertices [0, count), at the power of two
-// below half its shortest segment and the size there.
+// The first shells: at each sharp corner among the vertices [0, count) and mesh.copies, at the
+// power of two below half its shortest segment and the size there.
 size_t split_sharp_corners(Triangulation& mesh, VertexMetrics& metrics, std::vector<uint8_t>& fixed, uint32_t count);
 
 // Splits the constrained edge k of t: at a shell when one end is a sharp corner, else at its

@@ -20,8 +20,11 @@ TriMesh2 extract(const Triangulation& m, const Pslg& p, const Domain& d, const V
   TriMesh2 out;
   out.input_points = p.num_points();
   std::vector<uint32_t> id(m.num_vertices(), kNone);
+  for (const auto& [copy, original] : m.copies) id[copy] = original;  // mapped below
   for (uint32_t v = 0; v < m.num_vertices(); ++v)
-    if (v < p.num_points() || m.vtri[v] != kNone) {
+    if (id[v] != kNone) {
+      id[v] = id[id[v]];  // a pinched vertex's copy: the original's output vertex
+    } else if (v < p.num_points() || m.vtri[v] != kNone) {
       id[v] = uint32_t(out.xy.size() / 2);
       out.xy.insert(out.xy.end(), {m.xy[2 * size_t(v)], m.xy[2 * size_t(v) + 1]});
       out.metric.insert(out.metric.end(), {vm.at[v].xx, vm.at[v].xy, vm.at[v].yy});
@@ -101,6 +104,7 @@ Result<TriMesh2> run(const Pslg& p, const Mesh2dOptions& o, Mesh2dStats& st) {
   Triangulation& m = mesh.value();
   std::vector<uint8_t> fixed(m.num_vertices(), 0);
   std::fill(fixed.begin(), fixed.begin() + long(p.num_points()), uint8_t(1));
+  for (const auto& copy : m.copies) fixed[copy.first] = 1;
   VertexMetrics vm(*field.value(), anisotropic);
   vm.update(m);
   if (o.split_segments) st.refine.segment_splits += split_sharp_corners(m, vm, fixed, uint32_t(p.num_points()));

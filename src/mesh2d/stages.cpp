@@ -22,8 +22,10 @@ namespace {
 
 // T2: the Delaunay triangulation of S1's points with S1 recovered (tags: S1 edge index), carved
 // to the inside of S1 (the left of its edges). Vertices: xy's, 4 box corners, Steiner points.
+// chains[g]: S1 edge g's pieces' vertices in order, found before the carving (S1 may touch
+// itself at an input point, whose triangles then form two fans that star() cannot both see).
 Result<Triangulation> stage2(const std::vector<double>& xy, const FrontResult& f, uint32_t& first_corner,
-                             StageStats* stats) {
+                             std::vector<std::vector<uint32_t>>& chains, StageStats* stats) {
   std::vector<uint32_t> points(f.s1);
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
@@ -38,8 +40,10 @@ Result<Triangulation> stage2(const std::vector<double>& xy, const FrontResult& f
   if (stats) stats->steiner_on_s1 = cs.steiner;
   // Carve: flood from the triangles left of S1's pieces.
   std::vector<uint8_t> inside(m.num_slots(), 0);
-  std::vector<uint32_t> stack, chain;
+  std::vector<uint32_t> stack;
+  chains.assign(n_s1, {});
   for (size_t g = 0; g < n_s1; ++g) {
+    std::vector<uint32_t>& chain = chains[g];
     if (Status s = chain_vertices(m, f.s1[2 * g], f.s1[2 * g + 1], int32_t(g), chain); !s.ok())
       return Status(s.code(), "stage 2: " + s.message());
     for (size_t i = 0; i + 1 < chain.size(); ++i) {
@@ -99,7 +103,8 @@ Result<Triangulation> boundary_constrained_triangulation(const Pslg& pslg, const
   st.closed = f.closed;
 
   uint32_t corner = 0;
-  Result<Triangulation> t2 = stage2(xy, f, corner, &st);
+  std::vector<std::vector<uint32_t>> chains;
+  Result<Triangulation> t2 = stage2(xy, f, corner, chains, &st);
   if (!t2.ok()) return t2.status();
   Triangulation& m2 = t2.value();
   // Vertex ids: xy's as they are; T2's Steiner points (after the 4 corners) moved down by 4.
@@ -123,9 +128,8 @@ Result<Triangulation> boundary_constrained_triangulation(const Pslg& pslg, const
     for (int k = 0; k < 3; ++k) holder[key(t1[3 * size_t(t) + size_t(k)], t1[3 * size_t(t) + size_t((k + 1) % 3)])] = t;
   };
   for (uint32_t t = 0; t < t1_alive.size(); ++t) hold(t);
-  std::vector<uint32_t> chain;
   for (size_t g = 0; g < f.s1.size() / 2; ++g) {
-    if (Status s = chain_vertices(m2, f.s1[2 * g], f.s1[2 * g + 1], int32_t(g), chain); !s.ok()) return s;
+    const std::vector<uint32_t>& chain = chains[g];
     if (chain.size() == 2) continue;
     const auto it = holder.find(key(f.s1[2 * g + 1], f.s1[2 * g]));
     if (it == holder.end() || !t1_alive[it->second])

@@ -132,6 +132,42 @@ void Triangulation::rebuild_vertex_triangles() {
       for (int k = 0; k < 3; ++k) vtri[v(t, k)] = t;
 }
 
+namespace {
+
+// Gives each fan of triangles around a vertex after its first a copy of the vertex (m.copies).
+void split_pinched_vertices(Triangulation& m) {
+  std::vector<uint8_t> seen(m.tri.size(), 0);  // per corner (3 t + i)
+  std::vector<uint8_t> claimed(m.num_vertices(), 0);
+  std::vector<uint32_t> fan;
+  for (uint32_t t0 = 0; t0 < m.num_slots(); ++t0)
+    for (int i0 = 0; i0 < 3; ++i0) {
+      if (seen[3 * size_t(t0) + size_t(i0)]) continue;
+      const uint32_t v = m.v(t0, i0);
+      // The fan through corner (t0, i0): counter-clockwise, then clockwise from t0.
+      fan.assign(1, t0);
+      bool closed = false;
+      for (int dir : {1, 2}) {
+        uint32_t t = m.across(t0, (i0 + dir) % 3);
+        for (; t != kNone && t != t0 && !closed; t = m.across(t, (m.index_of(t, v) + dir) % 3)) fan.push_back(t);
+        closed = closed || t == t0;
+      }
+      uint32_t id = v;
+      if (claimed[v]) {
+        id = uint32_t(m.num_vertices());
+        m.xy.insert(m.xy.end(), {m.xy[2 * size_t(v)], m.xy[2 * size_t(v) + 1]});
+        m.copies.emplace_back(id, v);
+      }
+      claimed[v] = 1;
+      for (uint32_t t : fan) {
+        const int i = m.index_of(t, v);
+        seen[3 * size_t(t) + size_t(i)] = 1;
+        m.tri[3 * size_t(t) + size_t(i)] = id;
+      }
+    }
+}
+
+}  // namespace
+
 Result<Triangulation> build_triangulation(std::vector<double> xy, std::vector<uint32_t> tri,
                                           const std::vector<uint32_t>& edges,
                                           const std::vector<int32_t>& edge_tags) {
@@ -170,15 +206,17 @@ Result<Triangulation> build_triangulation(std::vector<double> xy, std::vector<ui
     }
     i = j;
   }
-  m.rebuild_vertex_triangles();
+  // Tags from the sorted half-edges (not find_edge: a pinched vertex's star is not yet one fan).
   for (size_t e = 0; e < edges.size() / 2; ++e) {
-    uint32_t t;
-    int k;
-    if (!m.find_edge(edges[2 * e], edges[2 * e + 1], t, k) && !m.find_edge(edges[2 * e + 1], edges[2 * e], t, k))
-      return Status(Error::InvalidMesh, "edge " + std::to_string(edges[2 * e]) + "-" + std::to_string(edges[2 * e + 1]) +
-                                            " is no triangle's");
-    m.set_edge_tag(t, k, e < edge_tags.size() ? edge_tags[e] : int32_t(e));
+    const uint32_t a = edges[2 * e], b = edges[2 * e + 1];
+    const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+    auto it = std::lower_bound(half.begin(), half.end(), key, [](const Half& h, uint64_t k) { return h.key < k; });
+    if (it == half.end() || it->key != key)
+      return Status(Error::InvalidMesh, "edge " + std::to_string(a) + "-" + std::to_string(b) + " is no triangle's");
+    m.set_edge_tag(it->t, it->k, e < edge_tags.size() ? edge_tags[e] : int32_t(e));
   }
+  split_pinched_vertices(m);
+  m.rebuild_vertex_triangles();
   return m;
 }
 

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/status.hpp"
@@ -32,6 +33,10 @@ class Triangulation {
   std::vector<int32_t> tag;     // 3 per slot
   std::vector<uint32_t> vtri;   // per vertex: a live triangle holding it, kNone when none
   std::vector<uint32_t> free_slots;
+  // {copy, original}: where the triangles around one point form several fans (the domain
+  // pinches there, e.g. two squares touching at a corner), build_triangulation gives each fan
+  // after the first its own copy of the vertex, so that every vertex's star is one fan.
+  std::vector<std::pair<uint32_t, uint32_t>> copies;
 
   size_t num_vertices() const { return xy.size() / 2; }
   size_t num_slots() const { return tri.size() / 3; }
@@ -69,9 +74,10 @@ class Triangulation {
 };
 
 // The triangulation of the given counter-clockwise triangles (3 indices each) over xy, with
-// adjacency; the edges listed (2 vertices each) get the matching tags. Error::InvalidMesh
-// naming the edge for an edge of three or more triangles, or of two triangles of the same
-// orientation, and for a listed edge that is no triangle's.
+// adjacency; the edges listed (2 vertices each) get the matching tags. A vertex whose triangles
+// form several fans is split into copies (Triangulation::copies). Error::InvalidMesh naming the
+// edge for an edge of three or more triangles, or of two triangles of the same orientation, and
+// for a listed edge that is no triangle's.
 Result<Triangulation> build_triangulation(std::vector<double> xy, std::vector<uint32_t> tri,
                                           const std::vector<uint32_t>& edges = {},
                                           const std::vector<int32_t>& edge_tags = {});

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <utility>
+#include <vector>
 
 #include "mesh2d/domain.hpp"
 #include "mesh2d/mesher2.hpp"
@@ -70,6 +72,78 @@ TEST(Mesh2dStages, ConstantAnisotropicMetricOnTheRing) {
   Result<TriMesh2> m = mesh_pslg(p.value(), o);
   ASSERT_TRUE(m.ok()) << m.status().message();
   EXPECT_EQ(m->edge_label.size(), p->num_segments());
+}
+
+}  // namespace
+}  // namespace anitet::mesh2d
+
+namespace anitet::mesh2d {
+namespace {
+
+// The output of mesh_pslg is a valid mesh of the domain: every triangle positive, no two vertices
+// at one place, each input segment an edge, the area the domain's.
+void expect_valid_output(const Pslg& p, const TriMesh2& m, double area) {
+  double sum = 0;
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    const double* a = &m.xy[2 * size_t(m.tri[3 * t])];
+    const double* b = &m.xy[2 * size_t(m.tri[3 * t + 1])];
+    const double* c = &m.xy[2 * size_t(m.tri[3 * t + 2])];
+    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    EXPECT_GT(twice, 0.0) << "triangle " << t;
+    sum += 0.5 * twice;
+  }
+  EXPECT_NEAR(sum, area, 1e-12 * area);
+  std::vector<std::pair<double, double>> at;
+  for (size_t v = 0; v < m.num_vertices(); ++v) at.emplace_back(m.xy[2 * v], m.xy[2 * v + 1]);
+  std::sort(at.begin(), at.end());
+  EXPECT_EQ(std::adjacent_find(at.begin(), at.end()), at.end()) << "two vertices at one place";
+  std::vector<uint8_t> kept(p.num_segments(), 0);
+  for (uint32_t s : m.edge_segment) kept[s] = 1;
+  EXPECT_EQ(std::count(kept.begin(), kept.end(), 1), long(p.num_segments()));
+}
+
+// Two squares touching at a corner (and the fuzzer's GeoJSON bow tie): the triangles around the
+// shared point form two fans; the working triangulation gives the second fan a copy of the
+// point, the output the point once.
+TEST(Mesh2dStages, DomainPinchedAtAPoint) {
+  Result<Pslg> p = parse_poly(
+      "7 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n5 2 1\n6 2 2\n7 1 2\n"
+      "8 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n5 3 5\n6 5 6\n7 6 7\n8 7 3\n0\n",
+      "bow tie");
+  ASSERT_TRUE(p.ok()) << p.status().message();
+  Result<Domain> d = analyse_domain(p.value());
+  ASSERT_TRUE(d.ok()) << d.status().message();
+  Result<Triangulation> t = boundary_constrained_triangulation(p.value(), d.value(), FrontOptions{}, nullptr);
+  ASSERT_TRUE(t.ok()) << t.status().message();
+  ASSERT_TRUE(check_triangulation(t.value()).ok()) << check_triangulation(t.value()).message();
+  ASSERT_EQ(t->copies.size(), 1u);
+  EXPECT_EQ(t->copies[0].second, 2u);
+  Result<TriMesh2> m = mesh_pslg(p.value(), Mesh2dOptions{});
+  ASSERT_TRUE(m.ok()) << m.status().message();
+  expect_valid_output(p.value(), m.value(), 2.0);
+  size_t at_pinch = 0;
+  for (uint32_t v : m->tri) at_pinch += v == 2;
+  EXPECT_GE(at_pinch, 4u);  // triangles of both squares
+}
+
+// Stage 1 closes the sharp corner at (22, 2), leaving the input point (1, 2) on S1 on both
+// sides of the inner segment: S1 touches itself there, and the carved T2's triangles around it
+// form two fans. The coupling used to look for S1's pieces in the carved T2 (a fuzzer's input).
+TEST(Mesh2dStages, FrontTouchesItselfAtAnInputPoint) {
+  Result<Pslg> p = parse_poly(
+      "6 2 0 0\n1 0 0\n2 1 0\n3 2 0\n4 22 2\n5 1 2\n6 0 2\n"
+      "7 1\n1 1 2 1\n2 2 3 1\n3 3 4 1\n4 4 5 1\n5 5 6 1\n6 6 1 1\n7 2 5 9\n0\n",
+      "spike");
+  ASSERT_TRUE(p.ok()) << p.status().message();
+  Result<Domain> d = analyse_domain(p.value());
+  ASSERT_TRUE(d.ok()) << d.status().message();
+  Result<Triangulation> t = boundary_constrained_triangulation(p.value(), d.value(), FrontOptions{}, nullptr);
+  ASSERT_TRUE(t.ok()) << t.status().message();
+  ASSERT_TRUE(check_triangulation(t.value()).ok()) << check_triangulation(t.value()).message();
+  expect_segments_kept(p.value(), t.value());
+  Result<TriMesh2> m = mesh_pslg(p.value(), Mesh2dOptions{});
+  ASSERT_TRUE(m.ok()) << m.status().message();
+  expect_valid_output(p.value(), m.value(), 24.0);
 }
 
 }  // namespace
