@@ -350,7 +350,7 @@ void check_pslg(const char* target, Result<mesh2d::Pslg> read) {
   for (size_t i = 0; i < p.num_segments(); ++i) {
     uint32_t t;
     int k;
-    if (!m->find_edge(p.seg[2 * i], p.seg[2 * i + 1], t, k) && !m->find_edge(p.seg[2 * i + 1], p.seg[2 * i], t, k))
+    if (!mesh2d::find_edge_of_points(m.value(), p.seg[2 * i], p.seg[2 * i + 1], t, k))
       broken(target, "segment " + std::to_string(i) + " is no edge after stages 1-2");
   }
 }

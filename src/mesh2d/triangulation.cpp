@@ -220,6 +220,18 @@ Result<Triangulation> build_triangulation(std::vector<double> xy, std::vector<ui
   return m;
 }
 
+bool find_edge_of_points(const Triangulation& m, uint32_t a, uint32_t b, uint32_t& t, int& k) {
+  std::vector<uint32_t> as{a}, bs{b};
+  for (const auto& [copy, original] : m.copies) {
+    if (original == a) as.push_back(copy);
+    if (original == b) bs.push_back(copy);
+  }
+  for (uint32_t x : as)
+    for (uint32_t y : bs)
+      if (m.find_edge(x, y, t, k) || m.find_edge(y, x, t, k)) return true;
+  return false;
+}
+
 Status check_triangulation(const Triangulation& m) {
   auto fail = [](const std::string& what) { return Status(Error::InvalidMesh, what); };
   for (uint32_t t = 0; t < m.num_slots(); ++t) {

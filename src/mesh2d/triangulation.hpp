@@ -82,6 +82,10 @@ Result<Triangulation> build_triangulation(std::vector<double> xy, std::vector<ui
                                           const std::vector<uint32_t>& edges = {},
                                           const std::vector<int32_t>& edge_tags = {});
 
+// The edge between the points a and b in either direction, whichever copies of them
+// (Triangulation::copies) it joins; false if there is none.
+bool find_edge_of_points(const Triangulation& mesh, uint32_t a, uint32_t b, uint32_t& t, int& k);
+
 // Exact checks of a triangulation's consistency (adjacency both ways, tags on both sides,
 // positive orientation, vtri): for tests and debugging. Error::InvalidMesh naming the problem.
 Status check_triangulation(const Triangulation& mesh);

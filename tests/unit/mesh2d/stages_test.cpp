@@ -19,7 +19,7 @@ void expect_segments_kept(const Pslg& p, const Triangulation& m) {
   for (size_t s = 0; s < p.num_segments(); ++s) {
     uint32_t t;
     int k;
-    const bool found = m.find_edge(p.seg[2 * s], p.seg[2 * s + 1], t, k) || m.find_edge(p.seg[2 * s + 1], p.seg[2 * s], t, k);
+    const bool found = find_edge_of_points(m, p.seg[2 * s], p.seg[2 * s + 1], t, k);
     ASSERT_TRUE(found) << "segment " << s;
     EXPECT_EQ(m.edge_tag(t, k), int32_t(s));
   }
@@ -118,6 +118,7 @@ TEST(Mesh2dStages, DomainPinchedAtAPoint) {
   ASSERT_TRUE(check_triangulation(t.value()).ok()) << check_triangulation(t.value()).message();
   ASSERT_EQ(t->copies.size(), 1u);
   EXPECT_EQ(t->copies[0].second, 2u);
+  expect_segments_kept(p.value(), t.value());
   Result<TriMesh2> m = mesh_pslg(p.value(), Mesh2dOptions{});
   ASSERT_TRUE(m.ok()) << m.status().message();
   expect_valid_output(p.value(), m.value(), 2.0);
