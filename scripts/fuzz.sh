@@ -31,14 +31,17 @@ for t in "${targets[@]}"; do
   log=$build/logs/$t.log
   # -max_len: the seeds are at most a few KB; -timeout: seconds for one input (a hang is a bug,
   # but the machine may be shared, so generous).
-  crashes_before=$(ls -A "$build/crashes/$t" | wc -l)
+  # libFuzzer also writes slow-unit-* files (an input over 10 s, which a loaded machine can make
+  # of a normal one): only crashes, leaks, timeouts and out-of-memory inputs count.
+  found() { find "$build/crashes/$t" -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' | wc -l; }
+  crashes_before=$(found)
   status=0
   "$build/fuzz/fuzz_$t" "$build/corpus/$t" "$root/fuzz/corpus/$t" \
     -max_total_time="$seconds" -max_len=4096 -rss_limit_mb=2048 -timeout=25 \
     -artifact_prefix="$build/crashes/$t/" -print_final_stats=1 >"$log" 2>&1 || status=$?
   summary=$(grep -E '^#[0-9]+' "$log" | tail -n 1 || true)
   echo "fuzz $t: ${summary:-no progress line} (exit $status)"
-  if ((status != 0)) || (($(ls -A "$build/crashes/$t" | wc -l) > crashes_before)); then
+  if ((status != 0)) || (($(found) > crashes_before)); then
     failed+=("$t")
     grep -E -A 20 '^==[0-9]+==|contract broken|^SUMMARY' "$log" | head -n 40 || tail -n 40 "$log"
   fi
