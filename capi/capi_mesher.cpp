@@ -11,8 +11,6 @@
 #include <sstream>
 #include <string>
 
-#include <tbb/task_arena.h>
-
 #include "caller_sizing.hpp"
 #include "handles.hpp"
 #include "layers/layers.hpp"
@@ -142,13 +140,6 @@ void log_stages(const anitet_options& o, const anitet::MesherResult& r) {
     line << "stage " << stage.name << ": " << stage.tets << " tets, " << stage.seconds << " s";
     log_line(o, ANITET_LOG_INFO, line.str());
   }
-}
-
-// Runs f in a task arena of `threads` threads (0: all cores), as the pipeline runs its stages.
-template <class F>
-auto in_arena(int32_t threads, F&& f) {
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  return arena.execute(std::forward<F>(f));
 }
 
 // A copy of the caller's surface validated with the options' repairs (the caller's is never

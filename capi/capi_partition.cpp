@@ -5,7 +5,6 @@
 #include <string>
 #include <vector>
 
-#include <tbb/task_arena.h>
 
 #include "handles.hpp"
 #include "partition/partition.hpp"
@@ -109,9 +108,8 @@ int anitet_mesh_partition(const anitet_mesh* mesh, int32_t num_parts, const anit
     po.ghost_layers = o.ghost_layers;
     po.imbalance = o.imbalance;
     po.tet_weights = o.tet_weights;
-    tbb::task_arena arena(o.num_threads > 0 ? o.num_threads : tbb::task_arena::automatic);
     anitet::Result<anitet::partition::Partition> r =
-        arena.execute([&] { return anitet::partition::partition_mesh(mesh->mesh, po); });
+        in_arena(o.num_threads, [&] { return anitet::partition::partition_mesh(mesh->mesh, po); });
     if (!r.ok()) return set_status(fn, r.status());
     auto partition = std::make_unique<anitet_partition>();
     partition->tet_part = std::move(r->tet_part);

@@ -8,7 +8,10 @@
 #include <exception>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <tbb/task_arena.h>
 
 #include "anitet.h"
 #include "core/status.hpp"
@@ -43,6 +46,14 @@ int guard(const char* function, F&& body) noexcept {
   } catch (...) {
     return set_error(ANITET_ERR_INTERNAL, std::string(function) + ": internal error");
   }
+}
+
+// Runs f in a task arena of `threads` threads (0: all cores), as the pipeline runs its stages:
+// the one mechanism behind every num_threads of the ABI (and the CLI's --threads).
+template <class F>
+auto in_arena(int32_t threads, F&& f) {
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  return arena.execute(std::forward<F>(f));
 }
 
 int null_argument(const char* function, const char* argument);
