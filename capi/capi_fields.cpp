@@ -127,9 +127,13 @@ int anitet_fields_get_data(const anitet_fields* fields, const double** data, int
   });
 }
 
-int anitet_mesh_transfer_fields(const anitet_mesh* from, const anitet_fields* fields, const anitet_mesh* to,
-                                int32_t tensors, anitet_fields** out) {
-  const char* const fn = __func__;
+}  // extern "C"
+
+namespace {
+
+// The transfer in a task arena of num_threads threads (0: all cores).
+int transfer(const char* fn, const anitet_mesh* from, const anitet_fields* fields, const anitet_mesh* to,
+             int32_t tensors, int32_t num_threads, anitet_fields** out) {
   return guard(fn, [&] {
     if (out == nullptr) return null_argument(fn, "out");
     *out = nullptr;
@@ -138,10 +142,12 @@ int anitet_mesh_transfer_fields(const anitet_mesh* from, const anitet_fields* fi
     if (to == nullptr) return null_argument(fn, "to");
     if (tensors < ANITET_TENSORS_AUTO || tensors > ANITET_TENSORS_LINEAR)
       return bad(fn, "tensors is " + std::to_string(tensors) + ", not ANITET_TENSORS_AUTO, _LOG_EUCLIDEAN or _LINEAR");
+    if (num_threads < 0) return bad(fn, "num_threads is " + std::to_string(num_threads) + ", not >= 0");
     anitet::metric::TransferReport report;
-    anitet::Result<anitet::VertexFields> moved =
-        anitet::metric::transfer_fields(from->mesh, fields->fields, to->mesh.xyz,
-                                        static_cast<anitet::metric::TensorInterpolation>(tensors), &report);
+    anitet::Result<anitet::VertexFields> moved = in_arena(num_threads, [&] {
+      return anitet::metric::transfer_fields(from->mesh, fields->fields, to->mesh.xyz,
+                                             static_cast<anitet::metric::TensorInterpolation>(tensors), &report);
+    });
     if (!moved.ok()) return set_status(fn, moved.status());
     auto result = std::make_unique<anitet_fields>();
     result->fields = std::move(moved).value();
@@ -149,6 +155,20 @@ int anitet_mesh_transfer_fields(const anitet_mesh* from, const anitet_fields* fi
     *out = result.release();
     return ok();
   });
+}
+
+}  // namespace
+
+extern "C" {
+
+int anitet_mesh_transfer_fields(const anitet_mesh* from, const anitet_fields* fields, const anitet_mesh* to,
+                                int32_t tensors, anitet_fields** out) {
+  return transfer(__func__, from, fields, to, tensors, 0, out);
+}
+
+int anitet_mesh_transfer_fields_ext(const anitet_mesh* from, const anitet_fields* fields, const anitet_mesh* to,
+                                    int32_t tensors, int32_t num_threads, anitet_fields** out) {
+  return transfer(__func__, from, fields, to, tensors, num_threads, out);
 }
 
 int anitet_fields_get_transfer_report(const anitet_fields* fields, int64_t* outside, double* max_outside_distance,

@@ -600,8 +600,9 @@ ANITET_API int anitet_fields_get_data(const anitet_fields* fields, const double*
  * field is carried exactly, to rounding), symmetric tensors as `tensors` says
  * (ANITET_TENSORS_AUTO, _LOG_EUCLIDEAN or _LINEAR). A point outside `from` (a boundary that
  * moved onto the curved geometry) takes the value at the closest point of `from`'s boundary;
- * such points are counted (anitet_fields_get_transfer_report). `from`, `fields` and `to` are only read. Runs on every
- * core; the result does not depend on the number of threads. Errors: INVALID_ARGUMENT (NULL; an
+ * such points are counted (anitet_fields_get_transfer_report). `from`, `fields` and `to` are
+ * only read. Runs on every core (anitet_mesh_transfer_fields_ext takes a thread count); the
+ * result does not depend on the number of threads. Errors: INVALID_ARGUMENT (NULL; an
  * unknown `tensors`; fields without one record per point of `from`, "a field of another mesh";
  * a tensor that is not SPD with ANITET_TENSORS_LOG_EUCLIDEAN, naming its vertex; a point of `to`
  * that is not finite), EMPTY_INPUT (`from` has no tet), BAD_INDEX, INVALID_MESH (a face of
@@ -609,11 +610,17 @@ ANITET_API int anitet_fields_get_data(const anitet_fields* fields, const double*
 ANITET_API int anitet_mesh_transfer_fields(const anitet_mesh* from, const anitet_fields* fields,
                                            const anitet_mesh* to, int32_t tensors,
                                            anitet_fields** out);
+/** anitet_mesh_transfer_fields in a task arena of num_threads threads (0: the library's
+ * default, all cores; the same result on any number). Errors: as anitet_mesh_transfer_fields,
+ * and INVALID_ARGUMENT for a negative num_threads. */
+ANITET_API int anitet_mesh_transfer_fields_ext(const anitet_mesh* from, const anitet_fields* fields,
+                                               const anitet_mesh* to, int32_t tensors,
+                                               int32_t num_threads, anitet_fields** out);
 /** What the transfer that made `fields` found (any output pointer may be NULL): the points
  * outside the old mesh and their largest distance to it, and per field (log_euclidean_len >=
  * num_fields, or NULL) 1 when it was interpolated in log space, else 0. Errors:
- * INVALID_ARGUMENT (NULL fields; fields not made by anitet_mesh_transfer_fields),
- * BUFFER_TOO_SMALL. */
+ * INVALID_ARGUMENT (NULL fields; fields not made by a transfer: anitet_mesh_transfer_fields,
+ * _ext, or anitet_adapt's out_fields), BUFFER_TOO_SMALL. */
 ANITET_API int anitet_fields_get_transfer_report(const anitet_fields* fields, int64_t* outside,
                                                  double* max_outside_distance,
                                                  int32_t* log_euclidean,

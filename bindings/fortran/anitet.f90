@@ -272,6 +272,7 @@ module anitet
   public :: c_anitet_fields_create, c_anitet_fields_read, c_anitet_fields_write, c_anitet_fields_destroy
   public :: c_anitet_fields_get_counts, c_anitet_fields_get_kinds, c_anitet_fields_get_values
   public :: c_anitet_fields_get_data, c_anitet_mesh_transfer_fields, c_anitet_fields_get_transfer_report
+  public :: c_anitet_mesh_transfer_fields_ext
   public :: c_anitet_geo_frame_create, c_anitet_geo_frame_create_centred, c_anitet_geo_frame_destroy
   public :: c_anitet_geo_frame_get, c_anitet_surface_to_local, c_anitet_mesh_to_local
   public :: c_anitet_mesh_to_geodetic
@@ -720,6 +721,14 @@ module anitet
       import :: c_int, c_int32_t, c_ptr
       type(c_ptr), value :: from, fields, to
       integer(c_int32_t), value :: tensors
+      type(c_ptr), intent(out) :: out
+    end function
+
+    integer(c_int) function c_anitet_mesh_transfer_fields_ext(from, fields, to, tensors, &
+        num_threads, out) bind(c, name="anitet_mesh_transfer_fields_ext")
+      import :: c_int, c_int32_t, c_ptr
+      type(c_ptr), value :: from, fields, to
+      integer(c_int32_t), value :: tensors, num_threads
       type(c_ptr), intent(out) :: out
     end function
 
@@ -1970,15 +1979,18 @@ contains
   end function
 
   ! `fields` (at the points of `from`) carried to the points of `to` in a new `out`; tensors:
-  ! ANITET_TENSORS_* (default ANITET_TENSORS_AUTO: metrics in log space).
-  integer function anitet_mesh_transfer_fields(from, fields, to, out, tensors) result(rc)
+  ! ANITET_TENSORS_* (default ANITET_TENSORS_AUTO: metrics in log space); num_threads: the task
+  ! arena's threads (default 0: all cores; the same values on any number).
+  integer function anitet_mesh_transfer_fields(from, fields, to, out, tensors, num_threads) result(rc)
     type(c_ptr), intent(in) :: from, fields, to
     type(c_ptr), intent(out) :: out
-    integer, intent(in), optional :: tensors
-    integer(c_int32_t) :: t
+    integer, intent(in), optional :: tensors, num_threads
+    integer(c_int32_t) :: t, threads
     t = ANITET_TENSORS_AUTO
     if (present(tensors)) t = int(tensors, c_int32_t)
-    rc = c_anitet_mesh_transfer_fields(from, fields, to, t, out)
+    threads = 0
+    if (present(num_threads)) threads = int(num_threads, c_int32_t)
+    rc = c_anitet_mesh_transfer_fields_ext(from, fields, to, t, threads, out)
   end function
 
   ! What the transfer that made `fields` found: points outside the old mesh, their largest

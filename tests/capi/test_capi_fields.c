@@ -280,11 +280,42 @@ static void test_transfer_errors(void** state) {
   anitet_mesh_destroy(from);
 }
 
+/* anitet_mesh_transfer_fields_ext: the same values on 1 thread and on 2 as on all cores; a
+ * negative count refused. */
+static void test_transfer_threads(void** state) {
+  anitet_mesh *from = test_boxes(1, 4, 4, 4, 0), *to = test_boxes(1, 3, 3, 3, 0);
+  anitet_fields *f, *all = NULL, *out = (anitet_fields*)&out;
+  const double *a = NULL, *b = NULL;
+  int64_t na = 0, nb = 0;
+  int32_t threads;
+  (void)state;
+  f = linear_fields(from);
+  assert_int_equal(anitet_mesh_transfer_fields(from, f, to, ANITET_TENSORS_AUTO, &all), ANITET_OK);
+  assert_int_equal(anitet_fields_get_data(all, &a, &na), ANITET_OK);
+  for (threads = 1; threads <= 2; ++threads) {
+    anitet_fields* some = NULL;
+    assert_int_equal(anitet_mesh_transfer_fields_ext(from, f, to, ANITET_TENSORS_AUTO, threads, &some), ANITET_OK);
+    assert_int_equal(anitet_fields_get_data(some, &b, &nb), ANITET_OK);
+    assert_int_equal(na, nb);
+    assert_memory_equal(a, b, (size_t)na * sizeof *a);
+    anitet_fields_destroy(some);
+  }
+  assert_int_equal(anitet_mesh_transfer_fields_ext(from, f, to, ANITET_TENSORS_AUTO, -1, &out),
+                   ANITET_ERR_INVALID_ARGUMENT);
+  expect_message("num_threads is -1");
+  assert_null(out);
+  anitet_fields_destroy(all);
+  anitet_fields_destroy(f);
+  anitet_mesh_destroy(from);
+  anitet_mesh_destroy(to);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_create_and_get),  cmocka_unit_test(test_create_errors),
       cmocka_unit_test(test_files),           cmocka_unit_test(test_transfer_linear),
       cmocka_unit_test(test_transfer_outside), cmocka_unit_test(test_transfer_errors),
+      cmocka_unit_test(test_transfer_threads),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

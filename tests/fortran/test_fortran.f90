@@ -1061,7 +1061,8 @@ contains
     call check(anitet_fields_get_data(fields, data) == ANITET_OK, "fields data, no copy")
     call check(all(shape(data) == [4, 8]) .and. all(data == values), "fields data values")
     ! To the box's own points: the same values; to a mesh twice as large: points outside.
-    call check(anitet_mesh_transfer_fields(box, fields, box, moved) == ANITET_OK, "transfer")
+    call check(anitet_mesh_transfer_fields(box, fields, box, moved, num_threads=1) == ANITET_OK, &
+               "transfer on one thread")
     call check(anitet_fields_get_values(moved, got) == ANITET_OK, "transferred values")
     call check(all(shape(got) == [4, 8]) .and. maxval(abs(got - values)) < 1d-12, &
                "transfer to the same points")
@@ -1087,6 +1088,8 @@ contains
     ! Errors: fields of another mesh, an unknown tensor mode, a report of fields not transferred.
     call check(anitet_mesh_transfer_fields(big, fields, box, moved, 7) == ANITET_ERR_INVALID_ARGUMENT, &
                "tensors 7")
+    call check(anitet_mesh_transfer_fields(box, fields, box, moved, num_threads=-1) == &
+               ANITET_ERR_INVALID_ARGUMENT, "num_threads -1")
     call anitet_fields_destroy(fields)
     call check(anitet_fields_create([ANITET_FIELD_KIND_SCALAR], values(1:1, 1:7), fields) == &
                ANITET_OK, "7 values")

@@ -941,6 +941,11 @@ class Fields(unittest.TestCase):
         self.assertEqual(moved.transfer_report(), anitet.TransferReport(0, 0.0, [False, False, False]))
         auto = anitet.transfer_fields(old, fields, new)
         self.assertEqual(auto.transfer_report().log_euclidean, [False, False, True])
+        one = anitet.transfer_fields(old, fields, new, num_threads=1)  # the same on any number
+        self.assertEqual(rows(one.values), rows(auto.values))
+        with self.assertRaises(anitet.AnitetError) as e:
+            old.transfer_fields(fields, new, num_threads=-1)
+        self.assertIn("num_threads is -1", e.exception.message)
         # Points outside: a mesh reaching past the old one.
         big, _ = self.grid(2, 6.0)
         report = old.transfer_fields(fields, big, anitet.TENSORS_AUTO).transfer_report()

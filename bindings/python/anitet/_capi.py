@@ -323,6 +323,7 @@ _PROTOTYPES = {
     "anitet_fields_get_values": (c_int, [_P, _D, c_int64]),
     "anitet_fields_get_data": (c_int, [_P, POINTER(_D), _I64]),
     "anitet_mesh_transfer_fields": (c_int, [_P, _P, _P, c_int32, _PP]),
+    "anitet_mesh_transfer_fields_ext": (c_int, [_P, _P, _P, c_int32, c_int32, _PP]),
     "anitet_fields_get_transfer_report": (c_int, [_P, _I64, _D, _I32, c_int64]),
     "anitet_mesh_get_run_stats": (c_int, [_P, POINTER(CRunStats)]),
     "anitet_mesh_run_json": (c_int, [_P, c_char_p, c_int64, _I64]),

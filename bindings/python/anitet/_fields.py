@@ -148,26 +148,33 @@ class Fields:
         return "Fields(%d fields %r, %d values per vertex, %d vertices)" % (nf, self.kinds, record, nv)
 
 
-def transfer_fields(from_mesh, fields, to_mesh, tensors=_capi.TENSORS_AUTO):
+def _tensors(tensors):
+    """A TENSORS_* value from itself or its name."""
+    if isinstance(tensors, str):
+        try:
+            return _TENSORS_BY_NAME[tensors.lower()]
+        except KeyError:
+            raise ValueError("unknown tensors %r (auto, log_euclidean or linear)" % tensors) from None
+    return tensors
+
+
+def transfer_fields(from_mesh, fields, to_mesh, tensors=_capi.TENSORS_AUTO, num_threads=0):
     """`fields`, given at the points of from_mesh, carried to the points of to_mesh: new Fields.
     Scalars and vectors interpolated linearly, tensors as `tensors` says: TENSORS_AUTO ("auto",
     log space when every tensor of the field is SPD), TENSORS_LOG_EUCLIDEAN ("log_euclidean") or
-    TENSORS_LINEAR ("linear")."""
+    TENSORS_LINEAR ("linear"). num_threads: the task arena's threads (0: all cores; the same
+    values on any number)."""
     _require(from_mesh, Mesh, "from_mesh")
     _require(fields, Fields, "fields")
     _require(to_mesh, Mesh, "to_mesh")
-    if isinstance(tensors, str):
-        try:
-            tensors = _TENSORS_BY_NAME[tensors.lower()]
-        except KeyError:
-            raise ValueError("unknown tensors %r (auto, log_euclidean or linear)" % tensors) from None
-    return Fields._made(lib.anitet_mesh_transfer_fields, from_mesh, fields, to_mesh, tensors)
+    return Fields._made(lib.anitet_mesh_transfer_fields_ext, from_mesh, fields, to_mesh, _tensors(tensors),
+                        num_threads)
 
 
-def _mesh_transfer_fields(self, fields, to, tensors=_capi.TENSORS_AUTO):
+def _mesh_transfer_fields(self, fields, to, tensors=_capi.TENSORS_AUTO, num_threads=0):
     """`fields` (at this mesh's points) carried to the points of the Mesh `to`: see
     anitet.transfer_fields."""
-    return transfer_fields(self, fields, to, tensors)
+    return transfer_fields(self, fields, to, tensors, num_threads)
 
 
 Mesh.transfer_fields = _mesh_transfer_fields
