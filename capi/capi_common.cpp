@@ -102,7 +102,8 @@ static_assert(offsetof(anitet_options, bl_slide_patches) == offsetof(anitet_opti
                   sizeof(anitet_options) == offsetof(anitet_options, bl_slide_patches) + sizeof(void*),
               "anitet_options (version 4) has padding");
 static_assert(offsetof(anitet_run_stats, slide_junction_columns) == offsetof(anitet_run_stats, bl_max_height_error) + sizeof(double) &&
-                  sizeof(anitet_run_stats) == offsetof(anitet_run_stats, slide_triangles_added) + sizeof(int64_t) &&
+                  offsetof(anitet_run_stats, bl_prisms) == offsetof(anitet_run_stats, slide_triangles_added) + sizeof(int64_t) &&
+                  sizeof(anitet_run_stats) == offsetof(anitet_run_stats, bl_prism_tets_left) + sizeof(int64_t) &&
                   offsetof(anitet_run_stats, vertices) == 8 * sizeof(int32_t) &&
                   offsetof(anitet_run_stats, bl_wall_vertices) == offsetof(anitet_run_stats, bl_layers) + 8,
               "anitet_run_stats has padding");

@@ -320,7 +320,9 @@ int anitet_metric_create_surface_sizing(const anitet_surface* surface, const ani
 namespace {
 
 // Copies the fields of `version` from the full struct into the caller's.
-void fill_run_stats(const anitet::MesherResult& r, const anitet::VolumeMesh& m, anitet_run_stats& s) {
+void fill_run_stats(const anitet_mesh& mesh, anitet_run_stats& s) {
+  const anitet::MesherResult& r = *mesh.run;
+  const anitet::VolumeMesh& m = mesh.mesh;
   s.layers_used = r.layers_used;
   s.layers_retries = int32_t(r.layers_retries);
   // RecoveryStats::strategy numbers the variants (recovery_strategy_name): 3-5 split constraints.
@@ -364,12 +366,16 @@ void fill_run_stats(const anitet::MesherResult& r, const anitet::VolumeMesh& m, 
   s.slide_lowered_columns = int64_t(r.slide.reduced_columns);
   for (const anitet::SlidePatchChange& c : r.slide.changes)
     s.slide_triangles_added += int64_t(c.triangles_after) - int64_t(c.triangles_before);
+  s.bl_prisms = int64_t(mesh.prism_stats.prisms);
+  s.bl_prism_tets_left = int64_t(mesh.prism_stats.kept_tets);
 }
 
 // Bytes of an anitet_run_stats of `version` (a valid one): each version's struct ends where the
 // next version's first field starts.
 size_t run_stats_size(int32_t version) {
-  return version == 1 ? offsetof(anitet_run_stats, slide_junction_columns) : sizeof(anitet_run_stats);
+  if (version == 1) return offsetof(anitet_run_stats, slide_junction_columns);
+  if (version == 2) return offsetof(anitet_run_stats, bl_prisms);
+  return sizeof(anitet_run_stats);
 }
 
 int no_run(const char* fn) {
@@ -390,7 +396,7 @@ int anitet_mesh_get_run_stats(const anitet_mesh* mesh, anitet_run_stats* out) {
                                                         std::to_string(ANITET_RUN_STATS_VERSION) + ")");
     if (!mesh->run) return no_run(fn);
     anitet_run_stats full = ANITET_RUN_STATS_INIT;
-    fill_run_stats(*mesh->run, mesh->mesh, full);
+    fill_run_stats(*mesh, full);
     full.version = out->version;
     std::memcpy(out, &full, run_stats_size(out->version));  // never past the caller's version
     return ok();

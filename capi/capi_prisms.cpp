@@ -15,6 +15,7 @@ Status make_prism_cells(anitet_mesh& mesh) {
   if (!stats.ok()) return stats.status();
   mesh.prism = std::move(merged.prism);
   mesh.prism_region = std::move(merged.prism_region);
+  mesh.prism_stats = stats.value();
   return Status::success();
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "anitet.h"
+#include "core/bl_prisms.hpp"
 #include "core/sizing.hpp"
 #include "core/surface_mesh.hpp"
 #include "core/volume_mesh.hpp"
@@ -36,6 +37,7 @@ struct anitet_mesh {
   std::vector<uint32_t> prism;
   std::vector<int32_t> prism_region;
   std::vector<int32_t> tet_prism;
+  anitet::PrismMergeStats prism_stats;  // the merge's figures (anitet_run_stats version 3)
 };
 
 struct anitet_metric {

@@ -630,14 +630,14 @@ ANITET_API int anitet_fields_get_transfer_report(const anitet_fields* fields, in
  * What a meshing run did (meshes made by anitet_mesher_run).
  * ------------------------------------------------------------------------------------------- */
 /** The newest version of anitet_run_stats this header declares. */
-#define ANITET_RUN_STATS_VERSION 2
+#define ANITET_RUN_STATS_VERSION 3
 
 /** Figures of the run that made a mesh (anitet_mesh_get_run_stats), a versioned struct: set its
  * version with ANITET_RUN_STATS_INIT. Everything else the run measured (each stage's time and
  * tets, the notices' sentences, the boundary layer's columns) is in anitet_mesh_run_json. */
 typedef struct anitet_run_stats {
-  int32_t version;                 /**< ANITET_RUN_STATS_VERSION (2; 1 for version 1's
-                                      fields only), set by the caller */
+  int32_t version;                 /**< ANITET_RUN_STATS_VERSION (3; 1 or 2 for those
+                                      versions' fields only), set by the caller */
   int32_t layers_used;             /**< stage-1 front layers of the attempt that worked */
   int32_t layers_retries;          /**< attempts before it (other layer counts or strategies) */
   int32_t recovery_strategy;       /**< ANITET_RECOVERY_SPLIT or _FUZZY: the one that worked
@@ -676,13 +676,18 @@ typedef struct anitet_run_stats {
   int64_t slide_lowered_columns;   /**< of those, columns lowered below 90% of h0 r^i */
   int64_t slide_triangles_added;   /**< the slide patches' triangles in the mesh minus the
                                       surface's (the band the layers cover re-triangulated) */
-  /* Version 3 and later append fields here. */
+  /* Version 3: the prism cells (options->bl_cells ANITET_BL_CELLS_PRISMS; 0 otherwise). */
+  int64_t bl_prisms;               /**< prism cells made, 3 boundary-layer tets each
+                                      (anitet_mesh_get_prism_count) */
+  int64_t bl_prism_tets_left;      /**< boundary-layer tets left as tets (no exact prism: a
+                                      column that stopped in a layer, a partial push) */
+  /* Version 4 and later append fields here. */
 } anitet_run_stats;
 
 /** Initializer of an anitet_run_stats of version ANITET_RUN_STATS_VERSION, all figures 0. */
 #define ANITET_RUN_STATS_INIT \
   { ANITET_RUN_STATS_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, \
-    0, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0, 0, 0 }
+    0, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0, 0, 0, 0, 0 }
 
 /** The figures of the run that made `mesh`. out->version must be 1 .. ANITET_RUN_STATS_VERSION;
  * the fields of that version are filled. Errors: INVALID_ARGUMENT (NULL, an unknown version, a

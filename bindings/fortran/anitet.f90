@@ -50,7 +50,7 @@ module anitet
   ! options%bl_cells: the cells anitet_mesh_write writes the boundary layer as
   integer(c_int32_t), parameter, public :: ANITET_BL_CELLS_TETS = 0
   integer(c_int32_t), parameter, public :: ANITET_BL_CELLS_PRISMS = 1
-  integer(c_int32_t), parameter, public :: ANITET_RUN_STATS_VERSION = 2
+  integer(c_int32_t), parameter, public :: ANITET_RUN_STATS_VERSION = 3
   integer(c_int32_t), parameter, public :: ANITET_QUALITY_VERSION = 1
   integer(c_int32_t), parameter, public :: ANITET_GEO_ENU = 0
   integer(c_int32_t), parameter, public :: ANITET_GEO_UTM = 1
@@ -186,6 +186,9 @@ module anitet
     integer(c_int64_t) :: slide_junction_columns
     integer(c_int64_t) :: slide_lowered_columns
     integer(c_int64_t) :: slide_triangles_added
+    ! version 3: the prism cells (options%bl_cells = ANITET_BL_CELLS_PRISMS)
+    integer(c_int64_t) :: bl_prisms
+    integer(c_int64_t) :: bl_prism_tets_left
   end type
 
   type, bind(c), public :: anitet_quality_t

@@ -214,26 +214,36 @@ static void test_run_stats_plain(void** state) {
 static void test_run_stats_v1_caller(void** state) {
   anitet_surface* s = NULL;
   anitet_mesh* m;
-  anitet_run_stats v1, v2 = ANITET_RUN_STATS_INIT;
+  anitet_run_stats v1, v2, v3 = ANITET_RUN_STATS_INIT;
   const size_t v1_size = offsetof(anitet_run_stats, slide_junction_columns);
+  const size_t v2_size = offsetof(anitet_run_stats, bl_prisms);
   const unsigned char* bytes = (const unsigned char*)&v1;
   size_t i;
   (void)state;
   assert_int_equal(anitet_surface_create(kCubeXyz, 8, kCubeTri, 12, kCubePatch, 0, &s), ANITET_OK);
   m = run_ok(s, NULL);
-  assert_int_equal(ANITET_RUN_STATS_VERSION, 2);
+  assert_int_equal(ANITET_RUN_STATS_VERSION, 3);
   assert_int_equal(v1_size, offsetof(anitet_run_stats, bl_max_height_error) + sizeof(double));
   memset(&v1, 0xff, sizeof v1);
   v1.version = 1;
   assert_int_equal(anitet_mesh_get_run_stats(m, &v1), ANITET_OK);
-  assert_int_equal(anitet_mesh_get_run_stats(m, &v2), ANITET_OK);
+  assert_int_equal(anitet_mesh_get_run_stats(m, &v3), ANITET_OK);
   for (i = v1_size; i < sizeof v1; ++i) assert_int_equal(bytes[i], 0xff);
   assert_int_equal(v1.version, 1);
-  v1.version = 2;
-  assert_memory_equal(&v1, &v2, v1_size);
-  assert_int_equal(v2.slide_junction_columns, 0);
-  assert_int_equal(v2.slide_lowered_columns, 0);
-  assert_int_equal(v2.slide_triangles_added, 0);
+  v1.version = 3;
+  assert_memory_equal(&v1, &v3, v1_size);
+  /* A version 2 caller: nothing written past slide_triangles_added. */
+  memset(&v2, 0xff, sizeof v2);
+  v2.version = 2;
+  assert_int_equal(anitet_mesh_get_run_stats(m, &v2), ANITET_OK);
+  for (i = v2_size; i < sizeof v2; ++i) assert_int_equal(((const unsigned char*)&v2)[i], 0xff);
+  v2.version = 3;
+  assert_memory_equal(&v2, &v3, v2_size);
+  assert_int_equal(v3.slide_junction_columns, 0);
+  assert_int_equal(v3.slide_lowered_columns, 0);
+  assert_int_equal(v3.slide_triangles_added, 0);
+  assert_int_equal(v3.bl_prisms, 0);
+  assert_int_equal(v3.bl_prism_tets_left, 0);
   anitet_mesh_destroy(m);
   anitet_surface_destroy(s);
 }
@@ -719,6 +729,9 @@ static void test_bl_cells_prisms(void** state) {
   }
   for (i = 0; i < nprisms; ++i) assert_int_equal(count[i], 3);
   assert_int_equal(kept, nt - 3 * nprisms);
+  /* The merge's figures (run stats version 3): every BL tet in a prism or left. */
+  assert_int_equal(st.bl_prisms, nprisms);
+  assert_int_equal(3 * st.bl_prisms + st.bl_prism_tets_left, st.bl_tets);
   /* Buffer and argument errors. */
   assert_int_equal(anitet_mesh_get_prisms(m, prisms, 6 * nprisms - 1, 0), ANITET_ERR_BUFFER_TOO_SMALL);
   assert_int_equal(anitet_mesh_get_prisms(m, prisms, 6 * nprisms, 2), ANITET_ERR_INVALID_ARGUMENT);

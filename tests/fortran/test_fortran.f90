@@ -487,8 +487,8 @@ contains
                o%bl_sizing == 0, "options v3: boundary layer defaults")
     call check(o%push_tasks_min_vertices == 2000 .and. o%reserved1 == 0, &
                "options v3: push tasks from 2000 front vertices")
-    ! 8 int32, 8 int64, 5 doubles, 2 int32, 5 int64, 5 doubles, 3 int64: no padding.
-    call check(c_sizeof(st) == 248, "run stats size")
+    ! 8 int32, 8 int64, 5 doubles, 2 int32, 5 int64, 5 doubles, 3 + 2 int64: no padding.
+    call check(c_sizeof(st) == 264, "run stats size")
     call check(anitet_options_init(o, 3) == ANITET_OK, "options v3 still")
     call check(o%version == 3, "options v3: version")
     call check(anitet_options_init(o, 2) == ANITET_OK, "options v2 still")
@@ -504,6 +504,7 @@ contains
     integer(c_int32_t) :: tri(3, SPHERE_IN_BOX_NTRI), patch(SPHERE_IN_BOX_NTRI)
     type(c_ptr) :: surface, mesh
     type(anitet_options_t) :: o
+    type(anitet_run_stats_t) :: st
     integer(c_int64_t) :: np, nt, nb, nprisms
     integer(c_int32_t), allocatable :: tets(:, :), prisms(:, :), tet_prism(:)
     integer :: t, k, p
@@ -527,6 +528,8 @@ contains
     call check(anitet_mesh_get_counts(mesh, np, nt, nb) == ANITET_OK, "prisms: counts")
     call check(anitet_mesh_get_prism_count(mesh, nprisms) == ANITET_OK .and. &
                nprisms == 2 * SPHERE_NTRI, "prisms: one per wall triangle and layer")
+    call check(anitet_mesh_get_run_stats(mesh, st) == ANITET_OK .and. st%bl_prisms == nprisms .and. &
+               3 * st%bl_prisms + st%bl_prism_tets_left == st%bl_tets, "prisms: run stats version 3")
     call check(anitet_mesh_get_tets(mesh, tets) == ANITET_OK, "prisms: tets")
     call check(anitet_mesh_get_prisms(mesh, prisms) == ANITET_OK, "prisms: get")
     call check(anitet_mesh_get_tet_prisms(mesh, tet_prism) == ANITET_OK, "prisms: tet_prism")

@@ -92,7 +92,7 @@ class HeaderDrift(unittest.TestCase):
         self.assertEqual(ctypes.sizeof(_capi.CPartitionOptions), 24 + pointer + 8)
         self.assertEqual(ctypes.sizeof(_capi.CPartitionInfo), 64)
         self.assertEqual(self.ctypes_fields(_capi.CMesh2dOptions), self.struct_fields("anitet_mesh2d_options"))
-        self.assertEqual(ctypes.sizeof(_capi.CRunStats), 248)
+        self.assertEqual(ctypes.sizeof(_capi.CRunStats), 264)
         # Version 1 ends after the four pointers; version 2 adds 32 bytes, version 3 seven 8-byte
         # fields, eight 4-byte ones and a pointer, version 4 two 4-byte fields and a pointer.
         self.assertEqual(_capi.COptions.layers.offset, 24 + 4 * pointer)
@@ -456,6 +456,9 @@ class BlCells(unittest.TestCase):
         nt = mesh.num_tets
         self.assertEqual(mesh.run_stats.tets, nt)  # the mesh keeps every tet
         self.assertEqual(mesh.num_prisms, 2 * mesh_sphere.NTRI)
+        stats = mesh.run_stats  # version 3: the merge's figures
+        self.assertEqual(stats.bl_prisms, mesh.num_prisms)
+        self.assertEqual(3 * stats.bl_prisms + stats.bl_prism_tets_left, stats.bl_tets)
         prisms, tets, regions = rows(mesh.prisms()), rows(mesh.tets()), list(mesh.regions())
         tet_prism = list(mesh.tet_prisms())
         self.assertEqual(len(tet_prism), nt)

@@ -567,9 +567,11 @@ class Quality(_Figures):
 
 
 class RunStats(_Figures):
-    """The numbers of anitet_run_stats (version 2): what the run that made a mesh did.
+    """The numbers of anitet_run_stats (version 3): what the run that made a mesh did.
     recovery_strategy is RECOVERY_SPLIT or RECOVERY_FUZZY (the strategy that worked); the bl_*
-    figures are 0 without a boundary layer, the slide_* ones without slide patches.
+    figures are 0 without a boundary layer, the slide_* ones without slide patches, bl_prisms and
+    bl_prism_tets_left (prism cells made, boundary-layer tets left as tets) without
+    bl_cells="prisms".
     Mesh.run_report() has everything else."""
 
     FIELDS = tuple(name for name, _ in _capi.CRunStats._fields_ if name not in ("version", "reserved0"))

@@ -45,7 +45,7 @@ LOG_INFO = 2
 LOG_DEBUG = 3
 OPTIONS_VERSION = 4
 QUALITY_VERSION = 1
-RUN_STATS_VERSION = 2
+RUN_STATS_VERSION = 3
 LAYERS_PUSH = 0
 LAYERS_FACE_PUSH = 1
 RECOVERY_ALL = 0
@@ -187,6 +187,9 @@ class CRunStats(Structure):
         ("slide_junction_columns", c_int64),
         ("slide_lowered_columns", c_int64),
         ("slide_triangles_added", c_int64),
+        # version 3
+        ("bl_prisms", c_int64),
+        ("bl_prism_tets_left", c_int64),
     ]
 
 
