@@ -8,9 +8,9 @@
 #include <mutex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/sizing.hpp"
-#include "core/surface_mesh.hpp"
 #include "handles.hpp"
 
 namespace anitet::capi {
@@ -70,13 +70,13 @@ class CallerSizing final : public anitet::SizingField {
   mutable std::string failure_;
 };
 
-// The diagonal of the bounding box (1 for a degenerate one): a size coarse enough to end a run
-// quickly once its metric has failed.
-inline double bounding_diagonal(const anitet::SurfaceMesh& s) {
+// The diagonal of the bounding box of the points xyz (1 for a degenerate one): a size coarse
+// enough to end a run quickly once its metric has failed.
+inline double bounding_diagonal(const std::vector<double>& xyz) {
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (size_t i = 0; i < s.xyz.size(); ++i) {
-    lo[i % 3] = std::min(lo[i % 3], s.xyz[i]);
-    hi[i % 3] = std::max(hi[i % 3], s.xyz[i]);
+  for (size_t i = 0; i < xyz.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
   }
   const double d = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                              (hi[2] - lo[2]) * (hi[2] - lo[2]));

@@ -178,7 +178,7 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
     if (const int code = begin_run(fn, surface, options, out, opt, mo); code != ANITET_OK) return code;
     std::unique_ptr<CallerSizing> sizing;
     if (metric != nullptr) {
-      sizing = std::make_unique<CallerSizing>(*metric, bounding_diagonal(surface->mesh));
+      sizing = std::make_unique<CallerSizing>(*metric, bounding_diagonal(surface->mesh.xyz));
       mo.sizing = sizing.get();
       if (!mo.run_refine && !mo.run_optimize) {
         log_line(opt, ANITET_LOG_WARNING,

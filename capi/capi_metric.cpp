@@ -248,7 +248,7 @@ int anitet_metric_write(const anitet_metric* metric, const anitet_surface* box_o
       return set_error(ANITET_ERR_INVALID_ARGUMENT,
                        std::string(fn) + ": box_of is NULL: this metric is not a grid, so it is sampled over a "
                                          "surface's box");
-    const CallerSizing sizing(*metric, bounding_diagonal(box_of->mesh));
+    const CallerSizing sizing(*metric, bounding_diagonal(box_of->mesh.xyz));
     anitet::Result<anitet::metric::MetricField> sampled = anitet::metric::sample_on_surface_box(sizing, box_of->mesh);
     if (sizing.failed()) return set_error(ANITET_ERR_INVALID_ARGUMENT, std::string(fn) + ": " + sizing.failure());
     if (!sampled.ok()) return set_status(fn, sampled.status());

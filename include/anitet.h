@@ -702,6 +702,150 @@ ANITET_API int anitet_mesh_run_json(const anitet_mesh* mesh, char* buf, int64_t 
                                     int64_t* needed);
 
 /* ---------------------------------------------------------------------------------------------
+ * Adaptation (`anitet adapt`; docs/adapt.md has the method): a volume mesh and a metric in, a new
+ * mesh whose edges have unit length in the metric out, by local operations on the given mesh
+ * (edges longer than sqrt 2 in the metric split, shorter than 1/sqrt 2 collapsed, edge and face
+ * swaps, vertex moves), the surface adapted with the volume on its smooth reconstruction (ridges
+ * and corners kept) unless keep_surface is set. The output is the input of the next pass: a
+ * solver's loop is solve, metric from the solution, anitet_adapt, carry the fields, repeat.
+ * ------------------------------------------------------------------------------------------- */
+/** The newest version of anitet_adapt_options this header declares. */
+#define ANITET_ADAPT_OPTIONS_VERSION 1
+
+/** Options of anitet_adapt and anitet_adapt_to_metric (`anitet adapt`'s), a versioned struct:
+ * set it with ANITET_ADAPT_OPTIONS_INIT or anitet_adapt_options_init(), then change fields. */
+typedef struct anitet_adapt_options {
+  int32_t version;             /**< ANITET_ADAPT_OPTIONS_VERSION */
+  int32_t num_threads;         /**< the task arena of the call (0: the library's default, all
+                                    cores): the fields' transfer and the measures run in it; the
+                                    adaptation's sweeps are serial (the same mesh on any number) */
+  int32_t keep_surface;        /**< 1: keep the input's boundary triangles exactly, no point
+                                    added, moved or removed on the surface (`--keep-surface`);
+                                    0 (default): the surface is adapted too */
+  int32_t max_cycles;          /**< refinement/coarsening cycles at most, 0..1000 (default 30;
+                                    `--max-cycles`); they stop earlier once a cycle changes
+                                    under 0.1% of the tets or the changes stop falling */
+  double ridge_angle_deg;      /**< boundary edges whose faces meet at a dihedral angle over
+                                    this (degrees, 0..180; default 45) are ridges
+                                    (`--ridge-angle`) */
+  int32_t optimize_cycles;     /**< swap and smoothing sweeps after the cycles, 0..100
+                                    (default 3) */
+  int32_t tensors;             /**< how `fields`' symmetric tensors are carried to the new mesh:
+                                    ANITET_TENSORS_AUTO (default), _LOG_EUCLIDEAN or _LINEAR */
+  anitet_progress_fn progress; /**< may be NULL: called between sweeps with the stage
+                                    ("adapt, cycle 3", "optimize, sweep 1", "transfer",
+                                    "measure", "done") and a rough fraction; non-zero cancels */
+  void* progress_user_data;    /**< passed to progress untouched */
+  anitet_log_fn log;           /**< may be NULL: one ANITET_LOG_INFO line per sweep
+                                    (operations, tets, time; `anitet adapt -v`) */
+  void* log_user_data;         /**< passed to log untouched */
+  /* Version 2 and later append fields here. */
+} anitet_adapt_options;
+
+/** Initializer of an anitet_adapt_options of version ANITET_ADAPT_OPTIONS_VERSION with the
+ * defaults. */
+#define ANITET_ADAPT_OPTIONS_INIT \
+  { ANITET_ADAPT_OPTIONS_VERSION, 0, 0, 30, 45.0, 3, ANITET_TENSORS_AUTO, 0, 0, 0, 0 }
+
+/** Fills *options with the defaults of `version` (1 .. ANITET_ADAPT_OPTIONS_VERSION).
+ * Errors: INVALID_ARGUMENT (NULL options, unknown version). */
+ANITET_API int anitet_adapt_options_init(anitet_adapt_options* options, int32_t version);
+
+/** The newest version of anitet_adapt_stats this header declares. */
+#define ANITET_ADAPT_STATS_VERSION 1
+
+/** What an adaptation did and the UGAWG measures of its output in the metric (`anitet adapt
+ * --json`), a versioned struct: set its version with ANITET_ADAPT_STATS_INIT. Edge lengths are
+ * UGAWG's l = (la - lb) / ln(la / lb) in the metric at the ends; the mean ratio of a tet is
+ * taken in the metric of its finest corner (1: the regular tet of the metric). */
+typedef struct anitet_adapt_stats {
+  int32_t version;              /**< ANITET_ADAPT_STATS_VERSION (1), set by the caller */
+  int32_t cycles;               /**< refinement/coarsening cycles run */
+  int64_t vertices_in;          /**< of the input mesh */
+  int64_t tets_in;              /**< of the input mesh */
+  int64_t boundary_triangles_in; /**< of the input mesh */
+  int64_t vertices;             /**< of the new mesh */
+  int64_t tets;                 /**< of the new mesh */
+  int64_t boundary_triangles;   /**< of the new mesh */
+  int64_t ridge_edges;          /**< ridge edges found in the input's surface */
+  int64_t corners;              /**< corners found in the input's surface */
+  int64_t splits;               /**< edges split (on the surface included) */
+  int64_t surface_splits;       /**< of those, on the surface */
+  int64_t collapses;            /**< edges collapsed */
+  int64_t surface_collapses;    /**< of those, on the surface */
+  int64_t swaps;                /**< edge and face swaps */
+  int64_t surface_swaps;        /**< of those, on the surface */
+  int64_t moves;                /**< vertex moves */
+  int64_t surface_moves;        /**< of those, on the surface */
+  int64_t splits_refused;       /**< splits not made (a tet would have been inverted) */
+  int64_t collapses_refused;    /**< collapses not made */
+  int64_t edges;                /**< edges of the new mesh */
+  double edges_in_range;        /**< share of edges of metric length in [1/sqrt2, sqrt2] */
+  double edges_shorter;         /**< share below 1/sqrt2 */
+  double edges_longer;          /**< share above sqrt2 */
+  double edge_length_min;       /**< smallest metric edge length */
+  double edge_length_mean;      /**< mean metric edge length */
+  double edge_length_max;       /**< largest metric edge length */
+  double mean_ratio_min;        /**< smallest tet mean ratio in the metric */
+  double mean_ratio_mean;       /**< mean tet mean ratio in the metric */
+  double seconds;               /**< the whole call */
+  double seconds_adapt;         /**< the adaptation (setup, sweeps, output) */
+  double seconds_split;         /**< of which the splits */
+  double seconds_collapse;      /**< of which the collapses */
+  double seconds_swap;          /**< of which the swaps */
+  double seconds_smooth;        /**< of which the moves */
+  double seconds_transfer;      /**< carrying the fields (0 without) */
+  double seconds_measure;       /**< the measures above */
+  /* Version 2 and later append fields here. */
+} anitet_adapt_stats;
+
+/** Initializer of an anitet_adapt_stats of version ANITET_ADAPT_STATS_VERSION, all figures 0. */
+#define ANITET_ADAPT_STATS_INIT \
+  { ANITET_ADAPT_STATS_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, \
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 }
+
+/** Adapts `mesh` to the metric given at its points: `metric` holds `components` values per point
+ * of the mesh, in its point order (no index is passed, so there is no index_base), metric_len ==
+ * components * (number of points): components 1, the size h (> 0, an edge length) per point;
+ * components 6, the tensor xx xy yy xz yz zz (symmetric positive definite, 1/length^2) per point,
+ * as anitet_metric_create_from_points and anitet_mesh_set_metric take them. New points take the
+ * metric interpolated in the input mesh (log-Euclidean).
+ *
+ * Outputs: *out, a new mesh (the caller's, freed with anitet_mesh_destroy; NULL after any error):
+ * positive tets with their regions, boundary triangles with their patch labels, the input's
+ * patch names and types, and the metric at its points (anitet_mesh_get_metric, 6 components;
+ * anitet_mesh_write_metric is `--write-metric`); it has no run stats and no prism cells (the
+ * input's prisms, if any, are adapted as their tets). `fields` (may be NULL: then out_fields
+ * must be NULL too) holds per-vertex fields of `mesh` (one record per point) carried to the new
+ * mesh's points into *out_fields (the caller's; anitet_fields_get_transfer_report applies), as
+ * anitet_mesh_transfer_fields carries them (`--field`). `stats` (may be NULL) gets the
+ * figures of its version. `mesh`, `metric` and `fields` are only read. options may be NULL for
+ * the defaults. The same inputs and options give the same mesh, bit for bit, on any number of
+ * threads. Threads: see options->num_threads; the callbacks are called on the calling thread.
+ *
+ * Errors: INVALID_ARGUMENT (NULL mesh, metric or out; fields given without out_fields or
+ * out_fields without fields; components not 1 or 6; metric_len not components times the points;
+ * a value not finite, a size <= 0 or a tensor that is not positive definite: the message names
+ * the 0-based point; an options version outside 1 .. ANITET_ADAPT_OPTIONS_VERSION or an option
+ * out of its range; a stats version outside 1 .. ANITET_ADAPT_STATS_VERSION; fields without one
+ * record per point; an inverted or flat tet, named), EMPTY_INPUT (no tet), INVALID_MESH (a face
+ * of three tets or more), CANCELLED, INTERNAL, OUT_OF_MEMORY. Nothing is returned after an
+ * error. */
+ANITET_API int anitet_adapt(const anitet_mesh* mesh, const double* metric, int64_t metric_len,
+                            int32_t components, const anitet_fields* fields,
+                            const anitet_adapt_options* options, anitet_mesh** out,
+                            anitet_fields** out_fields, anitet_adapt_stats* stats);
+/** anitet_adapt to a metric handle evaluated wherever a point goes (exactly at every new point,
+ * not interpolated): an analytic callback (anitet_metric_create_analytic, called on the calling
+ * thread), a .vdb or .sol read with anitet_metric_read, a uniform size. The new mesh carries the
+ * metric's values at its points. Errors: as anitet_adapt (a NULL metric; a callback that fails
+ * or returns a tensor that is not positive definite: INVALID_ARGUMENT naming the point). */
+ANITET_API int anitet_adapt_to_metric(const anitet_mesh* mesh, const anitet_metric* metric,
+                                      const anitet_fields* fields,
+                                      const anitet_adapt_options* options, anitet_mesh** out,
+                                      anitet_fields** out_fields, anitet_adapt_stats* stats);
+
+/* ---------------------------------------------------------------------------------------------
  * Quality report.
  * ------------------------------------------------------------------------------------------- */
 /** The newest version of anitet_quality this header declares. */

@@ -69,6 +69,9 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_TENSORS_AUTO = 0
   integer(c_int32_t), parameter, public :: ANITET_TENSORS_LOG_EUCLIDEAN = 1
   integer(c_int32_t), parameter, public :: ANITET_TENSORS_LINEAR = 2
+  ! adaptation
+  integer(c_int32_t), parameter, public :: ANITET_ADAPT_OPTIONS_VERSION = 1
+  integer(c_int32_t), parameter, public :: ANITET_ADAPT_STATS_VERSION = 1
   ! partitions
   integer(c_int32_t), parameter, public :: ANITET_PARTITION_OPTIONS_VERSION = 1
   integer(c_int32_t), parameter, public :: ANITET_PARTITION_INFO_VERSION = 1
@@ -191,6 +194,62 @@ module anitet
     integer(c_int64_t) :: bl_prism_tets_left
   end type
 
+  ! Options of anitet_adapt (`anitet adapt`'s); anitet_adapt_options_init sets the defaults.
+  type, bind(c), public :: anitet_adapt_options_t
+    integer(c_int32_t) :: version
+    integer(c_int32_t) :: num_threads
+    integer(c_int32_t) :: keep_surface
+    integer(c_int32_t) :: max_cycles
+    real(c_double) :: ridge_angle_deg
+    integer(c_int32_t) :: optimize_cycles
+    integer(c_int32_t) :: tensors
+    type(c_funptr) :: progress
+    type(c_ptr) :: progress_user_data
+    type(c_funptr) :: log
+    type(c_ptr) :: log_user_data
+  end type
+
+  ! What an adaptation did and the UGAWG measures of its output (anitet_adapt).
+  type, bind(c), public :: anitet_adapt_stats_t
+    integer(c_int32_t) :: version
+    integer(c_int32_t) :: cycles
+    integer(c_int64_t) :: vertices_in
+    integer(c_int64_t) :: tets_in
+    integer(c_int64_t) :: boundary_triangles_in
+    integer(c_int64_t) :: vertices
+    integer(c_int64_t) :: tets
+    integer(c_int64_t) :: boundary_triangles
+    integer(c_int64_t) :: ridge_edges
+    integer(c_int64_t) :: corners
+    integer(c_int64_t) :: splits
+    integer(c_int64_t) :: surface_splits
+    integer(c_int64_t) :: collapses
+    integer(c_int64_t) :: surface_collapses
+    integer(c_int64_t) :: swaps
+    integer(c_int64_t) :: surface_swaps
+    integer(c_int64_t) :: moves
+    integer(c_int64_t) :: surface_moves
+    integer(c_int64_t) :: splits_refused
+    integer(c_int64_t) :: collapses_refused
+    integer(c_int64_t) :: edges
+    real(c_double) :: edges_in_range
+    real(c_double) :: edges_shorter
+    real(c_double) :: edges_longer
+    real(c_double) :: edge_length_min
+    real(c_double) :: edge_length_mean
+    real(c_double) :: edge_length_max
+    real(c_double) :: mean_ratio_min
+    real(c_double) :: mean_ratio_mean
+    real(c_double) :: seconds
+    real(c_double) :: seconds_adapt
+    real(c_double) :: seconds_split
+    real(c_double) :: seconds_collapse
+    real(c_double) :: seconds_swap
+    real(c_double) :: seconds_smooth
+    real(c_double) :: seconds_transfer
+    real(c_double) :: seconds_measure
+  end type
+
   type, bind(c), public :: anitet_quality_t
     integer(c_int32_t) :: version
     integer(c_int32_t) :: valid
@@ -276,6 +335,7 @@ module anitet
   public :: c_anitet_fields_get_counts, c_anitet_fields_get_kinds, c_anitet_fields_get_values
   public :: c_anitet_fields_get_data, c_anitet_mesh_transfer_fields, c_anitet_fields_get_transfer_report
   public :: c_anitet_mesh_transfer_fields_ext
+  public :: c_anitet_adapt_options_init, c_anitet_adapt, c_anitet_adapt_to_metric
   public :: c_anitet_geo_frame_create, c_anitet_geo_frame_create_centred, c_anitet_geo_frame_destroy
   public :: c_anitet_geo_frame_get, c_anitet_surface_to_local, c_anitet_mesh_to_local
   public :: c_anitet_mesh_to_geodetic
@@ -837,6 +897,35 @@ module anitet
       integer(c_int32_t), value :: version
     end function
 
+    integer(c_int) function c_anitet_adapt_options_init(options, version) &
+        bind(c, name="anitet_adapt_options_init")
+      import :: c_int, c_int32_t, anitet_adapt_options_t
+      type(anitet_adapt_options_t), intent(out) :: options
+      integer(c_int32_t), value :: version
+    end function
+
+    integer(c_int) function c_anitet_adapt(mesh, metric, metric_len, components, fields, options, &
+        out, out_fields, stats) bind(c, name="anitet_adapt")
+      import :: c_int, c_int32_t, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: mesh
+      real(c_double), intent(in) :: metric(*)
+      integer(c_int64_t), value :: metric_len
+      integer(c_int32_t), value :: components
+      type(c_ptr), value :: fields   ! may be c_null_ptr
+      type(c_ptr), value :: options  ! c_loc of an anitet_adapt_options_t, or c_null_ptr
+      type(c_ptr), intent(out) :: out
+      type(c_ptr), value :: out_fields  ! c_loc of a type(c_ptr), or c_null_ptr without fields
+      type(c_ptr), value :: stats       ! c_loc of an anitet_adapt_stats_t, or c_null_ptr
+    end function
+
+    integer(c_int) function c_anitet_adapt_to_metric(mesh, metric, fields, options, out, out_fields, &
+        stats) bind(c, name="anitet_adapt_to_metric")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: mesh, metric, fields, options
+      type(c_ptr), intent(out) :: out
+      type(c_ptr), value :: out_fields, stats
+    end function
+
     integer(c_int) function c_anitet_mesh_partition(mesh, num_parts, options, out) &
         bind(c, name="anitet_mesh_partition")
       import :: c_int, c_int32_t, c_ptr
@@ -1197,6 +1286,7 @@ module anitet
   public :: anitet_fields_create, anitet_fields_read, anitet_fields_write, anitet_fields_destroy
   public :: anitet_fields_get_counts, anitet_fields_get_kinds, anitet_fields_get_values
   public :: anitet_fields_get_data, anitet_mesh_transfer_fields, anitet_fields_get_transfer_report
+  public :: anitet_adapt_options_init, anitet_adapt, anitet_adapt_to_metric
   public :: anitet_geo_frame_create, anitet_geo_frame_create_centred, anitet_geo_frame_destroy
   public :: anitet_geo_frame_get, anitet_surface_to_local, anitet_mesh_to_local
   public :: anitet_mesh_to_geodetic
@@ -2018,6 +2108,68 @@ contains
     if (present(max_outside_distance)) max_outside_distance = distance
     if (present(log_euclidean)) log_euclidean = flags(1:nf) /= 0
   end function
+
+  ! ---- adaptation -------------------------------------------------------------------------------
+
+  integer function anitet_adapt_options_init(options, version) result(rc)
+    type(anitet_adapt_options_t), intent(out) :: options
+    integer, intent(in), optional :: version
+    integer(c_int32_t) :: v
+    v = ANITET_ADAPT_OPTIONS_VERSION
+    if (present(version)) v = int(version, c_int32_t)
+    rc = c_anitet_adapt_options_init(options, v)
+  end function
+
+  ! `mesh` adapted to metric(components, num_points) (components 1: sizes, 6: tensors xx xy yy xz
+  ! yz zz) into a new mesh `out`; fields (at mesh's points) carried to out's points into
+  ! out_fields (both or neither); stats filled when given (version ANITET_ADAPT_STATS_VERSION).
+  integer function anitet_adapt(mesh, metric, out, fields, out_fields, options, stats) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    real(c_double), intent(in) :: metric(:, :)
+    type(c_ptr), intent(out) :: out
+    type(c_ptr), intent(in), optional :: fields
+    type(c_ptr), intent(out), optional, target :: out_fields
+    type(anitet_adapt_options_t), intent(in), optional, target :: options
+    type(anitet_adapt_stats_t), intent(out), optional, target :: stats
+    type(c_ptr) :: o, of, st
+    call adapt_arguments(o, of, st, out_fields, options, stats)
+    rc = c_anitet_adapt(mesh, metric, size(metric, kind=c_int64_t), size(metric, 1, kind=c_int32_t), &
+                        opt_ptr(fields), o, out, of, st)
+  end function
+
+  ! The same with a metric handle evaluated at every new point (an analytic callback, a file).
+  integer function anitet_adapt_to_metric(mesh, metric, out, fields, out_fields, options, stats) result(rc)
+    type(c_ptr), intent(in) :: mesh, metric
+    type(c_ptr), intent(out) :: out
+    type(c_ptr), intent(in), optional :: fields
+    type(c_ptr), intent(out), optional, target :: out_fields
+    type(anitet_adapt_options_t), intent(in), optional, target :: options
+    type(anitet_adapt_stats_t), intent(out), optional, target :: stats
+    type(c_ptr) :: o, of, st
+    call adapt_arguments(o, of, st, out_fields, options, stats)
+    rc = c_anitet_adapt_to_metric(mesh, metric, opt_ptr(fields), o, out, of, st)
+  end function
+
+  ! The C pointers of anitet_adapt's optional arguments (c_null_ptr when absent); stats gets
+  ! the newest version.
+  subroutine adapt_arguments(o, of, st, out_fields, options, stats)
+    type(c_ptr), intent(out) :: o, of, st
+    type(c_ptr), intent(out), optional, target :: out_fields
+    type(anitet_adapt_options_t), intent(in), optional, target :: options
+    type(anitet_adapt_stats_t), intent(out), optional, target :: stats
+    o = c_null_ptr
+    of = c_null_ptr
+    st = c_null_ptr
+    if (present(options)) o = c_loc(options)
+    if (present(out_fields)) then
+      out_fields = c_null_ptr
+      of = c_loc(out_fields)
+    end if
+    if (present(stats)) then
+      stats%version = ANITET_ADAPT_STATS_VERSION
+      st = c_loc(stats)
+    end if
+  end subroutine
 
   ! ---- geographic frames ------------------------------------------------------------------------
   ! Points in (longitude, latitude, height) on WGS84 moved to a local frame in metres and back.

@@ -6,8 +6,8 @@
 ! stage 1 alone, y+ to a first height, the surface's sizing field written and read back, a
 ! metric sampled on a mesh and read on a mesh in memory, geographic frames; a boundary layer
 ! sliding along a pipe's caps, patch types, per-vertex fields and their transfer, the boundary
-! layer as prism cells.
-! Argument 1: the tests' data directory (tests/data).
+! layer as prism cells, one adaptation pass of the UGAWG cube with a field carried.
+! Argument 1: the tests' data directory (tests/data); argument 2: the UGAWG data directory.
 ! The analytic metric of check_sample_metric: a bind(c) procedure of a module, for c_funloc.
 module test_fortran_metrics
   use, intrinsic :: iso_c_binding
@@ -35,10 +35,12 @@ program test_fortran
   implicit none
 
   integer :: failures = 0
-  character(len=1024) :: data_dir
+  character(len=1024) :: data_dir, ugawg_dir
 
   call get_command_argument(1, data_dir)
-  if (len_trim(data_dir) == 0) error stop "usage: test_fortran <tests/data directory>"
+  call get_command_argument(2, ugawg_dir)
+  if (len_trim(data_dir) == 0 .or. len_trim(ugawg_dir) == 0) &
+    error stop "usage: test_fortran <tests/data directory> <UGAWG data directory>"
 
   call check_library()
   call check_cube_surface()
@@ -60,6 +62,7 @@ program test_fortran
   call check_patch_types(trim(data_dir) // "/io/box.mesh")
   call check_fields(trim(data_dir) // "/io/box.mesh")
   call check_bl_prisms()
+  call check_adapt(trim(ugawg_dir) // "/cube-linear-00.mesh")
 
   if (failures > 0) then
     print '(a, i0, a)', "test_fortran: ", failures, " check(s) failed"
@@ -1120,5 +1123,52 @@ contains
     read(unit) text
     close(unit)
   end function
+
+  ! One pass of anitet_adapt on the UGAWG cube to its linear metric (evaluated at the points), a
+  ! linear field carried exactly; the errors a Fortran caller meets.
+  subroutine check_adapt(path)
+    character(len=*), intent(in) :: path
+    type(c_ptr) :: cube, fields, out, moved
+    type(anitet_adapt_options_t) :: o
+    type(anitet_adapt_stats_t) :: st
+    real(c_double), allocatable :: xyz(:, :), metric(:, :), values(:, :), got(:, :)
+    integer(c_int64_t) :: np, nt, nb
+    integer :: i
+    call check(anitet_mesh_read(path, cube) == ANITET_OK, "adapt: read the cube")
+    call check(anitet_mesh_get_points(cube, xyz) == ANITET_OK, "adapt: points")
+    allocate(metric(6, size(xyz, 2)), values(1, size(xyz, 2)))
+    do i = 1, size(xyz, 2)
+      metric(:, i) = [100d0, 0d0, 100d0, 0d0, 0d0, &
+                      1d0 / (0.001d0 + 2d0 * (0.1d0 - 0.001d0) * abs(xyz(3, i) - 0.5d0))**2]
+      values(1, i) = 1d0 + 2d0 * xyz(1, i) - xyz(2, i) + 3d0 * xyz(3, i)
+    end do
+    call check(anitet_fields_create([ANITET_FIELD_KIND_SCALAR], values, fields) == ANITET_OK, &
+               "adapt: a linear field")
+    call check(anitet_adapt_options_init(o) == ANITET_OK .and. o%max_cycles == 30, "adapt: options")
+    call check(anitet_adapt(cube, metric, out, fields=fields, out_fields=moved, options=o, stats=st) &
+               == ANITET_OK, "adapt: one pass")
+    call check(anitet_mesh_get_counts(out, np, nt, nb) == ANITET_OK .and. st%vertices == np .and. &
+               st%tets == nt .and. st%vertices_in == size(xyz, 2), "adapt: counts")
+    call check(st%edges_in_range > 0.9d0 .and. st%mean_ratio_min > 0d0, "adapt: edges in range")
+    deallocate(xyz)
+    call check(anitet_mesh_get_points(out, xyz) == ANITET_OK, "adapt: new points")
+    call check(anitet_fields_get_values(moved, got) == ANITET_OK .and. size(got, 2) == np, &
+               "adapt: carried field")
+    call check(maxval(abs(got(1, :) - (1d0 + 2d0 * xyz(1, :) - xyz(2, :) + 3d0 * xyz(3, :)))) < 1d-9, &
+               "adapt: a linear field carried exactly")
+    call anitet_fields_destroy(moved)
+    call anitet_mesh_destroy(out)
+    ! Errors: a metric of another mesh, an unknown options version, fields without out_fields.
+    call check(anitet_adapt(cube, metric(:, 1:10), out) == ANITET_ERR_INVALID_ARGUMENT .and. &
+               .not. c_associated(out), "adapt: metric of the wrong length")
+    call check(index(anitet_last_error_message(), "metric_len is 60") > 0, "adapt: its message")
+    o%version = 99
+    call check(anitet_adapt(cube, metric, out, options=o) == ANITET_ERR_INVALID_ARGUMENT, &
+               "adapt: options version 99")
+    call check(anitet_adapt(cube, metric, out, fields=fields) == ANITET_ERR_INVALID_ARGUMENT, &
+               "adapt: fields without out_fields")
+    call anitet_fields_destroy(fields)
+    call anitet_mesh_destroy(cube)
+  end subroutine
 
 end program test_fortran

@@ -23,6 +23,7 @@ import mesh_sphere  # noqa: E402 - the examples' sphere
 
 HEADER = os.environ["ANITET_HEADER"]
 DATA = os.environ["ANITET_TEST_DATA_DIR"]
+UGAWG = os.environ["ANITET_UGAWG_DIR"]
 
 CUBE_POINTS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
 CUBE_TRIS = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (3, 7, 6), (3, 6, 2),
@@ -57,7 +58,7 @@ class HeaderDrift(unittest.TestCase):
     def test_constants(self):
         pattern = (r"#define ANITET_((?:ERR_[A-Z_]+|OK|LOG_[A-Z]+|LAYERS_[A-Z_]+|RECOVERY_[A-Z]+|GEO_[A-Z]+|"
                    r"VERSION_MAJOR|VERSION_MINOR|VERSION_PATCH|OPTIONS_VERSION|QUALITY_VERSION|RUN_STATS_VERSION|"
-                   r"PARTITION_[A-Z]+_VERSION|"
+                   r"PARTITION_[A-Z]+_VERSION|ADAPT_[A-Z]+_VERSION|"
                    r"HALO_[A-Z_]+|TYPE_[A-Z0-9]+|PART_[A-Z_]+|MESH2D_OPTIONS_VERSION|GEO_[A-Z]+|"
                    r"PATCH_TYPE_[A-Z_]+|FIELD_KIND_[A-Z_]+|TENSORS_[A-Z_]+|BL_CELLS_[A-Z]+)) \(?(-?\d+)\)?")
         found = re.findall(pattern, self.header)
@@ -86,7 +87,9 @@ class HeaderDrift(unittest.TestCase):
         for struct, name in ((_capi.COptions, "anitet_options"), (_capi.CQuality, "anitet_quality"),
                              (_capi.CRunStats, "anitet_run_stats"),
                              (_capi.CPartitionOptions, "anitet_partition_options"),
-                             (_capi.CPartitionInfo, "anitet_partition_info")):
+                             (_capi.CPartitionInfo, "anitet_partition_info"),
+                             (_capi.CAdaptOptions, "anitet_adapt_options"),
+                             (_capi.CAdaptStats, "anitet_adapt_stats")):
             self.assertEqual(self.ctypes_fields(struct), self.struct_fields(name), name)
         pointer = ctypes.sizeof(ctypes.c_void_p)
         self.assertEqual(ctypes.sizeof(_capi.CPartitionOptions), 24 + pointer + 8)
@@ -964,6 +967,65 @@ class Fields(unittest.TestCase):
             old.transfer_fields(fields, new, tensors=5)
         with self.assertRaises(TypeError):
             anitet.transfer_fields(old, [1.0], new)
+
+
+class Adapt(unittest.TestCase):
+    """anitet.adapt on the UGAWG linear cube: one pass to the metric at the points with a field
+    carried, the metric as a Metric, and the errors."""
+
+    @staticmethod
+    def linear_metric(z):
+        hz = 0.001 + 2 * (0.1 - 0.001) * abs(z - 0.5)
+        return (100.0, 0.0, 100.0, 0.0, 0.0, 1.0 / (hz * hz))
+
+    def setUp(self):
+        self.cube = anitet.Mesh.read(os.path.join(UGAWG, "cube-linear-00.mesh"))
+        self.points = rows(self.cube.points())
+        self.metric = [self.linear_metric(p[2]) for p in self.points]
+
+    def test_one_pass(self):
+        fields = anitet.Fields.from_arrays(["scalar"], [1 + 2 * x - y + 3 * z for x, y, z in self.points])
+        stages = []
+        result = anitet.adapt(self.cube, self.metric, fields=fields, progress=lambda s, f: stages.append(s))
+        mesh, carried, stats = result
+        self.assertEqual(stats.vertices_in, len(self.points))
+        self.assertEqual(mesh.counts(), (stats.vertices, stats.tets, stats.boundary_triangles))
+        self.assertGreaterEqual(stats.edges_in_range, 0.9)
+        self.assertGreater(stats.mean_ratio_min, 0.0)
+        self.assertTrue(mesh.quality().valid)
+        self.assertEqual(mesh.metric_components, 6)
+        worst = max(abs(v - (1 + 2 * x - y + 3 * z)) for (x, y, z), v in zip(rows(mesh.points()), carried.field(0)))
+        self.assertLess(worst, 1e-9)
+        self.assertIn("transfer", stages)
+        self.assertEqual(stages[-1], "done")
+
+    def test_metric_handle(self):
+        metric = anitet.Metric.analytic(lambda x, y, z: self.linear_metric(z))
+        mesh, fields, stats = self.cube.adapt(metric, keep_surface=True, max_cycles=2, num_threads=1)
+        self.assertIsNone(fields)
+        self.assertEqual(mesh.num_boundary_triangles, self.cube.num_boundary_triangles)
+        self.assertEqual(stats.surface_splits + stats.surface_moves, 0)
+
+    def test_errors(self):
+        with self.assertRaises(anitet.AnitetError) as e:
+            self.cube.adapt(self.metric[:10])
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
+        self.assertIn("metric_len is 60", e.exception.message)
+        bad = list(self.metric)
+        bad[3] = (1.0, 2.0, 1.0, 0.0, 0.0, 1.0)  # not positive definite
+        with self.assertRaises(anitet.AnitetError) as e:
+            self.cube.adapt(bad)
+        self.assertIn("point 3 (0-based)", e.exception.message)
+        with self.assertRaises(anitet.AnitetError) as e:
+            self.cube.adapt(self.metric, max_cycles=-1)
+        self.assertIn("max_cycles is -1", e.exception.message)
+        with self.assertRaises(anitet.AnitetError) as e:
+            self.cube.adapt(self.metric, progress=lambda stage, fraction: False)
+        self.assertEqual(e.exception.code, anitet.ERR_CANCELLED)
+        with self.assertRaises(ZeroDivisionError):
+            self.cube.adapt(self.metric, progress=lambda stage, fraction: 1 / 0)
+        with self.assertRaises(TypeError):
+            anitet.adapt(self.metric, self.cube)
 
 
 class Arrays(unittest.TestCase):

@@ -14,6 +14,7 @@ of this package, then the system's loader (libanitet.so.0). NumPy is optional.
     mesh.write("fandisk.su2")
     partition = mesh.partition(4)                          # parts for 4 ranks, NumPy views
     moved = old.transfer_fields(anitet.Fields.read("flow.sol"), mesh)  # fields to new vertices
+    new, flow, stats = anitet.adapt(mesh, metric_at_points, fields=flow)  # `anitet adapt`
 
     lake = anitet.Pslg.read("superior.poly")               # 2D: or Pslg.from_arrays(xy, segments)
     tri = anitet.mesh2d(lake, hsize=0.01)                  # every segment kept whole
@@ -34,7 +35,8 @@ from ._capi import (BL_CELLS_PRISMS, BL_CELLS_TETS, ERR_BAD_INDEX, ERR_BUFFER_TO
                     TYPE_INT64, MESH2D_OPTIONS_VERSION, PATCH_TYPE_FROM_NAME, PATCH_TYPE_WALL,
                     PATCH_TYPE_INLET, PATCH_TYPE_OUTLET, PATCH_TYPE_FARFIELD, PATCH_TYPE_SYMMETRY,
                     PATCH_TYPE_PATCH, FIELD_KIND_SCALAR, FIELD_KIND_VECTOR, FIELD_KIND_SYM_TENSOR,
-                    TENSORS_AUTO, TENSORS_LOG_EUCLIDEAN, TENSORS_LINEAR)
+                    TENSORS_AUTO, TENSORS_LOG_EUCLIDEAN, TENSORS_LINEAR, ADAPT_OPTIONS_VERSION,
+                    ADAPT_STATS_VERSION)
 from ._capi import (PART_BOUNDARY_GLOBAL_IDS, PART_BOUNDARY_PATCHES, PART_BOUNDARY_TRIANGLES,  # noqa: F401
                     PART_NEIGHBOURS, PART_POINTS, PART_REGIONS, PART_TET_GLOBAL_IDS, PART_TET_LAYERS,
                     PART_TET_OWNERS, PART_TET_RECV, PART_TET_RECV_OFFSETS, PART_TET_SEND,
@@ -47,5 +49,6 @@ from ._api import (BL_CELLS, HAVE_NUMPY, PATCH_TYPES, AnitetError, Mesh, Metric,
 from ._geo import GeoFrame
 from ._partition import Part, Partition, PartitionInfo, partition_mesh
 from ._fields import Fields, TransferReport, transfer_fields
+from ._adapt import AdaptResult, AdaptStats, adapt
 
 __version__ = "%d.%d.%d" % (VERSION_MAJOR, VERSION_MINOR, VERSION_PATCH)

@@ -249,12 +249,54 @@ class Options:
         self.bl_cells = bl_cells
 
 
-class _CallbackScope:
+class _Callbacks:
+    """The C callbacks of a call's Python progress and log functions: an exception raised in
+    either cancels the call and is raised again by call(). The ctypes callback objects must
+    outlive the call: they are attributes of self."""
+
+    def __init__(self):
+        self.error = None
+
+    def c_progress(self, user_progress):
+        """A PROGRESS_FN calling user_progress(stage, fraction); False cancels."""
+        def progress(fraction, stage, _):
+            if self.error is not None:
+                return 1
+            try:
+                return 1 if user_progress(stage.decode(), fraction) is False else 0
+            except BaseException as e:  # noqa: B902 - re-raised after the C call returns
+                self.error = e
+                return 1
+
+        self._progress = _capi.PROGRESS_FN(progress)
+        return self._progress
+
+    def c_log(self, user_log):
+        """A LOG_FN calling user_log(level, message)."""
+        def log(level, message, _):
+            if self.error is not None:
+                return
+            try:
+                user_log(level, message.decode("utf-8", "replace"))
+            except BaseException as e:  # noqa: B902
+                self.error = e
+
+        self._log = _capi.LOG_FN(log)
+        return self._log
+
+    def call(self, fn, *args):
+        rc = fn(*args)
+        if self.error is not None:
+            raise self.error
+        _check(rc)
+
+
+class _CallbackScope(_Callbacks):
     """The C struct of an Options with its callbacks and wall labels, for the duration of one
     call."""
 
     def __init__(self, options):
-        self.error = None
+        super().__init__()
         self.struct = _capi.COptions()
         _check(lib.anitet_options_init(byref(self.struct), _capi.OPTIONS_VERSION))
         if options is None:
@@ -290,40 +332,10 @@ class _CallbackScope:
         self._slides, pointer, count = _labels(options.bl_slide_patches, "bl_slide_patches")
         if count > 0:
             s.bl_slide_patches, s.bl_num_slide_patches = pointer, count
-        # The ctypes callback objects must outlive the call: they are attributes of self.
         if options.progress is not None:
-            user_progress = options.progress
-
-            def progress(fraction, stage, _):
-                if self.error is not None:
-                    return 1
-                try:
-                    return 1 if user_progress(stage.decode(), fraction) is False else 0
-                except BaseException as e:  # noqa: B902 - re-raised after the C call returns
-                    self.error = e
-                    return 1
-
-            self._progress = _capi.PROGRESS_FN(progress)
-            s.progress = self._progress
+            s.progress = self.c_progress(options.progress)
         if options.log is not None:
-            user_log = options.log
-
-            def log(level, message, _):
-                if self.error is not None:
-                    return
-                try:
-                    user_log(level, message.decode("utf-8", "replace"))
-                except BaseException as e:  # noqa: B902
-                    self.error = e
-
-            self._log = _capi.LOG_FN(log)
-            s.log = self._log
-
-    def call(self, fn, *args):
-        rc = fn(*args)
-        if self.error is not None:
-            raise self.error
-        _check(rc)
+            s.log = self.c_log(options.log)
 
 
 BL_CELLS = ("tets", "prisms")  # names of the BL_CELLS_* values, in order

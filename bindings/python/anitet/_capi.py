@@ -98,6 +98,8 @@ PART_TET_SEND = 17
 PART_TET_RECV_OFFSETS = 18
 PART_TET_RECV = 19
 MESH2D_OPTIONS_VERSION = 1
+ADAPT_OPTIONS_VERSION = 1
+ADAPT_STATS_VERSION = 1
 
 # ---- callbacks and structs ----------------------------------------------------------------------
 PROGRESS_FN = CFUNCTYPE(c_int, c_double, c_char_p, c_void_p)
@@ -240,6 +242,36 @@ class CPartitionInfo(Structure):
     ]
 
 
+class CAdaptOptions(Structure):
+    _fields_ = [
+        ("version", c_int32),
+        ("num_threads", c_int32),
+        ("keep_surface", c_int32),
+        ("max_cycles", c_int32),
+        ("ridge_angle_deg", c_double),
+        ("optimize_cycles", c_int32),
+        ("tensors", c_int32),
+        ("progress", PROGRESS_FN),
+        ("progress_user_data", c_void_p),
+        ("log", LOG_FN),
+        ("log_user_data", c_void_p),
+    ]
+
+
+class CAdaptStats(Structure):
+    _fields_ = [("version", c_int32), ("cycles", c_int32)] + [
+        (name, c_int64) for name in (
+            "vertices_in", "tets_in", "boundary_triangles_in", "vertices", "tets", "boundary_triangles",
+            "ridge_edges", "corners", "splits", "surface_splits", "collapses", "surface_collapses", "swaps",
+            "surface_swaps", "moves", "surface_moves", "splits_refused", "collapses_refused", "edges")
+    ] + [
+        (name, c_double) for name in (
+            "edges_in_range", "edges_shorter", "edges_longer", "edge_length_min", "edge_length_mean",
+            "edge_length_max", "mean_ratio_min", "mean_ratio_mean", "seconds", "seconds_adapt", "seconds_split",
+            "seconds_collapse", "seconds_swap", "seconds_smooth", "seconds_transfer", "seconds_measure")
+    ]
+
+
 class CMesh2dOptions(Structure):
     _fields_ = [
         ("version", c_int32),
@@ -328,6 +360,10 @@ _PROTOTYPES = {
     "anitet_mesh_transfer_fields": (c_int, [_P, _P, _P, c_int32, _PP]),
     "anitet_mesh_transfer_fields_ext": (c_int, [_P, _P, _P, c_int32, c_int32, _PP]),
     "anitet_fields_get_transfer_report": (c_int, [_P, _I64, _D, _I32, c_int64]),
+    "anitet_adapt_options_init": (c_int, [POINTER(CAdaptOptions), c_int32]),
+    "anitet_adapt": (c_int, [_P, _D, c_int64, c_int32, _P, POINTER(CAdaptOptions), _PP, _PP,
+                             POINTER(CAdaptStats)]),
+    "anitet_adapt_to_metric": (c_int, [_P, _P, _P, POINTER(CAdaptOptions), _PP, _PP, POINTER(CAdaptStats)]),
     "anitet_mesh_get_run_stats": (c_int, [_P, POINTER(CRunStats)]),
     "anitet_mesh_run_json": (c_int, [_P, c_char_p, c_int64, _I64]),
     "anitet_mesh_quality": (c_int, [_P, _P, POINTER(CQuality)]),
