@@ -31,6 +31,11 @@ bool Remesher::split_edge(uint32_t a, uint32_t b, uint32_t t0) {
   Shell& s = shell_;
   if (!mesh_.shell(a, b, t0, s, 256)) return false;
   const bool surface = s.num_boundary > 0;
+  // An edge from a kept surface point into the volume: its length cannot follow the metric (the
+  // kept faces are as coarse as given), and splitting it crowds points against the kept faces
+  // (UGAWG linear, --keep-surface: inner points at 1e-4 from them, 44% of the edges within 0.01
+  // of a face out of range). The inner edges beside it are split instead.
+  if (opt_.keep_surface && ((mesh_.tag[a] ^ mesh_.tag[b]) & ptag::kRequired)) return false;
   if (surface && (opt_.keep_surface || ((mesh_.tag[a] & ptag::kRequired) && (mesh_.tag[b] & ptag::kRequired))))
     return false;
   const double *pa = mesh_.p(a), *pb = mesh_.p(b);
