@@ -6,7 +6,8 @@
 //     point only along its ridge), so that the surface keeps its shape and labels;
 //   - every changed tet stays positive (exact orient3d) and no quality falls below
 //     min(the worst of the changed tets before, kMinCollapseQuality);
-//   - no new edge (or moved one) is longer than kMaxCollapseLength: a collapse must not undo splits;
+//   - no new edge (or moved one) is longer than kMaxCollapseLength: a collapse must not undo splits
+//     (around a sliver: than p's longest edge);
 //   - on the surface: q and p share no boundary neighbour but the two opposite pq (the surface
 //     stays a manifold), and every boundary face that changes keeps its orientation within
 //     kSurfaceTurn of what it was and fits the smooth surface as well as it did (surface_fit:
@@ -25,6 +26,7 @@ namespace anitet::adapt {
 namespace {
 constexpr double kMinCollapseQuality = 0.3;
 constexpr double kMaxCollapseLength = 1.4142;
+constexpr double kSliverQuality = 0.1;
 const double kSurfaceTurn = std::cos(20.0 * M_PI / 180.0);
 }  // namespace
 
@@ -123,6 +125,18 @@ bool Remesher::collapse_edge(uint32_t p, uint32_t q, uint32_t t_pq, bool to_midp
   for (uint32_t t : ball) old_min = std::min(old_min, mesh_.qual[t]);
   for (uint32_t t : ball_q) old_min = std::min(old_min, mesh_.qual[t]);
   const double floor = std::min(old_min, kMinCollapseQuality);
+  // Around a sliver (a tet of p's ball below kSliverQuality), the new edges may be as long as p's
+  // longest: that ball is out of range already, and no new tet may fall below its worst (floor).
+  // The sphere case's flat tets (mean ratio 1e-4..1e-2, inner points under the ball's chords)
+  // were left because every collapse made an edge over sqrt 2.
+  double max_length = kMaxCollapseLength;
+  if (old_min < kSliverQuality) {
+    for (uint32_t t : ball)
+      for (int i = 0; i < 4; ++i) {
+        const uint32_t y = mesh_.verts(t)[i];
+        if (y != p) max_length = std::max(max_length, length(p, y));
+      }
+  }
   // Points already joined to q (when it stays): q, p and the ring of pq; others get a new edge.
   mesh_.next_stamp();
   mesh_.mark_point(q);
@@ -141,7 +155,7 @@ bool Remesher::collapse_edge(uint32_t p, uint32_t q, uint32_t t_pq, bool to_midp
       const uint32_t y = nw[i];
       if (mesh_.point_marked(y)) continue;
       mesh_.mark_point(y);
-      if (ugawg_edge_length(qp, mesh_.p(y), qm, mesh_.m(y)) > kMaxCollapseLength) return false;
+      if (ugawg_edge_length(qp, mesh_.p(y), qm, mesh_.m(y)) > max_length) return false;
     }
     return true;
   };
