@@ -1157,9 +1157,12 @@ double det_sqrt(const double m[6]) {
 
 }  // namespace
 
-double estimate_refined_tets(const TetMesh& mesh, const SizingField& field, double size_scale) {
+namespace {
+
+// Each live tet's volume times its averaged sqrt(det M) (0 for deleted and ghost slots): the
+// terms of estimate_refined_tets before its common factor.
+std::vector<double> metric_volumes(const TetMesh& mesh, const SizingField& field) {
   const size_t nv = mesh.num_vertices();
-  const double inv3 = 1.0 / (size_scale * size_scale * size_scale);  // sqrt(det(M / s^2)) = sqrt(det M) / s^3
   std::vector<double> at_vertex(nv, -1.0);
   std::vector<uint8_t> used(nv, 0);
   for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
@@ -1173,26 +1176,47 @@ double estimate_refined_tets(const TetMesh& mesh, const SizingField& field, doub
       at_vertex[v] = det_sqrt(m);
     }
   });
-  // (Deterministic: the same sum, bit for bit, on any number of threads.)
+  std::vector<double> terms(mesh.num_tet_slots(), 0.0);
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, mesh.num_tet_slots(), 4096), [&](const tbb::blocked_range<uint32_t>& r) {
+    double m[6];
+    for (uint32_t t = r.begin(); t < r.end(); ++t) {
+      if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+      const double *a = mesh.point(mesh.vertex(t, 0)), *b = mesh.point(mesh.vertex(t, 1)),
+                   *c = mesh.point(mesh.vertex(t, 2)), *d = mesh.point(mesh.vertex(t, 3));
+      const double centroid[3] = {(a[0] + b[0] + c[0] + d[0]) / 4, (a[1] + b[1] + c[1] + d[1]) / 4,
+                                  (a[2] + b[2] + c[2] + d[2]) / 4};
+      field.metric(centroid, m);
+      double density = 4.0 * det_sqrt(m);
+      for (int i = 0; i < 4; ++i) density += at_vertex[mesh.vertex(t, i)];
+      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]},
+                   z[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+      const double volume = std::fabs(u[0] * (w[1] * z[2] - w[2] * z[1]) - u[1] * (w[0] * z[2] - w[2] * z[0]) +
+                                      u[2] * (w[0] * z[1] - w[1] * z[0])) / 6.0;
+      terms[t] = volume * density / 8.0;
+    }
+  });
+  return terms;
+}
+
+}  // namespace
+
+std::vector<double> estimate_refined_tets_per_tet(const TetMesh& mesh, const SizingField& field, double size_scale) {
+  const double factor = 1.0 / (size_scale * size_scale * size_scale) / kMetricVolumePerTet;
+  std::vector<double> terms = metric_volumes(mesh, field);
+  for (double& w : terms) w *= factor;
+  return terms;
+}
+
+double estimate_refined_tets(const TetMesh& mesh, const SizingField& field, double size_scale) {
+  const double inv3 = 1.0 / (size_scale * size_scale * size_scale);  // sqrt(det(M / s^2)) = sqrt(det M) / s^3
+  const std::vector<double> terms = metric_volumes(mesh, field);
+  // (Deterministic: the same sum, bit for bit, on any number of threads; the same chunks and
+  // order as when the terms were summed where computed.)
   return tbb::parallel_deterministic_reduce(
              tbb::blocked_range<uint32_t>(0, mesh.num_tet_slots(), 4096), 0.0,
              [&](const tbb::blocked_range<uint32_t>& r, double sum) {
-               double m[6];
-               for (uint32_t t = r.begin(); t < r.end(); ++t) {
-                 if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
-                 const double *a = mesh.point(mesh.vertex(t, 0)), *b = mesh.point(mesh.vertex(t, 1)),
-                              *c = mesh.point(mesh.vertex(t, 2)), *d = mesh.point(mesh.vertex(t, 3));
-                 const double centroid[3] = {(a[0] + b[0] + c[0] + d[0]) / 4, (a[1] + b[1] + c[1] + d[1]) / 4,
-                                             (a[2] + b[2] + c[2] + d[2]) / 4};
-                 field.metric(centroid, m);
-                 double density = 4.0 * det_sqrt(m);
-                 for (int i = 0; i < 4; ++i) density += at_vertex[mesh.vertex(t, i)];
-                 const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]},
-                              z[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-                 const double volume = std::fabs(u[0] * (w[1] * z[2] - w[2] * z[1]) - u[1] * (w[0] * z[2] - w[2] * z[0]) +
-                                                 u[2] * (w[0] * z[1] - w[1] * z[0])) / 6.0;
-                 sum += volume * density / 8.0;
-               }
+               for (uint32_t t = r.begin(); t < r.end(); ++t)
+                 if (!mesh.is_deleted(t) && !mesh.is_ghost(t)) sum += terms[t];
                return sum;
              },
              std::plus<double>()) *

@@ -152,6 +152,10 @@ double metric_size(const double m[6]);
 // (kMetricVolumePerTet). On every core. Within 10-30% on the shared surfaces; meant for a guard
 // against asking for far more tets than memory holds, and for progress.
 double estimate_refined_tets(const TetMesh& mesh, const SizingField& field, double size_scale = 1.0);
+// Its terms: the tets predicted inside each tet slot (0 for deleted and ghost slots); their sum is
+// estimate_refined_tets up to rounding. The weights of the coarse mesh's partition in parts.
+std::vector<double> estimate_refined_tets_per_tet(const TetMesh& mesh, const SizingField& field,
+                                                  double size_scale = 1.0);
 
 // Refines and coarsens `mesh` (no ghost tets; adjacency built; S = the protected facets, whose
 // vertices carry vflag::kOnInputSurface) towards unit edge lengths in `field`. Vertices removed
