@@ -1,0 +1,306 @@
+#include "io/pvtu_format.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <string_view>
+
+#include "io/file_bytes.hpp"
+
+namespace anitet {
+
+namespace {
+
+constexpr uint8_t kVtkTetra = 10, kVtkTriangle = 5;
+
+// One appended array: its declaration and its bytes.
+struct Array {
+  const char* type;
+  std::string name;
+  int components;
+  std::string bytes;
+};
+
+template <class T>
+Array array_of(const char* type, std::string name, int components, const std::vector<T>& v) {
+  Array a{type, std::move(name), components, std::string(v.size() * sizeof(T), '\0')};
+  if (!v.empty()) std::memcpy(a.bytes.data(), v.data(), a.bytes.size());
+  return a;
+}
+
+void declare(std::string& out, const Array& a, uint64_t offset) {
+  out += "        <DataArray type=\"" + std::string(a.type) + "\" Name=\"" + a.name + "\" NumberOfComponents=\"" +
+         std::to_string(a.components) + "\" format=\"appended\" offset=\"" + std::to_string(offset) + "\"/>\n";
+}
+
+// The cell arrays of a piece (tets, then triangles).
+struct CellArrays {
+  std::vector<int64_t> connectivity, offsets, cell_id;
+  std::vector<uint8_t> types;
+  std::vector<int32_t> region, patch, owner;
+};
+
+CellArrays cell_arrays(const VtuPiece& p) {
+  CellArrays c;
+  const size_t nt = p.region.size(), nb = p.patch.size();
+  c.connectivity.assign(p.tet.begin(), p.tet.end());
+  c.connectivity.insert(c.connectivity.end(), p.tri.begin(), p.tri.end());
+  for (size_t t = 0; t < nt; ++t) c.offsets.push_back(int64_t(4 * (t + 1)));
+  for (size_t b = 0; b < nb; ++b) c.offsets.push_back(int64_t(4 * nt + 3 * (b + 1)));
+  c.types.assign(nt, kVtkTetra);
+  c.types.resize(nt + nb, kVtkTriangle);
+  c.region = p.region;
+  c.region.resize(nt + nb, -1);
+  c.patch.assign(nt, -1);
+  c.patch.insert(c.patch.end(), p.patch.begin(), p.patch.end());
+  c.cell_id = p.tet_id;
+  c.cell_id.resize(nt + nb, -1);
+  c.owner.assign(nt + nb, p.owner);
+  return c;
+}
+
+// Attribute `name` of the first tag `tag` at or after `from` (empty when absent).
+std::string attribute(std::string_view text, size_t tag_at, const std::string& name) {
+  const size_t end = text.find('>', tag_at);
+  const std::string key = " " + name + "=\"";
+  const size_t at = text.find(key, tag_at);
+  if (at == std::string_view::npos || at > end) return "";
+  const size_t value = at + key.size();
+  return std::string(text.substr(value, text.find('"', value) - value));
+}
+
+Status parse_error(const std::string& path, const std::string& what) {
+  return Status(Error::Parse, path + ": " + what + " (not a piece of `anitet-mpi`'s .pvtu output)");
+}
+
+std::string directory_of(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+}  // namespace
+
+Status write_vtu_piece(const std::string& path, const VtuPiece& p) {
+  const CellArrays c = cell_arrays(p);
+  const std::vector<Array> points = {array_of("Float64", "Points", 3, p.xyz)};
+  const std::vector<Array> point_data = {array_of("Int64", "GlobalNodeIds", 1, p.node_id)};
+  const std::vector<Array> cells = {array_of("Int64", "connectivity", 1, c.connectivity),
+                                    array_of("Int64", "offsets", 1, c.offsets), array_of("UInt8", "types", 1, c.types)};
+  const std::vector<Array> cell_data = {array_of("Int32", "region", 1, c.region), array_of("Int32", "patch", 1, c.patch),
+                                        array_of("Int64", "GlobalCellIds", 1, c.cell_id),
+                                        array_of("Int32", "owner", 1, c.owner)};
+  std::string out =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" +
+      std::to_string(p.node_id.size()) + "\" NumberOfCells=\"" + std::to_string(c.types.size()) + "\">\n";
+  uint64_t offset = 0;
+  std::string data;
+  auto section = [&](const char* open, const char* close, const std::vector<Array>& arrays) {
+    out += open;
+    for (const Array& a : arrays) {
+      declare(out, a, offset);
+      const uint64_t n = a.bytes.size();
+      data.append(reinterpret_cast<const char*>(&n), sizeof n);
+      data += a.bytes;
+      offset += sizeof n + n;
+    }
+    out += close;
+  };
+  section("      <PointData GlobalIds=\"GlobalNodeIds\">\n", "      </PointData>\n", point_data);
+  section("      <CellData>\n", "      </CellData>\n", cell_data);
+  section("      <Points>\n", "      </Points>\n", points);
+  section("      <Cells>\n", "      </Cells>\n", cells);
+  out += "    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
+  out += data;
+  out += "\n  </AppendedData>\n</VTKFile>\n";
+  return write_file_bytes(path, out);
+}
+
+Status write_pvtu_index(const std::string& path, const std::vector<std::string>& pieces) {
+  std::string out =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n  <PUnstructuredGrid GhostLevel=\"0\">\n"
+      "    <PPointData GlobalIds=\"GlobalNodeIds\">\n"
+      "      <PDataArray type=\"Int64\" Name=\"GlobalNodeIds\" NumberOfComponents=\"1\"/>\n    </PPointData>\n"
+      "    <PCellData>\n"
+      "      <PDataArray type=\"Int32\" Name=\"region\" NumberOfComponents=\"1\"/>\n"
+      "      <PDataArray type=\"Int32\" Name=\"patch\" NumberOfComponents=\"1\"/>\n"
+      "      <PDataArray type=\"Int64\" Name=\"GlobalCellIds\" NumberOfComponents=\"1\"/>\n"
+      "      <PDataArray type=\"Int32\" Name=\"owner\" NumberOfComponents=\"1\"/>\n    </PCellData>\n"
+      "    <PPoints>\n      <PDataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"/>\n    </PPoints>\n";
+  for (const std::string& piece : pieces) out += "    <Piece Source=\"" + piece + "\"/>\n";
+  out += "  </PUnstructuredGrid>\n</VTKFile>\n";
+  return write_file_bytes(path, out);
+}
+
+Result<std::vector<std::string>> read_pvtu_index(const std::string& path) {
+  Result<std::string> bytes = read_file_bytes(path);
+  if (!bytes.ok()) return bytes.status();
+  const std::string_view text = bytes.value();
+  const size_t root = text.find("<VTKFile");
+  if (root == std::string_view::npos || attribute(text, root, "type") != "PUnstructuredGrid")
+    return Status(Error::Parse, path + ": not a .pvtu index (no <VTKFile type=\"PUnstructuredGrid\">)");
+  if (text.find("<PUnstructuredGrid") == std::string_view::npos || text.find("<PPoints>") == std::string_view::npos)
+    return Status(Error::Parse, path + ": no <PUnstructuredGrid> with <PPoints>");
+  std::vector<std::string> pieces;
+  for (size_t at = text.find("<Piece "); at != std::string_view::npos; at = text.find("<Piece ", at + 1)) {
+    const std::string source = attribute(text, at, "Source");
+    if (source.empty()) return Status(Error::Parse, path + ": a <Piece> without Source");
+    pieces.push_back(source[0] == '/' ? source : directory_of(path) + source);
+  }
+  if (pieces.empty()) return Status(Error::Parse, path + ": no <Piece>");
+  return pieces;
+}
+
+namespace {
+
+// The appended array `name` of type `type`, as T values.
+template <class T>
+Status read_array(std::string_view text, std::string_view appended, const std::string& path, const char* type,
+                  const std::string& name, std::vector<T>& out) {
+  const size_t at = text.find("Name=\"" + name + "\"");
+  if (at == std::string_view::npos) return parse_error(path, "no array " + name);
+  const size_t tag = text.rfind('<', at);
+  if (attribute(text, tag, "type") != type || attribute(text, tag, "format") != "appended")
+    return parse_error(path, "array " + name + " is not appended " + type);
+  const uint64_t offset = std::stoull("0" + attribute(text, tag, "offset"));
+  uint64_t n = 0;
+  if (offset + sizeof n > appended.size()) return parse_error(path, "array " + name + " past the end");
+  std::memcpy(&n, appended.data() + offset, sizeof n);
+  if (n % sizeof(T) || offset + sizeof n + n > appended.size()) return parse_error(path, "array " + name + " truncated");
+  out.resize(n / sizeof(T));
+  if (n) std::memcpy(out.data(), appended.data() + offset + sizeof n, n);
+  return Status::success();
+}
+
+}  // namespace
+
+Result<VtuPiece> read_vtu_piece(const std::string& path) {
+  Result<std::string> bytes = read_file_bytes(path);
+  if (!bytes.ok()) return bytes.status();
+  const std::string_view all = bytes.value();
+  const size_t data_tag = all.find("<AppendedData encoding=\"raw\">");
+  if (data_tag == std::string_view::npos) return parse_error(path, "no raw <AppendedData>");
+  const size_t underscore = all.find('_', data_tag);
+  if (underscore == std::string_view::npos) return parse_error(path, "no '_' in <AppendedData>");
+  const std::string_view text = all.substr(0, data_tag), appended = all.substr(underscore + 1);
+  const size_t root = text.find("<VTKFile");
+  if (root == std::string_view::npos || attribute(text, root, "type") != "UnstructuredGrid" ||
+      attribute(text, root, "header_type") != "UInt64" || attribute(text, root, "byte_order") != "LittleEndian")
+    return parse_error(path, "not a little-endian UnstructuredGrid with UInt64 headers");
+  VtuPiece p;
+  std::vector<int64_t> connectivity, offsets, cell_id;
+  std::vector<uint8_t> types;
+  std::vector<int32_t> region, patch, owner;
+  for (Status st : {read_array(text, appended, path, "Float64", "Points", p.xyz),
+                    read_array(text, appended, path, "Int64", "GlobalNodeIds", p.node_id),
+                    read_array(text, appended, path, "Int64", "connectivity", connectivity),
+                    read_array(text, appended, path, "Int64", "offsets", offsets),
+                    read_array(text, appended, path, "UInt8", "types", types),
+                    read_array(text, appended, path, "Int32", "region", region),
+                    read_array(text, appended, path, "Int32", "patch", patch),
+                    read_array(text, appended, path, "Int64", "GlobalCellIds", cell_id),
+                    read_array(text, appended, path, "Int32", "owner", owner)})
+    if (!st.ok()) return st;
+  const size_t nv = p.node_id.size(), nc = types.size();
+  if (p.xyz.size() != 3 * nv || offsets.size() != nc || region.size() != nc || patch.size() != nc ||
+      cell_id.size() != nc || owner.size() != nc)
+    return parse_error(path, "arrays of different lengths");
+  int64_t at = 0;
+  for (size_t c = 0; c < nc; ++c) {
+    const int64_t size = types[c] == kVtkTetra ? 4 : types[c] == kVtkTriangle ? 3 : -1;
+    if (size < 0 || offsets[c] != at + size || offsets[c] > int64_t(connectivity.size()))
+      return parse_error(path, "a cell that is neither a tet nor a triangle, or bad offsets");
+    std::vector<uint32_t>& to = size == 4 ? p.tet : p.tri;
+    for (int64_t k = at; k < offsets[c]; ++k) {
+      if (connectivity[size_t(k)] < 0 || uint64_t(connectivity[size_t(k)]) >= nv)
+        return parse_error(path, "a cell vertex out of range");
+      to.push_back(uint32_t(connectivity[size_t(k)]));
+    }
+    if (size == 4) {
+      p.region.push_back(region[c]);
+      p.tet_id.push_back(cell_id[c]);
+    } else {
+      p.patch.push_back(patch[c]);
+    }
+    at = offsets[c];
+  }
+  p.owner = owner.empty() ? 0 : owner[0];
+  return p;
+}
+
+Result<VolumeMesh> join_pieces(const std::vector<VtuPiece>& pieces) {
+  uint64_t nv = 0, nt = 0;
+  for (const VtuPiece& p : pieces) {
+    for (int64_t id : p.node_id) nv = std::max<uint64_t>(nv, uint64_t(id) + 1);
+    nt += p.region.size();
+  }
+  VolumeMesh m;
+  m.xyz.assign(3 * nv, 0.0);
+  std::vector<uint8_t> seen(nv, 0);
+  m.tet.assign(4 * nt, 0);
+  m.region.assign(nt, 0);
+  std::vector<uint8_t> tet_seen(nt, 0);
+  for (size_t k = 0; k < pieces.size(); ++k) {
+    const VtuPiece& p = pieces[k];
+    const std::string which = "piece " + std::to_string(k);
+    for (size_t v = 0; v < p.node_id.size(); ++v) {
+      const auto id = size_t(p.node_id[v]);
+      if (p.node_id[v] < 0) return Status(Error::InvalidMesh, which + ": a negative GlobalNodeIds");
+      if (seen[id] && !std::equal(&p.xyz[3 * v], &p.xyz[3 * v] + 3, &m.xyz[3 * id]))
+        return Status(Error::InvalidMesh, which + ": vertex " + std::to_string(id) + " has two positions");
+      std::copy_n(&p.xyz[3 * v], 3, &m.xyz[3 * id]);
+      seen[id] = 1;
+    }
+    for (size_t t = 0; t < p.region.size(); ++t) {
+      const int64_t id = p.tet_id[t];
+      if (id < 0 || uint64_t(id) >= nt || tet_seen[size_t(id)])
+        return Status(Error::InvalidMesh, which + ": GlobalCellIds " + std::to_string(id) + " out of range or twice");
+      tet_seen[size_t(id)] = 1;
+      for (int i = 0; i < 4; ++i) m.tet[4 * size_t(id) + size_t(i)] = uint32_t(p.node_id[p.tet[4 * t + size_t(i)]]);
+      m.region[size_t(id)] = p.region[t];
+    }
+    for (size_t b = 0; b < p.patch.size(); ++b) {
+      for (int i = 0; i < 3; ++i) m.bnd_tri.push_back(uint32_t(p.node_id[p.tri[3 * b + size_t(i)]]));
+      m.bnd_patch.push_back(p.patch[b]);
+    }
+  }
+  for (uint64_t v = 0; v < nv; ++v)
+    if (!seen[v]) return Status(Error::InvalidMesh, "GlobalNodeIds " + std::to_string(v) + " is in no piece");
+  return m;
+}
+
+}  // namespace anitet
+
+namespace anitet {
+
+Status check_joined(const VolumeMesh& m) {
+  std::vector<std::array<uint32_t, 4>> facets;  // sorted vertices, then 0 (a tet's) or 1 (a triangle)
+  facets.reserve(4 * m.num_tets() + m.num_boundary_triangles());
+  static constexpr int kFacet[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  for (size_t t = 0; t < m.num_tets(); ++t)
+    for (const auto& f : kFacet) {
+      std::array<uint32_t, 4> k = {m.tet[4 * t + size_t(f[0])], m.tet[4 * t + size_t(f[1])], m.tet[4 * t + size_t(f[2])], 0};
+      std::sort(k.begin(), k.begin() + 3);
+      facets.push_back(k);
+    }
+  for (size_t b = 0; b < m.num_boundary_triangles(); ++b) {
+    std::array<uint32_t, 4> k = {m.bnd_tri[3 * b], m.bnd_tri[3 * b + 1], m.bnd_tri[3 * b + 2], 1};
+    std::sort(k.begin(), k.begin() + 3);
+    facets.push_back(k);
+  }
+  std::sort(facets.begin(), facets.end());
+  for (size_t a = 0; a < facets.size();) {
+    size_t b = a, tets = 0, triangles = 0;
+    for (; b < facets.size() && std::equal(facets[b].begin(), facets[b].begin() + 3, facets[a].begin()); ++b)
+      (facets[b][3] ? triangles : tets) += 1;
+    if (tets > 2 || triangles > 1 || (tets == 2 && triangles) || (tets == 1 && !triangles && m.num_boundary_triangles()))
+      return Status(Error::InvalidMesh, "facet " + std::to_string(facets[a][0]) + " " + std::to_string(facets[a][1]) + " " +
+                                            std::to_string(facets[a][2]) + " has " + std::to_string(tets) + " tets and " +
+                                            std::to_string(triangles) + " boundary triangles: the pieces do not fit");
+    a = b;
+  }
+  return Status::success();
+}
+
+}  // namespace anitet
