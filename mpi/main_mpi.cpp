@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -17,7 +19,10 @@
 
 #include "commands.hpp"
 #include "distributed/parts.hpp"
+#include "distributed/rank_mesh.hpp"
 #include "exit_codes.hpp"
+#include "mpi_comm.hpp"
+#include "pieces.hpp"
 
 namespace {
 
@@ -99,6 +104,48 @@ bool all_ranks_ready(bool ready) {
   return any == 0;
 }
 
+// This process's peak resident memory in MB (VmHWM), 0 when unknown.
+double peak_rss_mb() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0.0;
+  char line[256];
+  double kb = 0.0;
+  while (std::fgets(line, sizeof line, f))
+    if (std::strncmp(line, "VmHWM:", 6) == 0) kb = std::atof(line + 6);
+  std::fclose(f);
+  return kb / 1024.0;
+}
+
+// Stages 3b/3c with no whole mesh anywhere, and the pieces written (a .pvtu output). The coarse
+// mesh is left with the surface's vertices and no tet, for the report of `anitet mesh`.
+Status stage3_in_pieces(anitet::TetMesh& mesh, const anitet::SizingField& field,
+                        const anitet::RefineOptions& refine_options, const anitet::OptimizeOptions& optimize_options,
+                        const anitet::SurfaceMesh& surface, const std::string& output, anitet::RefineStats& refine,
+                        anitet::OptimizeStats& optimize) {
+  anitet::mpi::MpiComm comm(MPI_COMM_WORLD);
+  anitet::mpi::ScotchPartitioner partitioner(comm.comm());
+  std::vector<double> surface_xyz(mesh.xyz.begin(), mesh.xyz.begin() + std::ptrdiff_t(3 * surface.num_vertices()));
+  std::vector<uint8_t> surface_flags(mesh.vflags.begin(), mesh.vflags.begin() + std::ptrdiff_t(surface.num_vertices()));
+  anitet::distributed::RankMesh rm;
+  anitet::distributed::RankRunStats stats;
+  if (Status st = anitet::distributed::run_rank_parts(mesh, field, refine_options, optimize_options,
+                                                      anitet::distributed::PartsOptions(), comm, partitioner, rm,
+                                                      refine, optimize, &stats);
+      !st.ok())
+    return st;
+  if (Status st = anitet::mpi::write_pieces(rm, surface, output, comm); !st.ok()) return st;
+  if (std::getenv("ANITET_RANK_STATS"))
+    std::fprintf(stderr,
+                 "anitet-mpi: rank %d: %zu own coarse tets after partitioning; %zu own tets, %zu vertices at the end; "
+                 "%zu tets migrated; partition %.2f s, rounds %.2f s; peak RSS %.0f MB\n",
+                 comm.rank(), stats.own_tets_after_partition, rm.mesh.num_live_tets(), rm.mesh.num_vertices(),
+                 stats.migrated_tets, stats.partition_seconds, stats.rounds_seconds, peak_rss_mb());
+  mesh = anitet::TetMesh();
+  mesh.xyz = std::move(surface_xyz);
+  mesh.vflags = std::move(surface_flags);
+  return Status::success();
+}
+
 // The subcommand: the first argument that is not an option.
 std::string subcommand(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
@@ -151,6 +198,16 @@ int main(int argc, char** argv) {
       const anitet::distributed::PartsOptions options;
       return anitet::distributed::run_in_parts(mesh, field, refine_options, optimize_options, options, exchange,
                                                refine, optimize);
+    };
+    run.stage3_parts = [&entered](anitet::TetMesh& mesh, const anitet::SizingField& field,
+                                  const anitet::RefineOptions& refine_options,
+                                  const anitet::OptimizeOptions& optimize_options, const anitet::SurfaceMesh& surface,
+                                  const std::string& output, anitet::RefineStats& refine,
+                                  anitet::OptimizeStats& optimize) {
+      entered = true;
+      if (!all_ranks_ready(true))
+        return Status(Error::Internal, "another rank failed before stages 3b/3c (see its message)");
+      return stage3_in_pieces(mesh, field, refine_options, optimize_options, surface, output, refine, optimize);
     };
     anitet::cli::set_distributed_run(&run);
     code = anitet::cli::cli_main(argc, argv);

@@ -15,6 +15,7 @@ packages=(
   doxygen  # renders the C API reference; its test fails on an undocumented declaration
   clang  # libFuzzer, for the fuzz targets of fuzz/ (scripts/fuzz.sh)
   libopenmpi-dev openmpi-bin  # anitet-mpi (mpi/) and its test under mpirun
+  libptscotch-dev  # PT-Scotch: anitet-mpi partitions the coarse mesh with it (mpi/scotch_partition.cpp)
   libmetis-dev  # the partitioner of anitet_mesh_partition (src/partition)
 )
 packages+=("$@")  # extra packages a caller wants (bench/ adds gmsh, tetgen, libcgal-dev)
