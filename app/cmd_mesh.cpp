@@ -286,6 +286,7 @@ class MeshCommand {
     if (!run.ok()) return mesher_failed(run.status());
     if (distributed_ && distributed_->rank != 0) return kExitOk;  // rank 0 writes and reports
     MesherResult& r = run.value();
+    if (in_pieces_) return report_pieces(r);
     // A field built here, before the pipeline, is its sizing stage given to it ready: its time counts.
     if (field_seconds_ > 0.0) {
       for (StageReport& st : r.stages)
@@ -390,9 +391,37 @@ class MeshCommand {
       std::cerr << kCmd << ": with MPI, refinement and optimization both run (they are what the ranks share)\n";
       return kExitUsage;
     }
+    in_pieces_ = is_pvtu_path(args_.output) && distributed_->stage3_parts;
+    if (in_pieces_) {
+      options_.stage3 = [this](TetMesh& mesh, const SizingField& f, RefineStats& refine, OptimizeStats& optimize) {
+        return distributed_->stage3_parts(mesh, f, options_.refine, options_.optimize, checked_.surface, args_.output,
+                                          refine, optimize);
+      };
+      return kExitOk;
+    }
+    if (distributed_->rank == 0 && !args_.output.empty())
+      std::cerr << kCmd << ": note: with an output other than .pvtu, rank 0 gathers the whole mesh after every round "
+                   "(-o NAME.pvtu writes one piece per rank without a gather)\n";
     options_.stage3 = [this](TetMesh& mesh, const SizingField& f, RefineStats& refine, OptimizeStats& optimize) {
       return distributed_->stage3(mesh, f, options_.refine, options_.optimize, refine, optimize);
     };
+    return kExitOk;
+  }
+
+  // anitet-mpi with a .pvtu output: the ranks wrote their pieces; rank 0 reports the whole.
+  int report_pieces(const MesherResult& r) const {
+    const QualitySummary& q = r.optimize.after;
+    if (args_.json) {
+      nlohmann::json out;
+      out["output"] = args_.output;
+      out["tets"] = q.tets;
+      out["radius_ratio"] = {{"mean", q.mean}, {"min", q.min}, {"below_0.1", q.below_01}};
+      out["seconds"] = r.seconds;
+      std::cout << out.dump(2) << "\n";
+    } else if (!args_.quiet) {
+      std::printf("%s: %zu tets in %d pieces; radius ratio mean %.4f, min %.4f; %.1f s\n", args_.output.c_str(), q.tets,
+                  distributed_->ranks, q.mean, q.min, r.seconds);
+    }
     return kExitOk;
   }
 
@@ -553,6 +582,7 @@ class MeshCommand {
   std::unique_ptr<SizingField> field_;
   double field_seconds_ = 0.0;  // a field built here, before the pipeline
   const DistributedRun* distributed_ = nullptr;
+  bool in_pieces_ = false;  // anitet-mpi writing a .pvtu: no whole mesh anywhere
   std::vector<std::string> not_written_;  // the report or metric files that could not be written
 };
 
@@ -808,5 +838,9 @@ const DistributedRun* g_distributed = nullptr;
 
 void set_distributed_run(const DistributedRun* run) { g_distributed = run; }
 const DistributedRun* distributed_run() { return g_distributed; }
+
+bool is_pvtu_path(const std::string& path) {
+  return path.size() > 5 && (path.compare(path.size() - 5, 5, ".pvtu") == 0 || path.compare(path.size() - 5, 5, ".PVTU") == 0);
+}
 
 }  // namespace anitet::cli

@@ -32,12 +32,21 @@ int cli_main(int argc, char** argv);
 
 // Set by the MPI driver (mpi/main_mpi.cpp) before cli_main: `anitet mesh` then runs stages 3b/3c
 // through `stage3` (one part per rank), and only rank 0 writes the mesh and prints the report.
+// With a `.pvtu` output, `stage3_parts` runs instead: no rank ever holds the whole mesh, each
+// writes its piece of `output` (the boundary triangles from `surface`), and the coarse mesh is
+// left with no tet; rank 0 prints a short report.
 struct DistributedRun {
   int rank = 0, ranks = 1;
   std::function<Status(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
                        const OptimizeOptions& optimize_options, RefineStats& refine, OptimizeStats& optimize)>
       stage3;
+  std::function<Status(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
+                       const OptimizeOptions& optimize_options, const SurfaceMesh& surface, const std::string& output,
+                       RefineStats& refine, OptimizeStats& optimize)>
+      stage3_parts;
 };
+// Whether an output path names a .pvtu index (the pieces' output of anitet-mpi).
+bool is_pvtu_path(const std::string& path);
 void set_distributed_run(const DistributedRun* run);
 const DistributedRun* distributed_run();  // null in the serial tool
 
@@ -82,6 +91,13 @@ CLI::App* add_adapt_command(CLI::App& app, AdaptArgs& args);
 int run_adapt(const AdaptArgs& args);
 
 // `mesh` and `recover` (recover uses the input, output and recovery options only).
+struct MergeArgs {
+  std::string input;   // the .pvtu index
+  std::string output;  // -o: any volume format
+};
+CLI::App* add_merge_command(CLI::App& app, MergeArgs& args);
+int run_merge(const MergeArgs& args);
+
 struct MeshArgs {
   std::string command;  // "mesh" or "recover", for messages
   std::string input;

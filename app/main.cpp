@@ -61,6 +61,7 @@ int run(int argc, char** argv) {
   QualityArgs quality, report;
   MeshArgs mesh, recover;
   AdaptArgs adapt;
+  MergeArgs merge;
   CLI::App* check_cmd = add_check_surface_command(app, check);
   CLI::App* quality_cmd = add_quality_command(app, quality);
   CLI::App* report_cmd = add_report_command(app, report);
@@ -68,9 +69,10 @@ int run(int argc, char** argv) {
   CLI::App* recover_cmd = add_recover_command(app, recover);
   CLI::App* adapt_cmd = add_adapt_command(app, adapt);
   Mesh2dCommand mesh2d(app);
+  CLI::App* merge_cmd = add_merge_command(app, merge);
   // Every command: --threads, and the exit codes under its options.
   int threads = 0;
-  for (CLI::App* cmd : {check_cmd, quality_cmd, report_cmd, mesh_cmd, recover_cmd, adapt_cmd, mesh2d.command()}) {
+  for (CLI::App* cmd : {check_cmd, quality_cmd, report_cmd, mesh_cmd, recover_cmd, adapt_cmd, mesh2d.command(), merge_cmd}) {
     cmd->add_option("--threads", threads, "Threads to use (0: all cores); the mesh is the same on any number")
         ->check(in_range(0, 4096))
         ->group("General");
@@ -86,7 +88,7 @@ int run(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ExtrasError& e) {
     const CLI::App* cmd = nullptr;
-    for (CLI::App* c : {check_cmd, quality_cmd, report_cmd, mesh_cmd, recover_cmd, adapt_cmd, mesh2d.command()})
+    for (CLI::App* c : {check_cmd, quality_cmd, report_cmd, mesh_cmd, recover_cmd, adapt_cmd, mesh2d.command(), merge_cmd})
       if (argc > 1 && c->get_name() == argv[1]) cmd = c;
     return unknown_option(app, cmd, argc, argv, e);
   } catch (const CLI::ParseError& e) {
@@ -104,6 +106,7 @@ int run(int argc, char** argv) {
     if (mesh_cmd->parsed()) return run_mesh(*mesh_cmd, mesh);
     if (recover_cmd->parsed()) return run_recover(recover);
     if (adapt_cmd->parsed()) return run_adapt(adapt);
+    if (merge_cmd->parsed()) return run_merge(merge);
     if (const int code = mesh2d.run_if_parsed(); code >= 0) return code;
     std::cerr << app.help();
     return kExitUsage;

@@ -39,13 +39,20 @@ int check_output_file(const std::string& command, const std::string& path, bool 
 
 int check_output_paths(const MeshArgs& args) {
   for (const std::string& path : output_paths(args)) {
+    if (is_pvtu_path(path)) {
+      if (distributed_run() && path == args.output && args.stop_after.empty()) continue;
+      std::cerr << "anitet " << args.command << ": cannot write '" << path
+                << "': a .pvtu (one piece per rank) is written by anitet-mpi as its -o output; "
+                   "`anitet merge` joins the pieces into any other format\n";
+      return kExitUsage;
+    }
     if (Status s = check_writable_volume_path(path); !s.ok()) {
       std::cerr << "anitet " << args.command << ": cannot write '" << path << "': " << s.message() << "\n";
       return s.code() == Error::NotImplemented ? kExitNotImplemented : kExitUsage;
     }
   }
   for (const std::string& path : output_paths(args)) {
-    const bool directory = volume_format_from_path(path).value() == VolumeFormat::OpenFoam;
+    const bool directory = !is_pvtu_path(path) && volume_format_from_path(path).value() == VolumeFormat::OpenFoam;
     if (const int code = check_output_file(args.command, path, directory); code != kExitOk) return code;
   }
   std::vector<std::string> others = {args.report_html, args.metric.write_metric, args.metric.write_sizing};
