@@ -107,6 +107,8 @@ class Exchange {
 struct PartsOptions {
   int rings = 4;   // move_interfaces' rings
   int zone = 6;    // and its zone (<= 0: every tet in a part in the second round too)
+  // run_rank_parts' move after refinement's first round (PT-Scotch parts; see there).
+  int first_rings = 16, first_zone = 20;
 };
 
 // Stages 3b/3c of `mesh` (the coupled mesh; rank 0's is sent to all) in ranks() parts, rank r

@@ -4,7 +4,7 @@
 #include <array>
 #include <chrono>
 #include <climits>
-#include <cstdlib>
+#include <cstdio>
 #include <string>
 #include <unordered_map>
 
@@ -402,27 +402,35 @@ Status mesh_round(RankMesh& rm, Step step, const SizingField& field, const Refin
 
 namespace anitet::distributed {
 
-Result<size_t> move_and_migrate(RankMesh& rm, int rings, int zone, bool highest, Comm& comm) {
+Result<size_t> move_and_migrate(RankMesh& rm, int rings, int zone, const std::vector<int32_t>& priority, Comm& comm) {
   const int rank = comm.rank(), ranks = comm.ranks();
   Result<Sharing> sharing = find_sharing(rm, comm);
   if (!sharing.ok()) return sharing.status();
   TetMesh& m = rm.mesh;
   const auto slots = static_cast<uint32_t>(m.num_tet_slots());
   const size_t nv = m.num_vertices();
-  // move_interfaces' rule: `rings` times, a vertex takes the lowest (highest) label of its tets
-  // (over all ranks), a tet the lowest (highest) of its vertices.
-  auto pick = [highest](int32_t a, int32_t b) { return highest ? std::max(a, b) : std::min(a, b); };
-  std::vector<int32_t> label(slots, rank), vertex_label(nv);
-  for (int ring = 0; ring < rings; ++ring) {
-    std::fill(vertex_label.begin(), vertex_label.end(), highest ? INT32_MIN : INT32_MAX);
-    for (uint32_t t = 0; t < slots; ++t)
-      if (live(m, t))
-        for (int i = 0; i < 4; ++i) vertex_label[m.vertex(t, i)] = pick(vertex_label[m.vertex(t, i)], label[t]);
-    if (Status st = combine_with_sharers(rm, sharing.value(), vertex_label, highest, comm); !st.ok()) return st;
-    for (uint32_t t = 0; t < slots; ++t)
-      if (live(m, t))
-        for (int i = 0; i < 4; ++i) label[t] = pick(label[t], vertex_label[m.vertex(t, i)]);
+  if (priority.size() != size_t(ranks)) return Status(Error::Internal, "distributed: a priority list of another size");
+  // move_interfaces' rule in the order `priority` gives the ranks: `rings` times, a vertex takes
+  // the first label of its tets (over all ranks), a tet the first of its vertices. The labels
+  // are the priorities; rank_of maps them back.
+  std::vector<int32_t> rank_of(size_t(ranks), -1);
+  for (int q = 0; q < ranks; ++q) {
+    const int32_t p = priority[size_t(q)];
+    if (p < 0 || p >= ranks || rank_of[size_t(p)] >= 0) return Status(Error::Internal, "distributed: priorities that are no order");
+    rank_of[size_t(p)] = q;
   }
+  std::vector<int32_t> label(slots, priority[size_t(rank)]), vertex_label(nv);
+  for (int ring = 0; ring < rings; ++ring) {
+    std::fill(vertex_label.begin(), vertex_label.end(), INT32_MAX);
+    for (uint32_t t = 0; t < slots; ++t)
+      if (live(m, t))
+        for (int i = 0; i < 4; ++i) vertex_label[m.vertex(t, i)] = std::min(vertex_label[m.vertex(t, i)], label[t]);
+    if (Status st = combine_with_sharers(rm, sharing.value(), vertex_label, false, comm); !st.ok()) return st;
+    for (uint32_t t = 0; t < slots; ++t)
+      if (live(m, t))
+        for (int i = 0; i < 4; ++i) label[t] = std::min(label[t], vertex_label[m.vertex(t, i)]);
+  }
+  for (uint32_t t = 0; t < slots; ++t) label[t] = rank_of[size_t(label[t])];
   // The zone: `zone` rings of tets around the old interfaces (the shared vertices), the ring
   // distance crossing ranks.
   std::vector<uint8_t> in_zone(slots, zone <= 0 ? 1 : 0);
@@ -524,6 +532,22 @@ Result<GlobalIds> number_globally(const RankMesh& rm, Comm& comm) {
 
 namespace {
 
+// The ranks in the order of the tets their parts are heading for (the predicted final tets of
+// their own tets; ties by rank): the zones around the interfaces go to the lighter side.
+Result<std::vector<int32_t>> least_loaded_first(const RankMesh& rm, const SizingField& field, double scale, Comm& comm) {
+  std::vector<double> load(static_cast<size_t>(comm.ranks()), 0.0);
+  load[size_t(comm.rank())] = estimate_refined_tets(rm.mesh, field, scale);
+  Result<std::vector<double>> all = comm.allreduce(load, false);
+  if (!all.ok()) return all.status();
+  std::vector<int32_t> order(load.size());
+  for (size_t q = 0; q < order.size(); ++q) order[q] = int32_t(q);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int32_t a, int32_t b) { return all.value()[size_t(a)] < all.value()[size_t(b)]; });
+  std::vector<int32_t> priority(order.size());
+  for (size_t k = 0; k < order.size(); ++k) priority[size_t(order[k])] = int32_t(k);
+  return priority;
+}
+
 // Sums the counts over the ranks.
 Status sum_counts(RefineStats& refine, OptimizeStats& optimize, Comm& comm) {
   std::vector<double> v = {double(refine.splits),    double(refine.split_rejected), double(refine.parallel_splits),
@@ -599,8 +623,17 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
   auto round = [&](Step step) { return mesh_round(rm, step, field, refine_options, optimize_options, comm, refine, optimize); };
   // The first move gives the interface zones to the lower rank, the second to the higher: the
   // parts stay about as balanced as the partitioner made them.
-  auto move = [&](bool highest) -> Status {
-    Result<size_t> sent = move_and_migrate(rm, options.rings, options.zone, highest, comm);
+  // Refinement's first round leaves the coarse tets beside its frozen interfaces unrefined (the
+  // points whose cavities reached them were put off), several rings deep where the parts' cut runs
+  // through large coarse tets (PT-Scotch's cuts do: they are short); its move takes them all
+  // inside a part. Each move gives the zones to the side with fewer predicted tets.
+  const double scale = refine_options.size_scale > 0.0 ? refine_options.size_scale : 1.0;
+  auto move = [&](Step step) -> Status {
+    const bool refining = step == Step::kRefine;
+    Result<std::vector<int32_t>> priority = least_loaded_first(rm, field, scale, comm);
+    if (!priority.ok()) return priority.status();
+    Result<size_t> sent = move_and_migrate(rm, refining ? options.first_rings : options.rings,
+                                           refining ? options.first_zone : options.zone, priority.value(), comm);
     if (!sent.ok()) return sent.status();
     rs.migrated_tets += sent.value();
     return Status::success();
@@ -608,7 +641,7 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
   for (Step step : {Step::kRefine, Step::kOptimize}) {
     std::fill(rm.meshable.begin(), rm.meshable.end(), 1);
     if (Status st = round(step); !st.ok()) return st;
-    if (Status st = move(step == Step::kOptimize && !std::getenv("DBG_LOWEST")); !st.ok()) return st;
+    if (Status st = move(step); !st.ok()) return st;
     if (Status st = round(step); !st.ok()) return st;
   }
   rs.rounds_seconds = since(t0);

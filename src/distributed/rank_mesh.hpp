@@ -80,9 +80,10 @@ Status mesh_round(RankMesh& rm, Step step, const SizingField& field, const Refin
 
 // Collective: move_interfaces on the distributed mesh (rings, zone as there), then the own tets
 // labelled with another rank are sent to it; the tets in the zone are meshable, the others kept.
-// With `highest`, the labels spread the highest rank instead of the lowest (the zones go the
-// other way). Returns the tets this rank sent.
-Result<size_t> move_and_migrate(RankMesh& rm, int rings, int zone, bool highest, Comm& comm);
+// The rule's "lowest" is in the order `priority` gives the ranks (rank q's place, 0 first; a
+// permutation, the same on every rank), so that the caller chooses who takes the zones. Returns
+// the tets this rank sent.
+Result<size_t> move_and_migrate(RankMesh& rm, int rings, int zone, const std::vector<int32_t>& priority, Comm& comm);
 
 // Collective: contiguous ids 0 .. V-1 for the vertices (a shared one owned by the lowest rank
 // holding it, which numbers it and sends its id to the others) and the first id of this rank's
