@@ -47,7 +47,15 @@ Result<std::vector<int32_t>> ScotchPartitioner::partition(const TetMesh& coarse,
   // Integer loads: the predicted tets, at least 1, scaled down when their sum would pass 2^31 - 1.
   const double scale = std::min(1.0, double(INT32_MAX / 2) / std::max(1.0, total + double(c)));
   const int64_t lo = c * rank / ranks, hi = c * (rank + 1) / ranks;
-  std::vector<SCOTCH_Num> vertloctab, veloloctab, edgeloctab;
+  // Arc loads: the final facets the field predicts across the coarse facet, about the 2/3 power
+  // of the predicted tets on either side. Counting coarse facets instead, PT-Scotch cuts through
+  // the largest coarse tets (fewest facets), which refinement's first round then leaves coarse
+  // several rings deep beside its frozen interfaces.
+  auto facets_across = [&](uint32_t a, uint32_t b) {
+    const double f = 0.5 * (std::cbrt(weights[a] * weights[a]) + std::cbrt(weights[b] * weights[b]));
+    return SCOTCH_Num(std::max(1.0, std::min(1e6, std::round(f))));
+  };
+  std::vector<SCOTCH_Num> vertloctab, veloloctab, edgeloctab, edloloctab;
   vertloctab.push_back(0);
   for (int64_t k = lo; k < hi; ++k) {
     const uint32_t t = slot_of[size_t(k)];
@@ -55,19 +63,25 @@ Result<std::vector<int32_t>> ScotchPartitioner::partition(const TetMesh& coarse,
     for (int i = 0; i < 4; ++i) {
       if (coarse.tet_adj[4 * size_t(t) + size_t(i)] == TetMesh::kNoNeighbour) continue;
       const uint32_t u = coarse.neighbour(t, i);
-      if (u < slots && index[u] >= 0) edgeloctab.push_back(SCOTCH_Num(index[u]));
+      if (u < slots && index[u] >= 0) {
+        edgeloctab.push_back(SCOTCH_Num(index[u]));
+        edloloctab.push_back(facets_across(t, u));
+      }
     }
     vertloctab.push_back(SCOTCH_Num(edgeloctab.size()));
   }
   const auto vertlocnbr = static_cast<SCOTCH_Num>(hi - lo);
   const auto edgelocnbr = static_cast<SCOTCH_Num>(edgeloctab.size());
-  if (edgeloctab.empty()) edgeloctab.push_back(0);  // Scotch wants a valid pointer
+  if (edgeloctab.empty()) {  // Scotch wants valid pointers
+    edgeloctab.push_back(0);
+    edloloctab.push_back(1);
+  }
   SCOTCH_Dgraph graph;
   SCOTCH_Strat strat;
   if (SCOTCH_dgraphInit(&graph, comm_) != 0) return scotch_failed("SCOTCH_dgraphInit");
   std::vector<SCOTCH_Num> partloctab(size_t(std::max<SCOTCH_Num>(1, vertlocnbr)), 0);
   int rc = SCOTCH_dgraphBuild(&graph, 0, vertlocnbr, vertlocnbr, vertloctab.data(), nullptr, veloloctab.data(),
-                              nullptr, edgelocnbr, edgelocnbr, edgeloctab.data(), nullptr, nullptr);
+                              nullptr, edgelocnbr, edgelocnbr, edgeloctab.data(), nullptr, edloloctab.data());
   SCOTCH_stratInit(&strat);
   if (rc == 0) rc = SCOTCH_stratDgraphMapBuild(&strat, SCOTCH_STRATBALANCE, parts, parts, 0.05) == 0 ? 0 : 2;
   if (rc == 0) rc = SCOTCH_dgraphPart(&graph, parts, &strat, partloctab.data()) == 0 ? 0 : 3;
