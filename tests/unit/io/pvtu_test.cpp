@@ -1,0 +1,96 @@
+// The pieces of anitet-mpi's .pvtu output: written, read back, joined; pieces that do not fit
+// are refused.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/pvtu_format.hpp"
+
+using namespace anitet;
+
+namespace {
+
+// Two tets sharing the facet of global vertices 1 2 3: piece 0 has tet 0 1 2 3 and piece 1 tet
+// 1 2 3 4 (local numbering of their own); the outer facets are boundary triangles.
+std::vector<VtuPiece> two_pieces() {
+  const double x[5][3] = {{0, 0, -1}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, 1}};
+  VtuPiece a, b;
+  for (int v : {0, 1, 2, 3}) {
+    a.xyz.insert(a.xyz.end(), x[v], x[v] + 3);
+    a.node_id.push_back(v);
+  }
+  a.tet = {0, 1, 3, 2};
+  a.region = {0};
+  a.tet_id = {0};
+  a.tri = {0, 1, 2, 0, 2, 3, 0, 3, 1};
+  a.patch = {1, 1, 1};
+  for (int v : {4, 3, 2, 1}) {
+    b.xyz.insert(b.xyz.end(), x[v], x[v] + 3);
+    b.node_id.push_back(v);
+  }
+  b.tet = {3, 2, 1, 0};
+  b.region = {0};
+  b.tet_id = {1};
+  b.tri = {0, 1, 2, 0, 2, 3, 0, 3, 1};
+  b.patch = {2, 2, 2};
+  b.owner = 1;
+  return {a, b};
+}
+
+TEST(Pvtu, PiecesRoundTripAndJoin) {
+  const std::string dir = ::testing::TempDir();
+  std::vector<VtuPiece> pieces = two_pieces();
+  ASSERT_TRUE(write_vtu_piece(dir + "/pv_0.vtu", pieces[0]).ok());
+  ASSERT_TRUE(write_vtu_piece(dir + "/pv_1.vtu", pieces[1]).ok());
+  ASSERT_TRUE(write_pvtu_index(dir + "/pv.pvtu", {"pv_0.vtu", "pv_1.vtu"}).ok());
+  Result<std::vector<std::string>> paths = read_pvtu_index(dir + "/pv.pvtu");
+  ASSERT_TRUE(paths.ok()) << paths.status().message();
+  ASSERT_EQ(paths->size(), 2u);
+  std::vector<VtuPiece> back;
+  for (const std::string& p : paths.value()) {
+    Result<VtuPiece> piece = read_vtu_piece(p);
+    ASSERT_TRUE(piece.ok()) << piece.status().message();
+    back.push_back(piece.value());
+  }
+  EXPECT_EQ(back[1].xyz, pieces[1].xyz);
+  EXPECT_EQ(back[1].node_id, pieces[1].node_id);
+  EXPECT_EQ(back[1].tet, pieces[1].tet);
+  EXPECT_EQ(back[1].tri, pieces[1].tri);
+  EXPECT_EQ(back[1].patch, pieces[1].patch);
+  EXPECT_EQ(back[1].owner, 1);
+  Result<VolumeMesh> joined = join_pieces(back);
+  ASSERT_TRUE(joined.ok()) << joined.status().message();
+  EXPECT_EQ(joined->num_vertices(), 5u);
+  EXPECT_EQ(joined->num_tets(), 2u);
+  EXPECT_EQ(joined->num_boundary_triangles(), 6u);
+  EXPECT_TRUE(check_joined(joined.value()).ok()) << check_joined(joined.value()).message();
+}
+
+TEST(Pvtu, PiecesThatDoNotFitAreRefused) {
+  std::vector<VtuPiece> moved = two_pieces();
+  moved[1].xyz[3] += 1e-3;  // shared vertex 3 at two positions
+  EXPECT_EQ(join_pieces(moved).status().code(), Error::InvalidMesh);
+  std::vector<VtuPiece> twice = two_pieces();
+  twice[1].tet_id = {0};  // two tets with one id
+  EXPECT_EQ(join_pieces(twice).status().code(), Error::InvalidMesh);
+  std::vector<VtuPiece> overlap = two_pieces();
+  overlap.push_back(overlap[1]);  // a third tet on facet 1 2 3
+  overlap[2].tet_id = {2};
+  Result<VolumeMesh> joined = join_pieces(overlap);
+  ASSERT_TRUE(joined.ok()) << joined.status().message();
+  EXPECT_EQ(check_joined(joined.value()).code(), Error::InvalidMesh);
+  std::vector<VtuPiece> gap = two_pieces();
+  gap[1].tri.clear();  // piece 1's outer facets without boundary triangles
+  gap[1].patch.clear();
+  Result<VolumeMesh> open = join_pieces(gap);
+  ASSERT_TRUE(open.ok());
+  EXPECT_EQ(check_joined(open.value()).code(), Error::InvalidMesh);
+}
+
+TEST(Pvtu, NotAnIndexIsAParseError) {
+  const std::string path = ::testing::TempDir() + "/not.pvtu";
+  ASSERT_TRUE(write_vtu_piece(path, two_pieces()[0]).ok());  // a piece, not an index
+  EXPECT_EQ(read_pvtu_index(path).status().code(), Error::Parse);
+}
+
+}  // namespace
