@@ -1,8 +1,10 @@
 // anitet-mpi: `anitet mesh` on MPI ranks. Every rank reads the surface and runs stages 1, 2 and
 // the coupling (deterministic: the same coupled mesh everywhere) and builds the sizing field;
-// then stages 3b/3c run in parts, one per rank (distributed::run_in_parts: Hilbert parts with
-// frozen interfaces, merged on rank 0, then a round with the interfaces moved), and rank 0 writes
-// the mesh and prints the report. Usage: mpirun -np N anitet-mpi mesh IN -o OUT [options of
+// then stages 3b/3c run in parts, one per rank. With -o NAME.pvtu, no rank ever holds the whole
+// mesh (distributed::run_rank_parts: PT-Scotch parts of the coarse mesh, rank-local rounds, tets
+// migrated point to point, one piece written per rank); with another output,
+// distributed::run_in_parts merges the parts on rank 0 after each round and rank 0 writes the
+// mesh and prints the report. Usage: mpirun -np N anitet-mpi mesh IN -o OUT [options of
 // `anitet mesh`]. docs/distributed.md has the design and its road to 10^9 tets.
 #include <mpi.h>
 #include <tbb/global_control.h>
@@ -30,16 +32,8 @@ using anitet::Error;
 using anitet::Result;
 using anitet::Status;
 
-// Messages in pieces below INT_MAX bytes (MPI counts are ints).
-constexpr size_t kPiece = size_t(1) << 30;
-
-Status mpi_status(int rc, const char* what) {
-  if (rc == MPI_SUCCESS) return Status::success();
-  char text[MPI_MAX_ERROR_STRING];
-  int len = 0;
-  MPI_Error_string(rc, text, &len);
-  return Status(Error::Internal, std::string("MPI ") + what + ": " + std::string(text, size_t(len)));
-}
+using anitet::mpi::kPiece;
+using anitet::mpi::mpi_status;
 
 class MpiExchange final : public anitet::distributed::Exchange {
  public:

@@ -6,11 +6,6 @@
 
 namespace anitet::mpi {
 
-namespace {
-// Messages in pieces below INT_MAX bytes (MPI counts are ints).
-constexpr size_t kPiece = size_t(1) << 30;
-}  // namespace
-
 Status mpi_status(int rc, const char* what) {
   if (rc == MPI_SUCCESS) return Status::success();
   char text[MPI_MAX_ERROR_STRING];

@@ -26,7 +26,10 @@ class MpiComm final : public distributed::Comm {
   int rank_ = 0, ranks_ = 1;
 };
 
+// An MPI return code as a Status (its message named by `what`).
 Status mpi_status(int rc, const char* what);
+// Messages go in pieces below INT_MAX bytes (MPI counts are ints).
+inline constexpr size_t kPiece = size_t(1) << 30;
 
 // SCOTCH_dgraphPart on the coarse mesh's dual graph (tets sharing a facet), each rank building
 // the slice [r C/P, (r+1) C/P) of its live tets from its copy of the mesh (no message), the loads

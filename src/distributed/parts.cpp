@@ -13,8 +13,6 @@ namespace anitet::distributed {
 
 namespace {
 
-constexpr uint16_t kKeptFlags = tflag::kFacetProtectedMask | tflag::kEdgeConstrainedMask;
-
 bool live(const TetMesh& m, uint32_t t) { return !m.is_deleted(t) && !m.is_ghost(t); }
 
 std::array<uint32_t, 3> sorted_facet(uint32_t a, uint32_t b, uint32_t c) {

@@ -22,6 +22,9 @@
 
 namespace anitet::distributed {
 
+// The tet flags that travel with a tet between parts and ranks (the others are a round's own).
+inline constexpr uint16_t kKeptFlags = tflag::kFacetProtectedMask | tflag::kEdgeConstrainedMask;
+
 // The part of each tet slot (-1 for deleted and ghost slots): `parts` runs of equal tet counts
 // along a Hilbert curve through the tets' centroids, the first starting `shift` of a run along
 // the curve (the last run wraps around to the curve's start).

@@ -17,8 +17,6 @@ namespace anitet::distributed {
 
 namespace {
 
-constexpr uint16_t kKeptFlags = tflag::kFacetProtectedMask | tflag::kEdgeConstrainedMask;
-
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -170,8 +168,6 @@ Status combine_with_sharers(const RankMesh& rm, const Sharing& sharing, std::vec
   }
   return Status::success();
 }
-
-size_t open_facets(const TetMesh& m) { return count_boundary_facets(m); }
 
 }  // namespace
 
@@ -369,7 +365,7 @@ Result<RankMesh> own_after_round(const MeshPart& part, const std::vector<uint64_
 Status mesh_round(RankMesh& rm, Step step, const SizingField& field, const RefineOptions& refine,
                   const OptimizeOptions& optimize, Comm& comm, RefineStats& refine_counts,
                   OptimizeStats& optimize_counts) {
-  const size_t open_before = open_facets(rm.mesh);
+  const size_t open_before = count_boundary_facets(rm.mesh);
   Result<Sharing> sharing = find_sharing(rm, comm);
   if (!sharing.ok()) return sharing.status();
   Result<LocalMesh> local = with_halo(rm, sharing.value(), comm);
@@ -390,7 +386,7 @@ Status mesh_round(RankMesh& rm, Step step, const SizingField& field, const Refin
                                           std::move(kept_gid), comm.rank(), created);
   if (!next.ok()) return next.status();
   rm = std::move(next).value();
-  if (const size_t open_after = open_facets(rm.mesh); open_after != open_before)
+  if (const size_t open_after = count_boundary_facets(rm.mesh); open_after != open_before)
     return Status(Error::Internal, "distributed: rank " + std::to_string(comm.rank()) + "'s part has " +
                                        std::to_string(open_after) + " facets without a neighbour after the round, " +
                                        std::to_string(open_before) + " before");
