@@ -75,6 +75,12 @@ class Optimizer {
     double old_min = 1.0;
     size_t target = SIZE_MAX;   // perturbation: the index in `ball` of the tet to open (SIZE_MAX: none)
     double target_floor = 0.0;  // and the floor of the other tets when only it gains
+    // The rescue of an interior tet (rescue_pass()): the ball's qualities when the climb started,
+    // its worst then, and which of its tets have a vertex on S.
+    bool rescue = false;
+    std::vector<double> start_q;
+    std::vector<uint8_t> on_s;
+    double start_min = 0.0;
     size_t moved = 0, rejected = 0;
   };
   // Qualities of w.ball's tets before a move (w.old_q, w.old_min).
@@ -89,7 +95,11 @@ class Optimizer {
   // With `near` (1 per vertex): only the tets with a marked vertex.
   size_t perturb_pass(const std::vector<uint8_t>* near = nullptr);
   size_t polish_pass(std::vector<uint8_t>& near);
-  bool perturb_vertex(uint32_t t, int i, int trials, int levels, bool gradient = false);
+  bool perturb_vertex(uint32_t t, int i, int trials, int levels, bool gradient = false, bool rescue = false);
+  bool rescue_accepts(const Work& w) const;
+  // With `near` (1 per vertex): only the tets with a marked vertex. Marks in `moved_near` the
+  // vertices of the balls it changed.
+  size_t rescue_pass(const std::vector<uint8_t>* near, std::vector<uint8_t>& moved_near);
   bool target_gradient(uint32_t v, uint32_t t, double scale, double grad[3]);
   // Collapses an edge of each tet below options_.collapse_quality (see OptimizeOptions).
   size_t collapse_pass();
@@ -180,7 +190,9 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
   // while no tet falls below min(its quality, target_floor). The worst alone would not do: a
   // vertex of S1 holds tets on S's sliver triangles, whose quality no move raises much, and the
   // sliver beside them could never be opened.
-  if (ok && quality_out) {
+  if (ok && quality_out && w.rescue) {
+    ok = rescue_accepts(w);
+  } else if (ok && quality_out) {
     bool gain = q_min > w.old_min + 1e-9;
     if (!gain && w.target < w.ball.size() && w.new_q[w.target] > w.old_q[w.target] + 1e-9) {
       gain = true;
@@ -465,16 +477,66 @@ size_t Optimizer::polish_pass(std::vector<uint8_t>& near) {
   return moved;
 }
 
+// The rescue's test of a trial position: the target rises; every other tet ends at least at
+// min(its quality before the trial, accept_floor), or, when it has a vertex on S, at half its
+// quality when the climb started and no lower than the ball's worst then.
+bool Optimizer::rescue_accepts(const Work& w) const {
+  if (!(w.new_q[w.target] > w.old_q[w.target] + 1e-9)) return false;
+  for (size_t k = 0; k < w.ball.size(); ++k) {
+    if (k == w.target) continue;
+    const double q = w.new_q[k];
+    if (q >= std::min(w.old_q[k], options_.accept_floor)) continue;
+    if (!(w.on_s[k] && q >= 0.5 * w.start_q[k] && q >= w.start_min)) return false;
+  }
+  return true;
+}
+
+// Tets off S below kRescueQuality after the polish: their vertices are held by tets on S's
+// sliver triangles, which no move lifts and which the climbs above may not lower at all, so the
+// tet off S stays a sliver (tray_bottom, turbine: interior radius ratio 0.049, 0.022). Each free
+// vertex of such a tet gets the polish's climb with rescue_accepts() instead, which trades some
+// of the quality of the tets on S (at most half, never below the ball's worst) for it.
+size_t Optimizer::rescue_pass(const std::vector<uint8_t>* near, std::vector<uint8_t>& moved_near) {
+  constexpr double kRescueQuality = 0.06;  // radius ratio >= shape_quality: the 0.05 bar, and a margin
+  size_t moved = 0;
+  for (uint32_t t : optimize_detail::tets_below(mesh_, kRescueQuality, quality_, &flips_.memo)) {
+    bool interior = true, close = near == nullptr;
+    for (int i = 0; i < 4; ++i) {
+      interior &= !(mesh_.vflags[mesh_.vertex(t, i)] & vflag::kOnInputSurface);
+      close |= near && (*near)[mesh_.vertex(t, i)] != 0;
+    }
+    for (int i = 0; interior && close && i < 4 && !mesh_.is_deleted(t) && quality_.tet(mesh_, t) < kRescueQuality;
+         ++i) {
+      const bool mv = perturb_vertex(t, i, 8 * options_.perturb_trials, 10, !quality_.anisotropic(), true);
+      moved += mv;
+      if (mv)
+        for (uint32_t b : work_.ball)
+          for (int k = 0; k < 4; ++k) moved_near[mesh_.vertex(b, k)] = 1;
+    }
+  }
+  return moved;
+}
+
 // Hill climb of vertex i of t (when free) to open t: `trials` trial offsets whose lengths halve
 // over `levels` steps from a fifth of the ball's size and start again; with `gradient`, every
-// other run of `levels` along the gradient of t's quality. True when it moved.
-bool Optimizer::perturb_vertex(uint32_t t, int i, int trials, int levels, bool gradient) {
+// other run of `levels` along the gradient of t's quality; with `rescue`, rescue_accepts() judges
+// the trials. True when it moved.
+bool Optimizer::perturb_vertex(uint32_t t, int i, int trials, int levels, bool gradient, bool rescue) {
   const uint32_t v = mesh_.vertex(t, i);
   if (!movable(v)) return false;
   meshops::vertex_ball(mesh_, v, t, work_.ball);
   measure_ball(work_);
   work_.target = size_t(std::find(work_.ball.begin(), work_.ball.end(), t) - work_.ball.begin());
   work_.target_floor = options_.sliver_quality;
+  work_.rescue = rescue;
+  if (rescue) {
+    work_.start_q = work_.old_q;
+    work_.start_min = work_.old_min;
+    work_.on_s.assign(work_.ball.size(), 0);
+    for (size_t k = 0; k < work_.ball.size(); ++k)
+      for (int j = 0; j < 4; ++j)
+        work_.on_s[k] |= (mesh_.vflags[mesh_.vertex(work_.ball[k], j)] & vflag::kOnInputSurface) != 0;
+  }
   const double* x = mesh_.point(v);
   const double start[3] = {x[0], x[1], x[2]};
   double best[3] = {x[0], x[1], x[2]};
@@ -512,9 +574,11 @@ bool Optimizer::perturb_vertex(uint32_t t, int i, int trials, int levels, bool g
     }
     const double q[3] = {best[0] + d[0], best[1] + d[1], best[2] + d[2]};
     double got = 0.0;
-    if (try_move(work_, v, q, 0.5 * (work_.old_min + options_.sliver_quality), &got)) std::copy_n(q, 3, best);
+    const double floor = rescue ? 0.0 : 0.5 * (work_.old_min + options_.sliver_quality);  // (rescue: its own)
+    if (try_move(work_, v, q, floor, &got)) std::copy_n(q, 3, best);
   }
   work_.target = SIZE_MAX;
+  work_.rescue = false;
   if (best[0] == start[0] && best[1] == start[1] && best[2] == start[2]) return false;
   this->moved(v);
   touch_tets(work_.ball);  // v's ball (moves keep the tets)
@@ -772,6 +836,18 @@ Result<OptimizeStats> Optimizer::run() {
     if (polished == 0) break;
     stats_.perturbations += perturb_pass(&collapsed_near_);
     refresh_metrics();
+  }
+  // The rescue (see the top); after its first round, only the tets near its moves: the others
+  // were tried already.
+  std::vector<uint8_t> rescued_near;
+  for (int round = 0; round < 3 && options_.sliver_rounds > 0; ++round) {
+    collapsed_near_.assign(mesh_.num_vertices(), 0);
+    const size_t rescued = rescue_pass(round == 0 ? nullptr : &rescued_near, collapsed_near_);
+    stats_.perturbations += rescued;
+    refresh_metrics();
+    if (rescued == 0) break;
+    optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);
+    rescued_near.swap(collapsed_near_);
   }
   take_lap(stats_.seconds_slivers);
   optimize_detail::flip_sweep(flips_, options_.flip_quality, 3);

@@ -38,6 +38,11 @@
 //   - Polish: the free vertices of the tets left below 0.1 get a longer hill climb (8 times
 //     perturb_trials, finer steps, half of them along the gradient of the tet's quality), then
 //     the tets it lowered a perturbation round; three times at most (with sliver_rounds > 0).
+//   - Rescue: a tet with no vertex on S still below 0.06 after the polish (its vertices held by
+//     tets on S's sliver triangles, which may not drop at all above) gets the polish's climb
+//     again, judged by a looser rule: it must rise, tets off S may not fall below min(their
+//     quality, accept_floor), tets on S may lose up to half their quality of the climb's start
+//     but not fall below the ball's worst then; three rounds at most, each followed by flips.
 //   - Flat tets: a tet positive for the exact orient3d but flat to rounding (a double evaluation
 //     could find it zero or inverted: predicates::orient3d_certified) has its free vertices moved
 //     (steps from twice its shortest edge down) until it is certified: a move is accepted when
