@@ -104,7 +104,7 @@ class Optimizer {
   // Collapses an edge of each tet below options_.collapse_quality (see OptimizeOptions).
   size_t collapse_pass();
   bool try_collapse(uint32_t v, uint32_t w, bool to_midpoint);
-  std::vector<uint8_t> collapsed_near_;  // per vertex: in a tet a collapse or the polish changed (this round)
+  std::vector<uint8_t> collapsed_near_;  // per vertex: in a tet changed by a collapse, the polish or the rescue
   void trial_offset(int trial, int levels, double top, const double* nrm, double d[3]);
   bool opening_direction(uint32_t t, int i, const meshops::MetricMap& map, double nrm[3]) const;
   double shortest_edge(uint32_t t) const;

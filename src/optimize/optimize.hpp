@@ -42,7 +42,8 @@
 //     tets on S's sliver triangles, which may not drop at all above) gets the polish's climb
 //     again, judged by a looser rule: it must rise, tets off S may not fall below min(their
 //     quality, accept_floor), tets on S may lose up to half their quality of the climb's start
-//     but not fall below the ball's worst then; three rounds at most, each followed by flips.
+//     but not fall below the ball's worst then; three rounds at most, each followed by flips,
+//     the second and third on the tets near the moves of the round before.
 //   - Flat tets: a tet positive for the exact orient3d but flat to rounding (a double evaluation
 //     could find it zero or inverted: predicates::orient3d_certified) has its free vertices moved
 //     (steps from twice its shortest edge down) until it is certified: a move is accepted when
