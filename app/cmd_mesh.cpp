@@ -254,6 +254,13 @@ void print_summary(const MeshArgs& args, const MesherResult& r, const QualityRep
                   bl.nominal_columns, bl.max_neighbour_growth, bl.non_orthogonality_max, bl.non_orthogonality_mean,
                   bl.skewness_max);
     std::cout << line;
+    std::snprintf(line, sizeof line,
+                  "  boundary layer top: first interior tets' height over the BL tets' on %zu faces: median %.2f, "
+                  "90%% below %.2f, %.0f%% within 1.5 (their mean edge / BL height: %.1f)\n",
+                  bl.transition_faces, bl.transition_ratio_median, bl.transition_ratio_p90,
+                  bl.transition_faces ? 100.0 * double(bl.transition_within_1_5) / double(bl.transition_faces) : 0.0,
+                  bl.transition_edge_ratio_mean);
+    std::cout << line;
   }
   if (!r.slide.changes.empty()) std::cout << "  " << slide_text(r.slide, args.patch_names) << "\n";
   if (r.metric_quality.tets > 0) {

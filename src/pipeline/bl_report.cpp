@@ -11,6 +11,44 @@ double distance(const double* p, const double* q) {
   return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
 }
 
+// The distance from q to the plane of the triangle p (0 for a degenerate one).
+double height_over(const double* const p[3], const double* q) {
+  double e1[3], e2[3], w[3];
+  for (int k = 0; k < 3; ++k) {
+    e1[k] = p[1][k] - p[0][k];
+    e2[k] = p[2][k] - p[0][k];
+    w[k] = q[k] - p[0][k];
+  }
+  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+  const double ln = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  return ln > 0.0 ? std::abs(n[0] * w[0] + n[1] * w[1] + n[2] * w[2]) / ln : 0.0;
+}
+
+double mean_edge(const TetMesh& mesh, uint32_t t) {
+  double sum = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) sum += distance(mesh.point(mesh.vertex(t, i)), mesh.point(mesh.vertex(t, j)));
+  return sum / 6.0;
+}
+
+// The transition figures of BoundaryLayerReport from the interior/BL ratios of the faces between them.
+void summarize_transition(std::vector<double>& ratios, double edge_ratio_sum, BoundaryLayerReport& r) {
+  r.transition_faces = ratios.size();
+  r.transition_within_1_5 = 0;
+  r.transition_ratio_mean = r.transition_ratio_median = r.transition_ratio_p90 = r.transition_edge_ratio_mean = 0.0;
+  if (ratios.empty()) return;
+  double sum = 0.0;
+  for (double x : ratios) {
+    sum += x;
+    r.transition_within_1_5 += x >= 1.0 / 1.5 && x <= 1.5;
+  }
+  r.transition_ratio_mean = sum / double(ratios.size());
+  r.transition_edge_ratio_mean = edge_ratio_sum / double(ratios.size());
+  std::sort(ratios.begin(), ratios.end());
+  r.transition_ratio_median = ratios[ratios.size() / 2];
+  r.transition_ratio_p90 = ratios[std::min(ratios.size() - 1, ratios.size() * 9 / 10)];
+}
+
 }  // namespace
 
 void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptions& bl, int layers,
@@ -89,7 +127,8 @@ void measure_boundary_layer_cells(const TetMesh& mesh, int32_t first_bl_region, 
       for (int k = 0; k < 3; ++k) c[k] += 0.25 * mesh.point(mesh.vertex(t, i))[k];
   };
   auto bl = [&](uint32_t t) { return !mesh.is_deleted(t) && !mesh.is_ghost(t) && mesh.tet_region[t] >= first_bl_region; };
-  double angle_sum = 0.0;
+  double angle_sum = 0.0, edge_ratio_sum = 0.0;
+  std::vector<double> transition;
   r.dual_faces = 0;
   r.non_orthogonality_max = r.skewness_max = 0.0;
   r.non_orthogonal_faces = r.skew_faces = 0;
@@ -115,6 +154,14 @@ void measure_boundary_layer_cells(const TetMesh& mesh, int32_t first_bl_region, 
       s[2] = e1[0] * e2[1] - e1[1] * e2[0];
       // Oriented out of t: away from its vertex opposite the face.
       const double* opposite = mesh.point(mesh.vertex(t, f));
+      if (!bl(u)) {
+        const double own = height_over(p, opposite);
+        const double across = height_over(p, mesh.point(mesh.vertex(u, mesh.neighbour_facet(t, f))));
+        if (own > 0.0) {
+          transition.push_back(across / own);
+          edge_ratio_sum += mean_edge(mesh, u) / own;
+        }
+      }
       if (s[0] * (opposite[0] - p[0][0]) + s[1] * (opposite[1] - p[0][1]) + s[2] * (opposite[2] - p[0][2]) > 0.0)
         for (double& x : s) x = -x;
       const double sd = s[0] * d[0] + s[1] * d[1] + s[2] * d[2];
@@ -145,6 +192,7 @@ void measure_boundary_layer_cells(const TetMesh& mesh, int32_t first_bl_region, 
     }
   }
   r.non_orthogonality_mean = r.dual_faces ? angle_sum / double(r.dual_faces) : 0.0;
+  summarize_transition(transition, edge_ratio_sum, r);
 }
 
 }  // namespace anitet

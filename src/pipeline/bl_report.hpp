@@ -41,6 +41,15 @@ struct BoundaryLayerReport {
   double skewness_max = 0.0;
   size_t non_orthogonal_faces = 0;  // above 70 deg
   size_t skew_faces = 0;            // above 4
+  // The transition to the interior, on the faces between a BL tet and a non-BL tet (the layers'
+  // top, and the side of a column that stopped): each tet's height over the face (the distance
+  // from its opposite vertex to the face's plane), the interior one's over the BL one's. 1 is a
+  // seamless transition; the isotropic interior over thin layers gives the wall size over the top
+  // layer's height. Also the interior tet's mean edge length over the BL tet's height.
+  size_t transition_faces = 0;
+  double transition_ratio_mean = 0.0, transition_ratio_median = 0.0, transition_ratio_p90 = 0.0;
+  size_t transition_within_1_5 = 0;  // faces with the ratio in [1/1.5, 1.5]
+  double transition_edge_ratio_mean = 0.0;
 };
 
 // The BL columns of `surface`'s wall vertices measured on `mesh` (stage 1's T1, or the final

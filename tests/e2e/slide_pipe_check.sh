@@ -2,8 +2,9 @@
 # slide_pipe_check.sh ANITET CASES_PY MESHCHECK WORKDIR: a small pipe (r 1, length 4, 24 segments)
 # meshed with 8 boundary layers on its wall sliding along the inlet and outlet; checks: every
 # wall column full (JSON), the slide patches cover exactly the input's (slide_patch_check.py),
-# meshcheck.py valid with no input triangle missing outside the slide patches; and without
-# --bl-slide-patches the run is refused with a message naming the option.
+# meshcheck.py valid with no input triangle missing outside the slide patches; the transition
+# figures on the 720 top faces; and without --bl-slide-patches the run is refused with a message
+# naming the option.
 set -uo pipefail
 anitet=$1 cases=$2 meshcheck=$3 work=$4
 python=/usr/bin/python3
@@ -21,10 +22,15 @@ d = json.load(open(sys.argv[1]))
 b, s = d["boundary_layer"], d["slide_patches"]
 print(f"full columns {b['full_columns']}/{b['wall_vertices']}, nominal {b['nominal_columns']}, "
       f"non-orthogonality max {b['non_orthogonality_max']:.1f}, skewness max {b['skewness_max']:.2f}, "
+      f"transition median {b['transition_ratio_median']:.1f} on {b['transition_faces']} faces, "
       f"slide patches {[(p['label'], p['triangles_before'], p['triangles_after']) for p in s['patches']]}")
 ok = (b["full_columns"] == b["wall_vertices"] == 384 and b["nominal_columns"] == 384 and
       len(b["layer_height_mean"]) == 8 and abs(b["layer_height_mean"][7] / (1e-3 * 1.15 ** 7) - 1) < 0.1 and
       0 < b["non_orthogonality_max"] < 90 and b["dual_faces"] > 0 and
+      # Every column full: the 720 wall triangles' top faces, under isotropic tets of about the
+      # wall's size (0.26) over a top layer of 1e-3 1.15^7 = 2.7e-3.
+      b["transition_faces"] == 720 and 20 < b["transition_ratio_median"] < 200 and
+      b["transition_ratio_median"] <= b["transition_ratio_p90"] and b["transition_within_1_5"] == 0 and
       [p["label"] for p in s["patches"]] == [2, 3] and all(p["triangles_after"] > p["triangles_before"] for p in s["patches"]))
 sys.exit(0 if ok else 1)
 PY
