@@ -515,6 +515,12 @@ class MeshCommand {
     // frame is exact only to ~1e-9 m), so the output keeps the input surface bit for bit.
     for (size_t v = 0; v < r.input_vertex.size() && 3 * v + 2 < input_xyz_.size(); ++v)
       if (r.input_vertex[v] != TetMesh::kNone) std::copy_n(&input_xyz_[3 * v], 3, &r.mesh.xyz[3 * size_t(r.input_vertex[v])]);
+    if (!args_.bl_columns.empty()) {
+      if (Status st = write_bl_columns(r); !st.ok()) {
+        std::cerr << kCmd << ": cannot write '" << args_.bl_columns << "': " << st.message() << "\n";
+        not_written_.push_back(args_.bl_columns);
+      }
+    }
     writer.wait();
     if (!write_now) {
       if (Status st = merge_prisms(r, with_prisms); !st.ok()) return internal_error(st);
@@ -539,6 +545,38 @@ class MeshCommand {
       else std::cout << "  (-v: every stage's figures and the full quality report)\n";
     }
     return not_written_.empty() ? kExitOk : kExitReadError;
+  }
+
+  // --bl-columns FILE: one CSV line per wall vertex (in the meshed surface's order, as the report
+  // measured them): its point, the layers its column reaches, its first and total height, and the
+  // labels of the patches it is on (space-separated: a wall's junction with a slide patch, a
+  // wing's root on the floor).
+  Status write_bl_columns(const MesherResult& r) const {
+    const BoundaryLayerReport& bl = r.boundary_layer;
+    const SurfaceMesh& s = meshed_surface(r);
+    std::vector<std::vector<int32_t>> labels(s.num_vertices());
+    for (size_t t = 0; t < s.num_triangles(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        std::vector<int32_t>& l = labels[s.tri[3 * t + k]];
+        if (std::find(l.begin(), l.end(), s.patch[t]) == l.end()) l.push_back(s.patch[t]);
+      }
+    const std::vector<int32_t>& walls = args_.bl_patches;
+    std::string out = "x,y,z,layers,first_height,total_height,patches\n";
+    char line[160];
+    size_t c = 0;
+    for (uint32_t v = 0; v < s.num_vertices() && c < bl.column_layers.size(); ++v) {
+      std::vector<int32_t>& l = labels[v];
+      if (std::none_of(l.begin(), l.end(), [&](int32_t p) { return std::find(walls.begin(), walls.end(), p) != walls.end(); }))
+        continue;
+      std::sort(l.begin(), l.end());
+      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%d,%.9g,%.9g,", bl.column_xyz[3 * c], bl.column_xyz[3 * c + 1],
+                    bl.column_xyz[3 * c + 2], bl.column_layers[c], bl.column_first[c], bl.column_total[c]);
+      out += line;
+      for (size_t i = 0; i < l.size(); ++i) out += (i ? " " : "") + std::to_string(l[i]);
+      out += "\n";
+      ++c;
+    }
+    return write_file_bytes(args_.bl_columns, out);
   }
 
   // --bl-cells prisms: the mesh to write, each BL prism's three tets merged into one prism cell
@@ -617,6 +655,7 @@ int check_mesh_option_combinations(const CLI::App& cmd, const MeshArgs& a) {
       {"--bl-layers", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-slide-patches", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-cells", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-columns", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-cells", layers_only, "the whole pipeline (--stop-after layers writes stage 1's tets)"},
       {"--bl-reynolds", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
       {"--bl-ref-length", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
@@ -777,6 +816,11 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
                   "solvers; .vtu and OpenFOAM polyMesh only, other outputs are refused)")
       ->capture_default_str()
       ->check(CLI::IsMember({"tets", "prisms"}))
+      ->group(bl_group);
+  cmd->add_option("--bl-columns", args.bl_columns,
+                  "Write the boundary layer's columns to this CSV file: per wall vertex its point, the "
+                  "layers its column reaches, its first and total height and its patch labels (to see "
+                  "the columns at a trailing edge, a wing's tip or root)")
       ->group(bl_group);
   cmd->add_flag("--bl-sizing", args.bl_sizing,
                 "Refine the interior to continue the boundary layer's heights (normal size h0 + (r - 1) d "

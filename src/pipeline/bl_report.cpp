@@ -55,6 +55,10 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
                             const std::vector<uint32_t>& vertex_origin, const std::vector<double>& t1_xyz,
                             const TetMesh& mesh, BoundaryLayerReport& r) {
   r.layers = layers;
+  r.column_xyz.clear();
+  r.column_layers.clear();
+  r.column_first.clear();
+  r.column_total.clear();
   r.columns_reaching.assign(size_t(std::max(layers, 0)) + 1, 0);
   const size_t nv = vertex_origin.size();
   std::vector<std::vector<uint32_t>> children(nv);
@@ -75,7 +79,7 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
     if (!wall[v]) continue;
     ++r.wall_vertices;
     uint32_t at = v;
-    double worst = 0.0, first = 0.0, last = 0.0;
+    double worst = 0.0, first = 0.0, last = 0.0, total = 0.0;
     int reached = 0;
     for (int i = 0; i < layers; ++i) {
       if (at >= nv || children[at].empty()) break;
@@ -83,6 +87,7 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
       const uint32_t next = children[at].back();
       const double h = distance(mesh.point(at), mesh.point(next));
       if (i == 0) first = h;
+      total += h;
       if (i > 0 && h > 0.0 && last > 0.0) r.max_neighbour_growth = std::max({r.max_neighbour_growth, h / last, last / h});
       last = h;
       r.layer_height_min[size_t(i)] = std::min(r.layer_height_min[size_t(i)], h);
@@ -93,6 +98,10 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
       at = next;
     }
     ++r.columns_reaching[size_t(reached)];
+    r.column_xyz.insert(r.column_xyz.end(), mesh.point(v), mesh.point(v) + 3);
+    r.column_layers.push_back(reached);
+    r.column_first.push_back(first);
+    r.column_total.push_back(total);
     if (reached < layers || layers == 0) continue;
     ++r.full_columns;
     first_sum += first;

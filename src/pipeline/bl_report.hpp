@@ -50,6 +50,11 @@ struct BoundaryLayerReport {
   double transition_ratio_mean = 0.0, transition_ratio_median = 0.0, transition_ratio_p90 = 0.0;
   size_t transition_within_1_5 = 0;  // faces with the ratio in [1/1.5, 1.5]
   double transition_edge_ratio_mean = 0.0;
+  // Per wall vertex, in the surface's order: its point (x y z), the layers its column reaches, its
+  // first and total height (0 when it reaches none). For the columns at given places (a trailing
+  // edge, a wing's tip or root): --bl-columns writes them.
+  std::vector<double> column_xyz, column_first, column_total;
+  std::vector<int> column_layers;
 };
 
 // The BL columns of `surface`'s wall vertices measured on `mesh` (stage 1's T1, or the final

@@ -3,8 +3,8 @@
 # meshed with 8 boundary layers on its wall sliding along the inlet and outlet; checks: every
 # wall column full (JSON), the slide patches cover exactly the input's (slide_patch_check.py),
 # meshcheck.py valid with no input triangle missing outside the slide patches; the transition
-# figures on the 720 top faces; and without --bl-slide-patches the run is refused with a message
-# naming the option.
+# figures on the 720 top faces; --bl-columns's CSV; and without --bl-slide-patches the run is
+# refused with a message naming the option.
 set -uo pipefail
 anitet=$1 cases=$2 meshcheck=$3 work=$4
 python=/usr/bin/python3
@@ -15,10 +15,18 @@ rm -rf "$work" && mkdir -p "$work" || fail "cannot create $work"
 out=$("$anitet" mesh "$work/pipe.mesh" -o "$work/none.mesh" --bl-patches 1 --bl-first-height 1e-3 2>&1); rc=$?
 ((rc == 2)) && grep -q -- "--bl-slide-patches 2" <<<"$out" || { echo "$out"; fail "without slide patches: exit $rc"; }
 "$anitet" mesh "$work/pipe.mesh" -o "$work/out.mesh" --json --bl-patches 1 --bl-slide-patches 2,3 \
-  --bl-first-height 1e-3 --bl-growth 1.15 --bl-layers 8 >"$work/run.json" || fail "anitet mesh exited $?"
-"$python" - "$work/run.json" <<'PY' || fail "report"
+  --bl-first-height 1e-3 --bl-growth 1.15 --bl-layers 8 --bl-columns "$work/columns.csv" >"$work/run.json" ||
+  fail "anitet mesh exited $?"
+"$python" - "$work/run.json" "$work/columns.csv" <<'PY' || fail "report"
 import json, sys
 d = json.load(open(sys.argv[1]))
+# --bl-columns: a line per wall vertex, 24 of them on each cap (the junction columns), all full.
+rows = [line.strip().split(",") for line in open(sys.argv[2])]
+assert rows[0] == ["x", "y", "z", "layers", "first_height", "total_height", "patches"], rows[0]
+rows = rows[1:]
+caps = sorted(r[6] for r in rows if r[6] != "1")
+assert len(rows) == 384 and caps == ["1 2"] * 24 + ["1 3"] * 24, (len(rows), caps[:3])
+assert all(r[3] == "8" and abs(float(r[5]) / (1e-3 * (1.15 ** 8 - 1) / 0.15) - 1) < 0.1 for r in rows)
 b, s = d["boundary_layer"], d["slide_patches"]
 print(f"full columns {b['full_columns']}/{b['wall_vertices']}, nominal {b['nominal_columns']}, "
       f"non-orthogonality max {b['non_orthogonality_max']:.1f}, skewness max {b['skewness_max']:.2f}, "
