@@ -37,6 +37,14 @@ class Optimizer {
   bool movable(uint32_t v) const {
     return !(mesh_.vflags[v] & (vflag::kOnInputSurface | vflag::kLocked)) && !vt_.removed(v);
   }
+  // No vertex of t can move (a boundary-layer tet: its vertices locked): no move or collapse can
+  // change it, so the sliver passes skip it before measuring it (over a million such tets in a
+  // wing's 20 layers).
+  bool fixed_tet(uint32_t t) const {
+    for (int i = 0; i < 4; ++i)
+      if (movable(mesh_.vertex(t, i))) return false;
+    return true;
+  }
   // After v moved: its size, and its metric when anisotropic, are measured again.
   void moved(uint32_t v) {
     if (v < sizes_.size()) sizes_[v] = -1.0;
@@ -362,7 +370,7 @@ size_t Optimizer::collapse_pass() {
   const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, cq, quality_, &flips_.memo);
   size_t done = 0;
   for (uint32_t t : bad) {
-    if (mesh_.is_deleted(t) || quality_.tet(mesh_, t) >= cq) continue;
+    if (mesh_.is_deleted(t) || fixed_tet(t) || quality_.tet(mesh_, t) >= cq) continue;
     // Its edges, shortest first; the removed end must be free (a vertex of S never moves).
     std::array<std::pair<double, int>, 6> edges;
     for (int k = 0; k < 6; ++k) {
@@ -446,6 +454,7 @@ size_t Optimizer::perturb_pass(const std::vector<uint8_t>* near) {
   const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, options_.sliver_quality, quality_, &flips_.memo);
   size_t moved = 0;
   for (uint32_t t : bad) {
+    if (!mesh_.is_deleted(t) && fixed_tet(t)) continue;
     if (near && !mesh_.is_deleted(t)) {
       bool close = false;
       for (int i = 0; i < 4; ++i) close |= (*near)[mesh_.vertex(t, i)] != 0;
@@ -467,7 +476,7 @@ size_t Optimizer::polish_pass(std::vector<uint8_t>& near) {
   constexpr double kPolishQuality = 0.1;
   size_t moved = 0;
   for (uint32_t t : optimize_detail::tets_below(mesh_, kPolishQuality, quality_, &flips_.memo))
-    for (int i = 0; i < 4 && !mesh_.is_deleted(t); ++i) {
+    for (int i = 0; i < 4 && !mesh_.is_deleted(t) && !fixed_tet(t); ++i) {
       const bool mv = perturb_vertex(t, i, 8 * options_.perturb_trials, 10, !quality_.anisotropic());
       moved += mv;
       if (mv)
