@@ -548,9 +548,9 @@ class MeshCommand {
   }
 
   // --bl-columns FILE: one CSV line per wall vertex (in the meshed surface's order, as the report
-  // measured them): its point, the layers its column reaches, its first and total height, and the
-  // labels of the patches it is on (space-separated: a wall's junction with a slide patch, a
-  // wing's root on the floor).
+  // measured them): its point, the layers its column reaches, its first and total height, its
+  // normal share (BoundaryLayerReport::column_normal_share), and the labels of the patches it is
+  // on (space-separated: a wall's junction with a slide patch, a wing's root on the floor).
   Status write_bl_columns(const MesherResult& r) const {
     const BoundaryLayerReport& bl = r.boundary_layer;
     const SurfaceMesh& s = meshed_surface(r);
@@ -561,7 +561,7 @@ class MeshCommand {
         if (std::find(l.begin(), l.end(), s.patch[t]) == l.end()) l.push_back(s.patch[t]);
       }
     const std::vector<int32_t>& walls = args_.bl_patches;
-    std::string out = "x,y,z,layers,first_height,total_height,patches\n";
+    std::string out = "x,y,z,layers,first_height,total_height,normal_share,patches\n";
     char line[160];
     size_t c = 0;
     for (uint32_t v = 0; v < s.num_vertices() && c < bl.column_layers.size(); ++v) {
@@ -569,8 +569,9 @@ class MeshCommand {
       if (std::none_of(l.begin(), l.end(), [&](int32_t p) { return std::find(walls.begin(), walls.end(), p) != walls.end(); }))
         continue;
       std::sort(l.begin(), l.end());
-      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%d,%.9g,%.9g,", bl.column_xyz[3 * c], bl.column_xyz[3 * c + 1],
-                    bl.column_xyz[3 * c + 2], bl.column_layers[c], bl.column_first[c], bl.column_total[c]);
+      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%d,%.9g,%.9g,%.6f,", bl.column_xyz[3 * c], bl.column_xyz[3 * c + 1],
+                    bl.column_xyz[3 * c + 2], bl.column_layers[c], bl.column_first[c], bl.column_total[c],
+                    bl.column_normal_share[c]);
       out += line;
       for (size_t i = 0; i < l.size(); ++i) out += (i ? " " : "") + std::to_string(l[i]);
       out += "\n";
@@ -819,7 +820,8 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
       ->group(bl_group);
   cmd->add_option("--bl-columns", args.bl_columns,
                   "Write the boundary layer's columns to this CSV file: per wall vertex its point, the "
-                  "layers its column reaches, its first and total height and its patch labels (to see "
+                  "layers its column reaches, its first and total height, its normal share (the least cosine "
+                  "between the column and its wall triangles' normals) and its patch labels (to see "
                   "the columns at a trailing edge, a wing's tip or root)")
       ->group(bl_group);
   cmd->add_flag("--bl-sizing", args.bl_sizing,

@@ -5,7 +5,9 @@ boundary-layer columns that `anitet mesh --bl-columns COLUMNS.csv` wrote, measur
 A feature is a set of wall vertices given by a Python expression over numpy arrays x, y, z and
 `on(label)` (the vertices on that patch), e.g. --feature "te=on(1) & (x > 0.9999)". Prints, per
 feature and for all wall vertices: vertices, full columns, mean and least layers reached, first
-height (min/mean/max) and the full columns' total height (min/mean) against h0 (r^n - 1)/(r - 1)."""
+height (min/mean/max), the full columns' total height (min/mean) against h0 (r^n - 1)/(r - 1), and
+the normal share (min/mean: the layers' thickness across the wall over their height along the
+column; below 1 at edges and corners, where one column serves several wall directions)."""
 import argparse
 import json
 import sys
@@ -27,7 +29,8 @@ def main():
     layers = np.array([int(r[3]) for r in rows])
     first = np.array([float(r[4]) for r in rows])
     total = np.array([float(r[5]) for r in rows])
-    patches = [set(map(int, r[6].split())) for r in rows]
+    share = np.array([float(r[6]) for r in rows])
+    patches = [set(map(int, r[7].split())) for r in rows]
     on = lambda label: np.array([label in p for p in patches], bool)
     nominal = a.h0 * (a.growth ** a.layers - 1) / (a.growth - 1)
     groups = [("all walls", np.ones(len(rows), bool))]
@@ -45,7 +48,9 @@ def main():
                        first_max=float(first[mask].max()),
                        total_min_full=float(total[mask][full].min()) if full.any() else 0.0,
                        total_mean_full=float(total[mask][full].mean()) if full.any() else 0.0,
-                       total_nominal=nominal)
+                       total_nominal=nominal,
+                       normal_share_min=float(share[mask][reached].min()) if reached.any() else 0.0,
+                       normal_share_mean=float(share[mask][reached].mean()) if reached.any() else 0.0)
         out.append(row)
     if a.json:
         json.dump(out, sys.stdout, indent=1)
@@ -58,7 +63,8 @@ def main():
         print(f"{r['feature']}: {r['vertices']} wall vertices, {r['full']} full columns "
               f"({100 * r['full'] / r['vertices']:.1f}%), layers mean {r['layers_mean']:.2f} min {r['layers_min']}; "
               f"first height {r['first_min']:.3g} / {r['first_mean']:.3g} / {r['first_max']:.3g}; full columns' "
-              f"total height min {r['total_min_full']:.4g} mean {r['total_mean_full']:.4g} (nominal {nominal:.4g})")
+              f"total height min {r['total_min_full']:.4g} mean {r['total_mean_full']:.4g} (nominal {nominal:.4g}); "
+              f"normal share min {r['normal_share_min']:.3f} mean {r['normal_share_mean']:.3f}")
 
 
 if __name__ == "__main__":

@@ -59,6 +59,9 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
   r.column_layers.clear();
   r.column_first.clear();
   r.column_total.clear();
+  r.column_normal_share.clear();
+  std::vector<uint32_t> top(surface.num_vertices(), TetMesh::kNone);  // a wall vertex's column top
+  std::vector<size_t> column(surface.num_vertices(), 0);              // its index in the columns
   r.columns_reaching.assign(size_t(std::max(layers, 0)) + 1, 0);
   const size_t nv = vertex_origin.size();
   std::vector<std::vector<uint32_t>> children(nv);
@@ -102,6 +105,8 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
     r.column_layers.push_back(reached);
     r.column_first.push_back(first);
     r.column_total.push_back(total);
+    top[v] = at;
+    column[v] = r.column_layers.size() - 1;
     if (reached < layers || layers == 0) continue;
     ++r.full_columns;
     first_sum += first;
@@ -111,6 +116,28 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
     if (worst <= 0.1) {
       ++r.nominal_columns;
       r.max_height_error = std::max(r.max_height_error, worst);
+    }
+  }
+  // The normal shares: each wall triangle's fluid-side normal (the triangles face into the body)
+  // against the columns of its corners.
+  r.column_normal_share.assign(r.column_layers.size(), 1.0);
+  for (size_t t = 0; t < surface.num_triangles(); ++t) {
+    const uint32_t* c = &surface.tri[3 * t];
+    if (std::find(bl.wall_patches.begin(), bl.wall_patches.end(), surface.patch[t]) == bl.wall_patches.end()) continue;
+    const double *a = surface.point(c[0]), *b = surface.point(c[1]), *d = surface.point(c[2]);
+    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    const double nrm[3] = {e2[1] * e1[2] - e2[2] * e1[1], e2[2] * e1[0] - e2[0] * e1[2], e2[0] * e1[1] - e2[1] * e1[0]};
+    const double ln = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = c[k];
+      if (top[v] == TetMesh::kNone || top[v] == v || !(ln > 0.0)) continue;
+      const double* p = mesh.point(v);
+      const double* q = mesh.point(top[v]);
+      const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+      const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      if (!(lu > 0.0)) continue;
+      double& share = r.column_normal_share[column[v]];
+      share = std::min(share, (u[0] * nrm[0] + u[1] * nrm[1] + u[2] * nrm[2]) / (lu * ln));
     }
   }
   for (size_t i = 0; i < n; ++i) {

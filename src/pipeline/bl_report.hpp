@@ -51,9 +51,12 @@ struct BoundaryLayerReport {
   size_t transition_within_1_5 = 0;  // faces with the ratio in [1/1.5, 1.5]
   double transition_edge_ratio_mean = 0.0;
   // Per wall vertex, in the surface's order: its point (x y z), the layers its column reaches, its
-  // first and total height (0 when it reaches none). For the columns at given places (a trailing
-  // edge, a wing's tip or root): --bl-columns writes them.
-  std::vector<double> column_xyz, column_first, column_total;
+  // first and total height (0 when it reaches none), and its normal share: the least cosine
+  // between the column (wall vertex to top) and the fluid-side normals of its wall triangles (1
+  // on a flat wall; about 0.71 along a right-angled edge or corner, where the layers are that
+  // much thinner across each wall than along the column). For the columns at given places (a
+  // trailing edge, a wing's tip or root): --bl-columns writes them.
+  std::vector<double> column_xyz, column_first, column_total, column_normal_share;
   std::vector<int> column_layers;
 };
 

@@ -22,11 +22,14 @@ import json, sys
 d = json.load(open(sys.argv[1]))
 # --bl-columns: a line per wall vertex, 24 of them on each cap (the junction columns), all full.
 rows = [line.strip().split(",") for line in open(sys.argv[2])]
-assert rows[0] == ["x", "y", "z", "layers", "first_height", "total_height", "patches"], rows[0]
+assert rows[0] == ["x", "y", "z", "layers", "first_height", "total_height", "normal_share", "patches"], rows[0]
 rows = rows[1:]
-caps = sorted(r[6] for r in rows if r[6] != "1")
+caps = sorted(r[7] for r in rows if r[7] != "1")
 assert len(rows) == 384 and caps == ["1 2"] * 24 + ["1 3"] * 24, (len(rows), caps[:3])
 assert all(r[3] == "8" and abs(float(r[5]) / (1e-3 * (1.15 ** 8 - 1) / 0.15) - 1) < 0.1 for r in rows)
+# The columns stand on the wall (normal share near 1; 0.94 on the row next to the caps, leaning
+# towards them).
+assert min(float(r[6]) for r in rows) > 0.9, min(float(r[6]) for r in rows)
 b, s = d["boundary_layer"], d["slide_patches"]
 print(f"full columns {b['full_columns']}/{b['wall_vertices']}, nominal {b['nominal_columns']}, "
       f"non-orthogonality max {b['non_orthogonality_max']:.1f}, skewness max {b['skewness_max']:.2f}, "
