@@ -10,11 +10,14 @@
       cylinder of radius 0.5 to x = 10.5, closed by a flat base, cut by y = 0, in the half box
       [-20, 30] x [0, 20] x [-20, 20]: `wall` (1) the body, `symmetry` (2) the box's y = 0 face,
       `farfield` (3) its other faces. Meshed by Gmsh's command line (`gmsh`, Debian: gmsh).
-  wing OUT.msh [--size 0.03]
+  wing OUT.msh [--size 0.03] [--floor-size 1.2]
       An extruded NACA 0012 (chord 1 along x from 0, span 3 along z, blunt trailing edge of
       0.252% chord: the 4-digit formula's own) standing on the floor of the channel
       [-5, 10] x [-5, 5] x [0, 6]: `wing` (1) and `floor` (2) walls, `inlet` (3, x = -5),
-      `outlet` (4, x = 10), `sides` (5, y = +-5), `top` (6, z = 6). Gmsh too.
+      `outlet` (4, x = 10), `sides` (5, y = +-5), `top` (6, z = 6). Gmsh too. The sizes grow
+      from the wing's to 1.2 away from it, and from at most --floor-size on the floor, by 0.3 per
+      unit of height (checkMesh's aspect ratio of the floor's first layer is about that size
+      over h0).
 
 The triangles face out of the fluid (anitet's rule; anitet also reorients Gmsh's when needed).
 Medit files name their patches in "# patch LABEL NAME" lines, Gmsh files in $PhysicalNames:
@@ -186,7 +189,7 @@ Field[1] = Distance;
 Field[1].SurfacesList = {{wing()}};
 Field[1].NNodesByEdge = 80;
 Field[2] = MathEval;
-Field[2].F = Sprintf("Min({size} + 0.3 * F1, 1.2)");
+Field[2].F = Sprintf("Min(Min({size} + 0.3 * F1, 1.2), {floor_size} + 0.3 * z)");
 Background Field = 2;
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeFromPoints = 0;
@@ -201,7 +204,7 @@ def gmsh_case(args, geo, names):
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "case.geo")
         with open(path, "w") as f:
-            f.write(geo.format(size=args.size))
+            f.write(geo.format(size=args.size, floor_size=args.floor_size))
         run = subprocess.run(["gmsh", path, "-2", "-format", "msh41", "-o", os.path.abspath(args.out)],
                              capture_output=True, text=True)
         if run.returncode != 0:
@@ -236,6 +239,8 @@ def main():
     p.add_argument("--length", type=float, default=10.0)
     p.add_argument("--segments", type=int, default=48)
     p.add_argument("--size", type=float, default=None, help="Gmsh cases: the size at the body")
+    p.add_argument("--floor-size", type=float, default=1.2,
+                   help="wing: the largest size on the floor (a wall too; its layers' aspect ratio is this over h0)")
     args = p.parse_args()
     if args.case == "pipe":
         labels, names = pipe(args)
