@@ -24,13 +24,13 @@ def main():
     ap.add_argument("--feature", action="append", default=[])
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args()
-    rows = [line.rstrip("\n").split(",") for line in open(a.csv)][1:]
-    x, y, z = (np.array([float(r[k]) for r in rows]) for k in range(3))
-    layers = np.array([int(r[3]) for r in rows])
-    first = np.array([float(r[4]) for r in rows])
-    total = np.array([float(r[5]) for r in rows])
-    share = np.array([float(r[6]) for r in rows])
-    patches = [set(map(int, r[7].split())) for r in rows]
+    lines = [line.rstrip("\n").split(",") for line in open(a.csv)]
+    col = {name: k for k, name in enumerate(lines[0])}
+    rows = lines[1:]
+    get = lambda name, kind=float: np.array([kind(r[col[name]]) for r in rows]) if name in col else np.full(len(rows), np.nan)
+    x, y, z = get("x"), get("y"), get("z")
+    layers, first, total, share = get("layers", int), get("first_height"), get("total_height"), get("normal_share")
+    patches = [set(map(int, r[col["patches"]].split())) for r in rows]
     on = lambda label: np.array([label in p for p in patches], bool)
     nominal = a.h0 * (a.growth ** a.layers - 1) / (a.growth - 1)
     groups = [("all walls", np.ones(len(rows), bool))]
