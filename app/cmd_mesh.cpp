@@ -355,6 +355,7 @@ class MeshCommand {
       bl.first_height = args_.bl_first_height;
       bl.growth = args_.bl_growth;
       bl.layers = args_.bl_layers;
+      bl.mitre = args_.bl_mitre;
     }
     if (args_.bl_sizing && (args_.bl_patches.empty() || !(args_.bl_growth > 1.0))) {
       std::cerr << kCmd << ": --bl-sizing needs --bl-patches and --bl-growth above 1\n";
@@ -657,6 +658,7 @@ int check_mesh_option_combinations(const CLI::App& cmd, const MeshArgs& a) {
       {"--bl-slide-patches", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-cells", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-columns", !bl, "--bl-patches (the walls the boundary layer grows on)"},
+      {"--bl-mitre", !bl, "--bl-patches (the walls the boundary layer grows on)"},
       {"--bl-cells", layers_only, "the whole pipeline (--stop-after layers writes stage 1's tets)"},
       {"--bl-reynolds", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
       {"--bl-ref-length", !(a.bl_yplus > 0.0), "--bl-yplus (it turns y+ into a first height)"},
@@ -823,6 +825,12 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
                   "layers its column reaches, its first and total height, its normal share (the least cosine "
                   "between the column and its wall triangles' normals) and its patch labels (to see "
                   "the columns at a trailing edge, a wing's tip or root)")
+      ->group(bl_group);
+  cmd->add_flag("--bl-mitre", args.bl_mitre,
+                "At the walls' edges and corners (a trailing edge, a wing's tip, its root on a wall) "
+                "lengthen each column by 1/cos of its angle to the farthest wall normal there (at most "
+                "2), so that the layers keep their thickness across every wall; without it a "
+                "right-angled edge's layers are 0.71 as thick across each wall as along the column")
       ->group(bl_group);
   cmd->add_flag("--bl-sizing", args.bl_sizing,
                 "Refine the interior to continue the boundary layer's heights (normal size h0 + (r - 1) d "

@@ -135,6 +135,7 @@ double LayerBuilder::bl_height(uint32_t a, const double d[3]) const {
   star_normals(a, front_.star(a), normals, weights);
   const double margin = star_margin(normals, into_frame(a, d).data());
   if (margin < bl.grazing_margin) h *= std::clamp(margin / bl.grazing_margin, 0.1, 1.0);
+  else if (bl.mitre && margin < 1.0) h /= std::max(margin, bl.mitre_min_cosine);
   // Fronts colliding: the rest of the BL (this layer and the ones after it, at full height)
   // may fill only a share of the free distance across, which the front there shares too.
   double rest = 0.0;

@@ -125,6 +125,12 @@ struct BoundaryLayerOptions {
   double gradation = 1.5;             // neighbours' heights differ by at most this factor,
   int gradation_rings = 3;            // up to this many edges away from a reduced vertex
   double gap_share = 0.4;             // the BL may fill this share of the free distance across
+  // Mitred edges and corners: a column whose direction d meets its star's normals at most at
+  // cosine c < 1 (a convex or concave edge, a trailing edge, a wing's root) is lengthened to
+  // h / max(c, mitre_min_cosine), so that the layer keeps its thickness h across every wall there
+  // (without it, a right-angled edge's layers are 0.71 h thick across each wall).
+  bool mitre = false;
+  double mitre_min_cosine = 0.5;
   int32_t region = 1;                 // tet_region of BL tets
   // A vertex that is not an input vertex whose planned BL height is below this fraction of
   // h0 r^i (fronts colliding: thin gaps, trailing edges) stops for that layer (reported) instead
