@@ -58,7 +58,8 @@ for c in $cases; do
   if [ -f "$foam" ]; then
     checkmesh "$out/$c" "$out/$c.checkMesh.log"
     verdict=$(grep -E "^Mesh OK\.|^Failed [0-9]+ mesh check" "$out/$c.checkMesh.log" | head -1)
-    verdict="$verdict$(grep -o "Max aspect ratio: [0-9.e+]*" "$out/$c.checkMesh.log" | sed 's/^/; /')"
+    # The flagged checks (checkMesh marks them ***), shortened.
+    verdict="$verdict$(grep -E '^ *\*\*\*' "$out/$c.checkMesh.log" | sed -E 's/^ *\*\*\*/; /; s/ (which may|detected).*//' | tr -d '\n')"
   fi
   echo "$c|$verdict" >>"$out/verdicts.txt"
   echo "$c done: $verdict (load $(cut -d' ' -f1 /proc/loadavg))"
