@@ -475,14 +475,16 @@ size_t Optimizer::perturb_pass(const std::vector<uint8_t>* near) {
 size_t Optimizer::polish_pass(std::vector<uint8_t>& near) {
   constexpr double kPolishQuality = 0.1;
   size_t moved = 0;
-  for (uint32_t t : optimize_detail::tets_below(mesh_, kPolishQuality, quality_, &flips_.memo))
-    for (int i = 0; i < 4 && !mesh_.is_deleted(t) && !fixed_tet(t); ++i) {
+  for (uint32_t t : optimize_detail::tets_below(mesh_, kPolishQuality, quality_, &flips_.memo)) {
+    if (mesh_.is_deleted(t) || fixed_tet(t)) continue;
+    for (int i = 0; i < 4 && !mesh_.is_deleted(t); ++i) {
       const bool mv = perturb_vertex(t, i, 8 * options_.perturb_trials, 10, !quality_.anisotropic());
       moved += mv;
       if (mv)
         for (uint32_t b : work_.ball)
           for (int k = 0; k < 4; ++k) near[mesh_.vertex(b, k)] = 1;
     }
+  }
   return moved;
 }
 

@@ -11,15 +11,20 @@ double distance(const double* p, const double* q) {
   return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
 }
 
+// The normal (p1 - p0) x (p2 - p0) of the triangle p0 p1 p2 (not unit).
+void triangle_normal(const double* p0, const double* p1, const double* p2, double n[3]) {
+  const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+  const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
 // The distance from q to the plane of the triangle p (0 for a degenerate one).
 double height_over(const double* const p[3], const double* q) {
-  double e1[3], e2[3], w[3];
-  for (int k = 0; k < 3; ++k) {
-    e1[k] = p[1][k] - p[0][k];
-    e2[k] = p[2][k] - p[0][k];
-    w[k] = q[k] - p[0][k];
-  }
-  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+  double n[3];
+  triangle_normal(p[0], p[1], p[2], n);
+  const double w[3] = {q[0] - p[0][0], q[1] - p[0][1], q[2] - p[0][2]};
   const double ln = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   return ln > 0.0 ? std::abs(n[0] * w[0] + n[1] * w[1] + n[2] * w[2]) / ln : 0.0;
 }
@@ -124,9 +129,8 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
   for (size_t t = 0; t < surface.num_triangles(); ++t) {
     const uint32_t* c = &surface.tri[3 * t];
     if (std::find(bl.wall_patches.begin(), bl.wall_patches.end(), surface.patch[t]) == bl.wall_patches.end()) continue;
-    const double *a = surface.point(c[0]), *b = surface.point(c[1]), *d = surface.point(c[2]);
-    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-    const double nrm[3] = {e2[1] * e1[2] - e2[2] * e1[1], e2[2] * e1[0] - e2[0] * e1[2], e2[0] * e1[1] - e2[1] * e1[0]};
+    double nrm[3];
+    triangle_normal(surface.point(c[0]), surface.point(c[2]), surface.point(c[1]), nrm);  // reversed: into the fluid
     const double ln = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = c[k];
