@@ -7,6 +7,7 @@
 # OUTDIR/CASE.json (anitet's --json), OUTDIR/CASE.checkMesh.log, OUTDIR/CASE.columns.csv and the
 # table OUTDIR/table.md. Cases: airplane5 airplane15 pipe hemisphere wing (default: all).
 # Not run by CI (about 15 minutes on an idle core; Gmsh for the hemisphere and the wing).
+# CORE=N: the core to run on (default 0).
 # TABLE_ONLY=1: no run, the table from the files OUTDIR has.
 set -u
 anitet=$(realpath "${1:?usage: run.sh ANITET OUTDIR [CASE...]}")
@@ -47,12 +48,12 @@ checkmesh() {  # checkmesh CASE_DIR LOG: checkMesh on CASE_DIR/constant/polyMesh
 
 [ -n "${TABLE_ONLY:-}" ] ||
 { echo "date: $(date -u '+%Y-%m-%d %H:%M UTC'); anitet: $(cd "$root" && git rev-parse --short HEAD)"
-  echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg) at the start; each run taskset -c 0"; } >"$out/table.md"
+  echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg) at the start; each run taskset -c ${CORE:-0}"; } >"$out/table.md"
 for c in $cases; do
   [ -n "${TABLE_ONLY:-}" ] && break
   s=$(surface "$c")
   # shellcheck disable=SC2046
-  taskset -c 0 "$anitet" mesh "$s" -o "$out/$c/constant/polyMesh" --bl-cells prisms --bl-columns "$out/$c.columns.csv" \
+  taskset -c "${CORE:-0}" "$anitet" mesh "$s" -o "$out/$c/constant/polyMesh" --bl-cells prisms --bl-columns "$out/$c.columns.csv" \
     $(options "$c") --json >"$out/$c.json" 2>"$out/$c.err" || { echo "$c: anitet mesh exited $?"; continue; }
   verdict="(no OpenFOAM)"
   if [ -f "$foam" ]; then
