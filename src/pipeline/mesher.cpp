@@ -25,28 +25,6 @@ namespace anitet {
 
 namespace {
 
-// Stage 1's sizing: the surface's own sizes (heights in proportion to the triangles they stand
-// on), except where the user's metric is anisotropic: there the metric, whose stretched
-// directions the layers must follow (stage 1 also measures its directions and margins in it).
-// With the surface's sizes, the layers on stretched triangles are far thinner than the metric
-// asks, and refinement cannot make up for that.
-class LayerSizing final : public SizingField {
- public:
-  LayerSizing(const SizingField& surface, const SizingField* user) : surface_(surface), user_(user) {}
-  void metric(const double p[3], double m[6]) const override {
-    if (user_) {
-      user_->metric(p, m);
-      if (!metric_is_isotropic(m)) return;
-    }
-    surface_.metric(p, m);
-  }
-  bool isotropic() const override { return !user_ && surface_.isotropic(); }
-
- private:
-  const SizingField& surface_;
-  const SizingField* user_;
-};
-
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 

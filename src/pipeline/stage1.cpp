@@ -26,8 +26,10 @@ Result<SlideSurface> slide_and_validate(const SurfaceMesh& surface, const Bounda
   return slid;
 }
 
-Result<Stage1Result> run_stage1(const SurfaceMesh& input, const LayersOptions& input_options) {
-  IsotropicSurfaceSizing sizing(input);
+Result<Stage1Result> run_stage1(const SurfaceMesh& input, const LayersOptions& input_options,
+                                const SizingField* metric) {
+  const IsotropicSurfaceSizing surface_sizing(input);
+  const LayerSizing sizing(surface_sizing, metric);
   Stage1Result out;
   LayersOptions options = input_options;
   if (options.boundary_layer.enabled() && !options.boundary_layer.slide_patches.empty()) {
