@@ -17,13 +17,12 @@ const Quality& Quality::euclidean() {
   return empty;
 }
 
-double Quality::of(const TetMesh& m, const uint32_t v[4]) const {
-  const double* p[4] = {m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3])};
-  if (vertex_metric.empty()) return meshops::shape_quality(p[0], p[1], p[2], p[3]);
+meshops::MetricMap Quality::map(const uint32_t v[4]) const {
+  if (vertex_metric.empty()) return {};
   double mean[6] = {0, 0, 0, 0, 0, 0};
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 6; ++k) mean[k] += 0.25 * vertex_metric[6 * size_t(v[i]) + k];
-  return meshops::metric_shape_quality(meshops::MetricMap::of(mean), p[0], p[1], p[2], p[3]);
+  return meshops::MetricMap::of(mean);
 }
 
 bool FlipMemo::still_fails(uint32_t t, const uint32_t v[4]) const {

@@ -23,8 +23,15 @@ namespace anitet::optimize_detail {
 struct Quality {
   std::vector<double> vertex_metric;
   bool anisotropic() const { return !vertex_metric.empty(); }
-  double of(const TetMesh& m, const uint32_t v[4]) const;
+  double of(const TetMesh& m, const uint32_t v[4]) const { return of(m, v, map(v)); }
   double tet(const TetMesh& m, uint32_t t) const { return of(m, &m.tet_v[4 * size_t(t)]); }
+  // The metric a tet on v[4] is measured in (the mean of its vertices' metrics; the identity when
+  // Euclidean), and the quality in a given one: a caller that measures the same tets again and
+  // again while only their points move (a vertex's trial positions) factors it once.
+  meshops::MetricMap map(const uint32_t v[4]) const;
+  double of(const TetMesh& m, const uint32_t v[4], const meshops::MetricMap& map) const {
+    return meshops::metric_shape_quality(map, m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
+  }
   static const Quality& euclidean();  // the empty one
 };
 

@@ -80,6 +80,10 @@ class Optimizer {
   struct Work {
     std::vector<uint32_t> ball;
     std::vector<double> old_q, new_q;
+    // Anisotropic: the metric each ball tet is measured in (Quality::map), which stays while v
+    // tries positions (the vertices' metrics are measured again between passes only): the
+    // trials then map and measure, without a mean and a Cholesky factor per tet and trial.
+    std::vector<meshops::MetricMap> maps;
     double old_min = 1.0;
     size_t target = SIZE_MAX;   // perturbation: the index in `ball` of the tet to open (SIZE_MAX: none)
     double target_floor = 0.0;  // and the floor of the other tets when only it gains
@@ -172,9 +176,12 @@ void Optimizer::refresh_metrics() {
 
 void Optimizer::measure_ball(Work& w) {
   w.old_q.resize(w.ball.size());
+  w.maps.resize(w.ball.size());
   w.old_min = 1.0;
   for (size_t k = 0; k < w.ball.size(); ++k) {
-    w.old_q[k] = tet_q_.empty() ? quality_.tet(mesh_, w.ball[k]) : tet_q_[w.ball[k]];
+    const uint32_t* tv = &mesh_.tet_v[4 * size_t(w.ball[k])];
+    w.maps[k] = quality_.map(tv);
+    w.old_q[k] = tet_q_.empty() ? quality_.of(mesh_, tv, w.maps[k]) : tet_q_[w.ball[k]];
     w.old_min = std::min(w.old_min, w.old_q[k]);
   }
 }
@@ -189,7 +196,7 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
   bool ok = true;
   w.new_q.resize(w.ball.size());
   for (size_t k = 0; k < w.ball.size() && ok; ++k) {
-    const double q = quality_.tet(mesh_, w.ball[k]);
+    const double q = quality_.of(mesh_, &mesh_.tet_v[4 * size_t(w.ball[k])], w.maps[k]);
     w.new_q[k] = q;
     q_min = std::min(q_min, q);
     ok = q > 0.0 && q >= std::min(w.old_q[k], floor);
@@ -685,7 +692,7 @@ bool Optimizer::try_certify(uint32_t v, const double p[3], size_t flat) {
   double q_min = 1.0;
   size_t still_flat = 0;
   for (size_t k = 0; k < work_.ball.size() && still_flat < flat; ++k) {
-    q_min = std::min(q_min, quality_.tet(mesh_, work_.ball[k]));
+    q_min = std::min(q_min, quality_.of(mesh_, &mesh_.tet_v[4 * size_t(work_.ball[k])], work_.maps[k]));
     still_flat += !certified(work_.ball[k]);
   }
   if (still_flat < flat && q_min >= work_.old_min && meshops::all_positive(mesh_, work_.ball)) return true;
