@@ -169,7 +169,11 @@ class Refiner {
     stats_.seconds_flips += seconds_since(t);
     return check("after metric flips");
   }
-  meshops::MetricMap map_at_centroid(const uint32_t* v, size_t n) const;
+  // The mean of the n vertices' metrics (measured at their points): the metric flips measure a
+  // region in it, as the optimizer measures a tet (optimize_detail::Quality). A field query at
+  // the region's centroid instead (a background mesh's walk and a log-Euclidean mean) took most
+  // of the flips' time.
+  meshops::MetricMap map_of_vertices(const uint32_t* v, size_t n) const;
   double metric_quality(const meshops::MetricMap& map, const meshops::TetVerts& v) const {
     return meshops::metric_shape_quality(map, mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
                                          mesh_.point(v[3]));
@@ -479,17 +483,15 @@ uint32_t Refiner::insert_in_metric(const double p[3], const double mp[6], int32_
   return v;
 }
 
-meshops::MetricMap Refiner::map_at_centroid(const uint32_t* v, size_t n) const {
-  double c[3] = {0.0, 0.0, 0.0};
+meshops::MetricMap Refiner::map_of_vertices(const uint32_t* v, size_t n) const {
+  double m[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   for (size_t k = 0; k < n; ++k)
-    for (int j = 0; j < 3; ++j) c[j] += mesh_.point(v[k])[j] / double(n);
-  double m[6];
-  field_.metric(c, m);
+    for (int j = 0; j < 6; ++j) m[j] += metrics_[6 * size_t(v[k]) + j] / double(n);
   return meshops::MetricMap::of(m);
 }
 
-// Anisotropic metrics: flips that raise the worst shape in the metric (measured in the metric at
-// the centroid of the flipped region), around the tets below metric_flip_quality: 2-3 across a
+// Anisotropic metrics: flips that raise the worst shape in the metric (measured in the mean of
+// the flipped region's vertices' metrics), around the tets below metric_flip_quality: 2-3 across a
 // facet, 3-2 removing an edge of three tets. The Euclidean flips of optimize/ would undo the
 // stretched shapes the metric asks for. Protected facets and constrained edges are never
 // flipped (replace_tets refuses them), and tets of different regions are never merged.
@@ -505,12 +507,11 @@ size_t Refiner::metric_flip_pass() {
   };
   auto poor = [&](uint32_t t) {
     const meshops::TetVerts tv = tet_verts(t);
-    return metric_quality(map_at_centroid(tv.data(), 4), tv) < kFlipQuality;
+    return metric_quality(map_of_vertices(tv.data(), 4), tv) < kFlipQuality;
   };
-  // The tets as the pass finds them are measured on every core (a field query each: most of the
-  // pass's time); the loop measures again only the slots its own flips filled (refilled) and the
-  // failed ones whose neighbourhood its flips changed, so the flips are the ones of a sequential
-  // loop that tries every poor tet.
+  // The tets as the pass finds them are measured on every core; the loop measures again only
+  // the slots its own flips filled (refilled) and the failed ones whose neighbourhood its flips
+  // changed, so the flips are the ones of a sequential loop that tries every poor tet.
   const uint32_t n_start = mesh_.num_tet_slots();
   std::vector<uint8_t> poor_at_start(n_start, 0), refilled(n_start, 0);
   flip_failed_at_.resize(n_start, 0);
@@ -539,7 +540,7 @@ size_t Refiner::metric_flip_pass() {
       meshops::TetVerts nv;
       for (int j = 0; j < 4; ++j) nv[j] = mesh_.vertex(n, j);
       const uint32_t all[5] = {tv[0], tv[1], tv[2], tv[3], b};
-      const meshops::MetricMap map = map_at_centroid(all, 5);
+      const meshops::MetricMap map = map_of_vertices(all, 5);
       const double before = std::min(metric_quality(map, tv), metric_quality(map, nv));
       fresh.clear();
       double after = 1.0;
@@ -565,7 +566,7 @@ size_t Refiner::metric_flip_pass() {
       for (uint32_t r : ring_tets_) same_region &= mesh_.tet_region[r] == mesh_.tet_region[t];
       if (!same_region) continue;
       const uint32_t all[5] = {a, b, ring_[0], ring_[1], ring_[2]};
-      const meshops::MetricMap map = map_at_centroid(all, 5);
+      const meshops::MetricMap map = map_of_vertices(all, 5);
       double before = 1.0;
       for (uint32_t r : ring_tets_) {
         meshops::TetVerts rv;
