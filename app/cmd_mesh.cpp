@@ -746,8 +746,9 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
   cmd->add_flag("--no-refine", args.no_refine, "Skip refinement/coarsening by metric edge length")->group(stages);
   cmd->add_flag("--no-optimize", args.no_optimize, "Skip CVT smoothing, flips and sliver removal")->group(stages);
   cmd->add_option("--anisotropic-cycles", args.anisotropic_cycles,
-                  "With an anisotropic metric (--metric tensors, --bl-sizing): more rounds of refinement "
-                  "then optimization after the first, which even the metric lengths and shapes further")
+                  "With an anisotropic metric (--metric tensors, --bl-sizing): at most this many more rounds "
+                  "of refinement then optimization after the first, which even the metric lengths and shapes "
+                  "further; they stop after a round that raised the share of edges in range by less than 1 point")
       ->check(in_range(0, 10))
       ->capture_default_str()
       ->group(stages);

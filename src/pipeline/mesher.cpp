@@ -450,10 +450,10 @@ class MeshingRun {
         if (Status st = progress("cycles", kDoneAfterOptimize); !st.ok()) return st;
         const auto t = Clock::now();
         if (Status st = refine_optimize_cycles(mesh, field, o_.refine, o_.optimize, o_.anisotropic_cycles,
-                                               result_.refine, result_.optimize);
+                                               result_.refine, result_.optimize, o_.anisotropic_cycle_gain,
+                                               &result_.anisotropic_cycles);
             !st.ok())
           return st;
-        result_.anisotropic_cycles = o_.anisotropic_cycles;
         result_.stages.push_back({"cycles", since(t), result_.optimize.after.tets});
       }
     }
@@ -567,9 +567,12 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
 
 Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
                               const OptimizeOptions& optimize_options, int cycles, RefineStats& refine,
-                              OptimizeStats& optimize) {
+                              OptimizeStats& optimize, double min_gain, int* cycles_run) {
   const ScaledSizing scaled(field, refine_options.size_scale > 0.0 ? refine_options.size_scale : 1.0);
-  for (int c = 0; c < cycles; ++c) {
+  if (cycles_run) *cycles_run = 0;
+  bool gained = true;
+  for (int c = 0; c < cycles && gained; ++c) {
+    const double in_range_before = refine.length_in_range;
     const auto kept_vertices = static_cast<uint32_t>(mesh.num_vertices());
     Result<RefineStats> r = refine_mesh(mesh, field, refine_options);
     if (!r.ok()) return Status(r.status().code(), "stage 3b (refinement, cycle " + std::to_string(c + 2) + "): " + r.status().message());
@@ -587,6 +590,8 @@ Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const Ref
     refine.tets_after = r->tets_after;
     refine.length_mean = r->length_mean;
     refine.length_in_range = r->length_in_range;
+    // The round's optimization runs whatever the gain (its refinement changed the mesh).
+    gained = r->length_in_range >= in_range_before + min_gain;
     refine.seconds += r->seconds;
     refine.seconds_edges += r->seconds_edges;
     refine.seconds_choice += r->seconds_choice;
@@ -611,6 +616,7 @@ Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const Ref
     optimize.seconds_flips += o->seconds_flips;
     optimize.seconds_slivers += o->seconds_slivers;
     optimize.seconds_certify += o->seconds_certify;
+    if (cycles_run) ++*cycles_run;
   }
   return Status::success();
 }
