@@ -515,9 +515,13 @@ size_t Refiner::metric_flip_pass() {
   const uint32_t n_start = mesh_.num_tet_slots();
   std::vector<uint8_t> poor_at_start(n_start, 0), refilled(n_start, 0);
   flip_failed_at_.resize(n_start, 0);
+  // A tet found not poor is stamped as a failed one is: it stays not poor, and is skipped, until a
+  // change around its vertices (most tets, measured again at every sweep of every pass before).
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_start, 1024), [&](const tbb::blocked_range<uint32_t>& r) {
-    for (uint32_t t = r.begin(); t < r.end(); ++t)
+    for (uint32_t t = r.begin(); t < r.end(); ++t) {
       poor_at_start[t] = mesh_.is_deleted(t) || mesh_.is_ghost(t) ? 0 : failed_unchanged(t) ? 2 : poor(t) ? 1 : 0;
+      if (poor_at_start[t] == 0 && !mesh_.is_deleted(t) && !mesh_.is_ghost(t)) flip_failed_at_[t] = epoch_;
+    }
   });
   auto note_refilled = [&] {
     for (uint32_t c : scratch_.created)
