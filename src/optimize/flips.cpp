@@ -17,6 +17,11 @@ const Quality& Quality::euclidean() {
   return empty;
 }
 
+double Quality::of(const TetMesh& m, const uint32_t v[4]) const {
+  if (vertex_metric.empty()) return meshops::shape_quality(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
+  return of(m, v, map(v));
+}
+
 meshops::MetricMap Quality::map(const uint32_t v[4]) const {
   if (vertex_metric.empty()) return {};
   double mean[6] = {0, 0, 0, 0, 0, 0};

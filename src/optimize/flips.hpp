@@ -23,7 +23,7 @@ namespace anitet::optimize_detail {
 struct Quality {
   std::vector<double> vertex_metric;
   bool anisotropic() const { return !vertex_metric.empty(); }
-  double of(const TetMesh& m, const uint32_t v[4]) const { return of(m, v, map(v)); }
+  double of(const TetMesh& m, const uint32_t v[4]) const;
   double tet(const TetMesh& m, uint32_t t) const { return of(m, &m.tet_v[4 * size_t(t)]); }
   // The metric a tet on v[4] is measured in (the mean of its vertices' metrics; the identity when
   // Euclidean), and the quality in a given one: a caller that measures the same tets again and

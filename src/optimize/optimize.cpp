@@ -83,6 +83,7 @@ class Optimizer {
     // Anisotropic: the metric each ball tet is measured in (Quality::map), which stays while v
     // tries positions (the vertices' metrics are measured again between passes only): the
     // trials then map and measure, without a mean and a Cholesky factor per tet and trial.
+    // Empty when Euclidean.
     std::vector<meshops::MetricMap> maps;
     double old_min = 1.0;
     size_t target = SIZE_MAX;   // perturbation: the index in `ball` of the tet to open (SIZE_MAX: none)
@@ -95,8 +96,13 @@ class Optimizer {
     double start_min = 0.0;
     size_t moved = 0, rejected = 0;
   };
-  // Qualities of w.ball's tets before a move (w.old_q, w.old_min).
+  // Qualities of w.ball's tets before a move (w.old_q, w.old_min), and their metrics (w.maps).
   void measure_ball(Work& w);
+  // The quality of w.ball[k] where its points are now, in the metric measure_ball() found.
+  double ball_tet_quality(const Work& w, size_t k) const {
+    const uint32_t* tv = &mesh_.tet_v[4 * size_t(w.ball[k])];
+    return w.maps.empty() ? quality_.of(mesh_, tv) : quality_.of(mesh_, tv, w.maps[k]);
+  }
   // Tries v at p: accepted when the ball stays positive (exact) and no tet falls below
   // min(its quality in w.old_q, floor); with quality_out, the worst one must also rise. Leaves v
   // where it was otherwise. The ball is w.ball; call measure_ball() first.
@@ -176,12 +182,12 @@ void Optimizer::refresh_metrics() {
 
 void Optimizer::measure_ball(Work& w) {
   w.old_q.resize(w.ball.size());
-  w.maps.resize(w.ball.size());
+  w.maps.clear();
+  if (quality_.anisotropic())
+    for (uint32_t t : w.ball) w.maps.push_back(quality_.map(&mesh_.tet_v[4 * size_t(t)]));
   w.old_min = 1.0;
   for (size_t k = 0; k < w.ball.size(); ++k) {
-    const uint32_t* tv = &mesh_.tet_v[4 * size_t(w.ball[k])];
-    w.maps[k] = quality_.map(tv);
-    w.old_q[k] = tet_q_.empty() ? quality_.of(mesh_, tv, w.maps[k]) : tet_q_[w.ball[k]];
+    w.old_q[k] = tet_q_.empty() ? ball_tet_quality(w, k) : tet_q_[w.ball[k]];
     w.old_min = std::min(w.old_min, w.old_q[k]);
   }
 }
@@ -196,7 +202,7 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
   bool ok = true;
   w.new_q.resize(w.ball.size());
   for (size_t k = 0; k < w.ball.size() && ok; ++k) {
-    const double q = quality_.of(mesh_, &mesh_.tet_v[4 * size_t(w.ball[k])], w.maps[k]);
+    const double q = ball_tet_quality(w, k);
     w.new_q[k] = q;
     q_min = std::min(q_min, q);
     ok = q > 0.0 && q >= std::min(w.old_q[k], floor);
@@ -692,7 +698,7 @@ bool Optimizer::try_certify(uint32_t v, const double p[3], size_t flat) {
   double q_min = 1.0;
   size_t still_flat = 0;
   for (size_t k = 0; k < work_.ball.size() && still_flat < flat; ++k) {
-    q_min = std::min(q_min, quality_.of(mesh_, &mesh_.tet_v[4 * size_t(work_.ball[k])], work_.maps[k]));
+    q_min = std::min(q_min, ball_tet_quality(work_, k));
     still_flat += !certified(work_.ball[k]);
   }
   if (still_flat < flat && q_min >= work_.old_min && meshops::all_positive(mesh_, work_.ball)) return true;
