@@ -552,3 +552,26 @@ TEST(Stage1, FirstLayerFollowsAnAnisotropicVdbMetric) {
   EXPECT_GT(at(hi_, 0.5), 4.0 * target);
   EXPECT_LT(share_near(hi_), 0.05);
 }
+
+// The anisotropic cycles stop after a round whose refinement gained less than min_gain of edges
+// in range (no round can gain a whole 1.0), and all of them run with min_gain 0. The box
+// [0,1]^2 x [0,1] with the metric of sizes (0.25, 0.25, 0.04), from the Delaunay mesh of its
+// boundary lattice points.
+TEST(Pipeline, AnisotropicCyclesStopWithoutGain) {
+  const int n[3] = {4, 4, 25};
+  const test::AxisSizing field(0.25, 0.25, 0.04);
+  for (const double min_gain : {0.0, 1.0}) {
+    std::vector<double> pts;
+    TetMesh mesh = test::stretched_box_mesh(n, pts);
+    RefineStats refine;
+    OptimizeStats optimize;
+    Result<RefineStats> r = refine_mesh(mesh, field, RefineOptions());
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    refine = r.value();
+    ASSERT_TRUE(optimize_mesh(mesh, field, OptimizeOptions()).ok());
+    int ran = -1;
+    ASSERT_TRUE(refine_optimize_cycles(mesh, field, RefineOptions(), OptimizeOptions(), 3, refine, optimize, min_gain, &ran).ok());
+    EXPECT_EQ(ran, min_gain > 0.0 ? 1 : 3) << "min_gain " << min_gain;
+    EXPECT_TRUE(check_mesh(mesh).ok());
+  }
+}
