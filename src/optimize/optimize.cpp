@@ -224,8 +224,13 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
   if (ok && meshops::all_positive(mesh_, w.ball)) {
     if (!tet_q_.empty())
       for (size_t k = 0; k < w.ball.size(); ++k) tet_q_[w.ball[k]] = w.new_q[k];
-    if (quality_out) *quality_out = q_min;
-    if (quality_out) measure_ball(w);  // the new position is the next trial's reference
+    if (quality_out) {
+      // The new position is the next trial's reference: its qualities are new_q (every tet
+      // measured, since all passed), the ball and its metrics unchanged.
+      *quality_out = q_min;
+      w.old_q.swap(w.new_q);
+      w.old_min = q_min;
+    }
     return true;
   }
   std::copy_n(saved, 3, x);
