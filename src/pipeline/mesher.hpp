@@ -142,14 +142,14 @@ struct MesherResult {
 };
 
 // Stages 3b + 3c again on a refined and optimized mesh: up to `cycles` more rounds of refine_mesh
-// then optimize_mesh with the same field and options, stopping after a round whose refinement
-// raised the share of edges in range (RefineStats::length_in_range) by less than min_gain over
-// the round's before (`refine` holds the first's at the call); `cycles_run` gets the rounds made (refine_mesh scales the field by
-// refine.size_scale itself; optimize_mesh gets it scaled). The figures are added to `refine` and
-// `optimize`, except the lengths, the counts after and the quality after, which are the last
-// round's. For anisotropic fields: the optimizer's moves let through collapses and splits that
-// the stretched neighbourhoods refused, and each smoothing evens the lengths further
-// (bench/aniso_cube --direct measures it).
+// then optimize_mesh with the same field and options (refine_mesh scales the field by
+// refine.size_scale itself; optimize_mesh gets it scaled), stopping after a round whose
+// refinement raised the share of edges in range (RefineStats::length_in_range) by less than
+// min_gain over the round's before (`refine` holds the first's at the call); `cycles_run` gets
+// the rounds made. The figures are added to `refine` and `optimize`, except the lengths, the
+// counts after and the quality after, which are the last round's. For anisotropic fields: the
+// optimizer's moves let through collapses and splits that the stretched neighbourhoods refused,
+// and each smoothing evens the lengths further (bench/aniso_cube --direct measures it).
 Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
                               const OptimizeOptions& optimize_options, int cycles, RefineStats& refine,
                               OptimizeStats& optimize, double min_gain = 0.0, int* cycles_run = nullptr);

@@ -232,8 +232,9 @@ class Refiner {
   std::unordered_set<uint64_t> refused_;  // edges (a << 32 | b) whose collapse was refused
   // Change stamps for the metric flips: epoch_ grows with every change of the tets, a vertex
   // keeps the epoch of the last change of its tets, and a tet slot the epoch at which no flip
-  // took it (0: none since it was made). A tet none of whose vertices' tets changed since then
-  // has the same neighbours and edge rings, so the same flips would fail again: it is skipped.
+  // took it or it was found not poor (0: none since it was made). A tet none of whose vertices'
+  // tets changed since then has the same shape, neighbours and edge rings, so it is as good as
+  // it was or the same flips would fail again: it is skipped.
   uint32_t epoch_ = 1;
   std::vector<uint32_t> vertex_epoch_, flip_failed_at_;
   // After a point's insertion: its tets become its vertices' (vt_), their vertices are touched
