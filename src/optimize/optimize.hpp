@@ -26,7 +26,8 @@
 //     ball's old worst quality and sliver_quality)), or that tet's alone (no other tet ending
 //     below min(its old quality, sliver_quality): the ball of a vertex of S1 holds tets on S's
 //     sliver triangles, which no move lifts and which would block the rule above), interleaved
-//     with flips, for sliver_rounds rounds.
+//     with flips, for sliver_rounds rounds (with an anisotropic metric, only while the tets below
+//     sliver_quality fall by 2% a round: there the rounds made 2000 moves each and left as many).
 //   - Collapses: a tet that no vertex move lifts (four nearly collinear points, each held by its
 //     other tets, as at sharp creases) gets an edge collapse, its edges shortest first: the removed
 //     end is free, the other stays (or, when free too, first tries the midpoint). Applied when
