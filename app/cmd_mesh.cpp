@@ -24,6 +24,7 @@
 #include "io/volume_io.hpp"
 #include "metric/metric_field.hpp"
 #include "metric_options.hpp"
+#include "pipeline/bl_report.hpp"
 #include "pipeline/mesher.hpp"
 #include "pipeline/result_json.hpp"
 #include "quality/html_report.hpp"
@@ -548,37 +549,9 @@ class MeshCommand {
     return not_written_.empty() ? kExitOk : kExitReadError;
   }
 
-  // --bl-columns FILE: one CSV line per wall vertex (in the meshed surface's order, as the report
-  // measured them): its point, the layers its column reaches, its first and total height, its
-  // normal share (BoundaryLayerReport::column_normal_share), and the labels of the patches it is
-  // on (space-separated: a wall's junction with a slide patch, a wing's root on the floor).
+  // --bl-columns FILE: one CSV line per wall vertex (bl_columns_csv).
   Status write_bl_columns(const MesherResult& r) const {
-    const BoundaryLayerReport& bl = r.boundary_layer;
-    const SurfaceMesh& s = meshed_surface(r);
-    std::vector<std::vector<int32_t>> labels(s.num_vertices());
-    for (size_t t = 0; t < s.num_triangles(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        std::vector<int32_t>& l = labels[s.tri[3 * t + k]];
-        if (std::find(l.begin(), l.end(), s.patch[t]) == l.end()) l.push_back(s.patch[t]);
-      }
-    const std::vector<int32_t>& walls = args_.bl_patches;
-    std::string out = "x,y,z,layers,first_height,total_height,normal_share,patches\n";
-    char line[160];
-    size_t c = 0;
-    for (uint32_t v = 0; v < s.num_vertices() && c < bl.column_layers.size(); ++v) {
-      std::vector<int32_t>& l = labels[v];
-      if (std::none_of(l.begin(), l.end(), [&](int32_t p) { return std::find(walls.begin(), walls.end(), p) != walls.end(); }))
-        continue;
-      std::sort(l.begin(), l.end());
-      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%d,%.9g,%.9g,%.6f,", bl.column_xyz[3 * c], bl.column_xyz[3 * c + 1],
-                    bl.column_xyz[3 * c + 2], bl.column_layers[c], bl.column_first[c], bl.column_total[c],
-                    bl.column_normal_share[c]);
-      out += line;
-      for (size_t i = 0; i < l.size(); ++i) out += (i ? " " : "") + std::to_string(l[i]);
-      out += "\n";
-      ++c;
-    }
-    return write_file_bytes(args_.bl_columns, out);
+    return write_file_bytes(args_.bl_columns, bl_columns_csv(r.boundary_layer, meshed_surface(r), args_.bl_patches));
   }
 
   // --bl-cells prisms: the mesh to write, each BL prism's three tets merged into one prism cell

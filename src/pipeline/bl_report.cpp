@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace anitet {
 
@@ -233,6 +234,32 @@ void measure_boundary_layer_cells(const TetMesh& mesh, int32_t first_bl_region, 
   }
   r.non_orthogonality_mean = r.dual_faces ? angle_sum / double(r.dual_faces) : 0.0;
   summarize_transition(transition, edge_ratio_sum, r);
+}
+
+std::string bl_columns_csv(const BoundaryLayerReport& r, const SurfaceMesh& surface, const std::vector<int32_t>& walls) {
+  std::vector<std::vector<int32_t>> labels(surface.num_vertices());
+  for (size_t t = 0; t < surface.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      std::vector<int32_t>& l = labels[surface.tri[3 * t + k]];
+      if (std::find(l.begin(), l.end(), surface.patch[t]) == l.end()) l.push_back(surface.patch[t]);
+    }
+  const auto is_wall = [&](int32_t p) { return std::find(walls.begin(), walls.end(), p) != walls.end(); };
+  std::string out = "x,y,z,layers,first_height,total_height,normal_share,patches\n";
+  char line[160];
+  size_t c = 0;
+  for (uint32_t v = 0; v < surface.num_vertices() && c < r.column_layers.size(); ++v) {
+    std::vector<int32_t>& l = labels[v];
+    if (std::none_of(l.begin(), l.end(), is_wall)) continue;
+    std::sort(l.begin(), l.end());
+    std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%d,%.9g,%.9g,%.6f,", r.column_xyz[3 * c], r.column_xyz[3 * c + 1],
+                  r.column_xyz[3 * c + 2], r.column_layers[c], r.column_first[c], r.column_total[c],
+                  r.column_normal_share[c]);
+    out += line;
+    for (size_t i = 0; i < l.size(); ++i) out += (i ? " " : "") + std::to_string(l[i]);
+    out += "\n";
+    ++c;
+  }
+  return out;
 }
 
 }  // namespace anitet

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/surface_mesh.hpp"
@@ -70,5 +71,13 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
 // The dual-mesh figures above (dual_faces .. skew_faces) on the tets of regions >= first_bl_region
 // (the final mesh's BL regions, or T1's BoundaryLayerOptions::region).
 void measure_boundary_layer_cells(const TetMesh& mesh, int32_t first_bl_region, BoundaryLayerReport& r);
+
+// The columns of `r` as CSV text (`anitet mesh --bl-columns`, anitet_mesh_write_bl_columns): a
+// header line, then one line per wall vertex (a vertex of `surface`, the surface that was meshed,
+// on a triangle whose patch is in `walls`), in the surface's order as measure_boundary_layer
+// measured them: its point, the layers its column reaches, its first and total height, its
+// normal share, and the labels of the patches it is on, ascending and space-separated (a wall's
+// junction with a slide patch, a wing's root on the floor).
+std::string bl_columns_csv(const BoundaryLayerReport& r, const SurfaceMesh& surface, const std::vector<int32_t>& walls);
 
 }  // namespace anitet
