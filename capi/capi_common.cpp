@@ -96,7 +96,7 @@ static_assert(offsetof(anitet_options, hmin) == offsetof(anitet_options, attempt
                   offsetof(anitet_options, bl_patches) == offsetof(anitet_options, anisotropic_cycles) + 8 &&
                   offsetof(anitet_options, bl_first_height) == offsetof(anitet_options, bl_patches) + sizeof(void*) &&
                   offsetof(anitet_options, push_tasks_min_vertices) == offsetof(anitet_options, bl_sizing) + 4 &&
-                  offsetof(anitet_options, bl_num_slide_patches) == offsetof(anitet_options, reserved1) + sizeof(int32_t),
+                  offsetof(anitet_options, bl_num_slide_patches) == offsetof(anitet_options, bl_mitre) + sizeof(int32_t),
               "anitet_options (version 3) has padding");
 static_assert(offsetof(anitet_options, bl_slide_patches) == offsetof(anitet_options, bl_num_slide_patches) + 8 &&
                   sizeof(anitet_options) == offsetof(anitet_options, bl_slide_patches) + sizeof(void*),

@@ -15,6 +15,8 @@
 #include "handles.hpp"
 #include "layers/layers.hpp"
 #include "metric/bounded_sizing.hpp"
+#include "io/file_bytes.hpp"
+#include "pipeline/bl_report.hpp"
 #include "pipeline/mesher.hpp"
 #include "pipeline/result_json.hpp"
 #include "pipeline/stage1.hpp"
@@ -79,6 +81,9 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
   if (o.bl_sizing != 0 && (o.bl_num_patches == 0 || !(o.bl_growth > 1.0)))
     return bad_option(function, "bl_sizing needs boundary-layer walls (bl_num_patches > 0) and bl_growth above 1");
   if (o.push_tasks_min_vertices < 0) return bad_option(function, "push_tasks_min_vertices is negative");
+  if (o.bl_mitre != 0 && o.bl_mitre != 1) return bad_option(function, "bl_mitre is " + std::to_string(o.bl_mitre) + ", not 0 or 1");
+  if (o.bl_mitre != 0 && o.bl_num_patches == 0)
+    return bad_option(function, "bl_mitre needs boundary-layer walls (bl_num_patches > 0)");
   out.validation.merge_duplicate_vertices = o.merge_duplicate_vertices != 0;
   out.validation.orient_shells = o.orient_shells != 0;
   out.validation.check_self_intersections = o.check_self_intersections != 0;
@@ -107,6 +112,7 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
     bl.first_height = o.bl_first_height;
     bl.growth = o.bl_growth;
     bl.layers = o.bl_layers;
+    bl.mitre = o.bl_mitre != 0;
   }
   out.boundary_layer_sizing = o.bl_sizing != 0;
   return ANITET_OK;
@@ -120,6 +126,13 @@ anitet::Status in_abi_words(const anitet::Status& status) {
   for (size_t at = message.find(cli); at != std::string::npos; at = message.find(cli, at + abi.size()))
     message.replace(at, cli.size(), abi);
   return anitet::Status(status.code(), message);
+}
+
+// A run with walls keeps them and the surface it meshed for anitet_mesh_write_bl_columns (the
+// surface only when run->slide has none of its own).
+void keep_bl_walls(anitet_mesh& mesh, const anitet::MesherOptions& mo, anitet::SurfaceMesh&& meshed) {
+  mesh.bl_walls = mo.layers.boundary_layer.wall_patches;
+  if (!mesh.bl_walls.empty() && mesh.run->slide.changes.empty()) mesh.bl_surface = std::move(meshed);
 }
 
 void log_line(const anitet_options& o, int32_t level, const std::string& text) {
@@ -227,6 +240,7 @@ int anitet_mesher_run(const anitet_surface* surface, const anitet_metric* metric
     auto mesh = std::make_unique<anitet_mesh>();
     mesh->mesh = std::move(run->mesh);
     mesh->run = std::make_unique<anitet::MesherResult>(std::move(run).value());
+    keep_bl_walls(*mesh, mo, std::move(repaired));
     if (opt.bl_cells == ANITET_BL_CELLS_PRISMS)
       if (anitet::Status st = make_prism_cells(*mesh); !st.ok())
         return set_error(ANITET_ERR_INTERNAL, std::string(fn) + ": bl_cells prisms: " + st.message());
@@ -278,6 +292,7 @@ int anitet_layers_run(const anitet_surface* surface, const anitet_options* optio
     auto mesh = std::make_unique<anitet_mesh>();
     mesh->mesh = std::move(built->mesh);
     mesh->run = std::move(run);
+    keep_bl_walls(*mesh, mo, std::move(repaired));
     if (opt.progress && opt.progress(1.0, "done", opt.progress_user_data) != 0)
       return set_error(ANITET_ERR_CANCELLED, std::string(fn) + ": cancelled at stage 'done'");
     *out = mesh.release();
@@ -409,6 +424,21 @@ int anitet_mesh_run_json(const anitet_mesh* mesh, char* buf, int64_t buf_len, in
     if (mesh == nullptr) return null_argument(fn, "mesh");
     if (!mesh->run) return no_run(fn);
     return copy_text(fn, anitet::mesher_result_json(*mesh->run), buf, buf_len, needed);
+  });
+}
+
+int anitet_mesh_write_bl_columns(const anitet_mesh* mesh, const char* path) {
+  const char* const fn = __func__;
+  return guard(fn, [&] {
+    if (mesh == nullptr) return null_argument(fn, "mesh");
+    if (path == nullptr) return null_argument(fn, "path");
+    if (!mesh->run) return no_run(fn);
+    if (mesh->bl_walls.empty())
+      return set_error(ANITET_ERR_INVALID_ARGUMENT,
+                       std::string(fn) + ": the mesh has no boundary layer (its run had no walls, options->bl_num_patches 0)");
+    const anitet::MesherResult& r = *mesh->run;
+    const anitet::SurfaceMesh& meshed = r.slide.changes.empty() ? mesh->bl_surface : r.slide.surface;
+    return set_status(fn, anitet::write_file_bytes(path, anitet::bl_columns_csv(r.boundary_layer, meshed, mesh->bl_walls)));
   });
 }
 

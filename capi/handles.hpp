@@ -38,6 +38,10 @@ struct anitet_mesh {
   std::vector<int32_t> prism_region;
   std::vector<int32_t> tet_prism;
   anitet::PrismMergeStats prism_stats;  // the merge's figures (anitet_run_stats version 3)
+  // A run with boundary-layer walls: their labels and the surface that was meshed, for
+  // anitet_mesh_write_bl_columns (the slide patches' re-triangulated surface is run->slide's).
+  std::vector<int32_t> bl_walls;
+  anitet::SurfaceMesh bl_surface;
 };
 
 struct anitet_metric {

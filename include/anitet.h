@@ -185,7 +185,15 @@ typedef struct anitet_options {
   int32_t push_tasks_min_vertices;   /**< stage 1 pushes a layer of at least this many front
                                         vertices on two tasks (the same mesh either way;
                                         0: one by one; default 2000) */
-  int32_t reserved1;                 /**< keep 0 (alignment; may gain a meaning later) */
+  int32_t bl_mitre;                  /**< 1 (`anitet mesh --bl-mitre`; needs walls,
+                                        bl_num_patches > 0): at the walls' edges and corners
+                                        each column is lengthened by 1/cos of its angle to the
+                                        farthest wall normal there (at most 2), so that the
+                                        layers keep their thickness across every wall; 0 (the
+                                        default): a right-angled edge's layers are 0.71 as thick
+                                        across each wall as along the column. In version 3's
+                                        reserved1 slot (same layout, 0 the default and what old
+                                        callers were told to keep): no new version was needed */
   /* Version 4 (read only when version >= 4; older callers get the defaults): */
   int32_t bl_num_slide_patches;      /**< boundary layer: the number of labels in
                                         bl_slide_patches (default 0: none); > 0 needs walls
@@ -451,6 +459,16 @@ ANITET_API int anitet_mesh_write(const anitet_mesh* mesh, const char* path);
 /** Writes the per-vertex metric as a Medit .sol (a binary GMF .solb when the path ends in .solb).
  *  INVALID_ARGUMENT when the mesh has none. */
 ANITET_API int anitet_mesh_write_metric(const anitet_mesh* mesh, const char* path);
+/** Writes the boundary layer's columns as CSV (`anitet mesh --bl-columns`, the same bytes): a
+ *  header line "x,y,z,layers,first_height,total_height,normal_share,patches", then one line per
+ *  wall vertex in the surface's order: its point, the layers its column reaches, its first and
+ *  total height (0 when it reaches none), its normal share (the least cosine between the column
+ *  and its wall triangles' normals: 1 on a flat wall, about 0.71 at a right-angled edge) and the
+ *  labels of the patches it is on, space-separated. For a mesh of anitet_mesher_run or
+ *  anitet_layers_run with walls (options->bl_num_patches > 0). Errors: INVALID_ARGUMENT (NULL;
+ *  a mesh not made by a run, or made without walls: the message says which), FILE_NOT_FOUND
+ *  (cannot create the file). */
+ANITET_API int anitet_mesh_write_bl_columns(const anitet_mesh* mesh, const char* path);
 
 /** Counts; any output pointer may be NULL. */
 ANITET_API int anitet_mesh_get_counts(const anitet_mesh* mesh, int64_t* num_points,

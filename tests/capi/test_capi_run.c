@@ -84,6 +84,7 @@ static void test_options_v3_defaults(void** state) {
   assert_int_equal(b.bl_layers, 10);
   assert_int_equal(b.bl_sizing, 0);
   assert_int_equal(b.push_tasks_min_vertices, 2000);
+  assert_int_equal(b.bl_mitre, 0);
   assert_int_equal(a.push_tasks_min_vertices, 2000);
   /* The initializer and the function agree field by field. */
   assert_true(a.attempts_seconds == b.attempts_seconds && a.bl_growth == b.bl_growth);
@@ -467,7 +468,7 @@ static void test_options_v4_defaults(void** state) {
   assert_null(a.bl_slide_patches);
   assert_int_equal(b.push_tasks_min_vertices, a.push_tasks_min_vertices);
   /* Version 3: nothing written past its end. */
-  assert_int_equal(v3_size, offsetof(anitet_options, reserved1) + sizeof(int32_t));
+  assert_int_equal(v3_size, offsetof(anitet_options, bl_mitre) + sizeof(int32_t));
   memset(&v3, 0xff, sizeof v3);
   assert_int_equal(anitet_options_init(&v3, 3), ANITET_OK);
   assert_int_equal(v3.version, 3);
@@ -804,6 +805,158 @@ static void test_bl_cells_errors(void** state) {
   anitet_surface_destroy(s);
 }
 
+/* ---- bl_mitre and the columns' CSV ---------------------------------------------------------- */
+
+/* The cube [0, 1]^3 (patch 1, 2 x 2 squares a face: 8 corners, 12 edge midpoints, 6 face centres)
+ * inside the box [-2, 3]^3 (patch 2), as bl_mitre_check.sh's with fewer triangles. */
+enum { CUBE_N = 2, CUBE_NPOINTS = 26 + 8, CUBE_NTRI = 6 * 2 * CUBE_N * CUBE_N + 12 };
+static double c_xyz[3 * CUBE_NPOINTS];
+static int32_t c_tri[3 * CUBE_NTRI], c_patch[CUBE_NTRI];
+
+static int32_t cube_vertex(int32_t* ids, int* n, const int p[3]) {
+  int32_t* id = &ids[(p[0] * (CUBE_N + 1) + p[1]) * (CUBE_N + 1) + p[2]];
+  if (*id < 0) {
+    int k;
+    for (k = 0; k < 3; ++k) c_xyz[3 * *n + k] = (double)p[k] / CUBE_N;
+    *id = (*n)++;
+  }
+  return *id;
+}
+
+static anitet_surface* make_cube_in_box(void) {
+  static const int32_t box_tri[36] = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                                      2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+  int32_t ids[(CUBE_N + 1) * (CUBE_N + 1) * (CUBE_N + 1)];
+  anitet_surface* s = NULL;
+  int n = 0, t = 0, axis, side, i, j, k;
+  for (i = 0; i < (CUBE_N + 1) * (CUBE_N + 1) * (CUBE_N + 1); ++i) ids[i] = -1;
+  for (axis = 0; axis < 3; ++axis)
+    for (side = 0; side <= CUBE_N; side += CUBE_N)
+      for (i = 0; i < CUBE_N; ++i)
+        for (j = 0; j < CUBE_N; ++j) {
+          int32_t q[4];
+          for (k = 0; k < 4; ++k) {
+            int p[3];
+            p[axis] = side, p[(axis + 1) % 3] = i + (k == 1 || k == 2), p[(axis + 2) % 3] = j + (k >= 2);
+            q[side ? k : 3 - k] = cube_vertex(ids, &n, p); /* outward normals */
+          }
+          c_tri[3 * t] = q[0], c_tri[3 * t + 1] = q[1], c_tri[3 * t + 2] = q[2], c_patch[t++] = 1;
+          c_tri[3 * t] = q[0], c_tri[3 * t + 1] = q[2], c_tri[3 * t + 2] = q[3], c_patch[t++] = 1;
+        }
+  assert_int_equal(n, 26);
+  for (i = 0; i < 8; ++i) {
+    double* p = &c_xyz[3 * (n + i)];
+    p[0] = (i & 1) ? 3.0 : -2.0, p[1] = (i & 2) ? 3.0 : -2.0, p[2] = (i & 4) ? 3.0 : -2.0;
+  }
+  for (i = 0; i < 36; ++i) c_tri[3 * t + i] = n + box_tri[i];
+  for (i = 0; i < 12; ++i) c_patch[t + i] = 2;
+  assert_int_equal(anitet_surface_create(c_xyz, CUBE_NPOINTS, c_tri, CUBE_NTRI, c_patch, 0, &s), ANITET_OK);
+  return s;
+}
+
+/* The columns' CSV of a BL run on the cube, through anitet_mesh_write_bl_columns: the header, one
+ * line per wall vertex on patch 1 only, every column full; the mean total height of the corner
+ * columns over *corner_total and of the face centres' over *face_total. */
+static void cube_columns(const anitet_surface* s, int32_t mitre, double* corner_total, double* face_total) {
+  static char text[1 << 16];
+  const int32_t wall = 1;
+  anitet_options o = ANITET_OPTIONS_INIT;
+  anitet_run_stats st = ANITET_RUN_STATS_INIT;
+  anitet_mesh* m;
+  char path[4096], *line;
+  int rows = 0, corners = 0, faces = 0;
+  o.bl_num_patches = 1, o.bl_patches = &wall, o.bl_mitre = mitre;
+  o.bl_first_height = 0.01, o.bl_growth = 1.2, o.bl_layers = 3, o.refine = 0, o.optimize = 0;
+  m = run_ok(s, &o);
+  assert_int_equal(anitet_mesh_get_run_stats(m, &st), ANITET_OK);
+  assert_int_equal(st.bl_wall_vertices, 26);
+  assert_int_equal(st.bl_full_columns, 26);
+  snprintf(path, sizeof path, "%s/capi_bl_columns_%d.csv", ANITET_TEST_OUTPUT_DIR, mitre);
+  remove(path);
+  assert_int_equal(anitet_mesh_write_bl_columns(m, path), ANITET_OK);
+  assert_true(read_file(path, text, sizeof text) > 0);
+  line = strstr(text, "\n");
+  assert_non_null(line);
+  assert_true(strncmp(text, "x,y,z,layers,first_height,total_height,normal_share,patches\n", (size_t)(line - text + 1)) == 0);
+  *corner_total = *face_total = 0.0;
+  for (++line; *line; ++rows) {
+    double p[3], first, total, share;
+    int layers, label, used = 0, on = 0, k;
+    assert_int_equal(sscanf(line, "%lf,%lf,%lf,%d,%lf,%lf,%lf,%d%n", &p[0], &p[1], &p[2], &layers, &first, &total,
+                            &share, &label, &used),
+                     8);
+    assert_int_equal(layers, 3);
+    assert_int_equal(label, 1);
+    assert_int_equal(line[used], '\n'); /* on the wall patch only */
+    for (k = 0; k < 3; ++k) on += p[k] == 0.0 || p[k] == 1.0;
+    if (on == 3) *corner_total += total, ++corners;
+    if (on == 1) *face_total += total, ++faces;
+    line += used + 1;
+  }
+  assert_int_equal(rows, 26);
+  assert_int_equal(corners, 8);
+  assert_int_equal(faces, 6);
+  *corner_total /= corners, *face_total /= faces;
+  anitet_mesh_destroy(m);
+}
+
+/* bl_mitre lengthens the corner columns (by up to 1/0.58 at a cube's corner) and keeps the face
+ * columns; the CSV has a line per wall vertex. Then anitet_mesh_write_bl_columns' errors. */
+static void test_bl_mitre_columns(void** state) {
+  anitet_surface* s = make_cube_in_box();
+  const double nominal = 0.01 * (1.0 + 1.2 + 1.44);
+  double plain_corner, plain_face, mitre_corner, mitre_face;
+  anitet_mesh* m = NULL;
+  char path[4096];
+  (void)state;
+  cube_columns(s, 0, &plain_corner, &plain_face);
+  cube_columns(s, 1, &mitre_corner, &mitre_face);
+  if (!(fabs(plain_corner / nominal - 1.0) < 0.1 && mitre_corner > 1.3 * plain_corner))
+    fail_msg("corner columns %g (plain), %g (mitre), nominal %g", plain_corner, mitre_corner, nominal);
+  if (!(fabs(plain_face / nominal - 1.0) < 0.1 && fabs(mitre_face / plain_face - 1.0) < 0.05))
+    fail_msg("face columns %g (plain), %g (mitre), nominal %g", plain_face, mitre_face, nominal);
+  /* Errors: NULL, a mesh without a run, a run without walls, a file that cannot be created. */
+  snprintf(path, sizeof path, "%s/capi_bl_columns_none.csv", ANITET_TEST_OUTPUT_DIR);
+  assert_int_equal(anitet_mesh_write_bl_columns(NULL, path), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_create(kCubeXyz, 8, (const int32_t[]){0, 1, 3, 4}, 1, NULL, NULL, 0, NULL, 0, &m),
+                   ANITET_OK);
+  assert_int_equal(anitet_mesh_write_bl_columns(m, NULL), ANITET_ERR_INVALID_ARGUMENT);
+  assert_int_equal(anitet_mesh_write_bl_columns(m, path), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "not made by"));
+  anitet_mesh_destroy(m);
+  m = run_ok(s, NULL);
+  assert_int_equal(anitet_mesh_write_bl_columns(m, path), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "no boundary layer"));
+  anitet_mesh_destroy(m);
+  {
+    const int32_t wall = 1;
+    anitet_options o = ANITET_OPTIONS_INIT;
+    o.bl_num_patches = 1, o.bl_patches = &wall, o.bl_first_height = 0.01, o.bl_layers = 1;
+    assert_int_equal(anitet_layers_run(s, &o, &m), ANITET_OK);
+    snprintf(path, sizeof path, "%s/no-such-dir/columns.csv", ANITET_TEST_OUTPUT_DIR);
+    assert_int_equal(anitet_mesh_write_bl_columns(m, path), ANITET_ERR_FILE_NOT_FOUND);
+    snprintf(path, sizeof path, "%s/capi_bl_columns_layers.csv", ANITET_TEST_OUTPUT_DIR);
+    assert_int_equal(anitet_mesh_write_bl_columns(m, path), ANITET_OK); /* stage 1 alone: T1's columns */
+    assert_true(file_contains(path, "x,y,z,layers"));
+    anitet_mesh_destroy(m);
+  }
+  anitet_surface_destroy(s);
+}
+
+/* bl_mitre errors: a value other than 0 and 1, no walls (as `anitet mesh --bl-mitre` without
+ * --bl-patches). */
+static void test_bl_mitre_errors(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  const int32_t walls[3] = {1, 2, 3};
+  anitet_options o = ANITET_OPTIONS_INIT;
+  (void)state;
+  o.bl_mitre = 1;
+  expect_bad(s, &o, "bl_mitre needs boundary-layer walls");
+  o.bl_num_patches = 3, o.bl_patches = walls, o.bl_first_height = 0.02, o.bl_mitre = 2;
+  expect_bad(s, &o, "bl_mitre is 2");
+  anitet_surface_destroy(s);
+}
+
 static void test_bl_first_height(void** state) {
   double h0 = 0.0;
   (void)state;
@@ -827,6 +980,7 @@ int main(void) {
       cmocka_unit_test(test_options_v3_caller),   cmocka_unit_test(test_slide_patches),
       cmocka_unit_test(test_run_stats_v1_caller), cmocka_unit_test(test_bl_cells_prisms),
       cmocka_unit_test(test_bl_cells_tets),       cmocka_unit_test(test_bl_cells_errors),
+      cmocka_unit_test(test_bl_mitre_columns),    cmocka_unit_test(test_bl_mitre_errors),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
