@@ -142,7 +142,7 @@ module anitet
     integer(c_int32_t) :: bl_layers
     integer(c_int32_t) :: bl_sizing
     integer(c_int32_t) :: push_tasks_min_vertices
-    integer(c_int32_t) :: reserved1
+    integer(c_int32_t) :: bl_mitre  ! 1: columns lengthened at the walls' edges and corners (--bl-mitre)
     ! version 4
     integer(c_int32_t) :: bl_num_slide_patches
     integer(c_int32_t) :: bl_cells  ! ANITET_BL_CELLS_TETS (default) or ANITET_BL_CELLS_PRISMS
@@ -323,7 +323,8 @@ module anitet
   public :: c_anitet_metric_create_surface_sizing, c_anitet_metric_read_on_mesh, c_anitet_metric_write
   public :: c_anitet_mesher_run, c_anitet_layers_run, c_anitet_bl_first_height
   public :: c_anitet_mesh_create, c_anitet_mesh_read, c_anitet_mesh_destroy, c_anitet_mesh_write
-  public :: c_anitet_mesh_write_metric, c_anitet_mesh_get_counts, c_anitet_mesh_get_points
+  public :: c_anitet_mesh_write_metric, c_anitet_mesh_write_bl_columns
+  public :: c_anitet_mesh_get_counts, c_anitet_mesh_get_points
   public :: c_anitet_mesh_get_tets, c_anitet_mesh_get_regions
   public :: c_anitet_mesh_get_boundary_triangles, c_anitet_mesh_get_boundary_patches
   public :: c_anitet_mesh_get_metric_components, c_anitet_mesh_get_metric, c_anitet_mesh_set_metric
@@ -587,6 +588,13 @@ module anitet
 
     integer(c_int) function c_anitet_mesh_write_metric(mesh, path) &
         bind(c, name="anitet_mesh_write_metric")
+      import :: c_int, c_char, c_ptr
+      type(c_ptr), value :: mesh
+      character(kind=c_char), intent(in) :: path(*)
+    end function
+
+    integer(c_int) function c_anitet_mesh_write_bl_columns(mesh, path) &
+        bind(c, name="anitet_mesh_write_bl_columns")
       import :: c_int, c_char, c_ptr
       type(c_ptr), value :: mesh
       character(kind=c_char), intent(in) :: path(*)
@@ -1275,7 +1283,8 @@ module anitet
   public :: anitet_metric_create_surface_sizing, anitet_metric_read_on_mesh, anitet_metric_write
   public :: anitet_mesher_run, anitet_layers_run, anitet_bl_first_height
   public :: anitet_mesh_create, anitet_mesh_read, anitet_mesh_destroy, anitet_mesh_write
-  public :: anitet_mesh_write_metric, anitet_mesh_get_counts, anitet_mesh_get_points
+  public :: anitet_mesh_write_metric, anitet_mesh_write_bl_columns
+  public :: anitet_mesh_get_counts, anitet_mesh_get_points
   public :: anitet_mesh_get_tets, anitet_mesh_get_regions, anitet_mesh_get_boundary_triangles
   public :: anitet_mesh_get_boundary_patches, anitet_mesh_get_metric_components
   public :: anitet_mesh_get_metric, anitet_mesh_set_metric, anitet_mesh_quality
@@ -1767,6 +1776,13 @@ contains
     type(c_ptr), intent(in) :: mesh
     character(len=*), intent(in) :: path
     rc = c_anitet_mesh_write_metric(mesh, to_c_string(path))
+  end function
+
+  ! The boundary layer's columns as CSV (`anitet mesh --bl-columns`), for a mesh of a run with walls.
+  integer function anitet_mesh_write_bl_columns(mesh, path) result(rc)
+    type(c_ptr), intent(in) :: mesh
+    character(len=*), intent(in) :: path
+    rc = c_anitet_mesh_write_bl_columns(mesh, to_c_string(path))
   end function
 
   integer function anitet_mesh_get_counts(mesh, num_points, num_tets, num_boundary_triangles) &

@@ -488,7 +488,7 @@ contains
                .not. c_associated(o%bl_patches), "options v3: cycles, no walls")
     call check(o%bl_first_height == 0d0 .and. o%bl_growth == 1.2d0 .and. o%bl_layers == 10 .and. &
                o%bl_sizing == 0, "options v3: boundary layer defaults")
-    call check(o%push_tasks_min_vertices == 2000 .and. o%reserved1 == 0, &
+    call check(o%push_tasks_min_vertices == 2000 .and. o%bl_mitre == 0, &
                "options v3: push tasks from 2000 front vertices")
     ! 8 int32, 8 int64, 5 doubles, 2 int32, 5 int64, 5 doubles, 3 + 2 int64: no padding.
     call check(c_sizeof(st) == 264, "run stats size")
