@@ -108,7 +108,7 @@ class HeaderDrift(unittest.TestCase):
         c = _capi.COptions()
         self.assertEqual(_capi.lib.anitet_options_init(ctypes.byref(c), _capi.OPTIONS_VERSION), 0)
         python = anitet.Options()
-        skip = ("version", "reserved0", "reserved1", "progress", "progress_user_data", "log",
+        skip = ("version", "reserved0", "progress", "progress_user_data", "log",
                 "log_user_data", "bl_num_patches", "bl_patches", "bl_num_slide_patches", "bl_slide_patches")
         for name, _ in _capi.COptions._fields_:
             if name not in skip:
@@ -334,6 +334,28 @@ class BoundaryLayers(unittest.TestCase):
         self.assertEqual(report["boundary_layer"]["tets"], s.bl_tets)
         q = self.mesh.quality(self.surface)
         self.assertTrue(q.valid and q.boundary_constrained)
+
+    def test_columns_csv_and_mitre(self):
+        # Mesh.write_bl_columns: `anitet mesh --bl-columns`' CSV, a line per wall vertex (on the
+        # sphere, patches 1-3). bl_mitre reaches the struct; without walls it is refused.
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "columns.csv")
+            self.mesh.write_bl_columns(path)
+            with open(path) as f:
+                lines = f.read().splitlines()
+        self.assertEqual(lines[0], "x,y,z,layers,first_height,total_height,normal_share,patches")
+        self.assertEqual(len(lines) - 1, mesh_sphere.NPOINTS)
+        for line in lines[1:]:
+            fields = line.split(",")
+            self.assertEqual(int(fields[3]), 4)
+            self.assertTrue(set(fields[7].split()) <= {"1", "2", "3"}, line)
+        self.assertEqual(anitet._api._options_arg(None, {"bl_mitre": True}).struct.bl_mitre, 1)
+        with self.assertRaises(anitet.AnitetError) as e:
+            self.surface.mesh(bl_mitre=True)
+        self.assertIn("bl_mitre needs boundary-layer walls", e.exception.message)
+        with self.assertRaises(anitet.AnitetError) as e:
+            self.surface.mesh(refine=False, optimize=False).write_bl_columns("unused.csv")
+        self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT)
 
     def test_walls_in_every_form(self):
         # One int, a tuple, an int32 NumPy array (passed without a copy): the same struct.

@@ -198,8 +198,11 @@ class Options:
     no cap), recovery (RECOVERY_ALL, RECOVERY_SPLIT, RECOVERY_FUZZY), retry_layer_counts,
     attempts_seconds, anisotropic_cycles, and the boundary layer: bl_patches, the wall patch labels
     (a sequence of ints or one int; an int32 NumPy array is passed without a copy), with
-    bl_first_height (needed with walls; bl_first_height() gives it for a y+), bl_growth, bl_layers
-    and bl_sizing; push_tasks_min_vertices (stage 1 pushes a layer of at least this many front
+    bl_first_height (needed with walls; bl_first_height() gives it for a y+), bl_growth, bl_layers,
+    bl_sizing and bl_mitre (`anitet mesh --bl-mitre`, needs bl_patches: at the walls' edges and
+    corners each column lengthened by 1/cos of its angle to the farthest wall normal, at most 2,
+    so that the layers keep their thickness across every wall; Mesh.write_bl_columns() shows the
+    columns); push_tasks_min_vertices (stage 1 pushes a layer of at least this many front
     vertices on two tasks, 0: one by one; the same mesh either way).
 
     Version 4: bl_slide_patches, the patch labels the walls meet that the layers' columns may
@@ -218,7 +221,7 @@ class Options:
                  recovery=_capi.RECOVERY_ALL, hmin=0.0, hmax=0.0, hgrad=0.0, max_tets=0.0,
                  anisotropic_cycles=2, bl_patches=(), bl_first_height=0.0, bl_growth=1.2,
                  bl_layers=10, bl_sizing=False, push_tasks_min_vertices=2000, bl_slide_patches=(),
-                 bl_cells=_capi.BL_CELLS_TETS):
+                 bl_cells=_capi.BL_CELLS_TETS, bl_mitre=False):
         self.num_threads = num_threads
         self.merge_duplicate_vertices = merge_duplicate_vertices
         self.orient_shells = orient_shells
@@ -247,6 +250,7 @@ class Options:
         self.push_tasks_min_vertices = push_tasks_min_vertices
         self.bl_slide_patches = bl_slide_patches
         self.bl_cells = bl_cells
+        self.bl_mitre = bl_mitre
 
 
 class _Callbacks:
@@ -324,6 +328,7 @@ class _CallbackScope(_Callbacks):
         s.bl_sizing = int(bool(options.bl_sizing))
         s.push_tasks_min_vertices = options.push_tasks_min_vertices
         s.bl_cells = _bl_cells(options.bl_cells)
+        s.bl_mitre = int(bool(options.bl_mitre))
         # self._walls and self._slides own the memory behind the label pointers until the call
         # returns.
         self._walls, pointer, count = _labels(options.bl_patches, "bl_patches")
@@ -724,6 +729,13 @@ class Mesh(_Handle):
     def write_metric(self, path):
         """Writes the per-vertex metric as a Medit .sol (binary .solb by its extension)."""
         _check(lib.anitet_mesh_write_metric(self, _path(path)))
+
+    def write_bl_columns(self, path):
+        """Writes the boundary layer's columns as CSV (`anitet mesh --bl-columns`): a header line,
+        then per wall vertex its point, the layers its column reaches, its first and total height,
+        its normal share and its patch labels. For a mesh of mesher_run or layers_run with
+        bl_patches; another raises ERR_INVALID_ARGUMENT."""
+        _check(lib.anitet_mesh_write_bl_columns(self, _path(path)))
 
     def counts(self):
         """(points, tets, boundary triangles)."""

@@ -142,7 +142,7 @@ class COptions(Structure):
         ("bl_layers", c_int32),
         ("bl_sizing", c_int32),
         ("push_tasks_min_vertices", c_int32),
-        ("reserved1", c_int32),
+        ("bl_mitre", c_int32),
         # version 4
         ("bl_num_slide_patches", c_int32),
         ("bl_cells", c_int32),
@@ -333,6 +333,7 @@ _PROTOTYPES = {
     "anitet_mesh_destroy": (None, [_P]),
     "anitet_mesh_write": (c_int, [_P, c_char_p]),
     "anitet_mesh_write_metric": (c_int, [_P, c_char_p]),
+    "anitet_mesh_write_bl_columns": (c_int, [_P, c_char_p]),
     "anitet_mesh_get_counts": (c_int, [_P, _I64, _I64, _I64]),
     "anitet_mesh_get_points": (c_int, [_P, _D, c_int64]),
     "anitet_mesh_get_prism_count": (c_int, [_P, _I64]),
