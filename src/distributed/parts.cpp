@@ -8,6 +8,7 @@
 #include "core/bvh.hpp"
 #include "delaunay/spatial_sort.hpp"
 #include "distributed/bytes.hpp"
+#include "refine/mesh_ops.hpp"
 
 namespace anitet::distributed {
 
@@ -176,6 +177,20 @@ std::vector<int32_t> move_interfaces(const TetMesh& mesh, const std::vector<int3
   for (uint32_t t = 0; t < slots; ++t)
     if (tet_part[t] >= 0 && !in_zone[t]) tet_part[t] = kept(part_of_label(part_of[t]));
   return tet_part;
+}
+
+Status check_meshable_in_parts(const TetMesh& mesh, const SizingField& field) {
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
+    if (!mesh.is_deleted(t) && mesh.is_ghost(t))
+      return Status(Error::InvalidArgument, "distributed: the mesh has ghost tets");
+  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
+    double m[6];
+    field.metric(mesh.point(v), m);
+    if (!meshops::MetricMap::of(m).identity)
+      return Status(Error::NotImplemented,
+                    "anisotropic sizing fields are not implemented in parts yet: run `anitet mesh`");
+  }
+  return Status::success();
 }
 
 Result<MeshPart> extract_part(const TetMesh& whole, const std::vector<int32_t>& part_of, int32_t p) {

@@ -59,6 +59,11 @@ struct MeshPart {
 // ghost tets.
 Result<MeshPart> extract_part(const TetMesh& whole, const std::vector<int32_t>& part_of, int32_t p);
 
+// What every run in parts refuses: ghost tets (InvalidArgument), and anisotropic sizing fields
+// (NotImplemented: the metric kernel, flips and extra cycles, refine_optimize_cycles, have not been
+// tried in parts, so they are refused rather than meshed untested).
+Status check_meshable_in_parts(const TetMesh& mesh, const SizingField& field);
+
 // What a round does to each part: refinement (refine_mesh, then the new vertices renumbered for
 // locality), or optimization (optimize_mesh with the field scaled by refine.size_scale).
 enum class Step { kRefine, kOptimize };

@@ -587,16 +587,7 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
                       RankRunStats* stats) {
   RankRunStats local_stats;
   RankRunStats& rs = stats ? *stats : local_stats;
-  for (uint32_t t = 0; t < coarse.num_tet_slots(); ++t)
-    if (!coarse.is_deleted(t) && coarse.is_ghost(t))
-      return Status(Error::InvalidArgument, "distributed: the mesh has ghost tets");
-  for (uint32_t v = 0; v < coarse.num_vertices(); ++v) {
-    double mt[6];
-    field.metric(coarse.point(v), mt);
-    if (!meshops::MetricMap::of(mt).identity)
-      return Status(Error::NotImplemented,
-                    "anisotropic sizing fields are not implemented in parts yet: run `anitet mesh`");
-  }
+  if (Status s = check_meshable_in_parts(coarse, field); !s.ok()) return s;
   refine = RefineStats();
   optimize = OptimizeStats();
   auto t0 = Clock::now();

@@ -93,18 +93,7 @@ void measure_lengths(const TetMesh& mesh, const SizingField& field, const Refine
 Status run_in_parts(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
                     const OptimizeOptions& optimize_options, const PartsOptions& options, Exchange& exchange,
                     RefineStats& refine, OptimizeStats& optimize) {
-  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
-    if (!mesh.is_deleted(t) && mesh.is_ghost(t))
-      return Status(Error::InvalidArgument, "distributed: the mesh has ghost tets");
-  // Anisotropic fields take the metric kernel, flips and extra cycles (refine_optimize_cycles),
-  // not tried in parts yet: refused rather than meshed untested.
-  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
-    double m[6];
-    field.metric(mesh.point(v), m);
-    if (!meshops::MetricMap::of(m).identity)
-      return Status(Error::NotImplemented,
-                    "anisotropic sizing fields are not implemented in parts yet: run `anitet mesh`");
-  }
+  if (Status s = check_meshable_in_parts(mesh, field); !s.ok()) return s;
   refine = RefineStats();
   optimize = OptimizeStats();
   std::vector<int32_t> part_of;
