@@ -57,6 +57,7 @@ program adapt_cube
   end if
   call anitet_fields_destroy(solution)
   call anitet_mesh_destroy(mesh)
+  deallocate(xyz, u)  ! a main program's variables are never freed automatically
 
 contains
 
