@@ -21,6 +21,14 @@ Status scotch_failed(const char* what) {
 
 Result<std::vector<int32_t>> ScotchPartitioner::partition(const TetMesh& coarse, const std::vector<double>& weights,
                                                           int parts) {
+  // Debian's PT-Scotch folds the graph on two threads that both call MPI: below
+  // MPI_THREAD_MULTIPLE its ranks may wait in different collectives forever (1 run in 3 on 4
+  // ranks did, here).
+  int level = MPI_THREAD_SINGLE;
+  MPI_Query_thread(&level);
+  if (level < MPI_THREAD_MULTIPLE)
+    return Status(Error::InvalidArgument,
+                  "PT-Scotch needs MPI initialized with MPI_Init_thread(..., MPI_THREAD_MULTIPLE, ...)");
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm_, &rank);
   MPI_Comm_size(comm_, &ranks);

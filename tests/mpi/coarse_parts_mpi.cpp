@@ -81,7 +81,9 @@ int run(const std::string& surface_path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  // PT-Scotch's fold-dup runs its two halves' MPI calls on two threads (scotch_partition.cpp).
+  int provided = MPI_THREAD_SINGLE;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided);
   const int code = argc > 1 ? run(argv[1]) : 2;
   MPI_Finalize();
   return code;
