@@ -13,32 +13,14 @@
 #include <cmocka.h>
 
 #include "anitet.h"
+#include "capi_mesh_util.h"
 
 static const char* cube_path(void) { return ANITET_UGAWG_DIR "/cube-linear-00.mesh"; }
-
-static void expect_message(const char* words) {
-  if (strstr(anitet_last_error_message(), words) == NULL)
-    fail_msg("message '%s' lacks '%s'", anitet_last_error_message(), words);
-}
 
 static anitet_mesh* read_cube(void) {
   anitet_mesh* m = NULL;
   assert_int_equal(anitet_mesh_read(cube_path(), &m), ANITET_OK);
   return m;
-}
-
-static int64_t points_of(const anitet_mesh* m) {
-  int64_t np = 0;
-  assert_int_equal(anitet_mesh_get_counts(m, &np, NULL, NULL), ANITET_OK);
-  return np;
-}
-
-static double* points(const anitet_mesh* m) {
-  const int64_t np = points_of(m);
-  double* xyz = malloc((size_t)(3 * np) * sizeof *xyz);
-  assert_non_null(xyz);
-  assert_int_equal(anitet_mesh_get_points(m, xyz, 3 * np), ANITET_OK);
-  return xyz;
 }
 
 /* UGAWG's linear metric: diag(h_x^-2, h_y^-2, h_z^-2), h_x = h_y = 0.1,

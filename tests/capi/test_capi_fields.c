@@ -12,28 +12,8 @@
 #include <cmocka.h>
 
 #include "anitet.h"
+#include "capi_mesh_util.h"
 #include "test_boxes.h"
-
-static int contains(const char* text, const char* part) { return strstr(text, part) != NULL; }
-
-static void expect_message(const char* words) {
-  if (!contains(anitet_last_error_message(), words))
-    fail_msg("message '%s' lacks '%s'", anitet_last_error_message(), words);
-}
-
-static int64_t points_of(const anitet_mesh* m) {
-  int64_t np = 0;
-  assert_int_equal(anitet_mesh_get_counts(m, &np, NULL, NULL), ANITET_OK);
-  return np;
-}
-
-static double* points(const anitet_mesh* m) {
-  const int64_t np = points_of(m);
-  double* xyz = malloc((size_t)(3 * np) * sizeof *xyz);
-  assert_non_null(xyz);
-  assert_int_equal(anitet_mesh_get_points(m, xyz, 3 * np), ANITET_OK);
-  return xyz;
-}
 
 /* A scalar 1 + 2x - y + 3z, a vector (x, y - z, 2z) and a tensor (SPD, varying linearly, so its
  * linear interpolation is exact) per point: 10 values a record. */
