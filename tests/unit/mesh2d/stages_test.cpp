@@ -102,6 +102,22 @@ void expect_valid_output(const Pslg& p, const TriMesh2& m, double area) {
   EXPECT_EQ(std::count(kept.begin(), kept.end(), 1), long(p.num_segments()));
 }
 
+// Stages 1-2 on p (valid, every segment an edge) into t, then the whole mesher into m (a valid
+// output of the domain's area).
+void stages_and_mesh(const Pslg& p, double area, Triangulation& t, TriMesh2& m) {
+  Result<Domain> d = analyse_domain(p);
+  ASSERT_TRUE(d.ok()) << d.status().message();
+  Result<Triangulation> staged = boundary_constrained_triangulation(p, d.value(), FrontOptions{}, nullptr);
+  ASSERT_TRUE(staged.ok()) << staged.status().message();
+  ASSERT_TRUE(check_triangulation(staged.value()).ok()) << check_triangulation(staged.value()).message();
+  expect_segments_kept(p, staged.value());
+  Result<TriMesh2> meshed = mesh_pslg(p, Mesh2dOptions{});
+  ASSERT_TRUE(meshed.ok()) << meshed.status().message();
+  expect_valid_output(p, meshed.value(), area);
+  t = std::move(staged).value();
+  m = std::move(meshed).value();
+}
+
 // Two squares touching at a corner (and the fuzzer's GeoJSON bow tie): the triangles around the
 // shared point form two fans; the working triangulation gives the second fan a copy of the
 // point, the output the point once.
@@ -111,19 +127,13 @@ TEST(Mesh2dStages, DomainPinchedAtAPoint) {
       "8 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n5 3 5\n6 5 6\n7 6 7\n8 7 3\n0\n",
       "bow tie");
   ASSERT_TRUE(p.ok()) << p.status().message();
-  Result<Domain> d = analyse_domain(p.value());
-  ASSERT_TRUE(d.ok()) << d.status().message();
-  Result<Triangulation> t = boundary_constrained_triangulation(p.value(), d.value(), FrontOptions{}, nullptr);
-  ASSERT_TRUE(t.ok()) << t.status().message();
-  ASSERT_TRUE(check_triangulation(t.value()).ok()) << check_triangulation(t.value()).message();
-  ASSERT_EQ(t->copies.size(), 1u);
-  EXPECT_EQ(t->copies[0].second, 2u);
-  expect_segments_kept(p.value(), t.value());
-  Result<TriMesh2> m = mesh_pslg(p.value(), Mesh2dOptions{});
-  ASSERT_TRUE(m.ok()) << m.status().message();
-  expect_valid_output(p.value(), m.value(), 2.0);
+  Triangulation t;
+  TriMesh2 m;
+  ASSERT_NO_FATAL_FAILURE(stages_and_mesh(p.value(), 2.0, t, m));
+  ASSERT_EQ(t.copies.size(), 1u);
+  EXPECT_EQ(t.copies[0].second, 2u);
   size_t at_pinch = 0;
-  for (uint32_t v : m->tri) at_pinch += v == 2;
+  for (uint32_t v : m.tri) at_pinch += v == 2;
   EXPECT_GE(at_pinch, 4u);  // triangles of both squares
 }
 
@@ -136,15 +146,9 @@ TEST(Mesh2dStages, FrontTouchesItselfAtAnInputPoint) {
       "7 1\n1 1 2 1\n2 2 3 1\n3 3 4 1\n4 4 5 1\n5 5 6 1\n6 6 1 1\n7 2 5 9\n0\n",
       "spike");
   ASSERT_TRUE(p.ok()) << p.status().message();
-  Result<Domain> d = analyse_domain(p.value());
-  ASSERT_TRUE(d.ok()) << d.status().message();
-  Result<Triangulation> t = boundary_constrained_triangulation(p.value(), d.value(), FrontOptions{}, nullptr);
-  ASSERT_TRUE(t.ok()) << t.status().message();
-  ASSERT_TRUE(check_triangulation(t.value()).ok()) << check_triangulation(t.value()).message();
-  expect_segments_kept(p.value(), t.value());
-  Result<TriMesh2> m = mesh_pslg(p.value(), Mesh2dOptions{});
-  ASSERT_TRUE(m.ok()) << m.status().message();
-  expect_valid_output(p.value(), m.value(), 24.0);
+  Triangulation t;
+  TriMesh2 m;
+  ASSERT_NO_FATAL_FAILURE(stages_and_mesh(p.value(), 24.0, t, m));
 }
 
 }  // namespace
