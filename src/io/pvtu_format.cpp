@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "io/file_bytes.hpp"
+#include "io/volume_io.hpp"
 
 namespace anitet {
 
@@ -81,6 +82,16 @@ std::string directory_of(const std::string& path) {
 }  // namespace
 
 Status write_vtu_piece(const std::string& path, const VtuPiece& p) {
+  // As every writer does (check_boundary_elements): no boundary triangle that is not a face of the
+  // piece's tets; cover off, since the faces between pieces carry none.
+  const size_t nv = p.xyz.size() / 3;
+  for (const std::vector<uint32_t>* ids : {&p.tet, &p.tri})
+    for (uint32_t v : *ids)
+      if (v >= nv)
+        return Status(Error::BadIndex, path + ": vertex index " + std::to_string(v) + " in a piece of " +
+                                           std::to_string(nv) + " vertices");
+  if (Status st = check_boundary_elements(p.tet, nv, p.tri, /*cover=*/false); !st.ok())
+    return Status(st.code(), path + ": " + st.message());
   const CellArrays c = cell_arrays(p);
   const std::vector<Array> points = {array_of("Float64", "Points", 3, p.xyz)};
   const std::vector<Array> point_data = {array_of("Int64", "GlobalNodeIds", 1, p.node_id)};

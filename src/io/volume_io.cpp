@@ -255,8 +255,13 @@ Status check_volume_arrays(const VolumeMesh& mesh) {
 Status check_boundary_elements(const VolumeMesh& mesh, bool cover) {
   if (Status st = check_volume_arrays(mesh); !st.ok()) return st;
   if (!mesh.prism.empty()) return check_mixed_boundary_elements(mesh, cover);
-  const FaceCensus faces = census_faces(mesh.tet.data(), mesh.num_tets(), mesh.num_vertices(), /*parallel=*/true,
-                                        mesh.bnd_tri.data(), mesh.num_boundary_triangles());
+  return check_boundary_elements(mesh.tet, mesh.num_vertices(), mesh.bnd_tri, cover);
+}
+
+Status check_boundary_elements(const std::vector<uint32_t>& tet, size_t num_vertices, const std::vector<uint32_t>& bnd_tri,
+                               bool cover) {
+  const FaceCensus faces = census_faces(tet.data(), tet.size() / 4, num_vertices, /*parallel=*/true, bnd_tri.data(),
+                                        bnd_tri.size() / 3);
   if (faces.shared_by_more_than_two > 0) {
     return Status(Error::InvalidMesh, std::to_string(faces.shared_by_more_than_two) +
                                           " faces are shared by more than two tetrahedra (overlapping tets)");
@@ -269,19 +274,19 @@ Status check_boundary_elements(const VolumeMesh& mesh, bool cover) {
     }
   }
   if (not_faces > 0) {
-    return Status(Error::InvalidMesh, std::to_string(not_faces) + " of " + std::to_string(mesh.num_boundary_triangles()) +
+    return Status(Error::InvalidMesh, std::to_string(not_faces) + " of " + std::to_string(bnd_tri.size() / 3) +
                                           " boundary triangles are not faces of the tetrahedra; first: triangle " +
-                                          std::to_string(first + 1) + " (vertices " + one_based(&mesh.bnd_tri[3 * first]) +
+                                          std::to_string(first + 1) + " (vertices " + one_based(&bnd_tri[3 * first]) +
                                           ", 1-based)");
   }
   if (!faces.repeated.empty()) {
     const uint32_t b = faces.repeated[0];
     return Status(Error::InvalidMesh, std::to_string(faces.repeated.size()) +
                                           " boundary triangles repeat a face an earlier one gives; first: triangle " +
-                                          std::to_string(uint64_t{b} + 1) + " (vertices " + one_based(&mesh.bnd_tri[3 * size_t(b)]) +
+                                          std::to_string(uint64_t{b} + 1) + " (vertices " + one_based(&bnd_tri[3 * size_t(b)]) +
                                           ", 1-based)");
   }
-  const std::vector<uint32_t>& uncovered = mesh.bnd_tri.empty() ? faces.boundary : faces.uncovered;
+  const std::vector<uint32_t>& uncovered = bnd_tri.empty() ? faces.boundary : faces.uncovered;
   if (cover && !uncovered.empty()) {
     return Status(Error::InvalidMesh, std::to_string(uncovered.size() / 3) + " of " +
                                           std::to_string(faces.boundary.size() / 3) +

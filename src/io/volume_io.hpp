@@ -170,5 +170,9 @@ Status check_volume_arrays(const VolumeMesh& mesh);
 // write_volume_mesh asks for `cover` when the mesh has boundary triangles, and always for the
 // formats whose markers are a solver's boundary conditions (SU2, OpenFOAM, CGNS, Exodus II).
 Status check_boundary_elements(const VolumeMesh& mesh, bool cover);
+// The same on a tet mesh's arrays (4 vertex indices per tet, 3 per boundary triangle, every index
+// below num_vertices: the caller checks that).
+Status check_boundary_elements(const std::vector<uint32_t>& tet, size_t num_vertices, const std::vector<uint32_t>& bnd_tri,
+                               bool cover);
 
 }  // namespace anitet

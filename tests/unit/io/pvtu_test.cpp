@@ -2,6 +2,7 @@
 // are refused.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 
 #include "io/pvtu_format.hpp"
@@ -35,6 +36,26 @@ std::vector<VtuPiece> two_pieces() {
   b.patch = {2, 2, 2};
   b.owner = 1;
   return {a, b};
+}
+
+// The writer checks a piece as every writer checks its mesh: a boundary triangle that is no face
+// of the piece's tets (the interface facet 1 2 3 given by piece 0) or an index past its vertices
+// is refused, and nothing is written.
+TEST(Pvtu, PieceWhoseTrianglesAreNotItsFacesIsNotWritten) {
+  const std::string path = ::testing::TempDir() + "/pv_bad.vtu";
+  std::remove(path.c_str());
+  VtuPiece p = two_pieces()[0];
+  p.tri[3 * 2 + 0] = 1, p.tri[3 * 2 + 1] = 2, p.tri[3 * 2 + 2] = 3;  // 1 2 3 is a face: allowed
+  ASSERT_TRUE(write_vtu_piece(path, p).ok());
+  std::remove(path.c_str());
+  p.tri = {0, 1, 2, 0, 2, 3, 0, 1, 1};  // a degenerate triangle, no face of the tet
+  Status st = write_vtu_piece(path, p);
+  EXPECT_EQ(st.code(), Error::InvalidMesh) << st.message();
+  EXPECT_NE(st.message().find("not faces of the tetrahedra"), std::string::npos) << st.message();
+  p.tri = {0, 1, 2, 0, 2, 3, 0, 3, 4};
+  st = write_vtu_piece(path, p);
+  EXPECT_EQ(st.code(), Error::BadIndex) << st.message();
+  EXPECT_EQ(std::fopen(path.c_str(), "rb"), nullptr);
 }
 
 TEST(Pvtu, PiecesRoundTripAndJoin) {
