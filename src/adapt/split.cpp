@@ -16,7 +16,6 @@ namespace {
 // put off to the next: splitting every long edge of a stretched tet at once crowded points that
 // the collapses then removed (pass 2 of the UGAWG linear loop went to 70k tets and back to 43k).
 constexpr double kSpacing = 0.7;
-constexpr double kNearRing = 0.5;
 
 // The parameter of the metric midpoint of ab (la, lb: its length in the metrics at a and b).
 double metric_midpoint(double la, double lb) {
