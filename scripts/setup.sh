@@ -7,6 +7,7 @@ packages=(
   cmake ninja-build g++ gfortran pkg-config
   libeigen3-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev libgeographiclib-dev
   libgmp-dev libcli11-dev nlohmann-json3-dev
+  zlib1g-dev  # compressed binary arrays in .vtu input (src/io/vtk_xml.cpp)
   libgtest-dev libgmock-dev libcmocka-dev libbenchmark-dev
   python3 python3-numpy python3-meshio
   python3-geographiclib  # geodesic edge lengths in the 2D checker (tests/tools/check2d.py)

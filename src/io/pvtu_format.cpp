@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <string_view>
 
 #include "io/file_bytes.hpp"
 #include "io/volume_io.hpp"
+#include "io/vtk_xml.hpp"
 
 namespace anitet {
 
@@ -58,16 +61,6 @@ CellArrays cell_arrays(const VtuPiece& p) {
   c.cell_id.resize(nt + nb, -1);
   c.owner.assign(nt + nb, p.owner);
   return c;
-}
-
-// Attribute `name` of the first tag `tag` at or after `from` (empty when absent).
-std::string attribute(std::string_view text, size_t tag_at, const std::string& name) {
-  const size_t end = text.find('>', tag_at);
-  const std::string key = " " + name + "=\"";
-  const size_t at = text.find(key, tag_at);
-  if (at == std::string_view::npos || at > end) return "";
-  const size_t value = at + key.size();
-  return std::string(text.substr(value, text.find('"', value) - value));
 }
 
 Status parse_error(const std::string& path, const std::string& what) {
@@ -148,40 +141,51 @@ Result<std::vector<std::string>> read_pvtu_index(const std::string& path) {
   Result<std::string> bytes = read_file_bytes(path);
   if (!bytes.ok()) return bytes.status();
   const std::string_view text = bytes.value();
-  const size_t root = text.find("<VTKFile");
-  if (root == std::string_view::npos || attribute(text, root, "type") != "PUnstructuredGrid")
-    return Status(Error::Parse, path + ": not a .pvtu index (no <VTKFile type=\"PUnstructuredGrid\">)");
-  if (text.find("<PUnstructuredGrid") == std::string_view::npos || text.find("<PPoints>") == std::string_view::npos)
-    return Status(Error::Parse, path + ": no <PUnstructuredGrid> with <PPoints>");
+  bool index = false, grid = false, points = false;
   std::vector<std::string> pieces;
-  for (size_t at = text.find("<Piece "); at != std::string_view::npos; at = text.find("<Piece ", at + 1)) {
-    const std::string source = attribute(text, at, "Source");
+  XmlTag tag;
+  for (size_t pos = 0; next_xml_tag(text, pos, tag); pos = tag.end) {
+    if (tag.closing) continue;
+    if (tag.name == "VTKFile") index = xml_attribute(tag.attributes, "type") == "PUnstructuredGrid";
+    grid = grid || tag.name == "PUnstructuredGrid";
+    points = points || tag.name == "PPoints";
+    if (tag.name != "Piece") continue;
+    const std::string source(xml_attribute(tag.attributes, "Source"));
     if (source.empty()) return Status(Error::Parse, path + ": a <Piece> without Source");
     pieces.push_back(source[0] == '/' ? source : directory_of(path) + source);
   }
+  if (!index) return Status(Error::Parse, path + ": not a .pvtu index (no <VTKFile type=\"PUnstructuredGrid\">)");
+  if (!grid || !points) return Status(Error::Parse, path + ": no <PUnstructuredGrid> with <PPoints>");
   if (pieces.empty()) return Status(Error::Parse, path + ": no <Piece>");
   return pieces;
 }
 
 namespace {
 
-// The appended array `name` of type `type`, as T values.
+bool wanted_in_piece(VtkSection section, std::string_view name) {
+  switch (section) {
+    case VtkSection::Points: return true;
+    case VtkSection::PointData: return name == "GlobalNodeIds";
+    case VtkSection::Cells: return name == "connectivity" || name == "offsets" || name == "types";
+    case VtkSection::CellData: return name == "region" || name == "patch" || name == "GlobalCellIds" || name == "owner";
+    default: return false;
+  }
+}
+
+// Array `name` of `section` as T values; false when it is absent or a value is not a T.
 template <class T>
-Status read_array(std::string_view text, std::string_view appended, const std::string& path, const char* type,
-                  const std::string& name, std::vector<T>& out) {
-  const size_t at = text.find("Name=\"" + name + "\"");
-  if (at == std::string_view::npos) return parse_error(path, "no array " + name);
-  const size_t tag = text.rfind('<', at);
-  if (attribute(text, tag, "type") != type || attribute(text, tag, "format") != "appended")
-    return parse_error(path, "array " + name + " is not appended " + type);
-  const uint64_t offset = std::stoull("0" + attribute(text, tag, "offset"));
-  uint64_t n = 0;
-  if (offset + sizeof n > appended.size()) return parse_error(path, "array " + name + " past the end");
-  std::memcpy(&n, appended.data() + offset, sizeof n);
-  if (n % sizeof(T) || offset + sizeof n + n > appended.size()) return parse_error(path, "array " + name + " truncated");
-  out.resize(n / sizeof(T));
-  if (n) std::memcpy(out.data(), appended.data() + offset + sizeof n, n);
-  return Status::success();
+bool integers(const VtkGrid& grid, VtkSection section, const char* name, std::vector<T>& out) {
+  const VtkArray* a = grid.find(section, name);
+  if (!a) return false;
+  out.resize(a->values.size());
+  for (size_t i = 0; i < out.size(); ++i) {
+    const double v = a->values[i];
+    if (!(v >= double(std::numeric_limits<T>::min()) && v < std::ldexp(1.0, std::numeric_limits<T>::digits)) ||
+        v != std::floor(v))
+      return false;
+    out[i] = T(v);
+  }
+  return true;
 }
 
 }  // namespace
@@ -189,30 +193,20 @@ Status read_array(std::string_view text, std::string_view appended, const std::s
 Result<VtuPiece> read_vtu_piece(const std::string& path) {
   Result<std::string> bytes = read_file_bytes(path);
   if (!bytes.ok()) return bytes.status();
-  const std::string_view all = bytes.value();
-  const size_t data_tag = all.find("<AppendedData encoding=\"raw\">");
-  if (data_tag == std::string_view::npos) return parse_error(path, "no raw <AppendedData>");
-  const size_t underscore = all.find('_', data_tag);
-  if (underscore == std::string_view::npos) return parse_error(path, "no '_' in <AppendedData>");
-  const std::string_view text = all.substr(0, data_tag), appended = all.substr(underscore + 1);
-  const size_t root = text.find("<VTKFile");
-  if (root == std::string_view::npos || attribute(text, root, "type") != "UnstructuredGrid" ||
-      attribute(text, root, "header_type") != "UInt64" || attribute(text, root, "byte_order") != "LittleEndian")
-    return parse_error(path, "not a little-endian UnstructuredGrid with UInt64 headers");
+  VtkGrid grid;
+  if (Status st = read_vtk_grid(bytes.value(), path, wanted_in_piece, grid); !st.ok()) return st;
   VtuPiece p;
   std::vector<int64_t> connectivity, offsets, cell_id;
   std::vector<uint8_t> types;
   std::vector<int32_t> region, patch, owner;
-  for (Status st : {read_array(text, appended, path, "Float64", "Points", p.xyz),
-                    read_array(text, appended, path, "Int64", "GlobalNodeIds", p.node_id),
-                    read_array(text, appended, path, "Int64", "connectivity", connectivity),
-                    read_array(text, appended, path, "Int64", "offsets", offsets),
-                    read_array(text, appended, path, "UInt8", "types", types),
-                    read_array(text, appended, path, "Int32", "region", region),
-                    read_array(text, appended, path, "Int32", "patch", patch),
-                    read_array(text, appended, path, "Int64", "GlobalCellIds", cell_id),
-                    read_array(text, appended, path, "Int32", "owner", owner)})
-    if (!st.ok()) return st;
+  if (const VtkArray* points = grid.find(VtkSection::Points, "Points")) p.xyz = points->values;
+  if (!integers(grid, VtkSection::PointData, "GlobalNodeIds", p.node_id) ||
+      !integers(grid, VtkSection::Cells, "connectivity", connectivity) ||
+      !integers(grid, VtkSection::Cells, "offsets", offsets) || !integers(grid, VtkSection::Cells, "types", types) ||
+      !integers(grid, VtkSection::CellData, "region", region) || !integers(grid, VtkSection::CellData, "patch", patch) ||
+      !integers(grid, VtkSection::CellData, "GlobalCellIds", cell_id) ||
+      !integers(grid, VtkSection::CellData, "owner", owner))
+    return parse_error(path, "an array missing or of values out of its type's range");
   const size_t nv = p.node_id.size(), nc = types.size();
   if (p.xyz.size() != 3 * nv || offsets.size() != nc || region.size() != nc || patch.size() != nc ||
       cell_id.size() != nc || owner.size() != nc)

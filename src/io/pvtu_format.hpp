@@ -4,7 +4,8 @@
 // interface is in every piece that uses it) with their mesh-wide ids (point data GlobalNodeIds,
 // the GlobalIds attribute), and per cell: region (-1 for triangles), patch (-1 for tets),
 // GlobalCellIds (a tet's mesh-wide id; -1 for triangles) and owner (the rank). The arrays are
-// binary, appended raw with UInt64 headers. join_pieces makes one mesh of them again.
+// binary, appended raw with UInt64 headers (read_vtu_piece reads any encoding). join_pieces makes
+// one mesh of them again.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -32,7 +33,8 @@ Status write_pvtu_index(const std::string& path, const std::vector<std::string>&
 // The pieces' paths (relative names resolved against the index's directory). Checks the index
 // against what write_pvtu_index writes: PUnstructuredGrid, the P... declarations, the pieces.
 Result<std::vector<std::string>> read_pvtu_index(const std::string& path);
-// A piece as write_vtu_piece writes it (Error::Parse for anything else).
+// A piece with the arrays write_vtu_piece writes, in any encoding io/vtk_xml.hpp reads (Error::Parse
+// when one is missing or holds values outside its type).
 Result<VtuPiece> read_vtu_piece(const std::string& path);
 // One mesh from the pieces: vertex v is GlobalNodeIds v (ids must be 0 .. V-1, every one used,
 // one position per id), the tets in GlobalCellIds order, the boundary triangles in piece order.

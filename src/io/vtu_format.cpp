@@ -1,13 +1,13 @@
-// VTK XML UnstructuredGrid (.vtu) with ASCII data arrays: writer, and a reader for such files
-// (one Piece; tets and triangles kept, other cell types skipped).
+// VTK XML UnstructuredGrid (.vtu): the writer (ASCII data arrays), and a reader for one-Piece
+// files in any of VTK's encodings (io/vtk_xml.hpp; tets and triangles kept, other cells skipped).
 #include <algorithm>
 #include <string>
 #include <vector>
 
 #include "io/number_text.hpp"
 #include "io/reader_util.hpp"
-#include "io/text_scanner.hpp"
 #include "io/volume_io.hpp"
+#include "io/vtk_xml.hpp"
 
 namespace anitet {
 
@@ -56,86 +56,6 @@ bool valid_xml_name(const std::string& name) {
 
 // --- reader ---
 
-struct XmlTag {
-  std::string_view name;
-  std::string_view attributes;
-  bool closing = false;
-  bool self_closing = false;
-  size_t end = 0;  // offset after '>'
-};
-
-// The next element tag at or after `pos`, skipping <?...?>, <!--...--> and <!...>.
-bool next_tag(std::string_view data, size_t pos, XmlTag& tag) {
-  for (;;) {
-    size_t open = data.find('<', pos);
-    if (open == std::string_view::npos) return false;
-    if (data.substr(open, 4) == "<!--") {
-      size_t close = data.find("-->", open + 4);
-      if (close == std::string_view::npos) return false;
-      pos = close + 3;
-      continue;
-    }
-    size_t close = data.find('>', open);
-    if (close == std::string_view::npos) return false;
-    if (open + 1 < data.size() && (data[open + 1] == '?' || data[open + 1] == '!')) {
-      pos = close + 1;
-      continue;
-    }
-    std::string_view inner = data.substr(open + 1, close - open - 1);
-    tag = XmlTag();
-    tag.end = close + 1;
-    if (!inner.empty() && inner[0] == '/') {
-      tag.closing = true;
-      inner.remove_prefix(1);
-    }
-    if (!inner.empty() && inner.back() == '/') {
-      tag.self_closing = true;
-      inner.remove_suffix(1);
-    }
-    size_t name_end = inner.find_first_of(" \t\r\n");
-    tag.name = inner.substr(0, name_end);
-    tag.attributes =
-        name_end == std::string_view::npos ? std::string_view() : inner.substr(name_end);
-    return true;
-  }
-}
-
-// The value of attribute `key` ("" when absent).
-std::string_view attribute(std::string_view attributes, std::string_view key) {
-  size_t pos = 0;
-  while ((pos = attributes.find(key, pos)) != std::string_view::npos) {
-    size_t after = pos + key.size();
-    bool starts = pos == 0 || attributes[pos - 1] == ' ' || attributes[pos - 1] == '\t' ||
-                  attributes[pos - 1] == '\n' || attributes[pos - 1] == '\r';
-    while (after < attributes.size() && attributes[after] == ' ') ++after;
-    if (starts && after < attributes.size() && attributes[after] == '=') {
-      ++after;
-      while (after < attributes.size() && attributes[after] == ' ') ++after;
-      if (after >= attributes.size()) return {};
-      char quote = attributes[after];
-      if (quote != '"' && quote != '\'') return {};
-      size_t close = attributes.find(quote, after + 1);
-      if (close == std::string_view::npos) return {};
-      return attributes.substr(after + 1, close - after - 1);
-    }
-    pos = after;
-  }
-  return {};
-}
-
-// The numbers of one ascii DataArray (all read as doubles: exact for integers below 2^53).
-Status read_numbers(std::string_view data, size_t begin, size_t end, const std::string& name,
-                    LineCounter& lines, std::vector<double>& values) {
-  TextScanner in(data.substr(begin, end - begin), name, '\0', lines.at(begin));
-  values.clear();
-  double v = 0;
-  while (in.skip_space()) {
-    if (!in.read_double(v)) return in.expected("a number");
-    values.push_back(v);
-  }
-  return Status::success();
-}
-
 bool is_index(double v, uint64_t limit) {
   return v >= 0 && v < static_cast<double>(limit) &&
          v == static_cast<double>(static_cast<uint64_t>(v));
@@ -151,101 +71,41 @@ struct VtuArrays {
   uint64_t num_points = 0, num_cells = 0;
 };
 
+bool wanted_array(VtkSection section, std::string_view name) {
+  return section == VtkSection::Points ||
+         (section == VtkSection::Cells && (name == "connectivity" || name == "offsets" || name == "types")) ||
+         (section == VtkSection::CellData &&
+          (name == "region" || name == "patch" || name == "medit:ref" || name == "gmsh:physical"));
+}
+
 Status parse_vtu_arrays(std::string_view data, const std::string& name, VtuArrays& a) {
-  enum class Section { None, Points, Cells, CellData, Other } section = Section::None;
-  bool have_piece = false, have_grid = false;
-  XmlTag tag;
-  std::vector<double> values;
+  VtkGrid grid;
+  if (Status st = read_vtk_grid(data, name, wanted_array, grid); !st.ok()) return st;
+  if (grid.num_points >= kMaxVertices || grid.num_cells >= UINT32_MAX)
+    return Status(Error::Parse, name + ": NumberOfPoints or NumberOfCells too large");
+  a.num_points = grid.num_points;
+  a.num_cells = grid.num_cells;
   std::string region_name, patch_name;  // the names found, best first
-  LineCounter lines(data);
-  size_t pos = 0;
-  while (next_tag(data, pos, tag)) {
-    pos = tag.end;
-    auto fail = [&](Error code, const std::string& message) {
-      return Status(code, name + ":" + std::to_string(lines.at(tag.end)) + ": " + message);
-    };
-    if (tag.name == "VTKFile" && !tag.closing) {
-      if (attribute(tag.attributes, "type") != "UnstructuredGrid") {
-        return fail(Error::UnsupportedFormat, "only UnstructuredGrid VTK files are supported");
+  for (VtkArray& array : grid.arrays) {
+    if (array.section == VtkSection::Points) {
+      a.points.swap(array.values);
+    } else if (array.section == VtkSection::Cells) {
+      (array.name == "connectivity" ? a.connectivity : array.name == "offsets" ? a.offsets : a.types)
+          .swap(array.values);
+    } else {
+      // "region"/"patch" win over meshio's names, which serve both cell kinds.
+      const bool generic = array.name != "region" && array.name != "patch";
+      if ((array.name == "region" || generic) && (!a.have_region || region_name != "region")) {
+        a.region = array.values;
+        a.have_region = true;
+        region_name = array.name;
       }
-      have_grid = true;
-    } else if (tag.name == "Piece" && !tag.closing) {
-      if (have_piece) {
-        return fail(Error::UnsupportedFormat, "files with several Pieces are not supported");
-      }
-      have_piece = true;
-      double np = 0, nc = 0;
-      if (!parse_double(attribute(tag.attributes, "NumberOfPoints"), np) ||
-          !is_index(np, kMaxVertices) ||
-          !parse_double(attribute(tag.attributes, "NumberOfCells"), nc) ||
-          !is_index(nc, UINT32_MAX)) {
-        return fail(Error::Parse, "expected NumberOfPoints and NumberOfCells in <Piece>");
-      }
-      a.num_points = static_cast<uint64_t>(np);
-      a.num_cells = static_cast<uint64_t>(nc);
-    } else if (tag.name == "Points" || tag.name == "Cells" || tag.name == "CellData" ||
-               tag.name == "PointData" || tag.name == "FieldData") {
-      if (tag.closing || tag.self_closing) {
-        section = Section::None;
-      } else if (tag.name == "Points") {
-        section = Section::Points;
-      } else if (tag.name == "Cells") {
-        section = Section::Cells;
-      } else if (tag.name == "CellData") {
-        section = Section::CellData;
-      } else
-        section = Section::Other;
-    } else if (tag.name == "AppendedData") {
-      return fail(Error::UnsupportedFormat, "appended (binary) VTU data is not supported");
-    } else if (tag.name == "DataArray" && !tag.closing && !tag.self_closing) {
-      size_t close = data.find("</DataArray>", tag.end);
-      if (close == std::string_view::npos) {
-        return fail(Error::Parse, "a DataArray has no </DataArray>");
-      }
-      pos = close + 12;
-      std::string_view array_name = attribute(tag.attributes, "Name");
-      bool wanted =
-          section == Section::Points ||
-          (section == Section::Cells &&
-           (array_name == "connectivity" || array_name == "offsets" || array_name == "types")) ||
-          (section == Section::CellData &&
-           (array_name == "region" || array_name == "patch" || array_name == "medit:ref" ||
-            array_name == "gmsh:physical"));
-      if (!wanted) continue;
-      std::string_view format = attribute(tag.attributes, "format");
-      if (!format.empty() && format != "ascii") {
-        return fail(
-            Error::UnsupportedFormat,
-            "only format=\"ascii\" data arrays are supported, not '" + quote_token(format) + "'");
-      }
-      Status status = read_numbers(data, tag.end, close, name, lines, values);
-      if (!status.ok()) return status;
-      if (section == Section::Points) {
-        a.points.swap(values);
-      } else if (section == Section::Cells) {
-        (array_name == "connectivity" ? a.connectivity
-         : array_name == "offsets"    ? a.offsets
-                                      : a.types)
-            .swap(values);
-      } else {
-        // "region"/"patch" win over meshio's names, which serve both cell kinds.
-        bool generic = array_name != "region" && array_name != "patch";
-        if ((array_name == "region" || generic) && (!a.have_region || region_name != "region")) {
-          a.region = values;
-          a.have_region = true;
-          region_name = std::string(array_name);
-        }
-        if ((array_name == "patch" || generic) && (!a.have_patch || patch_name != "patch")) {
-          a.patch = values;
-          a.have_patch = true;
-          patch_name = std::string(array_name);
-        }
+      if ((array.name == "patch" || generic) && (!a.have_patch || patch_name != "patch")) {
+        a.patch = array.values;
+        a.have_patch = true;
+        patch_name = array.name;
       }
     }
-  }
-  if (!have_grid || !have_piece) {
-    return Status(Error::Parse,
-                  name + ": expected a VTKFile of type UnstructuredGrid with a Piece");
   }
   return Status::success();
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "io/pvtu_format.hpp"
+#include "io/volume_io.hpp"
 
 using namespace anitet;
 
@@ -106,6 +107,20 @@ TEST(Pvtu, PiecesThatDoNotFitAreRefused) {
   Result<VolumeMesh> open = join_pieces(gap);
   ASSERT_TRUE(open.ok());
   EXPECT_EQ(check_joined(open.value()).code(), Error::InvalidMesh);
+}
+
+// One reader serves both: a piece is a .vtu any tool reads, anitet's volume reader included.
+TEST(Pvtu, APieceReadsAsAVtuVolumeMesh) {
+  const std::string path = ::testing::TempDir() + "/pv_as_vtu.vtu";
+  const VtuPiece p = two_pieces()[1];
+  ASSERT_TRUE(write_vtu_piece(path, p).ok());
+  Result<VolumeMesh> mesh = read_volume_mesh(path);
+  ASSERT_TRUE(mesh.ok()) << mesh.status().message();
+  EXPECT_EQ(mesh->xyz, p.xyz);
+  EXPECT_EQ(mesh->tet, p.tet);
+  EXPECT_EQ(mesh->bnd_tri, p.tri);
+  EXPECT_EQ(mesh->bnd_patch, p.patch);
+  EXPECT_EQ(mesh->region, p.region);
 }
 
 TEST(Pvtu, NotAnIndexIsAParseError) {

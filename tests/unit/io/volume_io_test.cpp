@@ -75,11 +75,19 @@ TEST(VolumeReaders, Vtu) {
   expect_box(read_volume_mesh(io_data("box.vtu")), kBoxRegions, kBoxPatches);
 }
 
-TEST(VolumeReaders, VtuRejectsBinaryAndMismatchedCounts) {
+TEST(VolumeReaders, VtuRejectsBadBinaryAndMismatchedCounts) {
   std::string text = test::load(io_data("box.vtu"));
-  std::string binary = text;
+  std::string binary = text;  // ascii numbers declared binary: not base64
   binary.replace(binary.find("format=\"ascii\">0.0"), 14, "format=\"binary\"");
-  EXPECT_EQ(read_vtu(binary, "b.vtu").status().code(), Error::UnsupportedFormat);
+  EXPECT_EQ(read_vtu(binary, "b.vtu").status().code(), Error::Parse);
+  for (const char* form : {"byte_order=\"BigEndian\"", "compressor=\"vtkLZ4DataCompressor\""}) {
+    std::string other = binary;
+    other.replace(other.find("<VTKFile ") + 9, 0, std::string(form) + " ");
+    const Status st = read_vtu(other, "o.vtu").status();
+    EXPECT_EQ(st.code(), Error::UnsupportedFormat) << form;
+    EXPECT_NE(st.message().find(std::string(form).substr(0, 5) == "byte_" ? "big-endian" : "vtkLZ4"), std::string::npos)
+        << st.message();
+  }
   std::string count = text;
   count.replace(count.find("NumberOfPoints=\"8\""), 18, "NumberOfPoints=\"9\"");
   EXPECT_EQ(read_vtu(count, "c.vtu").status().code(), Error::Parse);
