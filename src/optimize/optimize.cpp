@@ -108,7 +108,8 @@ class Optimizer {
   // in the metric measure_ball() found: the same figure as quality_.of(mesh_, tet, w.maps[k]).
   double ball_tet_quality(const Work& w, size_t k) const {
     const uint32_t* tv = &mesh_.tet_v[4 * size_t(w.ball[k])];
-    if (w.maps.empty() || w.maps[k].identity) return w.maps.empty() ? quality_.of(mesh_, tv) : quality_.of(mesh_, tv, w.maps[k]);
+    if (w.maps.empty()) return quality_.of(mesh_, tv);
+    if (w.maps[k].identity) return quality_.of(mesh_, tv, w.maps[k]);
     double q[12];
     std::copy_n(&w.mapped[12 * k], 12, q);
     w.maps[k].apply(mesh_.point(w.moving), &q[3 * w.moving_at[k]]);
@@ -204,6 +205,7 @@ void Optimizer::measure_ball(Work& w, uint32_t v) {
     for (size_t k = 0; k < w.ball.size(); ++k) {
       const uint32_t* tv = &mesh_.tet_v[4 * size_t(w.ball[k])];
       w.maps.push_back(quality_.map(tv));
+      if (w.maps[k].identity) continue;  // (measured as it is: nothing mapped)
       for (int i = 0; i < 4; ++i) {
         if (tv[i] == v) w.moving_at[k] = static_cast<uint8_t>(i);
         else w.maps[k].apply(mesh_.point(tv[i]), &w.mapped[12 * k + 3 * size_t(i)]);
