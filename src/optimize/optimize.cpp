@@ -85,6 +85,11 @@ class Optimizer {
     // trials then map and measure, without a mean and a Cholesky factor per tet and trial.
     // Empty when Euclidean.
     std::vector<meshops::MetricMap> maps;
+    // And, with the metrics, each ball tet's points mapped by its map (12 per tet), of which only
+    // the moving vertex's (at index moving_at[k]) is mapped again at each trial.
+    std::vector<double> mapped;
+    std::vector<uint8_t> moving_at;
+    uint32_t moving = 0;  // the vertex whose ball this is
     double old_min = 1.0;
     size_t target = SIZE_MAX;   // perturbation: the index in `ball` of the tet to open (SIZE_MAX: none)
     double target_floor = 0.0;  // and the floor of the other tets when only it gains
@@ -96,12 +101,19 @@ class Optimizer {
     double start_min = 0.0;
     size_t moved = 0, rejected = 0;
   };
-  // Qualities of w.ball's tets before a move (w.old_q, w.old_min), and their metrics (w.maps).
-  void measure_ball(Work& w);
-  // The quality of w.ball[k] where its points are now, in the metric measure_ball() found.
+  // Qualities of w.ball's tets (the ball of v) before a move of v (w.old_q, w.old_min), and their
+  // metrics (w.maps).
+  void measure_ball(Work& w, uint32_t v);
+  // The quality of w.ball[k] where its points are now (only w.moving moved since measure_ball()),
+  // in the metric measure_ball() found: the same figure as quality_.of(mesh_, tet, w.maps[k]).
   double ball_tet_quality(const Work& w, size_t k) const {
     const uint32_t* tv = &mesh_.tet_v[4 * size_t(w.ball[k])];
-    return w.maps.empty() ? quality_.of(mesh_, tv) : quality_.of(mesh_, tv, w.maps[k]);
+    if (w.maps.empty()) return quality_.of(mesh_, tv);
+    if (w.maps[k].identity) return quality_.of(mesh_, tv, w.maps[k]);
+    double q[12];
+    std::copy_n(&w.mapped[12 * k], 12, q);
+    w.maps[k].apply(mesh_.point(w.moving), &q[3 * w.moving_at[k]]);
+    return meshops::shape_quality(q, q + 3, q + 6, q + 9);
   }
   // Tries v at p: accepted when the ball stays positive (exact) and no tet falls below
   // min(its quality in w.old_q, floor); with quality_out, the worst one must also rise. Leaves v
@@ -183,11 +195,23 @@ void Optimizer::refresh_metrics() {
   });
 }
 
-void Optimizer::measure_ball(Work& w) {
+void Optimizer::measure_ball(Work& w, uint32_t v) {
   w.old_q.resize(w.ball.size());
   w.maps.clear();
-  if (quality_.anisotropic())
-    for (uint32_t t : w.ball) w.maps.push_back(quality_.map(&mesh_.tet_v[4 * size_t(t)]));
+  w.moving = v;
+  if (quality_.anisotropic()) {
+    w.mapped.resize(12 * w.ball.size());
+    w.moving_at.resize(w.ball.size());
+    for (size_t k = 0; k < w.ball.size(); ++k) {
+      const uint32_t* tv = &mesh_.tet_v[4 * size_t(w.ball[k])];
+      w.maps.push_back(quality_.map(tv));
+      if (w.maps[k].identity) continue;  // (measured as it is: nothing mapped)
+      for (int i = 0; i < 4; ++i) {
+        if (tv[i] == v) w.moving_at[k] = static_cast<uint8_t>(i);
+        else w.maps[k].apply(mesh_.point(tv[i]), &w.mapped[12 * k + 3 * size_t(i)]);
+      }
+    }
+  }
   w.old_min = 1.0;
   for (size_t k = 0; k < w.ball.size(); ++k) {
     w.old_q[k] = tet_q_.empty() ? ball_tet_quality(w, k) : tet_q_[w.ball[k]];
@@ -302,7 +326,7 @@ void Optimizer::cvt_move(Work& w, uint32_t v) {
   if (w.ball.empty()) return;
   double target[3];
   cvt_target(w, v, target);
-  measure_ball(w);
+  measure_ball(w, v);
   const double p[3] = {mesh_.point(v)[0], mesh_.point(v)[1], mesh_.point(v)[2]};
   bool ok = false;
   for (double step = 1.0; step > 0.2 && !ok; step *= 0.5) {
@@ -559,7 +583,7 @@ bool Optimizer::perturb_vertex(uint32_t t, int i, int trials, int levels, bool g
   const uint32_t v = mesh_.vertex(t, i);
   if (!movable(v)) return false;
   meshops::vertex_ball(mesh_, v, t, work_.ball);
-  measure_ball(work_);
+  measure_ball(work_, v);
   work_.target = size_t(std::find(work_.ball.begin(), work_.ball.end(), t) - work_.ball.begin());
   work_.target_floor = options_.sliver_quality;
   work_.rescue = rescue;
@@ -760,7 +784,7 @@ void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
       const uint32_t v = mesh_.vertex(t, i);
       if (!movable(v)) continue;
       meshops::vertex_ball(mesh_, v, t, work_.ball);
-      measure_ball(work_);
+      measure_ball(work_, v);
       const double shortest = shortest_edge(t);
       double nrm[3];
       const bool has_normal = opening_direction(t, i, meshops::MetricMap{}, nrm);
@@ -776,7 +800,7 @@ void Optimizer::certify_round(const std::vector<uint32_t>& flat) {
         trial_offset(trial, kLevels, 2.0 * shortest, has_normal ? nrm : nullptr, d);
         const double q[3] = {start[0] + d[0], start[1] + d[1], start[2] + d[2]};
         if (try_certify(v, q, flat_now)) {
-          measure_ball(work_);  // the new position is the next trial's reference
+          measure_ball(work_, v);  // the new position is the next trial's reference
           flat_now = flat_in_ball();
           moved(v);
           touch_tets(work_.ball);  // v's ball (moves keep the tets)

@@ -7,7 +7,6 @@
 #include <new>
 #include <string>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -229,7 +228,19 @@ class Refiner {
   std::vector<double> metrics_;  // 6 per vertex
   std::vector<double> size_;     // scalar size per vertex
   std::vector<uint8_t> touched_;
-  std::unordered_set<uint64_t> refused_;  // edges (a << 32 | b) whose collapse was refused
+  // Edges (a << 32 | b) whose collapse was refused, with epoch_ then. Isotropic: never tried
+  // again. Anisotropic (the metric flips change the neighbourhoods): tried again once the tets of
+  // an end changed (vertex_epoch_), which is all a trial reads (the two balls, their points and
+  // metrics); retrying every refused edge at every pass made the same verdicts again.
+  std::unordered_map<uint64_t, uint32_t> refused_;
+  bool refused_unchanged(const refine_detail::Edge& e) const {
+    const auto it = refused_.find(e.key());
+    if (it == refused_.end()) return false;
+    if (!anisotropic_) return true;
+    for (uint32_t v : {e.a, e.b})
+      if (v < vertex_epoch_.size() && vertex_epoch_[v] > it->second) return false;
+    return true;
+  }
   // Change stamps for the metric flips: epoch_ grows with every change of the tets, a vertex
   // keeps the epoch of the last change of its tets, and a tet slot the epoch at which no flip
   // took it or it was found not poor (0: none since it was made). A tet none of whose vertices'
@@ -922,7 +933,7 @@ size_t Refiner::collapse_pass(const refine_detail::EdgeList& edges) {
   });
   touched_.resize(mesh_.num_vertices(), 0);
   auto skipped = [&](const refine_detail::Edge& e) {
-    return touched_[e.a] || touched_[e.b] || vt_.removed(e.a) || vt_.removed(e.b) || refused_.count(e.key()) != 0;
+    return touched_[e.a] || touched_[e.b] || vt_.removed(e.a) || vt_.removed(e.b) || refused_unchanged(e);
   };
   // Block by block in length order, each collapse is tried on every core against the mesh as the
   // block starts (most are refused); then the block's collapses are made one by one: an edge none
@@ -972,7 +983,7 @@ size_t Refiner::collapse_pass(const refine_detail::EdgeList& edges) {
         ++done;
       } else {
         ++stats_.collapse_rejected;
-        refused_.insert(e.key());
+        refused_[e.key()] = epoch_;
       }
     }
   }
@@ -1086,8 +1097,6 @@ Result<RefineStats> Refiner::run() {
     if (Status st = check("after a split pass"); !st.ok()) return st;
     size_t collapses = 0;
     if (options_.collapse) {
-      // Anisotropic: the metric flips change the neighbourhoods, so refused collapses are retried.
-      if (anisotropic_) refused_.clear();
       t = Clock::now();
       collapses = collapse_pass(edges);
       stats_.seconds_collapses += seconds_since(t);
