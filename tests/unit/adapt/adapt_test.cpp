@@ -190,7 +190,7 @@ TEST(Adapt, UniformSizeIsFollowed) {
 // cube, coarse (h_t) along it, as the sphere case of issue 46 on a small scale. A tangential edge
 // of length l has a normal part l^2/2R at its ends, so the lengths in range span a factor 1.4 in
 // l, not 2; the moves towards ideal tets left the spacing uneven (short and long edges side by
-// side). With the balancing moves (smooth.cpp) 73.2% of the edges are in range, 68.5% without.
+// side). With the balancing moves (smooth.cpp) 74.4% of the edges are in range, 68.5% without.
 class TurningShellMetric final : public SizingField {
  public:
   void metric(const double p[3], double m[6]) const override {
