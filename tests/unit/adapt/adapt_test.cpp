@@ -66,6 +66,18 @@ std::set<std::array<std::array<double, 3>, 3>> triangle_set(const VolumeMesh& m)
   return out;
 }
 
+// The edges of the tets, each once (smaller end first).
+std::set<std::pair<uint32_t, uint32_t>> edges_of(const VolumeMesh& m) {
+  std::set<std::pair<uint32_t, uint32_t>> edges;
+  for (size_t t = 0; t < m.num_tets(); ++t)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const uint32_t a = m.tet[4 * t + size_t(i)], b = m.tet[4 * t + size_t(j)];
+        edges.insert({std::min(a, b), std::max(a, b)});
+      }
+  return edges;
+}
+
 TEST(Adapt, CubeStaysValidAfterEverySweep) {
   Cube c = load_cube();
   AdaptOptions o;
@@ -168,13 +180,7 @@ TEST(Adapt, UniformSizeIsFollowed) {
   Result<AdaptResult> r = adapt_mesh(c.mesh, std::vector<double>(c.mesh.num_vertices(), h));
   ASSERT_TRUE(r.ok()) << r.status().message();
   const VolumeMesh& out = r.value().mesh;
-  std::set<std::pair<uint32_t, uint32_t>> edges;
-  for (size_t t = 0; t < out.num_tets(); ++t)
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) {
-        const uint32_t a = out.tet[4 * t + size_t(i)], b = out.tet[4 * t + size_t(j)];
-        edges.insert({std::min(a, b), std::max(a, b)});
-      }
+  const std::set<std::pair<uint32_t, uint32_t>> edges = edges_of(out);
   size_t in_range = 0;
   for (const auto& [a, b] : edges) {
     double d2 = 0.0;
@@ -212,13 +218,7 @@ TEST(Adapt, TurningMetricEdgesAreBalanced) {
   Result<AdaptResult> r = adapt_mesh(c.mesh, field);
   ASSERT_TRUE(r.ok()) << r.status().message();
   const VolumeMesh& out = r.value().mesh;
-  std::set<std::pair<uint32_t, uint32_t>> edges;
-  for (size_t t = 0; t < out.num_tets(); ++t)
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) {
-        const uint32_t a = out.tet[4 * t + size_t(i)], b = out.tet[4 * t + size_t(j)];
-        edges.insert({std::min(a, b), std::max(a, b)});
-      }
+  const std::set<std::pair<uint32_t, uint32_t>> edges = edges_of(out);
   std::vector<double> met(6 * out.num_vertices());
   for (size_t v = 0; v < out.num_vertices(); ++v) field.metric(&out.xyz[3 * v], &met[6 * v]);
   size_t in_range = 0;
