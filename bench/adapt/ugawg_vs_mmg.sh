@@ -5,7 +5,8 @@
 # Runs: linear 5 passes (anitet, then Mmg; ROUNDS times alternating, default 1), linear 5 passes
 # --keep-surface (anitet: the share of edges with no end on the surface; SKIP_KEEP=1 skips it),
 # and with --sphere the curved case (make_sphere_case.py, its start mesh by `anitet mesh`, 5
-# passes of anitet then Mmg, sphere_surface.py's surface figures of anitet's meshes). Prints the
+# passes of anitet then Mmg, sphere_surface.py's surface figures of anitet's meshes and
+# sphere_classes.py's classes of the misses of its last, in OUTDIR/sphere-anitet-classes.md). Prints the
 # JSON lines of ugawg.py; writes them to OUTDIR/*.jsonl.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
@@ -34,5 +35,6 @@ if [[ $sphere == --sphere ]]; then
   run sphere-anitet "anitet:$anitet" "$out/sphere-start.mesh" sphere 5
   work=$(comm -13 <(echo "$before") <(ls -d /tmp/ugawg-* | sort) | head -1)  # ugawg.py's work directory
   "$python" "$here/sphere_surface.py" "$work"/p[1-5].mesh | tee "$out/sphere-anitet-surface.jsonl"
+  TOOLS=$tools "$python" "$here/sphere_classes.py" "$work/p5.mesh" > "$out/sphere-anitet-classes.md"  # the misses by class
   run sphere-mmg "mmg:$mmg" "$out/sphere-start.mesh" sphere 5
 fi

@@ -102,11 +102,24 @@ class Remesher {
   void apply_collapse(uint32_t p, uint32_t q, const std::vector<uint32_t>& ball);
   bool move_interior(uint32_t v, const std::vector<uint32_t>& ball);
   bool move_surface(uint32_t v, const std::vector<uint32_t>& ball);
+  // v tried all, half and a quarter of the way to target (a surface point in its tangent plane,
+  // landing on the smooth surface), each try by try_move.
+  bool move_interior_towards(uint32_t v, const std::vector<uint32_t>& ball, const double target[3], bool balance);
+  bool move_surface_towards(uint32_t v, const std::vector<uint32_t>& ball, const double target[3], bool balance);
   bool move_ridge(uint32_t v, const std::vector<uint32_t>& ball);
   // Tries v at pos (metric evaluated there) with the geometry `nrm`/`nrm2`/`tng` (null: kept):
-  // made when every tet of the ball stays positive and its qualities improve.
+  // made when every tet of the ball stays positive and its qualities improve; with `balance`,
+  // when the length energy of v's edges to nb_ falls and no quality falls below a floor
+  // (smooth.cpp).
   bool try_move(uint32_t v, const std::vector<uint32_t>& ball, const double pos[3], const double* nrm,
-                const double* nrm2, const double* tng, bool surface);
+                const double* nrm2, const double* tng, bool surface, bool balance = false);
+  // v's neighbours, each once, from its ball.
+  void neighbours(uint32_t v, const std::vector<uint32_t>& ball, std::vector<uint32_t>& out);
+  // The sum of the squared logs of the metric lengths from pos (metric met) to the points nb.
+  double length_energy(const std::vector<uint32_t>& nb, const double pos[3], const double met[6]) const;
+  // Where v's edges to nb come nearest unit length: the mean over y in nb of the point at unit
+  // metric length from y on the line y v.
+  bool balance_target(uint32_t v, const std::vector<uint32_t>& nb, double out[3]) const;
   // The ideal point of v over face i of t (the apex making it regular in the metric m).
   bool ideal_point(uint32_t t, int i, const double m[6], double out[3]) const;
 
@@ -116,7 +129,7 @@ class Remesher {
   AdaptStats& stats_;
   // Scratch.
   Shell shell_;
-  std::vector<uint32_t> ball_, ball2_, moved_ball_, created_, cavity_;
+  std::vector<uint32_t> ball_, ball2_, moved_ball_, created_, cavity_, nb_;
   std::vector<uint8_t> incav_;  // per tet: 1 in the cavity, 2 a seed (zero between insertions)
   std::vector<TetVerts> fresh_;
   std::vector<uint32_t> fresh_tets_;  // the tets a swap replaces
