@@ -93,6 +93,15 @@ TEST(Pipeline, GridCubeAndSphere) {
     ASSERT_TRUE(r.ok()) << name << ": " << r.status().message();
     expect_boundary_constrained(s, r.value(), name);
     EXPECT_EQ(r->stages.size(), 7u);  // layers recovery coupling sizing refine optimize output
+#if defined(__linux__)
+    // Each stage's peak memory so far: known on Linux, and never lower than the stage's before.
+    for (size_t k = 0; k < r->stages.size(); ++k) {
+      EXPECT_GT(r->stages[k].peak_bytes, 0.0) << name << ", stage " << r->stages[k].name;
+      if (k > 0) {
+        EXPECT_GE(r->stages[k].peak_bytes, r->stages[k - 1].peak_bytes) << name;
+      }
+    }
+#endif
   }
 }
 
