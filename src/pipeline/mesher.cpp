@@ -40,7 +40,7 @@ size_t freeze_boundary_layer(TetMesh& mesh, int32_t first_bl_region) {
     if (mesh.is_deleted(t) || mesh.is_ghost(t) || mesh.tet_region[t] < first_bl_region) continue;
     for (int i = 0; i < 4; ++i) {
       mesh.set_facet_protected(t, i, true);
-      const uint64_t adj = mesh.tet_adj[4 * size_t(t) + i];
+      const uint32_t adj = mesh.tet_adj[4 * size_t(t) + i];
       if (adj != TetMesh::kNoNeighbour) mesh.set_facet_protected(mesh.neighbour(t, i), mesh.neighbour_facet(t, i), true);
     }
   }
@@ -430,6 +430,15 @@ class MeshingRun {
         std::snprintf(msg, sizeof msg,
                       "the sizing field asks for about %.3g tets (estimated before refinement), more than the limit of %.3g",
                       result_.estimated_tets, o_.max_tets);
+        return Status(Error::InvalidArgument, msg);
+      }
+      // (Refinement makes up to about half more than estimated; a mesh holds 2^30 tet slots.)
+      if (1.5 * result_.estimated_tets > double(TetMesh::kMaxTetSlots)) {
+        char msg[240];
+        std::snprintf(msg, sizeof msg,
+                      "the sizing field asks for about %.3g tets (estimated before refinement): more than one mesh "
+                      "holds (2^30 tet slots); use a coarser size",
+                      result_.estimated_tets);
         return Status(Error::InvalidArgument, msg);
       }
     }

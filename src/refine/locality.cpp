@@ -76,7 +76,7 @@ void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
   // the arrays then copied all of them to fresh pages.
   const size_t room = nt + nt / 16;
   std::vector<uint32_t> tet_v;
-  std::vector<uint64_t> tet_adj;
+  std::vector<uint32_t> tet_adj;
   std::vector<uint16_t> tet_flags;
   std::vector<int32_t> tet_region;
   tet_v.reserve(4 * room);
@@ -92,8 +92,8 @@ void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
     for (int i = 0; i < 4; ++i) {
       const uint32_t v = mesh.vertex(t, i);
       tet_v[4 * k + i] = v == TetMesh::kGhost ? v : new_id[v];
-      const uint64_t a = mesh.tet_adj[4 * size_t(t) + i];
-      tet_adj[4 * k + i] = a == TetMesh::kNoNeighbour ? a : 4 * uint64_t(new_tet[a >> 2]) + (a & 3);
+      const uint32_t a = mesh.tet_adj[4 * size_t(t) + i];
+      tet_adj[4 * k + i] = a == TetMesh::kNoNeighbour ? a : 4 * new_tet[a >> 2] + (a & 3);
     }
     tet_flags[k] = mesh.tet_flags[t];
     tet_region[k] = mesh.tet_region[t];
