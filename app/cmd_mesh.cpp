@@ -119,7 +119,8 @@ int exit_code_of(Error e) {
 
 namespace {
 
-// The memory a run takes per tet at its peak (bench/results/scale: 186-194 bytes at 10^7 tets).
+// The memory a run takes per tet at its peak (bench/results/scale: 174 bytes at 10^7 tets since
+// issue 49, 186-194 before), with room to spare.
 constexpr double kBytesPerTet = 200;
 
 // MemAvailable of /proc/meminfo, in bytes; 0 when it cannot be read.

@@ -99,8 +99,8 @@ struct StageReport {
   std::string name;
   double seconds = 0.0;
   size_t tets = 0;  // tets the stage leaves (its own output)
-  // The process's peak resident memory when the stage ended (VmHWM: the highest so far, the
-  // caller's memory included), in bytes; 0 where unknown.
+  // The process's peak resident memory when the stage ended (VmHWM: the highest so far as the
+  // kernel counts it, lazily; the caller's memory included), in bytes; 0 where unknown.
   double peak_bytes = peak_resident_bytes();
 };
 
