@@ -119,7 +119,8 @@ int exit_code_of(Error e) {
 
 namespace {
 
-// The memory a run takes per tet at its peak (bench/results/scale: 186-194 bytes at 10^7 tets).
+// The memory a run takes per tet at its peak (bench/results/scale: 174 bytes at 10^7 tets since
+// issue 49, 186-194 before), with room to spare.
 constexpr double kBytesPerTet = 200;
 
 // MemAvailable of /proc/meminfo, in bytes; 0 when it cannot be read.
@@ -142,7 +143,10 @@ void print_details(const MesherResult& r, const QualityReport& quality) {
   std::cout << "  tets estimated before refinement: " << std::llround(r.estimated_tets) << " (made: " << r.mesh.num_tets()
             << ")\n";
   for (const StageReport& s : r.stages)
-    std::cout << "  stage " << s.name << ": " << format_seconds(s.seconds) << ", " << s.tets << " tets\n";
+    std::cout << "  stage " << s.name << ": " << format_seconds(s.seconds) << ", " << s.tets << " tets"
+              << (s.peak_bytes > 0 ? ", peak memory so far " + std::to_string(std::llround(s.peak_bytes / 1048576.0)) + " MB"
+                                   : std::string())
+              << "\n";
   if (bl.layers > 0) {
     std::cout << "  boundary layer: " << bl.layers << " layers on " << bl.wall_vertices << " wall vertices, "
               << bl.tets << " tets, " << bl.vertices << " vertices kept fixed; " << bl.full_columns
@@ -543,7 +547,12 @@ class MeshCommand {
         std::cout << "  written with --bl-cells prisms: " << prisms_->prisms << " prisms (3 BL tets each), "
                   << prisms_->kept_tets << " of " << prisms_->bl_tets
                   << " BL tets left as tets (no exact prism: a column that stopped, or a neighbour of one)\n";
-      if (args_.verbose) print_details(r, quality.value());
+      if (args_.verbose) {
+        print_details(r, quality.value());
+        if (const double peak = peak_resident_bytes(); peak > 0)
+          std::printf("  peak memory of the run (report and writing included): %.0f MB, %.0f bytes per tet\n",
+                      peak / 1048576.0, peak / double(std::max<size_t>(r.mesh.num_tets(), 1)));
+      }
       else std::cout << "  (-v: every stage's figures and the full quality report)\n";
     }
     return not_written_.empty() ? kExitOk : kExitReadError;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "core/process_memory.hpp"
 #include "distributed/parts.hpp"
 #include "distributed/rank_mesh.hpp"
 #include "exit_codes.hpp"
@@ -98,18 +99,6 @@ bool all_ranks_ready(bool ready) {
   return any == 0;
 }
 
-// This process's peak resident memory in MB (VmHWM), 0 when unknown.
-double peak_rss_mb() {
-  std::FILE* f = std::fopen("/proc/self/status", "r");
-  if (!f) return 0.0;
-  char line[256];
-  double kb = 0.0;
-  while (std::fgets(line, sizeof line, f))
-    if (std::strncmp(line, "VmHWM:", 6) == 0) kb = std::atof(line + 6);
-  std::fclose(f);
-  return kb / 1024.0;
-}
-
 // Stages 3b/3c with no whole mesh anywhere, and the pieces written (a .pvtu output). The coarse
 // mesh is left with the surface's vertices and no tet, for the report of `anitet mesh`.
 Status stage3_in_pieces(anitet::TetMesh& mesh, const anitet::SizingField& field,
@@ -133,7 +122,8 @@ Status stage3_in_pieces(anitet::TetMesh& mesh, const anitet::SizingField& field,
                  "anitet-mpi: rank %d: %zu own coarse tets after partitioning; %zu own tets, %zu vertices at the end; "
                  "%zu tets migrated; partition %.2f s, rounds %.2f s; peak RSS %.0f MB\n",
                  comm.rank(), stats.own_tets_after_partition, rm.mesh.num_live_tets(), rm.mesh.num_vertices(),
-                 stats.migrated_tets, stats.partition_seconds, stats.rounds_seconds, peak_rss_mb());
+                 stats.migrated_tets, stats.partition_seconds, stats.rounds_seconds,
+                 anitet::peak_resident_bytes() / 1048576.0);
   mesh = anitet::TetMesh();
   mesh.xyz = std::move(surface_xyz);
   mesh.vflags = std::move(surface_flags);

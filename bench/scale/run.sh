@@ -40,9 +40,11 @@ for s in "${sizes[@]}"; do
     printf '%-6s failed (exit %s), see %s\n' "$s" "$rc" "$log" | tee -a "$out/results.txt"
     continue
   fi
-  # "anitet mesh: IN -> OUT: V vertices, T tets in S s (...)"
-  read -r tets secs < <(sed -n 's/^anitet mesh: .*: [0-9]* vertices, \([0-9]*\) tets in \([0-9.e+-]*\) s .*/\1 \2/p' "$log")
-  verdict=$(grep -q "boundary constrained: YES" "$log" && grep -q "^validity: VALID" "$log" && echo "valid, boundary constrained" || echo "NOT VALID or surface lost")
+  # "anitet mesh: IN -> OUT: V vertices, T tets in TIME (...)", TIME as "12.3 s", "2 min 24 s" or
+  # "1 h 02 min" (the summary's format_seconds).
+  read -r tets secs < <(sed -n 's/^anitet mesh: .*: [0-9]* vertices, \([0-9]*\) tets in \(.*\) (.*/\1 \2/p' "$log" |
+    awk '{ s = 0; for (i = 3; i <= NF; ++i) s += $(i - 1) * ($i == "h" ? 3600 : $i == "min" ? 60 : $i == "s" ? 1 : 0); print $1, s }')
+  verdict=$(grep -q "^  surface kept exactly: YES" "$log" && grep -q "^  valid: YES" "$log" && echo "valid, boundary constrained" || echo "NOT VALID or surface lost")
   kb=$(cat "$out/size-$s.rss")
   wall=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
   per=$(awk -v n="$tets" -v t="$secs" 'BEGIN { printf "%.6e", t / (n * log(n) / log(2)) }')

@@ -59,6 +59,9 @@ Status TetMesh::build_adjacency() {
   // the other two and paired with their equal neighbour: linear in the tets, and no allocation
   // per facet (a hash map of the facets was most of its time). The adjacency is the same
   // whatever the order of the pairing.
+  if (num_tet_slots() > kMaxTetSlots)
+    return Status(Error::InvalidArgument, std::to_string(num_tet_slots()) +
+                                              " tet slots: more than a mesh holds (2^30, adjacency in 32 bits)");
   const uint32_t slots = num_tet_slots();
   auto sorted_facet = [&](uint32_t t, int i, uint32_t v[3]) {
     for (int k = 0; k < 3; ++k) v[k] = vertex(t, kFacetVertex[i][k]);
@@ -245,7 +248,7 @@ Status check_mesh(const TetMesh& m, const MeshCheckOptions& options) {
     }
 
     for (int i = 0; i < 4; ++i) {
-      const uint64_t adj = m.tet_adj[4 * size_t(t) + i];
+      const uint32_t adj = m.tet_adj[4 * size_t(t) + i];
       if (adj == TetMesh::kNoNeighbour) {
         if (options.require_closed || m.is_ghost(t))
           log.add("facet " + std::to_string(i) + " of tet " + std::to_string(t) + " has no neighbour");
@@ -257,7 +260,7 @@ Status check_mesh(const TetMesh& m, const MeshCheckOptions& options) {
         log.add("tet " + std::to_string(t) + " points to missing neighbour " + std::to_string(n));
         continue;
       }
-      if (m.tet_adj[4 * size_t(n) + j] != 4 * uint64_t(t) + uint64_t(i)) {
+      if (m.tet_adj[4 * size_t(n) + j] != 4 * uint32_t(t) + uint32_t(i)) {
         log.add("adjacency of tets " + std::to_string(t) + " and " + std::to_string(n) + " is not symmetric");
         continue;
       }

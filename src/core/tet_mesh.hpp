@@ -12,7 +12,9 @@
 //                \|/            facet 0 = (v1 v3 v2)   facet 1 = (v0 v2 v3)
 //                 v1            facet 2 = (v0 v3 v1)   facet 3 = (v0 v1 v2)
 //
-// Adjacency is by half-faces: tet_adj[4t+i] = 4*n + j means facet i of t is facet j of tet n.
+// Adjacency is by half-faces: tet_adj[4t+i] = 4*n + j means facet i of t is facet j of tet n, in
+// 32 bits (16 bytes per tet, not 32: the largest array per tet, issue 49), so a mesh holds at most
+// kMaxTetSlots tet slots.
 // A ghost vertex (kGhost) closes the convex hull: every hull facet has a ghost tet behind it, so
 // every facet of a live tet has a neighbour. A ghost tet keeps the ghost in slot 3 (its facet 3
 // is the hull triangle, seen from the ghost's side).
@@ -57,12 +59,14 @@ class TetMesh {
  public:
   static constexpr uint32_t kGhost = 0xfffffffeu;  // the ghost vertex
   static constexpr uint32_t kNone = 0xffffffffu;   // no vertex / no tet
-  static constexpr uint64_t kNoNeighbour = ~uint64_t(0);
+  static constexpr uint32_t kNoNeighbour = ~uint32_t(0);
+  // 4 * slot + facet stays below kNoNeighbour.
+  static constexpr size_t kMaxTetSlots = size_t(1) << 30;
 
   std::vector<double> xyz;         // 3 per vertex
   std::vector<uint8_t> vflags;     // 1 per vertex, vflag bits
   std::vector<uint32_t> tet_v;     // 4 per tet slot
-  std::vector<uint64_t> tet_adj;   // 4 per tet slot, 4*neighbour + facet
+  std::vector<uint32_t> tet_adj;   // 4 per tet slot, 4*neighbour + facet
   std::vector<uint16_t> tet_flags; // 1 per tet slot, tflag bits
   std::vector<int32_t> tet_region; // 1 per tet slot
   std::vector<uint32_t> free_tets; // deleted slots, reused first
@@ -85,13 +89,15 @@ class TetMesh {
   bool is_deleted(uint32_t t) const { return (tet_flags[t] & tflag::kDeleted) != 0; }
   bool is_ghost(uint32_t t) const { return tet_v[4 * size_t(t) + 3] == kGhost; }
   uint32_t vertex(uint32_t t, int i) const { return tet_v[4 * size_t(t) + i]; }
+  // kNone across a facet without a neighbour.
   uint32_t neighbour(uint32_t t, int i) const {
-    return static_cast<uint32_t>(tet_adj[4 * size_t(t) + i] >> 2);
+    const uint32_t a = tet_adj[4 * size_t(t) + i];
+    return a == kNoNeighbour ? kNone : a >> 2;
   }
   int neighbour_facet(uint32_t t, int i) const { return static_cast<int>(tet_adj[4 * size_t(t) + i] & 3); }
   void link(uint32_t t, int i, uint32_t n, int j) {
-    tet_adj[4 * size_t(t) + i] = 4 * uint64_t(n) + uint64_t(j);
-    tet_adj[4 * size_t(n) + j] = 4 * uint64_t(t) + uint64_t(i);
+    tet_adj[4 * size_t(t) + i] = 4 * n + uint32_t(j);
+    tet_adj[4 * size_t(n) + j] = 4 * t + uint32_t(i);
   }
   bool facet_protected(uint32_t t, int i) const { return (tet_flags[t] >> i) & 1u; }
   bool edge_constrained(uint32_t t, int k) const { return (tet_flags[t] & tflag::edge_constrained_bit(k)) != 0; }

@@ -208,7 +208,7 @@ bool facets_close(const TetMesh& mesh, const std::vector<uint32_t>& old_tets, co
   facets.clear();
   for (uint32_t t : old_tets) {
     for (int i = 0; i < 4; ++i) {
-      const uint64_t adj = mesh.tet_adj[4 * size_t(t) + i];
+      const uint32_t adj = mesh.tet_adj[4 * size_t(t) + i];
       if (adj != TetMesh::kNoNeighbour && inside(uint32_t(adj >> 2))) {
         if (mesh.facet_protected(t, i)) return false;  // a protected facet between two old tets
         continue;
@@ -221,7 +221,7 @@ bool facets_close(const TetMesh& mesh, const std::vector<uint32_t>& old_tets, co
   for (size_t n = 0; n < fresh.size(); ++n)
     for (int i = 0; i < 4; ++i) {
       const int* f = kFacetVertex[i];
-      facets.push_back({facet_key(fresh[n][f[0]], fresh[n][f[1]], fresh[n][f[2]]), 4 * uint64_t(n) + uint64_t(i), 1, 0});
+      facets.push_back({facet_key(fresh[n][f[0]], fresh[n][f[1]], fresh[n][f[2]]), 4 * uint32_t(n) + uint32_t(i), 1, 0});
     }
   std::sort(facets.begin(), facets.end(), [](const Facet& x, const Facet& y) {
     return x.key != y.key ? x.key < y.key : x.is_new < y.is_new;
@@ -299,7 +299,7 @@ bool replace_tets(TetMesh& mesh, const std::vector<uint32_t>& old_tets, const st
       mesh.link(created[a.half_face >> 2], static_cast<int>(a.half_face & 3), tb, ib);
     } else {
       mesh.tet_adj[4 * size_t(tb) + ib] = a.half_face;
-      if (a.half_face != TetMesh::kNoNeighbour) mesh.tet_adj[a.half_face] = 4 * uint64_t(tb) + uint64_t(ib);
+      if (a.half_face != TetMesh::kNoNeighbour) mesh.tet_adj[a.half_face] = 4 * uint32_t(tb) + uint32_t(ib);
       if (a.protect) mesh.set_facet_protected(tb, ib, true);
     }
   }

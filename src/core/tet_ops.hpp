@@ -64,7 +64,7 @@ using TetVerts = std::array<uint32_t, 4>;
 struct ReplaceScratch {
   struct Facet {
     std::array<uint32_t, 3> key;  // sorted vertex ids
-    uint64_t half_face;           // old boundary: the outside half-face; new: 4*index + facet
+    uint32_t half_face;           // old boundary: the outside half-face; new: 4*index + facet
     uint8_t is_new;
     uint8_t protect;
   };

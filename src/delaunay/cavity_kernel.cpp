@@ -10,7 +10,7 @@ namespace anitet::delaunay_detail {
 namespace {
 
 constexpr uint32_t kGhost = TetMesh::kGhost;
-constexpr uint64_t kNoNeighbour = TetMesh::kNoNeighbour;
+constexpr uint32_t kNoNeighbour = TetMesh::kNoNeighbour;
 
 // The facets of a ghost tet (ghost in slot 3) that contain the ghost, rotated so that the ghost
 // comes last: kGhostFacet[i][k] = kFacetVertex[i][(k + kGhostFacetRot[i]) % 3].
@@ -84,8 +84,8 @@ void CavityKernel::make_first_tet(uint32_t a, uint32_t b, uint32_t c, uint32_t d
     gv[1] = tv[kFacetVertex[i][2]];
     gv[2] = tv[kFacetVertex[i][1]];
     gv[3] = kGhost;
-    store_->set_adj(4 * uint64_t(t) + uint64_t(i), 4 * uint64_t(g) + 3);
-    store_->set_adj(4 * uint64_t(g) + 3, 4 * uint64_t(t) + uint64_t(i));
+    store_->set_adj(4 * uint32_t(t) + uint32_t(i), 4 * uint32_t(g) + 3);
+    store_->set_adj(4 * uint32_t(g) + 3, 4 * uint32_t(t) + uint32_t(i));
   }
   // Ghost facets through the ghost: pair those with the same two real vertices.
   for (uint32_t g = t + 1; g < t + 5; ++g)
@@ -97,8 +97,8 @@ void CavityKernel::make_first_tet(uint32_t a, uint32_t b, uint32_t c, uint32_t d
           const uint32_t g0 = gv[(i + 1) % 3], g1 = gv[(i + 2) % 3];
           const uint32_t h0 = hv[(j + 1) % 3], h1 = hv[(j + 2) % 3];
           if ((g0 == h0 && g1 == h1) || (g0 == h1 && g1 == h0)) {
-            store_->set_adj(4 * uint64_t(g) + uint64_t(i), 4 * uint64_t(h) + uint64_t(j));
-            store_->set_adj(4 * uint64_t(h) + uint64_t(j), 4 * uint64_t(g) + uint64_t(i));
+            store_->set_adj(4 * uint32_t(g) + uint32_t(i), 4 * uint32_t(h) + uint32_t(j));
+            store_->set_adj(4 * uint32_t(h) + uint32_t(j), 4 * uint32_t(g) + uint32_t(i));
           }
         }
   last_real_ = t;
@@ -113,7 +113,7 @@ inline bool CavityKernel::in_conflict(uint32_t t, const double* p, uint32_t pid)
   if (v[3] != kGhost) return insphere(t, p, pid) > 0;
   const int o = orient3d(pt(v[0]), pt(v[1]), pt(v[2]), p);
   if (o != 0) return o > 0;
-  const uint64_t behind = store_->adj(t, 3);
+  const uint32_t behind = store_->adj(t, 3);
   if (behind == kNoNeighbour) return false;
   const auto r = static_cast<uint32_t>(behind >> 2);
   const uint32_t mark = kStorageMarks ? store_->mark(r) : marks_.get(r);
@@ -142,7 +142,7 @@ Location CavityKernel::walk(uint32_t t, const double* p) {
   if (is_ghost(t)) {
     const uint32_t* v = store_->verts(t);
     if (orient3d(pt(v[0]), pt(v[1]), pt(v[2]), p) > 0) return {Located::kInGhost, t, TetMesh::kNone};
-    const uint64_t adj = store_->adj(t, 3);
+    const uint32_t adj = store_->adj(t, 3);
     if (adj == kNoNeighbour) return kOwned ? foreign : locate_by_scan(p);
     t = static_cast<uint32_t>(adj >> 2);
     if (!enterable(t)) return foreign;
@@ -174,7 +174,7 @@ Location CavityKernel::walk(uint32_t t, const double* p) {
         if (equals_vertex(v[k], p)) return {Located::kDuplicate, t, v[k]};
       return {Located::kInTet, t, TetMesh::kNone};
     }
-    const uint64_t adj = store_->adj(t, exit);
+    const uint32_t adj = store_->adj(t, exit);
     if (adj == kNoNeighbour) return {Located::kOutside, t, TetMesh::kNone};
     const auto n = static_cast<uint32_t>(adj >> 2);
     if (!enterable(n)) return foreign;
@@ -205,7 +205,7 @@ bool CavityKernel::grow_and_fill(uint32_t t0, uint32_t pid) {
   // Breadth-first growth over facets; every tet is tested at most once.
   for (size_t k = 0; k < cavity_.size(); ++k) {
     const uint32_t c = cavity_[k];
-    uint64_t cadj[4];
+    uint32_t cadj[4];
     // The four neighbours are usually cache misses: request them all before testing any.
     for (int i = 0; i < 4; ++i) {
       cadj[i] = store_->adj(c, i);
@@ -273,7 +273,7 @@ Location CavityKernel::locate_by_scan(const double* p) {
 }
 
 template <bool kCarry>
-void CavityKernel::add_boundary(uint32_t c, int i, uint64_t outside) {
+void CavityKernel::add_boundary(uint32_t c, int i, uint32_t outside) {
   const uint32_t* cv = store_->verts(c);
   // Filled in place: a copy of a stack struct made of narrow stores stalls store forwarding.
   BoundaryFacet& b = boundary_.emplace_back();
@@ -305,7 +305,7 @@ void CavityKernel::collect_boundary(bool respect_protected) {
   boundary_.clear();
   for (uint32_t c : cavity_) {
     for (int i = 0; i < 4; ++i) {
-      const uint64_t adj = store_->adj(c, i);
+      const uint32_t adj = store_->adj(c, i);
       // A protected facet bounds the cavity even when its other side is in the cavity too: the
       // side away from the new point then fails the visibility test and leaves.
       if (adj == kNoNeighbour || marks_.get(static_cast<uint32_t>(adj >> 2)) != TetMarks::kIn ||
@@ -428,7 +428,7 @@ bool CavityKernel::kept_can_stay(bool respect_protected) {
       }
       // The tet n across, in the cavity: when one of its sure boundary facets hides p, n leaves
       // and this facet bounds c.
-      const uint64_t adj = store_->adj(c, i);
+      const uint32_t adj = store_->adj(c, i);
       const auto n = static_cast<uint32_t>(adj >> 2);
       if (is_kept(n)) continue;
       bool n_leaves = false;
@@ -445,7 +445,7 @@ bool CavityKernel::kept_can_stay(bool respect_protected) {
 // protected facet, or a neighbour not in conflict. Classifies the neighbour when it has no mark
 // yet (joining the cavity when in conflict), as growth does; the marks it sets are final.
 bool CavityKernel::bounds_for_sure(uint32_t c, int i, bool respect_protected) {
-  const uint64_t adj = store_->adj(c, i);
+  const uint32_t adj = store_->adj(c, i);
   if (adj == kNoNeighbour) return true;
   // Owned: the tet across is read and linked whatever it is, so it must be this part's.
   if (owned_ && owner(static_cast<uint32_t>(adj >> 2)) != me_) {
@@ -481,7 +481,7 @@ bool CavityKernel::is_kept(uint32_t t) const {
 }
 
 bool CavityKernel::is_boundary_facet(uint32_t c, int i, bool respect_protected) const {
-  const uint64_t adj = store_->adj(c, i);
+  const uint32_t adj = store_->adj(c, i);
   // A protected facet bounds the cavity even when its other side is in the cavity too.
   return adj == kNoNeighbour || marks_.get(static_cast<uint32_t>(adj >> 2)) != TetMarks::kIn ||
          (respect_protected && ((store_->flags(c) >> i) & 1u));
@@ -498,7 +498,7 @@ bool CavityKernel::shrink_to_star(uint32_t t0, uint32_t pid, bool respect_protec
   auto take_out = [&](uint32_t c) {
     marks_.set(c, TetMarks::kOut);
     for (int j = 0; j < 4; ++j) {
-      const uint64_t adj = store_->adj(c, j);
+      const uint32_t adj = store_->adj(c, j);
       if (adj == kNoNeighbour) continue;
       const auto n = static_cast<uint32_t>(adj >> 2);
       if (marks_.get(n) == TetMarks::kIn) shrink_queue_.push_back({n, static_cast<int>(adj & 3)});
@@ -571,7 +571,7 @@ bool CavityKernel::defend_constrained_edges(uint32_t t0, uint32_t pid) {
         int ix = -1;
         for (int i = 0; i < 4; ++i)
           if (tv[i] == x) ix = i;
-        const uint64_t adj = ix < 0 ? kNoNeighbour : store_->adj(t, ix);
+        const uint32_t adj = ix < 0 ? kNoNeighbour : store_->adj(t, ix);
         if (adj == kNoNeighbour) {
           all_in = false;
           break;
@@ -669,7 +669,7 @@ void CavityKernel::fill_cavity(uint32_t pid, bool carry) {
         last_real_ = s;
       }
     }
-    const uint64_t hf = 4 * uint64_t(s) + uint64_t(ps);
+    const uint32_t hf = 4 * uint32_t(s) + uint32_t(ps);
     store_->set_adj(hf, b.outside);
     if (b.outside != kNoNeighbour) {
       store_->set_adj(b.outside, hf);
@@ -717,23 +717,23 @@ void CavityKernel::fill_cavity(uint32_t pid, bool carry) {
 }
 
 void CavityKernel::link_by_table() {
-  uint64_t* table = edge_table_.data();
+  uint32_t* table = edge_table_.data();
   const size_t nb = boundary_.size();
   for (size_t k = 0; k < nb; ++k) {
     const BoundaryFacet& b = boundary_[k];
     const int* slot = b.v[2] == kGhost ? kSlotGhost : kSlotReal;
-    const uint64_t base = 4 * uint64_t(new_tets_[k]);
-    table[b.lid[1] * kTableSide + b.lid[2]] = base + uint64_t(slot[0]);
-    table[b.lid[2] * kTableSide + b.lid[0]] = base + uint64_t(slot[1]);
-    table[b.lid[0] * kTableSide + b.lid[1]] = base + uint64_t(slot[2]);
+    const uint32_t base = 4 * uint32_t(new_tets_[k]);
+    table[b.lid[1] * kTableSide + b.lid[2]] = base + uint32_t(slot[0]);
+    table[b.lid[2] * kTableSide + b.lid[0]] = base + uint32_t(slot[1]);
+    table[b.lid[0] * kTableSide + b.lid[1]] = base + uint32_t(slot[2]);
   }
   for (size_t k = 0; k < nb; ++k) {
     const BoundaryFacet& b = boundary_[k];
     const int* slot = b.v[2] == kGhost ? kSlotGhost : kSlotReal;
-    const uint64_t base = 4 * uint64_t(new_tets_[k]);
-    store_->set_adj(base + uint64_t(slot[0]), table[b.lid[2] * kTableSide + b.lid[1]]);
-    store_->set_adj(base + uint64_t(slot[1]), table[b.lid[0] * kTableSide + b.lid[2]]);
-    store_->set_adj(base + uint64_t(slot[2]), table[b.lid[1] * kTableSide + b.lid[0]]);
+    const uint32_t base = 4 * uint32_t(new_tets_[k]);
+    store_->set_adj(base + uint32_t(slot[0]), table[b.lid[2] * kTableSide + b.lid[1]]);
+    store_->set_adj(base + uint32_t(slot[1]), table[b.lid[0] * kTableSide + b.lid[2]]);
+    store_->set_adj(base + uint32_t(slot[2]), table[b.lid[1] * kTableSide + b.lid[0]]);
   }
 }
 
@@ -743,10 +743,10 @@ void CavityKernel::link_by_sort() {
   for (size_t k = 0; k < nb; ++k) {
     const BoundaryFacet& b = boundary_[k];
     const int* slot = b.v[2] == kGhost ? kSlotGhost : kSlotReal;
-    const uint64_t base = 4 * uint64_t(new_tets_[k]);
+    const uint32_t base = 4 * uint32_t(new_tets_[k]);
     for (int e = 0; e < 3; ++e) {
       const uint64_t key = (uint64_t(b.v[(e + 1) % 3]) << 32) | b.v[(e + 2) % 3];
-      edges_.push_back({key, base + uint64_t(slot[e])});
+      edges_.push_back({key, base + uint32_t(slot[e])});
     }
   }
   std::sort(edges_.begin(), edges_.end(),

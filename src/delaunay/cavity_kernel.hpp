@@ -151,7 +151,7 @@ class CavityKernel {
   struct BoundaryFacet {
     uint32_t v[3];
     uint32_t ctet;
-    uint64_t outside;  // the half-face across, or kNoNeighbour
+    uint32_t outside;  // the half-face across, or kNoNeighbour
     int32_t region;
     uint16_t cflags;   // the cavity tet's flags (protected facet, constrained edges)
     uint8_t cfacet;
@@ -194,7 +194,7 @@ class CavityKernel {
   bool equals_vertex(uint32_t v, const double* p) const;
 
   template <bool kCarry>
-  void add_boundary(uint32_t c, int i, uint64_t outside);
+  void add_boundary(uint32_t c, int i, uint32_t outside);
   void collect_boundary(bool respect_protected);
   bool defend_constrained_edges(uint32_t t0, uint32_t pid);
   bool kept_can_stay(bool respect_protected);
@@ -243,10 +243,10 @@ class CavityKernel {
   std::vector<uint8_t> local_of_;
   std::vector<uint32_t> local_vertices_;
   int ghost_local_ = -1;
-  std::vector<uint64_t> edge_table_;
+  std::vector<uint32_t> edge_table_;
   struct DirectedEdge {
     uint64_t key;
-    uint64_t half_face;
+    uint32_t half_face;
   };
   std::vector<DirectedEdge> edges_;
 };

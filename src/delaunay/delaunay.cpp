@@ -182,7 +182,7 @@ class ParallelBuild {
       const uint8_t o = kernel.owner(seen[i]);
       if (o == k || o == CavityKernel::kNoPart) return seen[i];
       for (int f = 0; f < 4; ++f) {
-        const uint64_t adj = mesh_.tet_adj[4 * size_t(seen[i]) + size_t(f)];
+        const uint32_t adj = mesh_.tet_adj[4 * size_t(seen[i]) + size_t(f)];
         const auto n = static_cast<uint32_t>(adj >> 2);
         if (std::find(seen.begin(), seen.end(), n) == seen.end()) seen.push_back(n);
       }
@@ -244,9 +244,9 @@ void compact_tets(TetMesh& mesh) {
     const uint32_t to = free[f++], from = static_cast<uint32_t>(end - 1);
     for (int i = 0; i < 4; ++i) {
       mesh.tet_v[4 * size_t(to) + size_t(i)] = mesh.tet_v[4 * size_t(from) + size_t(i)];
-      const uint64_t adj = mesh.tet_adj[4 * size_t(from) + size_t(i)];
+      const uint32_t adj = mesh.tet_adj[4 * size_t(from) + size_t(i)];
       mesh.tet_adj[4 * size_t(to) + size_t(i)] = adj;
-      if (adj != TetMesh::kNoNeighbour) mesh.tet_adj[adj] = 4 * uint64_t(to) + uint64_t(i);
+      if (adj != TetMesh::kNoNeighbour) mesh.tet_adj[adj] = 4 * uint32_t(to) + uint32_t(i);
     }
     mesh.tet_flags[to] = mesh.tet_flags[from];
     mesh.tet_region[to] = mesh.tet_region[from];
@@ -310,8 +310,10 @@ Result<DelaunayStats> delaunay_tetrahedralize(TetMesh& mesh, const double* xyz, 
   const auto t_start = Clock::now();
   const predicates::PredicateCounters predicates_before = predicates::thread_counters();
   if (n == 0 || xyz == nullptr) return Status(Error::EmptyInput, "no points to tetrahedralize");
-  if (n >= size_t(TetMesh::kGhost))
-    return Status(Error::InvalidArgument, "too many points: " + std::to_string(n));
+  // (Delaunay meshes of points in general position have about 6.5 tets per point; a mesh holds
+  // at most 2^30 tet slots.)
+  if (n >= size_t(TetMesh::kGhost) || n > TetMesh::kMaxTetSlots / 8)
+    return Status(Error::InvalidArgument, "too many points: " + std::to_string(n) + " (at most 2^27, 134217728)");
   for (size_t i = 0; i < 3 * n; ++i)
     if (!std::isfinite(xyz[i]))
       return Status(Error::NonFiniteCoordinate,

@@ -32,8 +32,8 @@ class TetStorage {
   size_t num_slots() const { return mesh_->num_tet_slots(); }
   uint32_t* verts(uint32_t t) { return tv_ + 4 * size_t(t); }
   const uint32_t* verts(uint32_t t) const { return tv_ + 4 * size_t(t); }
-  uint64_t adj(uint32_t t, int i) const { return ta_[4 * size_t(t) + i]; }
-  void set_adj(uint64_t half_face, uint64_t value) { ta_[half_face] = value; }
+  uint32_t adj(uint32_t t, int i) const { return ta_[4 * size_t(t) + i]; }
+  void set_adj(uint32_t half_face, uint32_t value) { ta_[half_face] = value; }
   uint16_t flags(uint32_t t) const { return tf_[t]; }
   int32_t region(uint32_t t) const { return tr_[t]; }
   // A slot becomes a live tet with these flags and region (marks cleared).
@@ -101,7 +101,7 @@ class TetStorage {
   TetMesh* mesh_;
   SlotPool* pool_;
   uint32_t* tv_ = nullptr;
-  uint64_t* ta_ = nullptr;
+  uint32_t* ta_ = nullptr;
   uint16_t* tf_ = nullptr;
   int32_t* tr_ = nullptr;
 };

@@ -166,7 +166,7 @@ class Optimizer {
   std::vector<uint32_t> collapse_ball_w_;          // and its scratch
   static constexpr double kCollapseMaxLength = 1.5;  // longest new edge of a collapse, in sizes
   std::vector<uint8_t> side_;  // cvt_pass(): per vertex, its side of the split (2: seam bit)
-  std::vector<double> tet_q_;  // per tet slot, during cvt_pass() only (empty otherwise)
+  std::vector<double> tet_q_;  // per tet slot, during cvt_pass() only (the flip memo's; empty otherwise)
   // The tets of vertex v's ball are ball_tets_[ball_start_[v] .. ball_start_[v + 1]), during
   // cvt_pass() only (built at its start; released after the CVT iterations).
   std::vector<uint32_t> ball_start_, ball_tets_;
@@ -353,9 +353,14 @@ size_t Optimizer::cvt_pass() {
   const uint32_t n_slots = mesh_.num_tet_slots();
   sizes_.resize(nv, -1.0);  // no resizing inside the parallel tasks
   // Every tet's quality once, kept up to date by the accepted moves: each tet is in four balls,
-  // so measuring balls from scratch would compute it four times. Dropped at the end (the flips
-  // that follow change the tets).
-  tet_q_.assign(n_slots, 0.0);
+  // so measuring balls from scratch would compute it four times. In the flip memo's own array,
+  // lent to tet_q_ for the sweep (no second 8 bytes per tet slot: issue 49); what it held for a
+  // tet is kept where the memo still knows it, and at the end the memo knows every tet.
+  optimize_detail::FlipMemo& memo = flips_.memo;
+  if (memo.quality_of.size() < n_slots) {
+    memo.quality_of.resize(n_slots, 0.0);
+    memo.measured.resize(n_slots, 0);
+  }
   // Every vertex's ball, in tet order (moves keep the topology, so one scan of the tets serves
   // the whole sweep instead of a traversal per vertex).
   {
@@ -369,11 +374,10 @@ size_t Optimizer::cvt_pass() {
         },
         ball_start_, ball_tets_, fill);
   }
-  optimize_detail::FlipMemo& memo = flips_.memo;
   auto measure = [&](uint32_t begin, uint32_t end) {
     for (uint32_t t = begin; t < end; ++t)
-      if (!mesh_.is_deleted(t))
-        tet_q_[t] = memo.knows_quality(t, &mesh_.tet_v[4 * size_t(t)]) ? memo.quality_of[t] : quality_.tet(mesh_, t);
+      if (!mesh_.is_deleted(t) && !memo.knows_quality(t, &mesh_.tet_v[4 * size_t(t)]))
+        memo.quality_of[t] = quality_.tet(mesh_, t);
   };
   // The split: side 0 or 1 per vertex, then kSeam for the vertices of tets across it.
   constexpr uint8_t kSeam = 2;
@@ -393,19 +397,17 @@ size_t Optimizer::cvt_pass() {
   };
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_slots, 4096),
                     [&](const tbb::blocked_range<uint32_t>& r) { measure(r.begin(), r.end()); });
+  tet_q_.swap(memo.quality_of);
   tbb::parallel_invoke([&] { sweep_side(0); }, [&] { sweep_side(1); });
   Work& seam = work_;
   seam.moved = seam.rejected = 0;
   for (uint32_t v = 0; v < nv; ++v)
     if ((side_[v] & kSeam) && movable(v)) cvt_move(seam, v);
   // Nearly every vertex moved; tet_q_ holds every tet's quality now (the moves kept it).
+  tet_q_.swap(memo.quality_of);
   memo.touch_all();
   const uint32_t now = memo.start_measures(n_slots);
-  for (uint32_t t = 0; t < n_slots; ++t) {
-    memo.quality_of[t] = tet_q_[t];
-    memo.measured[t] = mesh_.is_deleted(t) ? 0 : now;
-  }
-  tet_q_.clear();
+  for (uint32_t t = 0; t < n_slots; ++t) memo.measured[t] = mesh_.is_deleted(t) ? 0 : now;
   stats_.moves_rejected += halves[0].rejected + halves[1].rejected + seam.rejected;
   return halves[0].moved + halves[1].moved + seam.moved;
 }

@@ -40,7 +40,7 @@ size_t freeze_boundary_layer(TetMesh& mesh, int32_t first_bl_region) {
     if (mesh.is_deleted(t) || mesh.is_ghost(t) || mesh.tet_region[t] < first_bl_region) continue;
     for (int i = 0; i < 4; ++i) {
       mesh.set_facet_protected(t, i, true);
-      const uint64_t adj = mesh.tet_adj[4 * size_t(t) + i];
+      const uint32_t adj = mesh.tet_adj[4 * size_t(t) + i];
       if (adj != TetMesh::kNoNeighbour) mesh.set_facet_protected(mesh.neighbour(t, i), mesh.neighbour_facet(t, i), true);
     }
   }
@@ -432,6 +432,15 @@ class MeshingRun {
                       result_.estimated_tets, o_.max_tets);
         return Status(Error::InvalidArgument, msg);
       }
+      // (Refinement makes up to about half more than estimated; a mesh holds 2^30 tet slots.)
+      if (1.5 * result_.estimated_tets > double(TetMesh::kMaxTetSlots)) {
+        char msg[240];
+        std::snprintf(msg, sizeof msg,
+                      "the sizing field asks for about %.3g tets (estimated before refinement): more than one mesh "
+                      "holds (2^30 tet slots); use a coarser size",
+                      result_.estimated_tets);
+        return Status(Error::InvalidArgument, msg);
+      }
     }
     if (o_.stage3) {
       if (!o_.run_refine || !o_.run_optimize)
@@ -504,7 +513,10 @@ class MeshingRun {
   // coarsening removed, and input vertices of no triangle, e.g. a volume mesh's interior ones);
   // the input's others stay first, in input order. The boundary triangles are the input's,
   // renumbered with the vertices.
-  void finish(const TetMesh& mesh, int32_t bodies) {
+  // The mesh's adjacency is dropped before the copy (the run's last use of the TetMesh): its 16
+  // bytes per tet slot make room for the VolumeMesh's tets, which set the peak memory of large
+  // runs otherwise (issue 49).
+  void finish(TetMesh& mesh, int32_t bodies) {
     const auto t = Clock::now();
     const BoundaryLayerOptions& bl = o_.layers.boundary_layer;
     if (bl.enabled()) {
@@ -514,6 +526,7 @@ class MeshingRun {
         if (!mesh.is_deleted(k) && mesh.tet_region[k] >= bodies) ++result_.boundary_layer.tets;
       result_.boundary_layer.reduced_vertices = result_.layers.bl_reduced_vertices;
     }
+    std::vector<uint32_t>().swap(mesh.tet_adj);
     std::vector<uint32_t> vertex_map;
     result_.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/true, surface_.tri, surface_.patch, &vertex_map);
     result_.input_vertex.assign(vertex_map.begin(), vertex_map.begin() + std::ptrdiff_t(surface_.num_vertices()));

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/process_memory.hpp"
 #include "core/status.hpp"
 #include "core/surface_mesh.hpp"
 #include "core/volume_mesh.hpp"
@@ -98,6 +99,9 @@ struct StageReport {
   std::string name;
   double seconds = 0.0;
   size_t tets = 0;  // tets the stage leaves (its own output)
+  // The process's peak resident memory when the stage ended (VmHWM: the highest so far as the
+  // kernel counts it, lazily; the caller's memory included), in bytes; 0 where unknown.
+  double peak_bytes = peak_resident_bytes();
 };
 
 // Something the run did otherwise, or less, than asked (the front-layer count changed by the

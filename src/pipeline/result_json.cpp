@@ -6,7 +6,7 @@ namespace anitet {
 
 std::string mesher_result_json(const MesherResult& r, int indent) {
   nlohmann::json stages = nlohmann::json::array();
-  for (const StageReport& s : r.stages) stages.push_back({{"stage", s.name}, {"seconds", s.seconds}, {"tets", s.tets}});
+  for (const StageReport& s : r.stages) stages.push_back({{"stage", s.name}, {"seconds", s.seconds}, {"tets", s.tets}, {"peak_bytes", s.peak_bytes}});
   const BoundaryLayerReport& bl = r.boundary_layer;
   nlohmann::json out = {
       {"seconds", r.seconds},

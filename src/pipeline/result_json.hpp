@@ -8,7 +8,7 @@
 
 namespace anitet {
 
-// An object: seconds, tets_per_second, estimated_tets, stages [{stage, seconds, tets}], layers,
+// An object: seconds, tets_per_second, estimated_tets, stages [{stage, seconds, tets, peak_bytes}], layers,
 // recovery, coupling, refine, metric_quality, boundary_layer, optimize, notices [{kind, message}]
 // (keys sorted).
 std::string mesher_result_json(const MesherResult& r, int indent = 1);

@@ -234,6 +234,14 @@ Result<QualityReport> quality_detail::compute_quality_report_keep(const VolumeMe
   r.tets = mesh.num_tets();
   r.unused_vertices = size_t(std::count(used.begin(), used.end(), uint8_t(0)));
 
+  // The faces first: the census's working memory (32 bytes per tet) is gone before the per-tet
+  // measures (41 bytes per tet) are made, not held beside them (issue 49).
+  {
+    FaceCensus faces = census_faces(mesh.tet.data(), mesh.num_tets(), mesh.num_vertices(), options.parallel);
+    boundary = std::move(faces.boundary);
+    r.faces_shared_by_more_than_two = faces.shared_by_more_than_two;
+    r.boundary_faces = boundary.size() / 3;
+  }
   data = measure_tets(mesh, options.parallel);
   const TetData& d = data;
   double vol = 0.0, comp = 0.0;  // Neumaier sum of the signed volumes
@@ -308,10 +316,6 @@ Result<QualityReport> quality_detail::compute_quality_report_keep(const VolumeMe
     }
   }
 
-  FaceCensus faces = census_faces(mesh.tet.data(), mesh.num_tets(), mesh.num_vertices(), options.parallel);
-  boundary = std::move(faces.boundary);
-  r.faces_shared_by_more_than_two = faces.shared_by_more_than_two;
-  r.boundary_faces = boundary.size() / 3;
   r.valid = r.nonpositive_tets == 0 && r.faces_shared_by_more_than_two == 0;
 
   if (input_surface != nullptr) {

@@ -11,7 +11,7 @@ namespace anitet {
 
 namespace {
 
-constexpr uint64_t kNoNeighbour = TetMesh::kNoNeighbour;
+constexpr uint32_t kNoNeighbour = TetMesh::kNoNeighbour;
 
 uint64_t pair_key(uint32_t a, uint32_t b) {
   if (a > b) std::swap(a, b);
@@ -54,7 +54,7 @@ bool edge_ring(const TetMesh& mesh, uint32_t t, uint32_t p, uint32_t q, EdgeRing
 
 bool flip23(TetMesh& mesh, uint32_t t, int facet, std::vector<uint32_t>* created, const DegeneracyOracle* oracle) {
   if (mesh.is_ghost(t) || mesh.facet_protected(t, facet)) return false;
-  const uint64_t adj = mesh.tet_adj[4 * size_t(t) + facet];
+  const uint32_t adj = mesh.tet_adj[4 * size_t(t) + facet];
   if (adj == kNoNeighbour) return false;
   const auto n = static_cast<uint32_t>(adj >> 2);
   if (mesh.is_ghost(n)) return false;
@@ -173,7 +173,7 @@ bool flip_in_edge(TetMesh& mesh, uint32_t u, uint32_t w, const std::vector<uint3
     if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
     int i = 0;
     while (mesh.vertex(t, i) != u) ++i;
-    const uint64_t adj = mesh.tet_adj[4 * size_t(t) + i];
+    const uint32_t adj = mesh.tet_adj[4 * size_t(t) + i];
     if (adj == TetMesh::kNoNeighbour) continue;
     const uint32_t n = static_cast<uint32_t>(adj >> 2);
     if (!mesh.is_ghost(n) && mesh.vertex(n, static_cast<int>(adj & 3)) == w) {

@@ -26,7 +26,7 @@ double seconds_since(Clock::time_point t0) {
 
 constexpr uint32_t kNone = TetMesh::kNone;
 constexpr uint32_t kGhost = TetMesh::kGhost;
-constexpr uint64_t kNoNeighbour = TetMesh::kNoNeighbour;
+constexpr uint32_t kNoNeighbour = TetMesh::kNoNeighbour;
 
 using namespace recovery_detail;
 

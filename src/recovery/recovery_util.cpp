@@ -61,7 +61,7 @@ void keep_regions(TetMesh& mesh, const std::vector<int32_t>& comp, const std::ve
   for (uint32_t t = 0; t < nslots; ++t) {
     if (mesh.is_deleted(t) || region[comp[t]] >= 0) continue;
     for (int i = 0; i < 4; ++i) {
-      const uint64_t adj = mesh.tet_adj[4 * size_t(t) + i];
+      const uint32_t adj = mesh.tet_adj[4 * size_t(t) + i];
       if (adj == TetMesh::kNoNeighbour) continue;
       const auto n = static_cast<uint32_t>(adj >> 2);
       if (region[comp[n]] >= 0) mesh.tet_adj[adj] = TetMesh::kNoNeighbour;  // now a boundary facet

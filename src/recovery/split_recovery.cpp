@@ -30,7 +30,7 @@ double seconds_since(Clock::time_point t0) {
 }
 
 constexpr uint32_t kNone = TetMesh::kNone;
-constexpr uint64_t kNoNeighbour = TetMesh::kNoNeighbour;
+constexpr uint32_t kNoNeighbour = TetMesh::kNoNeighbour;
 
 class SplitRecoverer : public DegeneracyOracle {
  public:
@@ -461,7 +461,7 @@ void SplitRecoverer::protect(uint32_t k) {
   int i;
   if (!find_facet(ct_[k], t, i)) return;
   mesh_.set_facet_protected(t, i, true);
-  const uint64_t adj = mesh_.tet_adj[4 * size_t(t) + i];
+  const uint32_t adj = mesh_.tet_adj[4 * size_t(t) + i];
   if (adj != kNoNeighbour) mesh_.set_facet_protected(uint32_t(adj >> 2), int(adj & 3), true);
   ct_state_[k] = kRecovered;
 }
@@ -739,7 +739,7 @@ size_t SplitRecoverer::walk_points(uint32_t a, uint32_t b) {
     if (!all_in) break;
     walk_frac_.push_back(mid);
     last = best;
-    const uint64_t adj = mesh_.tet_adj[4 * size_t(t) + exit];
+    const uint32_t adj = mesh_.tet_adj[4 * size_t(t) + exit];
     if (adj == kNoNeighbour || mesh_.is_ghost(uint32_t(adj >> 2))) break;
     const uint32_t nt = uint32_t(adj >> 2);
     entry = int(adj & 3);

@@ -10,6 +10,25 @@
 #include "refine/refine.hpp"
 
 namespace anitet {
+namespace {
+
+// array (per_tet entries per tet slot) with the slots order[0], order[1], ... only, each entry
+// mapped by `value`; with a sixteenth more room: the optimizer's flips take new slots right after
+// this, and growing the arrays then copied all of them to fresh pages.
+template <class T, class ForRange, class Value>
+void permute_tets(std::vector<T>& array, size_t per_tet, const std::vector<uint32_t>& order, ForRange&& for_range,
+                  Value&& value) {
+  const size_t nt = order.size();
+  std::vector<T> out;
+  out.reserve(per_tet * (nt + nt / 16));
+  out.resize(per_tet * nt);
+  for_range(nt, [&](size_t k) {
+    for (size_t i = 0; i < per_tet; ++i) out[per_tet * k + i] = value(array[per_tet * size_t(order[k]) + i]);
+  });
+  array.swap(out);
+}
+
+}  // namespace
 
 void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
   const size_t nv = mesh.num_vertices();
@@ -69,39 +88,22 @@ void order_for_locality(TetMesh& mesh, uint32_t first_vertex) {
         }
       },
       start, order, fill);
+  std::vector<uint32_t>().swap(start);
+  std::vector<uint32_t>().swap(fill);
+  std::vector<uint32_t>().swap(rank);
   std::vector<uint32_t> new_tet(slots, TetMesh::kNone);
   for_range(order.size(), [&](size_t k) { new_tet[order[k]] = static_cast<uint32_t>(k); });
-  const size_t nt = order.size();
-  // A sixteenth more room: the optimizer's flips take new slots right after this, and growing
-  // the arrays then copied all of them to fresh pages.
-  const size_t room = nt + nt / 16;
-  std::vector<uint32_t> tet_v;
-  std::vector<uint64_t> tet_adj;
-  std::vector<uint16_t> tet_flags;
-  std::vector<int32_t> tet_region;
-  tet_v.reserve(4 * room);
-  tet_adj.reserve(4 * room);
-  tet_flags.reserve(room);
-  tet_region.reserve(room);
-  tet_v.resize(4 * nt);
-  tet_adj.resize(4 * nt);
-  tet_flags.resize(nt);
-  tet_region.resize(nt);
-  for_range(nt, [&](size_t k) {
-    const uint32_t t = order[k];
-    for (int i = 0; i < 4; ++i) {
-      const uint32_t v = mesh.vertex(t, i);
-      tet_v[4 * k + i] = v == TetMesh::kGhost ? v : new_id[v];
-      const uint64_t a = mesh.tet_adj[4 * size_t(t) + i];
-      tet_adj[4 * k + i] = a == TetMesh::kNoNeighbour ? a : 4 * uint64_t(new_tet[a >> 2]) + (a & 3);
-    }
-    tet_flags[k] = mesh.tet_flags[t];
-    tet_region[k] = mesh.tet_region[t];
+  // One array at a time, each old one freed before the next is built: the whole tet arrays old
+  // and new at once set the peak memory of large runs (issue 49).
+  const uint32_t kNoNeighbour = TetMesh::kNoNeighbour;
+  permute_tets(mesh.tet_adj, 4, order, for_range, [&](uint32_t a) {
+    return a == kNoNeighbour ? a : 4 * new_tet[a >> 2] + (a & 3);
   });
-  mesh.tet_v.swap(tet_v);
-  mesh.tet_adj.swap(tet_adj);
-  mesh.tet_flags.swap(tet_flags);
-  mesh.tet_region.swap(tet_region);
+  std::vector<uint32_t>().swap(new_tet);
+  permute_tets(mesh.tet_v, 4, order, for_range,
+               [&](uint32_t v) { return v == TetMesh::kGhost ? v : new_id[v]; });
+  permute_tets(mesh.tet_flags, 1, order, for_range, [](uint16_t f) { return f; });
+  permute_tets(mesh.tet_region, 1, order, for_range, [](int32_t r) { return r; });
   mesh.free_tets.clear();
 }
 

@@ -210,6 +210,7 @@ class Refiner {
   std::vector<uint32_t> collapse_changed_;
   uint32_t collapse_block_ = 0;
   Status check(const char* when) const;
+  Status check_room(const refine_detail::EdgeList& edges) const;
   // check_each_pass: the pass's edge list (update_edges) against a full collection.
   Status check_edge_list(const refine_detail::EdgeList& edges, size_t edge_count) const;
   refine_detail::EdgeFilter edge_filter() const {
@@ -311,7 +312,7 @@ class Refiner {
 // The tets refinement will make, about: each tet's volume over that of the regular tet whose edge
 // is its vertices' mean size (the refined counts exceed it by up to about half). The mesh's arrays
 // are reserved for 1.6 times as many, so that they are not moved while the mesh grows: each move
-// held the old arrays and the new ones at once (54 bytes per tet each), which set the peak memory
+// held the old arrays and the new ones at once (38 bytes per tet each), which set the peak memory
 // of large runs. Pages not written are not resident, so a generous reservation costs address space
 // only.
 void Refiner::reserve_for_refinement() {
@@ -333,12 +334,12 @@ void Refiner::reserve_for_refinement() {
     if (regular > 0.0) expected += volume / regular;
   }
   // At most a quarter of the machine's memory for the tet arrays (an estimate gone wild on a
-  // strange metric must not ask for more address space than the system grants), and 2^31 tets
-  // (the edge lists hold tet ids in 31 bits).
-  double cap = double(1u << 31);
+  // strange metric must not ask for more address space than the system grants), and the most
+  // tet slots a mesh holds (2^30: 32-bit adjacency).
+  double cap = double(TetMesh::kMaxTetSlots);
 #if defined(_SC_PHYS_PAGES) && defined(_SC_PAGESIZE)
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-  if (pages > 0 && page > 0) cap = std::min(cap, 0.25 * double(pages) * double(page) / 54.0);
+  if (pages > 0 && page > 0) cap = std::min(cap, 0.25 * double(pages) * double(page) / 38.0);
 #endif
   const double slots = std::min(1.6 * expected + double(mesh_.num_tet_slots()), cap);
   if (!(slots > double(mesh_.num_tet_slots()))) return;
@@ -1032,6 +1033,18 @@ Status Refiner::check_edge_list(const refine_detail::EdgeList& edges, size_t edg
   return Status::success();
 }
 
+// A mesh holds TetMesh::kMaxTetSlots tet slots (32-bit adjacency): the pass's splits, at most one
+// per long edge, must leave room for 16 new tets each (an insertion makes about 6 on average).
+Status Refiner::check_room(const refine_detail::EdgeList& edges) const {
+  size_t long_edges = 0;
+  for (const refine_detail::Edge& e : edges) long_edges += e.length > options_.split_length ? 1 : 0;
+  if (mesh_.num_tet_slots() + 16 * long_edges <= TetMesh::kMaxTetSlots) return Status::success();
+  return Status(Error::InvalidArgument, "refine: " + std::to_string(mesh_.num_live_tets()) + " tets with " +
+                                            std::to_string(long_edges) +
+                                            " edges still to split: more than one mesh holds (2^30 tet "
+                                            "slots); use a coarser size");
+}
+
 Result<RefineStats> Refiner::run() {
   const auto start = Clock::now();
   if (!(options_.size_scale > 0.0) || !(options_.split_length > options_.collapse_length) ||
@@ -1093,6 +1106,7 @@ Result<RefineStats> Refiner::run() {
     stats_.seconds_edges += seconds_since(t);
     if (Status st = check_edge_list(edges, edge_count); !st.ok()) return st;
     touched_.assign(mesh_.num_vertices(), 0);
+    if (Status st = check_room(edges); !st.ok()) return st;
     const size_t splits = split_pass(edges);
     if (Status st = check("after a split pass"); !st.ok()) return st;
     size_t collapses = 0;

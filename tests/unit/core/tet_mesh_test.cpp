@@ -44,8 +44,13 @@ TEST(TetMesh, BuildAdjacencyAndCheck) {
   EXPECT_TRUE(s.ok()) << s.message();
   // 6 tets, 24 facets: 6 interior facets matched twice, 12 on the cube's surface.
   size_t open = 0;
-  for (uint64_t a : m.tet_adj) open += (a == TetMesh::kNoNeighbour);
+  size_t none = 0;
+  for (uint32_t a : m.tet_adj) open += (a == TetMesh::kNoNeighbour);
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t)
+    for (int i = 0; i < 4; ++i) none += m.neighbour(t, i) == TetMesh::kNone;
   EXPECT_EQ(open, 12u);
+  // Across an open facet there is no tet (kNone), not the tet id the packed value would give.
+  EXPECT_EQ(none, 12u);
   EXPECT_FALSE(check_mesh(m, {false, true}).ok()) << "require_closed must see the open facets";
 }
 
