@@ -525,6 +525,9 @@ Status LayerBuilder::push_vertex(uint32_t a, int layer) {
       continue;
     }
     // No direction sees the whole star: take off the longest visible run of it, and go on.
+    // (Not a BL vertex above the wall: its later push along the same plan left collinear
+    // children, flat tets 4e-7 thick on the airplane's wings.)
+    if (stops_instead_of_partial(a)) return whole_push_failed(a, layer);
     double m[6];
     sizing_.metric(mesh_.point(a), m);
     const double size = 1.0 / std::max(metric_norm(m, d), 1e-300);
