@@ -366,7 +366,13 @@ class MeshCommand {
       std::cerr << kCmd << ": --bl-sizing needs --bl-patches and --bl-growth above 1\n";
       return kExitUsage;
     }
+    if (args_.bl_sizing_growth != 0.0 && (!args_.bl_sizing || !(args_.bl_sizing_growth >= args_.bl_growth))) {
+      std::cerr << kCmd << ": --bl-sizing-growth needs --bl-sizing and a value of at least --bl-growth ("
+                << args_.bl_growth << ")\n";
+      return kExitUsage;
+    }
     o.boundary_layer_sizing = args_.bl_sizing;
+    o.boundary_layer_sizing_growth = args_.bl_sizing_growth;
     o.refine.size_scale = args_.size;
     o.run_refine = !args_.no_refine;
     o.run_optimize = !args_.no_optimize;
@@ -819,6 +825,11 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
                 "Refine the interior to continue the boundary layer's heights (normal size h0 + (r - 1) d "
                 "at distance d from the walls) instead of jumping to the surface's sizes; anisotropic near "
                 "the walls, so refinement is slower. Needs --bl-patches and --bl-growth above 1")
+      ->group(bl_group);
+  cmd->add_option("--bl-sizing-growth", args.bl_sizing_growth,
+                  "With --bl-sizing: above the layers' top the normal size grows at this rate (at least "
+                  "--bl-growth) instead of the layers' growth: the first tets there still get the next "
+                  "layer's height, and the interior reaches its own sizes in fewer, cheaper tets")
       ->group(bl_group);
   cmd->footer(
       "Examples:\n"

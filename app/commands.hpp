@@ -127,6 +127,7 @@ struct MeshArgs {
   std::string bl_cells = "tets";         // how BL prisms are written: "tets" (3 each) or "prisms"
   std::string bl_columns;                // --bl-columns: the BL columns as CSV (empty: none)
   bool bl_mitre = false;                 // --bl-mitre (BoundaryLayerOptions::mitre)
+  double bl_sizing_growth = 0.0;        // MesherOptions::boundary_layer_sizing_growth
   bool bl_sizing = false;               // interior sizes continue the BL (MesherOptions::boundary_layer_sizing)
   double size = 1.0;                    // global scale of the sizing field (2: twice as coarse)
   bool no_refine = false;               // skip refinement/coarsening (stage 3b)

@@ -5,6 +5,10 @@
 //   normal size      h_n(d) = h0 + (r - 1) d       (the continuous form of layers h0 r^k: layer k
 //                                                   starts at d_k = h0 (r^k - 1)/(r - 1), where
 //                                                   h_n = h0 r^k exactly)
+//                    beyond the layers' thickness T (options.layers_thickness), at the interior
+//                    growth g: h_n(d) = h_n(T) + (g - 1) (d - T); g > r reaches the background's
+//                    sizes sooner, with fewer tets, while the first tets on the layers' top still
+//                    get about the next layer's height h0 r^n
 //   tangential size  h_t(d) = max(h_s, h_n(d))     h_s: the wall's edge size at the closest wall
 //                                                   point (per-vertex mean edge length,
 //                                                   interpolated), never finer than h_n
@@ -40,6 +44,10 @@ inline double dot3(const double a[3], const double b[3]) {
 struct BoundaryLayerOptions {
   double first_height = 0.0;          // h0 > 0: the first layer's thickness
   double growth = 1.2;                // r > 1: the layers' thickness ratio
+  // Beyond layers_thickness (T >= 0) the normal size grows at interior_growth (g >= r) instead;
+  // 0: at growth everywhere.
+  double layers_thickness = 0.0;
+  double interior_growth = 0.0;
   std::vector<int32_t> wall_patches;  // the surface's patch labels that are walls; empty: all
   // Band end: the normal size there (> h0). 0: twice the background's largest size at the wall
   // vertices.

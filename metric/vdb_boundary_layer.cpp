@@ -48,6 +48,12 @@ double largest_size(const double m[6]) {
 struct BoundaryLayerField::Impl {
   const SizingField* background = nullptr;
   double h0 = 0.0, rate = 0.0, band = 0.0;  // rate = r - 1
+  double thickness = 0.0, interior_rate = 0.0;  // T, g - 1
+
+  // The normal size at distance d from the walls.
+  double normal_size(double d) const {
+    return d <= thickness ? h0 + rate * d : h0 + rate * thickness + interior_rate * (d - thickness);
+  }
   std::vector<double> xyz;         // wall vertices (compacted)
   std::vector<uint32_t> tri;       // wall triangles
   std::vector<double> normal;      // unit face normal per wall triangle
@@ -102,10 +108,16 @@ Status create_layer(const SurfaceMesh& surface, const SizingField& background,
     return Status(Error::InvalidArgument, "boundary layer: the growth ratio must be > 1");
   if (!(o.far_size >= 0.0) || !(o.voxel_size >= 0.0))
     return Status(Error::InvalidArgument, "boundary layer: far_size and voxel_size must be >= 0");
+  if (!(o.layers_thickness >= 0.0) || !std::isfinite(o.layers_thickness))
+    return Status(Error::InvalidArgument, "boundary layer: the layers' thickness must be >= 0");
+  if (o.interior_growth != 0.0 && !(o.interior_growth >= o.growth && std::isfinite(o.interior_growth)))
+    return Status(Error::InvalidArgument, "boundary layer: the interior growth must be 0 or at least the growth ratio");
   auto impl = std::make_unique<Layer>();
   impl->background = &background;
   impl->h0 = o.first_height;
   impl->rate = o.growth - 1.0;
+  impl->thickness = o.interior_growth > 0.0 ? o.layers_thickness : HUGE_VAL;
+  impl->interior_rate = o.interior_growth > 0.0 ? o.interior_growth - 1.0 : impl->rate;
 
   // Wall triangles and their vertices, compacted.
   const size_t nv = surface.num_vertices();
@@ -189,7 +201,9 @@ Status create_layer(const SurfaceMesh& surface, const SizingField& background,
     return Status(Error::InvalidArgument,
                   "boundary layer: far_size must exceed the first height (and the background be "
                   "SPD at the walls)");
-  impl->band = (far - o.first_height) / impl->rate;
+  const double top = impl->normal_size(std::min(impl->thickness, (far - o.first_height) / impl->rate));
+  impl->band = far <= top ? (far - o.first_height) / impl->rate
+                          : impl->thickness + (far - top) / impl->interior_rate;
 
   // Voxel size: the mean wall edge, grown until the band's estimated voxel count fits.
   double dx = o.voxel_size > 0.0 ? o.voxel_size : edge_sum / double(3 * nt);
@@ -250,7 +264,7 @@ void layer_metric(const Layer& f, const double p[3], double m[6]) {
   const uint32_t* v = &f.tri[3 * size_t(t)];
   const double hs =
       w[0] * f.vertex_size[v[0]] + w[1] * f.vertex_size[v[1]] + w[2] * f.vertex_size[v[2]];
-  const double hn = f.h0 + f.rate * d;
+  const double hn = f.normal_size(d);
   const double ht = std::max(hs, hn);
   const double a = 1.0 / (hn * hn) - 1.0 / (ht * ht), iso = 1.0 / (ht * ht);
   const double bl[6] = {iso + a * n[0] * n[0], a * n[0] * n[1], iso + a * n[1] * n[1],

@@ -72,6 +72,10 @@ class LayerBuilder {
   // Takes a off the front: one push of its whole star, or (when no direction sees the whole
   // star) several pushes of visible parts of it.
   Status push_vertex(uint32_t a, int layer);
+  // Whether a, failing its whole-star push, stops instead of being pushed in parts, and the
+  // status push_vertex returns then (push_one stops the vertex for the layer).
+  bool stops_instead_of_partial(uint32_t a) const;
+  Status whole_push_failed(uint32_t a, int layer) const;
   // Joins a new point near a to the star triangles `part` of a, halving until it fits.
   // Joins a new point a + s disp to the star triangles `part` of a, for s = 1, shrink, shrink^2,
   // ... until it fits.

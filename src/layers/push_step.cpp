@@ -470,6 +470,18 @@ std::vector<uint32_t> LayerBuilder::visible_run(uint32_t a, const std::vector<ui
   return {};
 }
 
+bool LayerBuilder::stops_instead_of_partial(uint32_t a) const {
+  // With a boundary layer, a point that is not an input vertex whose whole star cannot be pushed
+  // at least min_height_ratio of the planned length (push_part) stops for this layer: partial
+  // pushes would leave its children clustered 1e-8 apart on the front (the airplane's 15 layers).
+  return !wall_.empty() && a >= s_.num_vertices();
+}
+
+Status LayerBuilder::whole_push_failed(uint32_t a, int layer) const {
+  return Status(Error::Internal, "layers: layer " + std::to_string(layer) + ": vertex " + std::to_string(a) +
+                                     ": no push of its star fits above the least height");
+}
+
 Status LayerBuilder::push_vertex(uint32_t a, int layer) {
   if (a < plan_.size()) plan_[a].waiting = false;
   std::vector<double> normals, weights;
@@ -491,6 +503,7 @@ Status LayerBuilder::push_vertex(uint32_t a, int layer) {
       const int planned = planned_push(a, star, layer);
       if (planned > 0) return Status::success();
       if (planned == 0) {
+        if (stops_instead_of_partial(a)) return whole_push_failed(a, layer);
         whole_failed = true;
         ++out_.stats.push_fallbacks;
         continue;
@@ -506,11 +519,15 @@ Status LayerBuilder::push_vertex(uint32_t a, int layer) {
       const double h = target_height(a, d);
       const double disp[3] = {h * d[0], h * d[1], h * d[2]};
       if (push_part(a, star, disp, layer).ok()) return Status::success();
+      if (stops_instead_of_partial(a)) return whole_push_failed(a, layer);
       whole_failed = true;
       ++out_.stats.push_fallbacks;
       continue;
     }
     // No direction sees the whole star: take off the longest visible run of it, and go on.
+    // (Not a BL vertex above the wall: its later push along the same plan left collinear
+    // children, flat tets 4e-7 thick on the airplane's wings.)
+    if (stops_instead_of_partial(a)) return whole_push_failed(a, layer);
     double m[6];
     sizing_.metric(mesh_.point(a), m);
     const double size = 1.0 / std::max(metric_norm(m, d), 1e-300);
@@ -648,8 +665,17 @@ Status LayerBuilder::push_part(uint32_t a, const std::vector<uint32_t>& part,
   if (opt_.choose_height && bl_index_ < 0) have_searched = best_apex(a, part, start, searched);
   std::vector<uint32_t> columns;
   for (uint32_t f : part) columns.push_back(column_of(f));
+  // With a boundary layer, a point that is not an input vertex is not shrunk below
+  // min_height_ratio of h0 r^i (BL layers) or of its planned length (the ordinary layers on
+  // them): on the airplane's 15 layers, pushes halved 10 to 19 times made cells 1e-7 h thick
+  // (checkMesh's aspect ratio 3e7), whose locked BL vertices no later stage can move. The push
+  // fails instead, and push_one stops the vertex for this layer.
+  const double start_length = std::sqrt(dot3(start, start));
+  const double min_length = wall_.empty() || a < s_.num_vertices() ? 0.0
+                            : opt_.boundary_layer.min_height_ratio * (bl_index_ >= 0 ? bl_nominal() : start_length);
   double scale = 1.0;
   for (int halvings = have_searched ? -1 : 0; halvings <= opt_.max_halvings; ++halvings) {
+    if (halvings >= 0 && scale * start_length < min_length) break;
     double* p = &mesh_.xyz[3 * size_t(moved)];
     for (int k = 0; k < 3; ++k) p[k] = pa[k] + (halvings < 0 ? searched[k] : scale * start[k]);
     if (halvings >= 0) scale *= opt_.shrink;

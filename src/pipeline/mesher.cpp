@@ -413,6 +413,11 @@ class MeshingRun {
       bo.first_height = bl.first_height;
       bo.growth = bl.growth;
       bo.wall_patches = bl.wall_patches;
+      if (o_.boundary_layer_sizing_growth > 0.0) {
+        const int n = boundary_layer_count(bl);
+        bo.layers_thickness = bl.first_height * (std::pow(bl.growth, n) - 1.0) / (bl.growth - 1.0);
+        bo.interior_growth = o_.boundary_layer_sizing_growth;
+      }
       Result<metric::BoundaryLayerField> built = metric::BoundaryLayerField::create(surface_, *out.field, bo);
       if (!built.ok()) return Status(built.status().code(), "boundary-layer sizing: " + built.status().message());
       out.field = &out.bl_field.emplace(std::move(built).value());

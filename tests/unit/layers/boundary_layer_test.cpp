@@ -156,6 +156,25 @@ TEST(BoundaryLayer, AirplaneInAFarfieldBox) {
                                               (q[2] - p[2]) * (q[2] - p[2])));
     }
   EXPECT_GT(shortest, 1e-5 * h0);
+  // Above the wall no BL step is shrunk below min_height_ratio (5%) of h0 r^i: pushes halved 10
+  // to 19 times made steps of 1e-7 h0 r^i there, and checkMesh cells of aspect ratio 3e7.
+  const double min_ratio = LayersOptions().boundary_layer.min_height_ratio;
+  std::vector<uint8_t> in_bl(out.mesh.num_vertices(), 0);
+  for (size_t t = 0; t < out.mesh.num_tet_slots(); ++t)
+    if (out.mesh.tet_region[t] == 1)
+      for (int k = 0; k < 4; ++k) in_bl[out.mesh.tet_v[4 * t + size_t(k)]] = 1;
+  double min_step_ratio = INFINITY;
+  for (uint32_t v = 0; v < out.mesh.num_vertices(); ++v) {
+    const uint32_t u = out.vertex_origin[v];
+    if (u == TetMesh::kNone || u < s.num_vertices() || !in_bl[v]) continue;  // (in_bl: not the ordinary layers')
+    int depth = 0;
+    for (uint32_t w = u; out.vertex_origin[w] != TetMesh::kNone; w = out.vertex_origin[w]) ++depth;
+    const double* p = out.mesh.point(u);
+    const double* q = out.mesh.point(v);
+    const double step = std::sqrt((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]));
+    min_step_ratio = std::min(min_step_ratio, step / (h0 * std::pow(1.2, depth)));
+  }
+  EXPECT_GE(min_step_ratio, min_ratio * (1.0 - 1e-9));
   size_t bl_tets = 0;
   for (size_t t = 0; t < out.mesh.num_tet_slots(); ++t) bl_tets += out.mesh.tet_region[t] == 1;
   // Three per prism, but a vertex stopped for a layer (its height cut below 5% of h0 r^i where
@@ -163,11 +182,11 @@ TEST(BoundaryLayer, AirplaneInAFarfieldBox) {
   EXPECT_GE(double(bl_tets), 0.95 * 3 * 15 * double(body.num_triangles()));
   EXPECT_GT(st.stopped_vertices, 0u);
   std::printf("[airplane in farfield box] BL tets %zu, reduced vertices %zu of %zu (%.1f%%), "
-              "reduced pushes %zu of %zu, stopped vertices %zu, min height ratio %.3f; columns "
+              "reduced pushes %zu of %zu, stopped vertices %zu, min height ratio %.3f (above the wall %.3f); columns "
               "within 10%%: %zu, at h0 r^i exactly: %zu, max height error where not reduced %.2e; "
               "BL %.2f s, stage 1 %.2f s\n",
               bl_tets, st.bl_reduced_vertices, st.bl_wall_vertices, 100.0 * st.bl_reduced_share,
-              st.bl_reduced_pushes, st.bl_pushes, st.stopped_vertices, st.bl_min_height_ratio,
+              st.bl_reduced_pushes, st.bl_pushes, st.stopped_vertices, st.bl_min_height_ratio, min_step_ratio,
               f.exact_columns, f.nominal_columns, f.max_error_exact, st.bl_seconds, st.seconds);
 }
 

@@ -90,6 +90,33 @@ TEST(BoundaryLayer, NormalSizeGrowsLinearlyAndTangentialFollowsTheWall) {
   EXPECT_NEAR(m[5], 1.0 / std::pow(1e-3 + 0.2 * 0.05, 2), 1e-6 * m[5]);
 }
 
+TEST(BoundaryLayer, BeyondTheLayersTheNormalSizeGrowsAtTheInteriorGrowth) {
+  const SurfaceMesh cube = unit_cube();
+  const AnalyticField bg = isotropic(10.0);
+  BoundaryLayerOptions o;
+  o.first_height = 1e-3;
+  o.growth = 1.2;
+  o.wall_patches = {1};
+  o.far_size = 5.0;
+  o.layers_thickness = 0.05;
+  o.interior_growth = 1.5;
+  BoundaryLayerStats stats;
+  Result<BoundaryLayerField> f = BoundaryLayerField::create(cube, bg, o, &stats);
+  ASSERT_TRUE(f.ok()) << f.status().message();
+  const double top = 1e-3 + 0.2 * 0.05;  // the normal size on the layers' top
+  EXPECT_NEAR(stats.band_distance, 0.05 + (5.0 - top) / 0.5, 1e-12);
+  for (double z : {0.0, 0.01, 0.05, 0.06, 0.2, 0.7}) {
+    const double p[3] = {0.4, 0.35, z};
+    double m[6];
+    f->metric(p, m);
+    const double hn = z <= 0.05 ? 1e-3 + 0.2 * z : top + 0.5 * (z - 0.05);
+    EXPECT_NEAR(m[5], 1.0 / (hn * hn), 1e-9 / (hn * hn)) << z;
+  }
+  // An interior growth below the layers' growth is refused.
+  o.interior_growth = 1.1;
+  EXPECT_EQ(BoundaryLayerField::create(cube, bg, o).status().code(), Error::InvalidArgument);
+}
+
 TEST(BoundaryLayer, MeetsTheBackgroundWithoutAJump) {
   const SurfaceMesh cube = unit_cube();
   const AnalyticField bg = isotropic(0.1);
