@@ -115,8 +115,13 @@ class Exchange {
 struct PartsOptions {
   int rings = 4;   // move_interfaces' rings
   int zone = 6;    // and its zone (<= 0: every tet in a part in the second round too)
-  // run_rank_parts' move after refinement's first round (PT-Scotch parts; see there).
-  int first_rings = 16, first_zone = 20;
+  // run_rank_parts' moves (PT-Scotch parts of the split coarse mesh). 4/6 left fandisk's min
+  // radius ratio at 0.12-0.19 in 2 runs of 3 on 3 ranks (6/8: 0.34-0.40 in 3); armadillo at 1.3M
+  // tets on 4 ranks, the largest part over the mean: 1.11 at 4/6, 1.15 at 6/8, 1.19 at 8/10.
+  int rank_rings = 6, rank_zone = 8;
+  // run_rank_parts splits the coarse mesh until every part has about this many coarse tets or
+  // more (split_coarse_for_parts); <= 0: no split.
+  double coarse_tets_per_part = 2000;
 };
 
 // Stages 3b/3c of `mesh` (the coupled mesh; rank 0's is sent to all) in ranks() parts, rank r

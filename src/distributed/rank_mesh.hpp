@@ -96,6 +96,15 @@ struct GlobalIds {
 };
 Result<GlobalIds> number_globally(const RankMesh& rm, Comm& comm);
 
+// Splits the coarse mesh (replicated, before it is partitioned: refinement's splits only, at most
+// 8 passes, with the field's lengths times cbrt(cap)) towards no tet predicting more than cap =
+// (predicted tets) / (parts * tets_per_part) final tets, so that every part gets many coarse tets:
+// a part of a few huge ones stays coarse beside its frozen interfaces in the first round and went
+// whole to a neighbour at the first move. Deterministic, so the same on every rank. Returns the
+// splits made (0: no tet predicted more than cap).
+Result<size_t> split_coarse_for_parts(TetMesh& coarse, const SizingField& field, const RefineOptions& refine_options,
+                                      int parts, double tets_per_part);
+
 // Stages 3b/3c in parts with no gather: the coarse mesh `coarse` (replicated) partitioned, freed,
 // then the four rounds of run_in_parts. `rm` is this rank's part at the end; refine/optimize get
 // the counts summed over the ranks and the quality of the whole (summed from the parts).
@@ -103,6 +112,7 @@ struct RankRunStats {
   double partition_seconds = 0, rounds_seconds = 0;
   size_t migrated_tets = 0;  // sent by this rank over both moves
   size_t own_tets_after_partition = 0;
+  size_t coarse_splits = 0;  // split_coarse_for_parts' splits
 };
 Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOptions& refine_options,
                       const OptimizeOptions& optimize_options, const PartsOptions& options, Comm& comm,
