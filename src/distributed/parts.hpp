@@ -119,6 +119,11 @@ struct PartsOptions {
   // radius ratio at 0.12-0.19 in 2 runs of 3 on 3 ranks (6/8: 0.34-0.40 in 3); armadillo at 1.3M
   // tets on 4 ranks, the largest part over the mean: 1.11 at 4/6, 1.15 at 6/8, 1.19 at 8/10.
   int rank_rings = 6, rank_zone = 8;
+  // run_rank_parts' optimization: after its first round, this many times a move and a round in
+  // the zone (refinement: one). With one, tets below radius ratio 0.3 were 3.2 times as frequent
+  // within two rings of the final interfaces as elsewhere (armadillo, 1.3M tets, 4 ranks), and
+  // fandisk's min on 3 ranks 0.26-0.38; with two, 0.4 times and 0.39-0.40 (one process: 0.40).
+  int optimize_moves = 2;
   // run_rank_parts splits the coarse mesh until every part has about this many coarse tets or
   // more (split_coarse_for_parts); <= 0: no split.
   double coarse_tets_per_part = 2000;

@@ -659,8 +659,11 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
   for (Step step : {Step::kRefine, Step::kOptimize}) {
     std::fill(rm.meshable.begin(), rm.meshable.end(), 1);
     if (Status st = round(step); !st.ok()) return st;
-    if (Status st = move(); !st.ok()) return st;
-    if (Status st = round(step); !st.ok()) return st;
+    const int moves = step == Step::kRefine ? 1 : std::max(1, options.optimize_moves);
+    for (int k = 0; k < moves; ++k) {
+      if (Status st = move(); !st.ok()) return st;
+      if (Status st = round(step); !st.ok()) return st;
+    }
   }
   rs.rounds_seconds = since(t0);
   if (Status st = sum_counts(refine, optimize, comm); !st.ok()) return st;
