@@ -115,10 +115,14 @@ class Exchange {
 struct PartsOptions {
   int rings = 4;   // move_interfaces' rings
   int zone = 6;    // and its zone (<= 0: every tet in a part in the second round too)
-  // run_rank_parts' moves (PT-Scotch parts of the split coarse mesh). 4/6 left fandisk's min
+  // run_rank_parts' moves (PT-Scotch parts of the split coarse mesh), after refinement's first
+  // round and after each optimization round but the last. Refinement's: 4/6 left fandisk's min
   // radius ratio at 0.12-0.19 in 2 runs of 3 on 3 ranks (6/8: 0.34-0.40 in 3); armadillo at 1.3M
   // tets on 4 ranks, the largest part over the mean: 1.11 at 4/6, 1.15 at 6/8, 1.19 at 8/10.
-  int rank_rings = 6, rank_zone = 8;
+  // Optimization's: 6/8 (twice) left that largest part at 1.39 times the mean, 3/4 at 1.22
+  // (fandisk on 4 ranks: 1.6-1.8 and 1.11), with the interfaces as good.
+  int refine_rings = 6, refine_zone = 8;
+  int optimize_rings = 3, optimize_zone = 4;
   // run_rank_parts' optimization: after its first round, this many times a move and a round in
   // the zone (refinement: one). With one, tets below radius ratio 0.3 were 3.2 times as frequent
   // within two rings of the final interfaces as elsewhere (armadillo, 1.3M tets, 4 ranks), and

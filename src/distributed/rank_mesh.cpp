@@ -648,10 +648,12 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
   // small coarse tet deep, which the move's rings take inside a part. Each move gives the zones
   // to the side with fewer predicted tets.
   const double scale = refine_options.size_scale > 0.0 ? refine_options.size_scale : 1.0;
-  auto move = [&]() -> Status {
+  auto move = [&](Step step) -> Status {
     Result<std::vector<int32_t>> priority = least_loaded_first(rm, field, scale, comm);
     if (!priority.ok()) return priority.status();
-    Result<size_t> sent = move_and_migrate(rm, options.rank_rings, options.rank_zone, priority.value(), comm);
+    const bool refining = step == Step::kRefine;
+    Result<size_t> sent = move_and_migrate(rm, refining ? options.refine_rings : options.optimize_rings,
+                                           refining ? options.refine_zone : options.optimize_zone, priority.value(), comm);
     if (!sent.ok()) return sent.status();
     rs.migrated_tets += sent.value();
     return Status::success();
@@ -661,7 +663,7 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
     if (Status st = round(step); !st.ok()) return st;
     const int moves = step == Step::kRefine ? 1 : std::max(1, options.optimize_moves);
     for (int k = 0; k < moves; ++k) {
-      if (Status st = move(); !st.ok()) return st;
+      if (Status st = move(step); !st.ok()) return st;
       if (Status st = round(step); !st.ok()) return st;
     }
   }
