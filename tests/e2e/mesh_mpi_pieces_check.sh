@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# mesh_mpi_pieces_check.sh ANITET ANITET_MPI MESHCHECK IN OUTDIR RANKS
+# mesh_mpi_pieces_check.sh ANITET ANITET_MPI MESHCHECK IN OUTDIR RANKS [MAX_PIECE_OVER_MEAN]
 # Issue 51's no-gather path: `mpirun --oversubscribe -np RANKS anitet-mpi mesh IN -o parts.pvtu`
 # (each rank writes its piece), the .pvtu checked against the format's rules (the elements and
 # attributes ParaView reads; every piece's arrays declared in the index with the same type and
 # components), `anitet merge` joining the pieces, and meshcheck.py on the merged mesh: valid,
 # boundary constrained, radius-ratio mean within 1% of the serial run's, min >= 80% of it (PT-Scotch's
 # parts change from run to run, and with them the min: 82-99% of the serial one on 2 ranks).
+# With MAX_PIECE_OVER_MEAN, the largest piece's tets at most that times the pieces' mean (balance).
 set -u
-anitet=$1; anitet_mpi=$2; meshcheck=$3; in=$4; dir=$5; ranks=$6
+anitet=$1; anitet_mpi=$2; meshcheck=$3; in=$4; dir=$5; ranks=$6; max_over_mean=${7:-0}
 mkdir -p "$dir"
 rm -f "$dir"/parts* "$dir/merged.mesh" "$dir/serial.mesh"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -15,9 +16,9 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
 mpirun --oversubscribe -np "$ranks" "$anitet_mpi" mesh "$in" -o "$dir/parts.pvtu" > "$dir/mpi.log" 2>&1 ||
   { echo "FAIL: mpirun -np $ranks anitet-mpi exited $?"; cat "$dir/mpi.log"; exit 1; }
-/usr/bin/python3 - "$dir/parts.pvtu" "$ranks" <<'PY' || exit 1
+/usr/bin/python3 - "$dir/parts.pvtu" "$ranks" "$max_over_mean" <<'PY' || exit 1
 import os, sys, xml.etree.ElementTree as ET
-index, ranks = sys.argv[1], int(sys.argv[2])
+index, ranks, max_over_mean = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
 root = ET.parse(index).getroot()
 def fail(m): sys.exit("FAIL: " + m)
 if root.tag != "VTKFile" or root.get("type") != "PUnstructuredGrid": fail("not a PUnstructuredGrid")
@@ -31,6 +32,7 @@ for sec in ("PPointData", "PCellData", "PPoints"):
         decl[(sec[1:], a.get("Name"))] = (a.get("type"), a.get("NumberOfComponents"))
 if grid.find("PPointData").get("GlobalIds") != "GlobalNodeIds": fail("GlobalNodeIds not declared as GlobalIds")
 pieces = grid.findall("Piece")
+cells = []
 if len(pieces) != ranks: fail(f"{len(pieces)} pieces for {ranks} ranks")
 for p in pieces:
     path = os.path.join(os.path.dirname(index), p.get("Source"))
@@ -42,7 +44,10 @@ for p in pieces:
         for a in piece.find(sec).findall("DataArray"):
             found[(sec, a.get("Name"))] = (a.get("type"), a.get("NumberOfComponents"))
     if found != decl: fail(f"{path}: arrays {found} against the index's {decl}")
-print(f"PASS: {index}: {ranks} pieces, arrays as declared")
+    cells.append(int(piece.get("NumberOfCells")))
+print(f"PASS: {index}: {ranks} pieces, arrays as declared; tets per piece {cells}")
+if max_over_mean > 0 and max(cells) > max_over_mean * sum(cells) / len(cells):
+    fail(f"the largest piece has {max(cells)} tets, more than {max_over_mean} times the mean {sum(cells) / len(cells):.0f}")
 PY
 "$anitet" merge "$dir/parts.pvtu" -o "$dir/merged.mesh" || { echo "FAIL: anitet merge exited $?"; exit 1; }
 for m in serial merged; do
