@@ -254,7 +254,7 @@ Result<Sharing> find_sharing(const RankMesh& rm, Comm& comm) {
   return s;
 }
 
-Result<LocalMesh> with_halo(const RankMesh& rm, const Sharing& sharing, Comm& comm) {
+Result<LocalMesh> with_halo(RankMesh rm, const Sharing& sharing, Comm& comm) {
   const TetMesh& m = rm.mesh;
   const int ranks = comm.ranks();
   // The ranks sharing each vertex (CSR over the sorted pairs).
@@ -282,10 +282,17 @@ Result<LocalMesh> with_halo(const RankMesh& rm, const Sharing& sharing, Comm& co
   if (!from.ok()) return from.status();
   to.clear();
   LocalMesh local;
-  local.mesh = compact_tets(m, [](uint32_t) { return true; });
-  local.gid = rm.gid;
   for (uint32_t t = 0, k = 0; t < m.num_tet_slots(); ++t)
     if (live(m, t)) local.label.push_back(rm.meshable[k++] ? 0 : kept(0));
+  // The own tets become the local mesh's first ones: moved when every slot is live (as a round
+  // and a migration leave them), so that the rank does not hold its part twice.
+  if (m.num_live_tets() == m.num_tet_slots()) {
+    local.mesh = std::move(rm.mesh);
+  } else {
+    local.mesh = compact_tets(m, [](uint32_t) { return true; });
+    rm.mesh = TetMesh();
+  }
+  local.gid = std::move(rm.gid);
   auto at = gid_index(local.gid);
   for (const std::vector<uint8_t>& bytes : from.value()) {
     if (bytes.empty()) continue;
@@ -369,19 +376,20 @@ Status mesh_round(RankMesh& rm, Step step, const SizingField& field, const Refin
   const size_t open_before = count_boundary_facets(rm.mesh);
   Result<Sharing> sharing = find_sharing(rm, comm);
   if (!sharing.ok()) return sharing.status();
-  Result<LocalMesh> local = with_halo(rm, sharing.value(), comm);
-  if (!local.ok()) return local.status();
-  Result<MeshPart> part = extract_part(local->mesh, local->label, 0);
-  if (!part.ok()) return part.status();
-  // The kept tets wait aside; the rest of the rank's mesh is in the part now.
+  // The kept tets wait aside; the rank's mesh goes into the local mesh (moved, not copied), the
+  // local mesh into the part: at most two copies of the part at once.
   TetMesh kept_tets = compact_tets(rm.mesh, [&](uint32_t t) { return !rm.meshable[t]; });
   std::vector<uint64_t> kept_gid = rm.gid;
   drop_unused_vertices(kept_tets, kept_gid);
+  const uint64_t created = rm.created;
+  Result<LocalMesh> local = with_halo(std::move(rm), sharing.value(), comm);
+  rm = RankMesh();
+  if (!local.ok()) return local.status();
+  Result<MeshPart> part = extract_part(local->mesh, local->label, 0);
+  if (!part.ok()) return part.status();
   const std::vector<uint64_t> whole_gid = std::move(local->gid);
   const std::vector<uint8_t> whole_vflags = std::move(local->mesh.vflags);
   local = LocalMesh();
-  const uint64_t created = rm.created;
-  rm = RankMesh();
   if (Status st = mesh_part(part.value(), step, field, refine, optimize); !st.ok()) return st;
   Result<RankMesh> next = own_after_round(part.value(), whole_gid, whole_vflags, std::move(kept_tets),
                                           std::move(kept_gid), comm.rank(), created);

@@ -68,7 +68,8 @@ struct LocalMesh {
   std::vector<int32_t> label;
   std::vector<uint64_t> gid;
 };
-Result<LocalMesh> with_halo(const RankMesh& rm, const Sharing& sharing, Comm& comm);
+// `rm` is taken by value: its mesh becomes the local mesh's first tets without a copy.
+Result<LocalMesh> with_halo(RankMesh rm, const Sharing& sharing, Comm& comm);
 
 // Collective: one round on every rank's part, the halo frozen: the meshable tets refined or
 // optimized; the result (own tets, kept ones too) in `rm`. Checks that the part's boundary
