@@ -106,12 +106,13 @@ Result<GlobalIds> number_globally(const RankMesh& rm, Comm& comm);
 Result<size_t> split_coarse_for_parts(TetMesh& coarse, const SizingField& field, const RefineOptions& refine_options,
                                       int parts, double tets_per_part);
 
-// Stages 3b/3c in parts with no gather: the coarse mesh `coarse` (replicated) partitioned, freed,
-// then the four rounds of run_in_parts. `rm` is this rank's part at the end; refine/optimize get
+// Stages 3b/3c in parts with no gather: the coarse mesh `coarse` (replicated) split
+// (split_coarse_for_parts), partitioned, freed, then the rounds: refinement, a move, refinement;
+// optimization, then optimize_moves times a move and optimization (PartsOptions). `rm` is this rank's part at the end; refine/optimize get
 // the counts summed over the ranks and the quality of the whole (summed from the parts).
 struct RankRunStats {
   double partition_seconds = 0, rounds_seconds = 0;
-  size_t migrated_tets = 0;  // sent by this rank over both moves
+  size_t migrated_tets = 0;  // sent by this rank over all moves
   size_t own_tets_after_partition = 0;
   size_t coarse_splits = 0;  // split_coarse_for_parts' splits
 };
