@@ -119,8 +119,8 @@ Status stage3_in_pieces(anitet::TetMesh& mesh, const anitet::SizingField& field,
   if (Status st = anitet::mpi::write_pieces(rm, surface, output, comm); !st.ok()) return st;
   if (std::getenv("ANITET_RANK_STATS"))
     std::fprintf(stderr,
-                 "anitet-mpi: rank %d: %zu coarse splits, %zu own coarse tets after partitioning; %zu own tets, %zu vertices at the end; "
-                 "%zu tets migrated; partition %.2f s, rounds %.2f s; peak RSS %.0f MB\n",
+                 "anitet-mpi: rank %d: %zu coarse splits, %zu own coarse tets after partitioning; %zu own tets, "
+                 "%zu vertices at the end; %zu tets migrated; partition %.2f s, rounds %.2f s; peak RSS %.0f MB\n",
                  comm.rank(), stats.coarse_splits, stats.own_tets_after_partition, rm.mesh.num_live_tets(),
                  rm.mesh.num_vertices(), stats.migrated_tets, stats.partition_seconds, stats.rounds_seconds,
                  anitet::peak_resident_bytes() / 1048576.0);

@@ -635,9 +635,10 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
   {
     const double scale = refine_options.size_scale > 0.0 ? refine_options.size_scale : 1.0;
     if (comm.ranks() > 1 && options.coarse_tets_per_part > 0) {
-      Result<size_t> added = split_coarse_for_parts(coarse, field, refine_options, comm.ranks(), options.coarse_tets_per_part);
-      if (!added.ok()) return added.status();
-      rs.coarse_splits = added.value();
+      Result<size_t> splits =
+          split_coarse_for_parts(coarse, field, refine_options, comm.ranks(), options.coarse_tets_per_part);
+      if (!splits.ok()) return splits.status();
+      rs.coarse_splits = splits.value();
     }
     const std::vector<double> weights = estimate_refined_tets_per_tet(coarse, field, scale);
     Result<std::vector<int32_t>> part_of = partitioner.partition(coarse, weights, comm.ranks());
@@ -660,8 +661,9 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
     Result<std::vector<int32_t>> priority = least_loaded_first(rm, field, scale, comm);
     if (!priority.ok()) return priority.status();
     const bool refining = step == Step::kRefine;
-    Result<size_t> sent = move_and_migrate(rm, refining ? options.refine_rings : options.optimize_rings,
-                                           refining ? options.refine_zone : options.optimize_zone, priority.value(), comm);
+    Result<size_t> sent =
+        move_and_migrate(rm, refining ? options.refine_rings : options.optimize_rings,
+                         refining ? options.refine_zone : options.optimize_zone, priority.value(), comm);
     if (!sent.ok()) return sent.status();
     rs.migrated_tets += sent.value();
     return Status::success();
