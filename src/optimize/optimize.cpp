@@ -235,12 +235,14 @@ void Optimizer::measure_ball(Work& w, uint32_t v) {
   }
   w.in_range.clear();
   if (quality_.anisotropic() && options_.keep_lengths_in_range) {
+    // The neighbours once each (a neighbour is in several ball tets), then the edges measured.
     for (uint32_t t : w.ball)
-      for (int i = 0; i < 4; ++i) {
-        const uint32_t u = mesh_.vertex(t, i);
-        if (u != v && edge_in_range(v, u) && std::find(w.in_range.begin(), w.in_range.end(), u) == w.in_range.end())
-          w.in_range.push_back(u);
-      }
+      for (int i = 0; i < 4; ++i) w.in_range.push_back(mesh_.vertex(t, i));
+    std::sort(w.in_range.begin(), w.in_range.end());
+    w.in_range.erase(std::unique(w.in_range.begin(), w.in_range.end()), w.in_range.end());
+    w.in_range.erase(std::remove_if(w.in_range.begin(), w.in_range.end(),
+                                    [&](uint32_t u) { return u == v || !edge_in_range(v, u); }),
+                     w.in_range.end());
   }
   w.old_min = 1.0;
   for (size_t k = 0; k < w.ball.size(); ++k) {
