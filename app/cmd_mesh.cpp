@@ -269,9 +269,11 @@ void print_summary(const MeshArgs& args, const MesherResult& r, const QualityRep
   }
   if (!r.slide.changes.empty()) std::cout << "  " << slide_text(r.slide, args.patch_names) << "\n";
   if (r.metric_quality.tets > 0) {
+    // The output's share (after optimization) when the optimizer measured it, else refinement's.
+    const double in_range = r.optimize.anisotropic ? r.optimize.length_in_range_after : r.refine.length_in_range;
     std::snprintf(line, sizeof line,
                   "  in the metric: %.1f%% of edges in [1/sqrt2, sqrt2]; radius ratio mean %.3f, min %.3f\n",
-                  100.0 * r.refine.length_in_range, r.metric_quality.mean, r.metric_quality.min);
+                  100.0 * in_range, r.metric_quality.mean, r.metric_quality.min);
     std::cout << line;
   }
   for (const Notice& n : r.notices) std::cout << "  notice: " << n.message << "\n";

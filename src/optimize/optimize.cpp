@@ -15,6 +15,7 @@
 #include "core/buckets.hpp"
 #include "optimize/flips.hpp"
 #include "predicates/predicates.hpp"
+#include "refine/edges.hpp"
 #include "refine/mesh_ops.hpp"
 #include "refine/refine.hpp"
 
@@ -90,6 +91,10 @@ class Optimizer {
     std::vector<double> mapped;
     std::vector<uint8_t> moving_at;
     uint32_t moving = 0;  // the vertex whose ball this is
+    // Anisotropic, with OptimizeOptions::keep_lengths_in_range: the moving vertex's neighbours
+    // whose edge to it was in [1/sqrt2, sqrt2] in the metric when the ball was measured; a move
+    // may not take one of these edges out of range.
+    std::vector<uint32_t> in_range;
     double old_min = 1.0;
     size_t target = SIZE_MAX;   // perturbation: the index in `ball` of the tet to open (SIZE_MAX: none)
     double target_floor = 0.0;  // and the floor of the other tets when only it gains
@@ -104,6 +109,22 @@ class Optimizer {
   // Qualities of w.ball's tets (the ball of v) before a move of v (w.old_q, w.old_min), and their
   // metrics (w.maps).
   void measure_ball(Work& w, uint32_t v);
+  // Anisotropic: the edge uv's normalized length, in the metrics the vertices were last measured
+  // in, is in [1/sqrt2, sqrt2] (refinement's range).
+  bool edge_in_range(uint32_t v, uint32_t u) const {
+    const std::vector<double>& m = quality_.vertex_metric;
+    const double l = metric_edge_length(&m[6 * size_t(v)], mesh_.point(v), &m[6 * size_t(u)], mesh_.point(u));
+    return l >= kMinInRange && l <= kMaxInRange;
+  }
+  double share_in_range() const {
+    refine_detail::EdgeList edges;
+    refine_detail::EdgeScratch scratch;
+    refine_detail::collect_edges(mesh_, quality_.vertex_metric, edges, scratch);
+    double mean = 0.0, share = 0.0;
+    refine_detail::length_summary(edges, kMinInRange, kMaxInRange, mean, share);
+    return share;
+  }
+  static constexpr double kMinInRange = 0.7071067811865476, kMaxInRange = 1.4142135623730951;
   // The quality of w.ball[k] where its points are now (only w.moving moved since measure_ball()),
   // in the metric measure_ball() found: the same figure as quality_.of(mesh_, tet, w.maps[k]).
   double ball_tet_quality(const Work& w, size_t k) const {
@@ -212,6 +233,17 @@ void Optimizer::measure_ball(Work& w, uint32_t v) {
       }
     }
   }
+  w.in_range.clear();
+  if (quality_.anisotropic() && options_.keep_lengths_in_range) {
+    // The neighbours once each (a neighbour is in several ball tets), then the edges measured.
+    for (uint32_t t : w.ball)
+      for (int i = 0; i < 4; ++i) w.in_range.push_back(mesh_.vertex(t, i));
+    std::sort(w.in_range.begin(), w.in_range.end());
+    w.in_range.erase(std::unique(w.in_range.begin(), w.in_range.end()), w.in_range.end());
+    w.in_range.erase(std::remove_if(w.in_range.begin(), w.in_range.end(),
+                                    [&](uint32_t u) { return u == v || !edge_in_range(v, u); }),
+                     w.in_range.end());
+  }
   w.old_min = 1.0;
   for (size_t k = 0; k < w.ball.size(); ++k) {
     w.old_q[k] = tet_q_.empty() ? ball_tet_quality(w, k) : tet_q_[w.ball[k]];
@@ -248,6 +280,7 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
     }
     ok = gain;
   }
+  for (size_t k = 0; k < w.in_range.size() && ok; ++k) ok = edge_in_range(v, w.in_range[k]);
   if (ok && meshops::all_positive(mesh_, w.ball)) {
     if (!tet_q_.empty())
       for (size_t k = 0; k < w.ball.size(); ++k) tet_q_[w.ball[k]] = w.new_q[k];
@@ -847,6 +880,7 @@ Result<OptimizeStats> Optimizer::run() {
     }
   }
   stats_.anisotropic = quality_.anisotropic();
+  if (stats_.anisotropic) stats_.length_in_range_before = share_in_range();
   take_lap(stats_.seconds_setup);
   for (int it = 0; it < options_.cvt_iterations; ++it) {
     refresh_metrics();
@@ -921,6 +955,11 @@ Result<OptimizeStats> Optimizer::run() {
   take_lap(stats_.seconds_flips);
   stats_.flat_left = certify_pass();
   take_lap(stats_.seconds_certify);
+  if (stats_.anisotropic) {
+    refresh_metrics();
+    stats_.length_in_range_after = share_in_range();
+    take_lap(stats_.seconds_setup);
+  }
   stats_.flips23 = flips_.flips23;
   stats_.edge_removals = flips_.edge_removals;
   stats_.after = summarize_quality(mesh_);

@@ -92,6 +92,9 @@ struct OptimizeOptions {
   // sliver rounds, at the end). For progress display only (it cannot stop the stage).
   std::function<void(double fraction)> progress;
   uint64_t seed = 0x5eed;
+  // Anisotropic metric only: a vertex move (CVT, perturbation) is refused when it takes an edge
+  // of the vertex out of [1/sqrt2, sqrt2] in the metric that was in it.
+  bool keep_lengths_in_range = true;
 };
 
 struct QualitySummary {
@@ -110,6 +113,9 @@ struct OptimizeStats {
   size_t flat_found = 0, flat_left = 0;
   QualitySummary before, after;  // Euclidean radius ratios
   bool anisotropic = false;       // the measures were taken in the metric (see the top)
+  // Anisotropic only: the share of edges not on S whose normalized length is in [1/sqrt2, sqrt2]
+  // (refinement's measure, RefineStats::length_in_range) before and after the optimization.
+  double length_in_range_before = 0.0, length_in_range_after = 0.0;
   double seconds = 0.0;
   // Where the time went: the quality summaries and metric queries before and after, the CVT
   // passes, every flip sweep, sliver removal (perturbations, collapses, the polish) and the

@@ -465,7 +465,7 @@ class MeshingRun {
         const auto t = Clock::now();
         if (Status st = refine_optimize_cycles(mesh, field, o_.refine, o_.optimize, o_.anisotropic_cycles,
                                                result_.refine, result_.optimize, o_.anisotropic_cycle_gain,
-                                               &result_.anisotropic_cycles);
+                                               &result_.anisotropic_cycles, o_.anisotropic_cycle_optimizer_gain);
             !st.ok())
           return st;
         result_.stages.push_back({"cycles", since(t), result_.optimize.after.tets});
@@ -585,11 +585,15 @@ Result<MesherResult> Mesher::run_in_range(const SurfaceMesh& surface) const {
 
 Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
                               const OptimizeOptions& optimize_options, int cycles, RefineStats& refine,
-                              OptimizeStats& optimize, double min_gain, int* cycles_run) {
+                              OptimizeStats& optimize, double min_gain, int* cycles_run,
+                              double min_optimizer_gain) {
   const ScaledSizing scaled(field, refine_options.size_scale > 0.0 ? refine_options.size_scale : 1.0);
   if (cycles_run) *cycles_run = 0;
   bool gained = true;
   for (int c = 0; c < cycles && gained; ++c) {
+    if (min_optimizer_gain > 0.0 && optimize.anisotropic &&
+        optimize.length_in_range_after < optimize.length_in_range_before + min_optimizer_gain)
+      break;
     const double in_range_before = refine.length_in_range;
     const auto kept_vertices = static_cast<uint32_t>(mesh.num_vertices());
     Result<RefineStats> r = refine_mesh(mesh, field, refine_options);
@@ -628,6 +632,8 @@ Status refine_optimize_cycles(TetMesh& mesh, const SizingField& field, const Ref
     optimize.flat_left = o->flat_left;
     optimize.after = o->after;
     optimize.anisotropic = optimize.anisotropic || o->anisotropic;
+    optimize.length_in_range_before = o->length_in_range_before;
+    optimize.length_in_range_after = o->length_in_range_after;
     optimize.seconds += o->seconds;
     optimize.seconds_setup += o->seconds_setup;
     optimize.seconds_cvt += o->seconds_cvt;
