@@ -731,7 +731,8 @@ static void test_bl_sizing_growth(void** state) {
   anitet_surface_destroy(s);
 }
 
-/* The CLI's errors: a value below bl_growth, NaN, or one without bl_sizing. */
+/* The CLI's errors: a value below bl_growth, NaN or infinite (the CLI's metric refuses that
+ * too), or one without bl_sizing. */
 static void test_bl_sizing_growth_errors(void** state) {
   anitet_surface* s = make_sphere_in_box();
   const int32_t walls[3] = {1, 2, 3};
@@ -744,6 +745,8 @@ static void test_bl_sizing_growth_errors(void** state) {
   expect_bad(s, &o, "at least bl_growth");
   o.bl_sizing_growth = NAN;
   expect_bad(s, &o, "bl_sizing_growth");
+  o.bl_sizing_growth = INFINITY;
+  expect_bad(s, &o, "a finite value");
   o.bl_sizing_growth = 1.3, o.bl_sizing = 0;
   expect_bad(s, &o, "needs bl_sizing 1");
   anitet_surface_destroy(s);
