@@ -716,7 +716,7 @@ static void test_bl_sizing_growth(void** state) {
   v4.bl_first_height = o.bl_first_height = 0.05, v4.bl_growth = o.bl_growth = 1.1;
   v4.bl_layers = o.bl_layers = 3, v4.bl_sizing = o.bl_sizing = 1;
   v4.optimize = o.optimize = 0, v4.anisotropic_cycles = o.anisotropic_cycles = 0;
-  v4.num_threads = o.num_threads = 1, v4.size_scale = o.size_scale = 2.0;
+  v4.size_scale = o.size_scale = 2.0;
   old_caller = run_ok(s, &v4);
   layers_growth = run_ok(s, &o);
   expect_same_mesh(old_caller, layers_growth);
