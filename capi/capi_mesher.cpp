@@ -84,8 +84,8 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
   if (o.bl_sizing_growth != 0.0 &&
       (o.bl_sizing == 0 || !(std::isfinite(o.bl_sizing_growth) && o.bl_sizing_growth >= o.bl_growth))) {
     std::ostringstream what;
-    what << "bl_sizing_growth is " << o.bl_sizing_growth << ": it needs bl_sizing 1 and a finite value of at least "
-         << "bl_growth (" << o.bl_growth << "), or 0 for the layers' growth";
+    what << "bl_sizing_growth is " << o.bl_sizing_growth << ": it needs bl_sizing 1 and a finite value "
+         << "of at least bl_growth (" << o.bl_growth << "), or 0 for the layers' growth";
     return bad_option(function, what.str());
   }
   if (o.push_tasks_min_vertices < 0) return bad_option(function, "push_tasks_min_vertices is negative");
