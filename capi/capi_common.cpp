@@ -23,6 +23,7 @@ size_t options_size(int32_t version) {
   if (version == 1) return offsetof(anitet_options, layers);
   if (version == 2) return offsetof(anitet_options, attempts_seconds);
   if (version == 3) return offsetof(anitet_options, bl_num_slide_patches);
+  if (version == 4) return offsetof(anitet_options, bl_sizing_growth);
   return sizeof(anitet_options);
 }
 
@@ -99,8 +100,10 @@ static_assert(offsetof(anitet_options, hmin) == offsetof(anitet_options, attempt
                   offsetof(anitet_options, bl_num_slide_patches) == offsetof(anitet_options, bl_mitre) + sizeof(int32_t),
               "anitet_options (version 3) has padding");
 static_assert(offsetof(anitet_options, bl_slide_patches) == offsetof(anitet_options, bl_num_slide_patches) + 8 &&
-                  sizeof(anitet_options) == offsetof(anitet_options, bl_slide_patches) + sizeof(void*),
+                  offsetof(anitet_options, bl_sizing_growth) == offsetof(anitet_options, bl_slide_patches) + sizeof(void*),
               "anitet_options (version 4) has padding");
+static_assert(sizeof(anitet_options) == offsetof(anitet_options, bl_sizing_growth) + sizeof(double),
+              "anitet_options (version 5) has padding");
 static_assert(offsetof(anitet_run_stats, slide_junction_columns) == offsetof(anitet_run_stats, bl_max_height_error) + sizeof(double) &&
                   offsetof(anitet_run_stats, bl_prisms) == offsetof(anitet_run_stats, slide_triangles_added) + sizeof(int64_t) &&
                   sizeof(anitet_run_stats) == offsetof(anitet_run_stats, bl_prism_tets_left) + sizeof(int64_t) &&

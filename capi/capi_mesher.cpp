@@ -80,6 +80,14 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
     return bad_option(function, "bl_cells ANITET_BL_CELLS_PRISMS needs boundary-layer walls (bl_num_patches > 0)");
   if (o.bl_sizing != 0 && (o.bl_num_patches == 0 || !(o.bl_growth > 1.0)))
     return bad_option(function, "bl_sizing needs boundary-layer walls (bl_num_patches > 0) and bl_growth above 1");
+  // As `anitet mesh --bl-sizing-growth`: 0 is the layers' own growth, anything else a faster one.
+  if (o.bl_sizing_growth != 0.0 &&
+      (o.bl_sizing == 0 || !(std::isfinite(o.bl_sizing_growth) && o.bl_sizing_growth >= o.bl_growth))) {
+    std::ostringstream what;
+    what << "bl_sizing_growth is " << o.bl_sizing_growth << ": it needs bl_sizing 1 and a finite value "
+         << "of at least bl_growth (" << o.bl_growth << "), or 0 for the layers' growth";
+    return bad_option(function, what.str());
+  }
   if (o.push_tasks_min_vertices < 0) return bad_option(function, "push_tasks_min_vertices is negative");
   if (o.bl_mitre != 0 && o.bl_mitre != 1) return bad_option(function, "bl_mitre is " + std::to_string(o.bl_mitre) + ", not 0 or 1");
   if (o.bl_mitre != 0 && o.bl_num_patches == 0)
@@ -115,6 +123,7 @@ int to_mesher_options(const char* function, const anitet_options& o, anitet::Mes
     bl.mitre = o.bl_mitre != 0;
   }
   out.boundary_layer_sizing = o.bl_sizing != 0;
+  out.boundary_layer_sizing_growth = o.bl_sizing_growth;
   return ANITET_OK;
 }
 

@@ -115,7 +115,7 @@ typedef int (*anitet_metric_fn)(double x, double y, double z, double m[6], void*
  * Versioned options.
  * ------------------------------------------------------------------------------------------- */
 /** The newest version of anitet_options this header declares. */
-#define ANITET_OPTIONS_VERSION 4
+#define ANITET_OPTIONS_VERSION 5
 
 /** Values of anitet_options.layer_scheme (version 2). */
 #define ANITET_LAYERS_PUSH 0       /**< prism layers by vertex pushes only (the default) */
@@ -215,13 +215,23 @@ typedef struct anitet_options {
                                         stay as given); planar where the layers slide. Read
                                         during the call only (may be NULL when
                                         bl_num_slide_patches is 0) */
-  /* Version 5 and later append fields here. */
+  /* Version 5 (read only when version >= 5; older callers get the defaults): */
+  double bl_sizing_growth;           /**< with bl_sizing (`anitet mesh --bl-sizing-growth`):
+                                        above the layers' top the normal size grows at this
+                                        rate instead of the layers' growth, so the interior
+                                        reaches its own sizes in fewer tets (the first tets
+                                        there still get the next layer's height; 1.3 is a
+                                        good start). 0 (the default): the layers' growth
+                                        bl_growth. Otherwise finite and >= bl_growth, and
+                                        bl_sizing must be 1 (INVALID_ARGUMENT if not) */
+  /* Version 6 and later append fields here. */
 } anitet_options;
 
 /** Initializer of an anitet_options of version ANITET_OPTIONS_VERSION with the defaults. */
 #define ANITET_OPTIONS_INIT                                                                     \
   { ANITET_OPTIONS_VERSION, 0, 1, 1, 1, 0, 0, 0, 0, 0, 1, ANITET_LAYERS_PUSH, 0.0, 1, 1, 1.0, \
-    240.0, 1, ANITET_RECOVERY_ALL, 0.0, 0.0, 0.0, 0.0, 2, 0, 0, 0.0, 1.2, 10, 0, 2000, 0, 0, 0, 0 }
+    240.0, 1, ANITET_RECOVERY_ALL, 0.0, 0.0, 0.0, 0.0, 2, 0, 0, 0.0, 1.2, 10, 0, 2000, 0, 0, 0, 0, \
+    0.0 }
 
 /** Fills the fields of `version` (1 .. ANITET_OPTIONS_VERSION) of *options with their defaults
  * and sets options->version; a struct of an older version is not written past its end.

@@ -41,7 +41,7 @@ module anitet
   integer(c_int32_t), parameter, public :: ANITET_LOG_WARNING = 1
   integer(c_int32_t), parameter, public :: ANITET_LOG_INFO = 2
   integer(c_int32_t), parameter, public :: ANITET_LOG_DEBUG = 3
-  integer(c_int32_t), parameter, public :: ANITET_OPTIONS_VERSION = 4
+  integer(c_int32_t), parameter, public :: ANITET_OPTIONS_VERSION = 5
   integer(c_int32_t), parameter, public :: ANITET_LAYERS_PUSH = 0
   integer(c_int32_t), parameter, public :: ANITET_LAYERS_FACE_PUSH = 1
   integer(c_int32_t), parameter, public :: ANITET_RECOVERY_ALL = 0
@@ -148,6 +148,10 @@ module anitet
     integer(c_int32_t) :: bl_cells  ! ANITET_BL_CELLS_TETS (default) or ANITET_BL_CELLS_PRISMS
     ! The slide patch labels: as bl_patches (or pass bl_slide_patches= to anitet_mesher_run).
     type(c_ptr) :: bl_slide_patches
+    ! version 5
+    ! With bl_sizing = 1: the normal size's growth above the layers' top (--bl-sizing-growth);
+    ! 0 (default): bl_growth, otherwise at least bl_growth.
+    real(c_double) :: bl_sizing_growth
   end type
 
   ! What the run that made a mesh did (anitet_mesh_get_run_stats).

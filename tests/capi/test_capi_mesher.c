@@ -279,10 +279,10 @@ static void test_options_versions(void** state) {
   anitet_mesh *a, *b;
   int64_t ta = 0, tb = 0;
   (void)state;
-  /* Version 2 defaults (version 3's and 4's: test_capi_run.c). */
+  /* Version 2 defaults (version 3's to 5's: test_capi_run.c). */
   memset(&o, 0x5a, sizeof o);
   assert_int_equal(anitet_options_init(&o, ANITET_OPTIONS_VERSION), ANITET_OK);
-  assert_int_equal(o.version, 4);
+  assert_int_equal(o.version, 5);
   assert_int_equal(o.layers, 1);
   assert_int_equal(o.layer_scheme, ANITET_LAYERS_PUSH);
   assert_true(o.recovery_max_seconds == 0.0);

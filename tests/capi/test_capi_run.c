@@ -1,7 +1,7 @@
-/* The C ABI's versions 3 and 4 of anitet_options (the options of `anitet mesh`: boundary layer
- * and its slide patches, size bounds, recovery strategy, retries, tet cap) and what a run returns
- * (anitet_run_stats, anitet_mesh_run_json), patch names and types for the written files; every
- * documented error. */
+/* The C ABI's versions 3 to 5 of anitet_options (the options of `anitet mesh`: boundary layer,
+ * its slide patches and sizing, size bounds, recovery strategy, retries, tet cap) and what a run
+ * returns (anitet_run_stats, anitet_mesh_run_json), patch names and types for the written
+ * files; every documented error. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -456,7 +456,6 @@ static void test_options_v4_defaults(void** state) {
   const unsigned char* bytes = (const unsigned char*)&v3;
   size_t i;
   (void)state;
-  assert_int_equal(ANITET_OPTIONS_VERSION, 4);
   memset(&b, 0x5a, sizeof b);
   assert_int_equal(anitet_options_init(&b, 4), ANITET_OK);
   assert_int_equal(b.version, 4);
@@ -473,8 +472,6 @@ static void test_options_v4_defaults(void** state) {
   assert_int_equal(anitet_options_init(&v3, 3), ANITET_OK);
   assert_int_equal(v3.version, 3);
   for (i = v3_size; i < sizeof v3; ++i) assert_int_equal(bytes[i], 0xff);
-  assert_int_equal(anitet_options_init(&b, 5), ANITET_ERR_INVALID_ARGUMENT);
-  assert_true(contains(anitet_last_error_message(), "version 5"));
 }
 
 static void expect_same_mesh(const anitet_mesh* a, const anitet_mesh* b) {
@@ -676,6 +673,81 @@ static void test_layers_run(void** state) {
   assert_int_equal(anitet_surface_create(kCubeXyz, 8, kCubeTri, 11, NULL, 0, &s), ANITET_OK);
   assert_int_equal(anitet_layers_run(s, NULL, &t1), ANITET_ERR_OPEN_BOUNDARY);
   assert_null(t1);
+  anitet_surface_destroy(s);
+}
+
+/* ---- options, version 5: bl_sizing_growth -------------------------------------------------- */
+
+static void test_options_v5_defaults(void** state) {
+  anitet_options a = ANITET_OPTIONS_INIT, b, v4;
+  const size_t v4_size = offsetof(anitet_options, bl_sizing_growth);
+  const unsigned char* bytes = (const unsigned char*)&v4;
+  size_t i;
+  (void)state;
+  assert_int_equal(ANITET_OPTIONS_VERSION, 5);
+  memset(&b, 0x5a, sizeof b);
+  assert_int_equal(anitet_options_init(&b, 5), ANITET_OK);
+  assert_int_equal(b.version, 5);
+  assert_true(b.bl_sizing_growth == 0.0 && a.bl_sizing_growth == 0.0);
+  /* Version 4: nothing written past its end. */
+  assert_int_equal(v4_size, offsetof(anitet_options, bl_slide_patches) + sizeof(void*));
+  memset(&v4, 0xff, sizeof v4);
+  assert_int_equal(anitet_options_init(&v4, 4), ANITET_OK);
+  assert_int_equal(v4.version, 4);
+  for (i = v4_size; i < sizeof v4; ++i) assert_int_equal(bytes[i], 0xff);
+  assert_int_equal(anitet_options_init(&b, 6), ANITET_ERR_INVALID_ARGUMENT);
+  assert_true(contains(anitet_last_error_message(), "version 6"));
+}
+
+/* The sphere's boundary layer with bl_sizing on a cheap sized run (sizes twice as coarse, no
+ * optimization, no anisotropic cycles). A version 4 caller (garbage past its struct: a NaN
+ * bl_sizing_growth, refused if it were read) gets the layers' growth: the same mesh as version 5
+ * with 0. bl_sizing_growth 1.3 (above the layers' 1.1) coarsens the interior faster: fewer tets. */
+static void test_bl_sizing_growth(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  const int32_t walls[3] = {1, 2, 3};
+  anitet_options v4, o = ANITET_OPTIONS_INIT;
+  anitet_mesh *old_caller, *layers_growth, *faster;
+  (void)state;
+  memset(&v4, 0xff, sizeof v4);
+  assert_int_equal(anitet_options_init(&v4, 4), ANITET_OK);
+  v4.bl_num_patches = o.bl_num_patches = 3, v4.bl_patches = o.bl_patches = walls;
+  v4.bl_first_height = o.bl_first_height = 0.05, v4.bl_growth = o.bl_growth = 1.1;
+  v4.bl_layers = o.bl_layers = 3, v4.bl_sizing = o.bl_sizing = 1;
+  v4.optimize = o.optimize = 0, v4.anisotropic_cycles = o.anisotropic_cycles = 0;
+  v4.size_scale = o.size_scale = 2.0;
+  old_caller = run_ok(s, &v4);
+  layers_growth = run_ok(s, &o);
+  expect_same_mesh(old_caller, layers_growth);
+  o.bl_sizing_growth = 1.3;
+  faster = run_ok(s, &o);
+  print_message("bl_sizing_growth 0: %lld tets, 1.3: %lld\n", (long long)tets_of(layers_growth),
+                (long long)tets_of(faster));
+  assert_true(tets_of(faster) < tets_of(layers_growth));
+  anitet_mesh_destroy(old_caller);
+  anitet_mesh_destroy(layers_growth);
+  anitet_mesh_destroy(faster);
+  anitet_surface_destroy(s);
+}
+
+/* The CLI's errors: a value below bl_growth, NaN or infinite (the CLI's metric refuses that
+ * too), or one without bl_sizing. */
+static void test_bl_sizing_growth_errors(void** state) {
+  anitet_surface* s = make_sphere_in_box();
+  const int32_t walls[3] = {1, 2, 3};
+  anitet_options o = ANITET_OPTIONS_INIT;
+  (void)state;
+  o.bl_num_patches = 3, o.bl_patches = walls, o.bl_first_height = 0.02, o.bl_growth = 1.2;
+  o.bl_sizing = 1, o.bl_sizing_growth = 1.1;
+  expect_bad(s, &o, "bl_sizing_growth");
+  o.bl_sizing_growth = -1.0;
+  expect_bad(s, &o, "at least bl_growth");
+  o.bl_sizing_growth = NAN;
+  expect_bad(s, &o, "bl_sizing_growth");
+  o.bl_sizing_growth = INFINITY;
+  expect_bad(s, &o, "a finite value");
+  o.bl_sizing_growth = 1.3, o.bl_sizing = 0;
+  expect_bad(s, &o, "needs bl_sizing 1");
   anitet_surface_destroy(s);
 }
 
@@ -981,6 +1053,8 @@ int main(void) {
       cmocka_unit_test(test_run_stats_v1_caller), cmocka_unit_test(test_bl_cells_prisms),
       cmocka_unit_test(test_bl_cells_tets),       cmocka_unit_test(test_bl_cells_errors),
       cmocka_unit_test(test_bl_mitre_columns),    cmocka_unit_test(test_bl_mitre_errors),
+      cmocka_unit_test(test_options_v5_defaults), cmocka_unit_test(test_bl_sizing_growth),
+      cmocka_unit_test(test_bl_sizing_growth_errors),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -261,9 +261,9 @@ contains
                "options v2 defaults")
     ! The struct's layout is the C one: version 1 ends after four pointers, version 2 adds
     ! 2 * (4 + 4 + 8) bytes, version 3 seven 8-byte fields, eight 4-byte ones and a pointer,
-    ! version 4 two 4-byte fields and a pointer.
+    ! version 4 two 4-byte fields and a pointer, version 5 a double.
     call check(c_sizeof(options) == 6 * 4 + 4 * c_sizeof(c_null_ptr) + 32 + 88 + &
-               c_sizeof(c_null_ptr) + 8 + c_sizeof(c_null_ptr), "options size")
+               c_sizeof(c_null_ptr) + 8 + c_sizeof(c_null_ptr) + 8, "options size")
     call check(options%refine == 1 .and. options%optimize == 1 .and. options%size_scale == 1d0, &
                "options v2 refine defaults")
     options%layers = 0
@@ -471,13 +471,13 @@ contains
     call anitet_pslg_destroy(pslg)
   end subroutine
 
-  ! Version 3 of the options: the defaults of anitet_options_init, the run stats' layout, and a
-  ! version 2 struct still accepted.
+  ! Versions 3 to 5 of the options: the defaults of anitet_options_init, the run stats' layout,
+  ! and version 2 to 4 structs still accepted.
   subroutine check_options_v3()
     type(anitet_options_t) :: o
     type(anitet_run_stats_t) :: st
-    call check(anitet_options_init(o) == ANITET_OK, "options v4")
-    call check(o%version == 4, "options v4: version")
+    call check(anitet_options_init(o) == ANITET_OK, "options v5")
+    call check(o%version == 5 .and. o%bl_sizing_growth == 0d0, "options v5: version, sizing growth")
     call check(o%bl_num_slide_patches == 0 .and. o%bl_cells == ANITET_BL_CELLS_TETS .and. &
                .not. c_associated(o%bl_slide_patches), "options v4: no slide patches")
     call check(o%attempts_seconds == 240d0 .and. o%retry_layer_counts == 1 .and. &
@@ -492,6 +492,8 @@ contains
                "options v3: push tasks from 2000 front vertices")
     ! 8 int32, 8 int64, 5 doubles, 2 int32, 5 int64, 5 doubles, 3 + 2 int64: no padding.
     call check(c_sizeof(st) == 264, "run stats size")
+    call check(anitet_options_init(o, 4) == ANITET_OK, "options v4 still")
+    call check(o%version == 4, "options v4: version")
     call check(anitet_options_init(o, 3) == ANITET_OK, "options v3 still")
     call check(o%version == 3, "options v3: version")
     call check(anitet_options_init(o, 2) == ANITET_OK, "options v2 still")

@@ -97,12 +97,15 @@ class HeaderDrift(unittest.TestCase):
         self.assertEqual(self.ctypes_fields(_capi.CMesh2dOptions), self.struct_fields("anitet_mesh2d_options"))
         self.assertEqual(ctypes.sizeof(_capi.CRunStats), 264)
         # Version 1 ends after the four pointers; version 2 adds 32 bytes, version 3 seven 8-byte
-        # fields, eight 4-byte ones and a pointer, version 4 two 4-byte fields and a pointer.
+        # fields, eight 4-byte ones and a pointer, version 4 two 4-byte fields and a pointer,
+        # version 5 a double.
         self.assertEqual(_capi.COptions.layers.offset, 24 + 4 * pointer)
         self.assertEqual(_capi.COptions.attempts_seconds.offset, _capi.COptions.layers.offset + 32)
         self.assertEqual(_capi.COptions.bl_num_slide_patches.offset,
                          _capi.COptions.attempts_seconds.offset + 88 + pointer)
-        self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.bl_num_slide_patches.offset + 8 + pointer)
+        self.assertEqual(_capi.COptions.bl_sizing_growth.offset,
+                         _capi.COptions.bl_num_slide_patches.offset + 8 + pointer)
+        self.assertEqual(ctypes.sizeof(_capi.COptions), _capi.COptions.bl_sizing_growth.offset + 8)
 
     def test_options_defaults_are_the_library_s(self):
         c = _capi.COptions()
@@ -459,6 +462,24 @@ class BoundaryLayers(unittest.TestCase):
         with self.assertRaises(anitet.AnitetError) as e:
             anitet.build_layers(anitet.Surface.from_arrays(CUBE_POINTS, CUBE_TRIS[:11]))
         self.assertEqual(e.exception.code, anitet.ERR_OPEN_BOUNDARY)
+
+    def test_bl_sizing_growth(self):
+        """Options version 5: bl_sizing_growth 1.3 over the layers' 1.1 coarsens the interior
+        faster (fewer tets, on a cheap run); the CLI's errors."""
+        cheap = dict(bl_patches=[1, 2, 3], bl_first_height=0.05, bl_growth=1.1, bl_layers=3,
+                     bl_sizing=True, size_scale=2.0, optimize=False, anisotropic_cycles=0)
+        scope = anitet._api._options_arg(None, dict(cheap, bl_sizing_growth=1.3))
+        self.assertEqual(scope.struct.bl_sizing_growth, 1.3)
+        layers_growth = self.surface.mesh(**cheap)
+        faster = self.surface.mesh(bl_sizing_growth=1.3, **cheap)
+        self.assertLess(faster.num_tets, layers_growth.num_tets)
+        for fields, words in (({"bl_sizing_growth": 1.05}, "at least bl_growth (1.1)"),
+                              ({"bl_sizing_growth": float("nan")}, "bl_sizing_growth is nan"),
+                              ({"bl_sizing_growth": 1.3, "bl_sizing": False}, "needs bl_sizing 1")):
+            with self.assertRaises(anitet.AnitetError) as e:
+                self.surface.mesh(**dict(cheap, **fields))
+            self.assertEqual(e.exception.code, anitet.ERR_INVALID_ARGUMENT, fields)
+            self.assertIn(words, e.exception.message)
 
     def test_bl_first_height(self):
         cf = 0.026 * 1e6 ** (-1.0 / 7.0)

@@ -43,7 +43,7 @@ LOG_ERROR = 0
 LOG_WARNING = 1
 LOG_INFO = 2
 LOG_DEBUG = 3
-OPTIONS_VERSION = 4
+OPTIONS_VERSION = 5
 QUALITY_VERSION = 1
 RUN_STATS_VERSION = 3
 LAYERS_PUSH = 0
@@ -147,6 +147,8 @@ class COptions(Structure):
         ("bl_num_slide_patches", c_int32),
         ("bl_cells", c_int32),
         ("bl_slide_patches", POINTER(c_int32)),
+        # version 5
+        ("bl_sizing_growth", c_double),
     ]
 
 
