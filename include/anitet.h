@@ -170,8 +170,10 @@ typedef struct anitet_options {
                                         refinement (0: no limit, the default) */
   int32_t anisotropic_cycles;        /**< with an anisotropic field, at most this many more
                                         rounds of refinement then optimization (0-10, default
-                                        2); they stop after a round that raised the share of
-                                        edges in range by less than 1 point */
+                                        2); a round runs only after an optimization that
+                                        raised the share of edges in range by 3 points or
+                                        more, and they stop after a round that raised it by
+                                        less than 1 point */
   int32_t bl_num_patches;            /**< boundary layer: the number of labels in bl_patches
                                         (0, the default: no boundary layer) */
   const int32_t* bl_patches;         /**< the surface's patch labels that are walls, each a
