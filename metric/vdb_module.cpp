@@ -61,8 +61,10 @@ class Backend final : public VdbBackend {
 
 extern "C" const anitet::metric::VdbBackend*
 anitet_vdb_backend_v1() {
-  static const anitet::metric::Backend backend;
-  return &backend;
+  // Never destroyed: a thread's sampler cache (metric_field.cpp) may be freed after this
+  // module's statics at exit (a TBB worker joined late), and its deleter calls the backend.
+  static const anitet::metric::Backend* backend = new anitet::metric::Backend();
+  return backend;
 }
 
 // The interface this module was built with (metric/CMakeLists.txt): checked before the entry point
