@@ -171,6 +171,7 @@ bool read_binary(ByteSource& in, const BinaryForm& form, std::string& bytes, std
     if (!in.take_int(form.header64, p) || p > in.bound()) return why = "truncated compressed-data header", false;
     packed_total += p;
   }
+  if (packed_total > in.bound()) return why = "truncated compressed data", false;
   if (blocks == 0) return true;
   const uint64_t last = last_size ? last_size : block_size;
   // zlib expands by at most ~1032 to 1: a larger claim is a corrupt header, not an allocation.
