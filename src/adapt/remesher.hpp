@@ -117,9 +117,10 @@ class Remesher {
   void neighbours(uint32_t v, const std::vector<uint32_t>& ball, std::vector<uint32_t>& out);
   // The sum of the squared logs of the metric lengths from pos (metric met) to the points nb.
   double length_energy(const std::vector<uint32_t>& nb, const double pos[3], const double met[6]) const;
-  // Where v's edges to nb come nearest unit length: the mean over y in nb of the point at unit
-  // metric length from y on the line y v.
-  bool balance_target(uint32_t v, const std::vector<uint32_t>& nb, double out[3]) const;
+  // Where v's edges come nearest unit length: the mean over its neighbours y of the point at unit
+  // metric length from y on the line y v. Leaves the neighbours in nb_ and the length energy of v
+  // where it is in nb_energy_, which the balancing tries of try_move compare with.
+  bool balance_target(uint32_t v, const std::vector<uint32_t>& ball, double out[3]);
   // The ideal point of v over face i of t (the apex making it regular in the metric m).
   bool ideal_point(uint32_t t, int i, const double m[6], double out[3]) const;
 
@@ -130,6 +131,7 @@ class Remesher {
   // Scratch.
   Shell shell_;
   std::vector<uint32_t> ball_, ball2_, moved_ball_, created_, cavity_, nb_;
+  double nb_energy_ = 0.0;  // balance_target(): the length energy of v's edges to nb_ before a move
   std::vector<uint8_t> incav_;  // per tet: 1 in the cavity, 2 a seed (zero between insertions)
   std::vector<TetVerts> fresh_;
   std::vector<uint32_t> fresh_tets_;  // the tets a swap replaces

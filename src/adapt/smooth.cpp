@@ -95,17 +95,19 @@ double Remesher::length_energy(const std::vector<uint32_t>& nb, const double pos
   return e;
 }
 
-bool Remesher::balance_target(uint32_t v, const std::vector<uint32_t>& nb, double out[3]) const {
-  if (nb.empty()) return false;
+bool Remesher::balance_target(uint32_t v, const std::vector<uint32_t>& ball, double out[3]) {
+  neighbours(v, ball, nb_);
+  if (nb_.empty()) return false;
+  nb_energy_ = length_energy(nb_, mesh_.p(v), mesh_.m(v));
   const double* p = mesh_.p(v);
   out[0] = out[1] = out[2] = 0.0;
-  for (uint32_t y : nb) {
+  for (uint32_t y : nb_) {
     const double l = length(v, y);
     if (!(l > 0.0)) return false;
     const double* py = mesh_.p(y);
     for (int k = 0; k < 3; ++k) out[k] += py[k] + (p[k] - py[k]) / l;
   }
-  for (int k = 0; k < 3; ++k) out[k] /= double(nb.size());
+  for (int k = 0; k < 3; ++k) out[k] /= double(nb_.size());
   return true;
 }
 
@@ -115,7 +117,7 @@ bool Remesher::try_move(uint32_t v, const std::vector<uint32_t>& ball, const dou
   uint32_t hint = mesh_.hint[v];
   metric_.eval(pos, hint, met);
   const double det = metric_det(met);
-  if (balance && !(length_energy(nb_, pos, met) < kBalanceGain * length_energy(nb_, mesh_.p(v), mesh_.m(v))))
+  if (balance && !(length_energy(nb_, pos, met) < kBalanceGain * nb_energy_))
     return false;
   double old_min = 1.0, old_sum = 0.0, new_min = 1.0, new_sum = 0.0;
   newq_.resize(ball.size());
@@ -203,8 +205,7 @@ bool Remesher::move_interior(uint32_t v, const std::vector<uint32_t>& ball) {
   if (!ideal_mean(mesh_, v, ball, [&](uint32_t t, int i, double* x) { return ideal_point(t, i, m, x); }, target))
     return false;
   if (move_interior_towards(v, ball, target, false)) return true;
-  neighbours(v, ball, nb_);
-  return balance_target(v, nb_, target) && move_interior_towards(v, ball, target, true);
+  return balance_target(v, ball, target) && move_interior_towards(v, ball, target, true);
 }
 
 bool Remesher::move_interior_towards(uint32_t v, const std::vector<uint32_t>& ball, const double target[3],
@@ -223,8 +224,7 @@ bool Remesher::move_surface(uint32_t v, const std::vector<uint32_t>& ball) {
   if (!ideal_mean(mesh_, v, ball, [&](uint32_t t, int i, double* x) { return ideal_point(t, i, m, x); }, target))
     return false;
   if (move_surface_towards(v, ball, target, false)) return true;
-  neighbours(v, ball, nb_);
-  return balance_target(v, nb_, target) && move_surface_towards(v, ball, target, true);
+  return balance_target(v, ball, target) && move_surface_towards(v, ball, target, true);
 }
 
 bool Remesher::move_surface_towards(uint32_t v, const std::vector<uint32_t>& ball, const double target[3],
