@@ -249,8 +249,9 @@ struct FileForm {
   bool have_appended = false;
 };
 
-FileForm file_form(std::string_view root_attributes) {
-  FileForm f;
+// The binary form and what is unsupported of it, from the VTKFile tag's attributes, into f.
+void read_file_form(std::string_view root_attributes, FileForm& f) {
+  f.unsupported.clear();
   const std::string_view order = xml_attribute(root_attributes, "byte_order");
   const std::string_view header = xml_attribute(root_attributes, "header_type");
   const std::string_view compressor = xml_attribute(root_attributes, "compressor");
@@ -262,7 +263,6 @@ FileForm file_form(std::string_view root_attributes) {
     f.unsupported = "header_type '" + quote_token(header) + "' is not UInt32 or UInt64";
   else if (!compressor.empty() && !f.binary.zlib)
     f.unsupported = "compressor '" + quote_token(compressor) + "' is not supported (zlib is; or write it uncompressed)";
-  return f;
 }
 
 // Where the appended data starts ('_' after <AppendedData>), and the XML before it.
@@ -343,9 +343,7 @@ Status read_vtk_grid(std::string_view data, const std::string& name, VtkWanted w
     if (tag.name == "VTKFile" && !tag.closing) {
       if (xml_attribute(tag.attributes, "type") != "UnstructuredGrid")
         return fail(Error::UnsupportedFormat, "only UnstructuredGrid VTK files are supported");
-      const FileForm root = file_form(tag.attributes);
-      form.binary = root.binary;
-      form.unsupported = root.unsupported;
+      read_file_form(tag.attributes, form);
       have_grid = true;
     } else if (tag.name == "Piece" && !tag.closing) {
       if (have_piece) return fail(Error::UnsupportedFormat, "files with several Pieces are not supported");
