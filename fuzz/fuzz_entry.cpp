@@ -111,7 +111,10 @@ void sol(const uint8_t* data, size_t size) {
     return;
   }
   const metric::SolField& f = read.value();
-  if (f.components != 1 && f.components != 6) broken("sol", "components " + std::to_string(f.components));
+  // Sizes (1) or tensors: 6 in 3D, 3 in 2D (the 2D mesher's xx xy yy).
+  const int tensor = f.dimension == 2 ? 3 : 6;
+  if ((f.dimension != 2 && f.dimension != 3) || (f.components != 1 && f.components != tensor))
+    broken("sol", "dimension " + std::to_string(f.dimension) + ", components " + std::to_string(f.components));
   if (f.values.size() % size_t(f.components) != 0) broken("sol", "values not a multiple of components");
 }
 
