@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "core/sizing.hpp"
+#include "core/metric_measures.hpp"
 #include "core/status.hpp"
 #include "core/volume_mesh.hpp"
 
@@ -36,8 +37,8 @@ namespace anitet {
 struct AdaptOptions {
   bool keep_surface = false;     // the input's boundary triangles kept exactly
   double ridge_angle_deg = 45.0; // a dihedral angle between boundary faces over this: a ridge
-  double split_length = 1.4142135623730951;    // edges longer than this are split
-  double collapse_length = 0.7071067811865476; // edges shorter than this are collapsed
+  double split_length = kUnitRangeMax;    // edges longer than this are split
+  double collapse_length = kUnitRangeMin;  // edges shorter than this are collapsed
   int max_cycles = 30;           // refinement/coarsening cycles at most
   int optimize_cycles = 3;       // swap and smoothing sweeps after them
   // AdaptMesh::check() of the working mesh after every sweep, a broken mesh an Error::Internal

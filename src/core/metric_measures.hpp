@@ -17,6 +17,11 @@
 
 namespace anitet {
 
+// The range of metric edge lengths meshes aim at, [1/sqrt2, sqrt2]: refinement splits above it
+// and collapses below it, and the reports count the share of edges in it.
+constexpr double kUnitRangeMin = 0.7071067811865476, kUnitRangeMax = 1.4142135623730951;
+inline bool in_unit_range(double l) { return l >= kUnitRangeMin && l <= kUnitRangeMax; }
+
 inline double quad_form(const double m[6], const double v[3]) {
   return m[0] * v[0] * v[0] + m[2] * v[1] * v[1] + m[5] * v[2] * v[2] +
          2.0 * (m[1] * v[0] * v[1] + m[3] * v[0] * v[2] + m[4] * v[1] * v[2]);

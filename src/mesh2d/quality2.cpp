@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/metric_measures.hpp"
 #include "mesh2d/metric2.hpp"
 
 namespace anitet::mesh2d {
@@ -61,7 +62,7 @@ Quality2 measure_quality(const TriMesh2& m) {
       const double l = edge_length(ma, &m.xy[2 * size_t(a)], mb, &m.xy[2 * size_t(b)]);
       q.length_min = std::min(q.length_min, l);
       q.length_max = std::max(q.length_max, l);
-      if (l >= 0.7071067811865476 && l <= 1.4142135623730951) ++in;
+      if (in_unit_range(l)) ++in;
     }
     q.in_range = double(in) / double(q.edges);
   }

@@ -197,7 +197,7 @@ double share_in_range(const Triangulation& m, const VertexMetrics& vm) {
   for_each_edge(m, [&](uint32_t t, int k) {
     const double len = vm.length(m, m.edge_a(t, k), m.edge_b(t, k));
     ++all;
-    if (len >= 0.7071067811865476 && len <= 1.4142135623730951) ++in;
+    if (in_unit_range(len)) ++in;
   });
   return all ? double(in) / double(all) : 1.0;
 }

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/metric_measures.hpp"
 #include "core/status.hpp"
 #include "mesh2d/metric2.hpp"
 #include "mesh2d/triangulation.hpp"
@@ -20,8 +21,8 @@ namespace anitet::mesh2d {
 struct RefineOptions2 {
   bool split_segments = false;  // constrained edges may be split (the halves keep the tag)
   int max_passes = 60;
-  double split_length = 1.4142135623730951;
-  double collapse_length = 0.7071067811865476;
+  double split_length = kUnitRangeMax;
+  double collapse_length = kUnitRangeMin;
   // No split point closer than this to the points around it (metric lengths).
   double min_spacing = 0.6, min_spacing_anisotropic = 0.45;
   int anisotropic_smoothing = 2;  // length-smoothing sweeps after each split pass (anisotropic)

@@ -13,6 +13,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/buckets.hpp"
+#include "core/metric_measures.hpp"
 #include "optimize/flips.hpp"
 #include "predicates/predicates.hpp"
 #include "refine/edges.hpp"
@@ -114,17 +115,16 @@ class Optimizer {
   bool edge_in_range(uint32_t v, uint32_t u) const {
     const std::vector<double>& m = quality_.vertex_metric;
     const double l = metric_edge_length(&m[6 * size_t(v)], mesh_.point(v), &m[6 * size_t(u)], mesh_.point(u));
-    return l >= kMinInRange && l <= kMaxInRange;
+    return in_unit_range(l);
   }
   double share_in_range() const {
     refine_detail::EdgeList edges;
     refine_detail::EdgeScratch scratch;
     refine_detail::collect_edges(mesh_, quality_.vertex_metric, edges, scratch);
     double mean = 0.0, share = 0.0;
-    refine_detail::length_summary(edges, kMinInRange, kMaxInRange, mean, share);
+    refine_detail::length_summary(edges, kUnitRangeMin, kUnitRangeMax, mean, share);
     return share;
   }
-  static constexpr double kMinInRange = 0.7071067811865476, kMaxInRange = 1.4142135623730951;
   // The quality of w.ball[k] where its points are now (only w.moving moved since measure_ball()),
   // in the metric measure_ball() found: the same figure as quality_.of(mesh_, tet, w.maps[k]).
   double ball_tet_quality(const Work& w, size_t k) const {

@@ -15,8 +15,8 @@ namespace anitet::quality_detail {
 namespace {
 
 // Readable bins around the range [1/sqrt 2, sqrt 2] that UGAWG counts.
-const std::vector<double> kLengthBins = {0.0, 0.3, 0.5, 0.6, 0.7071067811865476, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3,
-                                         1.4142135623730951, 1.6, 2.0, 3.0, 5.0};
+const std::vector<double> kLengthBins = {0.0, 0.3, 0.5, 0.6, kUnitRangeMin, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3,
+                                         kUnitRangeMax, 1.6, 2.0, 3.0, 5.0};
 
 }  // namespace
 
@@ -76,10 +76,9 @@ Status measure_metric(const VolumeMesh& mesh, int histogram_bins, bool parallel,
   out.length_bin_edges = kLengthBins;
   out.length_histogram.assign(kLengthBins.size(), 0);
   size_t in = 0, below = 0;
-  const double lo = kLengthBins[4], hi = kLengthBins[11];
   for (double l : length) {
-    in += l >= lo && l <= hi;
-    below += l < lo;
+    in += in_unit_range(l);
+    below += l < kUnitRangeMin;
     const auto bin = size_t(std::upper_bound(kLengthBins.begin(), kLengthBins.end(), l) - kLengthBins.begin());
     out.length_histogram[bin > 0 ? bin - 1 : 0] += 1;
   }

@@ -42,6 +42,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "core/metric_measures.hpp"
 #include "core/sizing.hpp"
 #include "core/status.hpp"
 #include "core/tet_mesh.hpp"
@@ -51,8 +52,8 @@ namespace anitet {
 struct RefineOptions {
   // Global size scale: every target length is multiplied by it (2 = a mesh twice as coarse).
   double size_scale = 1.0;
-  double split_length = 1.4142135623730951;
-  double collapse_length = 0.7071067811865476;
+  double split_length = kUnitRangeMax;
+  double collapse_length = kUnitRangeMin;
   double spacing = 0.7;                // min metric distance between points of one batch
   // A split point closer than this (metric length, at the point) to a protected facet (S's
   // triangles, in a BVH built once) is not inserted: next to a surface triangle much larger than
