@@ -26,8 +26,9 @@
 //     ball's old worst quality and sliver_quality)), or that tet's alone (no other tet ending
 //     below min(its old quality, sliver_quality): the ball of a vertex of S1 holds tets on S's
 //     sliver triangles, which no move lifts and which would block the rule above), interleaved
-//     with flips, for sliver_rounds rounds (with an anisotropic metric, only while the tets below
-//     sliver_quality fall by 2% a round: there the rounds made 2000 moves each and left as many).
+//     with flips, for sliver_rounds rounds, ending after a round that moved fewer vertices than 2%
+//     of the tets it tried (with an anisotropic metric, also when the tets below sliver_quality
+//     no longer fall by 2% a round: there the rounds made 2000 moves each and left as many).
 //   - Collapses: a tet that no vertex move lifts (four nearly collinear points, each held by its
 //     other tets, as at sharp creases) gets an edge collapse, its edges shortest first: the removed
 //     end is free, the other stays (or, when free too, first tries the midpoint). Applied when
@@ -38,7 +39,8 @@
 //     while collapses happen (collapse_rounds).
 //   - Polish: the free vertices of the tets left below 0.1 get a longer hill climb (8 times
 //     perturb_trials, finer steps, half of them along the gradient of the tet's quality), then
-//     the tets it lowered a perturbation round; three times at most (with sliver_rounds > 0).
+//     the tets it lowered a perturbation round; three times at most (with sliver_rounds > 0), the
+//     second and third on the tets near the balls the round before changed.
 //   - Rescue: a tet with no vertex on S still below 0.06 after the polish (its vertices held by
 //     tets on S's sliver triangles, which may not drop at all above) gets the polish's climb
 //     again, judged by a looser rule: it must rise, tets off S may not fall below min(their
