@@ -14,9 +14,9 @@
 // repeats: `speedup_2_threads: X` (1 thread over 2) and `speedup_vs_one_at_a_time: Y`.
 // Built with the command-line tool's allocator (huge pages for large blocks; see CMakeLists.txt).
 // The machines are shared and noisy: compare ratios, not times. Pinned to one core (`taskset -c
-// 0`: TBB then runs one thread), the process's CPU time of each build is its work whatever the
-// load; it is printed beside the wall time, with `ratio_vs_cgal_cpu: X` (CPU times' ratio, best of
-// the repeats, random cube).
+// 0`: TBB then runs one thread), the process's CPU time of each tetrahedralization is its work
+// whatever the load; it is printed beside the wall time, with `ratio_vs_cgal_cpu: X` (CPU times'
+// ratio, best of the repeats, random cube).
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 

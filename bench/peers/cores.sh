@@ -2,9 +2,9 @@
 # Issue 12's speed-up from one core to two, and the ratio to HXT with 2 threads, in alternated
 # rounds on one input: anitet on one core (`taskset -c 0`: TBB then runs one thread), anitet on
 # every core, Gmsh's HXT with 2 threads (keeping the surface); each line gives the wall times, the
-# speed-up, each anitet run's CPU time (user+sys: two cores' wall time times 2 over it is how much
-# of the two cores the run used), the load before the round and the stage times (`-v`); at the
-# end, whether both anitet meshes are the same bytes.
+# speed-up, each anitet run's CPU time (user+sys: equal CPU times mean two threads do no extra
+# work; CPU over twice the wall time is the share of two cores the run kept busy), the load before
+# the round and the stage times (`-v`); at the end, whether both anitet meshes are the same bytes.
 #
 #   bench/peers/cores.sh [-r ROUNDS] ANITET [SURFACE]
 #
