@@ -2,8 +2,10 @@
 // inexact constructions; range insertion with spatial sort) on the same point sets, in one run,
 // then audits anitet's meshes with check_mesh(check_delaunay).
 //
-//   bench_delaunay [n = 1000000] [grid side = 50] [repeats = 3]
+//   bench_delaunay [n = 1000000] [grid side = 50] [repeats = 3] [cube]
 //
+// `cube`: the random cube alone, without the threads' runs (before/after timings of a kernel
+// change).
 // Prints points/s per set (best of the repeats, each tool timed alternately on the same points)
 // and the ratio, and ends with `ratio_vs_cgal: X` (anitet's points/s over CGAL's on the random
 // cube). anitet runs on TBB's default arena (all cores; the parallel build of
@@ -11,7 +13,10 @@
 // mesh, bit for bit) and with partitions = 1 (one point at a time), alternated, best of the
 // repeats: `speedup_2_threads: X` (1 thread over 2) and `speedup_vs_one_at_a_time: Y`.
 // Built with the command-line tool's allocator (huge pages for large blocks; see CMakeLists.txt).
-// The machines are shared and noisy: compare ratios, not times.
+// The machines are shared and noisy: compare ratios, not times. Pinned to one core (`taskset -c
+// 0`: TBB then runs one thread), the process's CPU time of each tetrahedralization is its work
+// whatever the load; it is printed beside the wall time, with `ratio_vs_cgal_cpu: X` (CPU times'
+// ratio, best of the repeats, random cube).
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -23,6 +28,8 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include <time.h>
 
 #include <tbb/task_arena.h>
 
@@ -73,8 +80,16 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// The process's CPU time (all its threads), seconds.
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
 struct Timing {
-  double anitet = 1e30, cgal = 1e30;  // best of the repeats
+  double anitet = 1e30, cgal = 1e30;          // best wall times of the repeats
+  double anitet_cpu = 1e30, cgal_cpu = 1e30;  // best CPU times
   size_t anitet_tets = 0, cgal_tets = 0;
 };
 
@@ -84,14 +99,17 @@ int main(int argc, char** argv) {
   const size_t n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 1000000;
   const int side = argc > 2 ? std::atoi(argv[2]) : 50;
   const int repeats = argc > 3 ? std::max(1, std::atoi(argv[3])) : 3;
+  const bool cube_only = argc > 4 && std::string(argv[4]) == "cube";
 
   std::vector<PointSet> sets;
   sets.push_back(random_cube(n));
-  sets.push_back(random_sphere(n));
-  sets.push_back(grid(side));
+  if (!cube_only) {
+    sets.push_back(random_sphere(n));
+    sets.push_back(grid(side));
+  }
 
   std::vector<anitet::TetMesh> meshes(sets.size());
-  double ratio_cube = 0;
+  double ratio_cube = 0, ratio_cube_cpu = 0;
   bool all_ok = true;
   char details[512] = "";
   for (size_t s = 0; s < sets.size(); ++s) {
@@ -103,9 +121,11 @@ int main(int argc, char** argv) {
     Timing t;
     for (int r = 0; r < repeats; ++r) {  // alternate the two, keep each one's best time
       anitet::TetMesh mesh;
+      double c0 = cpu_seconds();
       auto t0 = Clock::now();
       auto result = anitet::delaunay_tetrahedralize(mesh, set.xyz.data(), np);
       double sec = seconds_since(t0);
+      t.anitet_cpu = std::min(t.anitet_cpu, cpu_seconds() - c0);
       if (!result.ok()) {
         std::printf("%s: anitet failed: %s\n", set.name.c_str(), result.status().message().c_str());
         return 1;
@@ -126,25 +146,27 @@ int main(int argc, char** argv) {
       }
       if (r == repeats - 1) meshes[s] = std::move(mesh);
 
+      c0 = cpu_seconds();
       t0 = Clock::now();
       CgalDelaunay dt(points.begin(), points.end());
       sec = seconds_since(t0);
+      t.cgal_cpu = std::min(t.cgal_cpu, cpu_seconds() - c0);
       if (sec < t.cgal) {
         t.cgal = sec;
         t.cgal_tets = dt.number_of_finite_cells();
       }
     }
-    const double ratio = t.cgal / t.anitet;
-    if (s == 0) ratio_cube = ratio;
+    const double ratio = t.cgal / t.anitet, ratio_cpu = t.cgal_cpu / t.anitet_cpu;
+    if (s == 0) ratio_cube = ratio, ratio_cube_cpu = ratio_cpu;
     std::printf("%-12s %9zu points: anitet %.3f s (%.0f pts/s, %zu tets)  CGAL %.3f s (%.0f pts/s, %zu tets)  "
-                "ratio %.2f\n             anitet %s\n",
+                "ratio %.2f\n             CPU: anitet %.3f s, CGAL %.3f s, ratio %.2f\n             anitet %s\n",
                 set.name.c_str(), np, t.anitet, np / t.anitet, t.anitet_tets, t.cgal, np / t.cgal,
-                t.cgal_tets, ratio, details);
+                t.cgal_tets, ratio, t.anitet_cpu, t.cgal_cpu, ratio_cpu, details);
     std::fflush(stdout);
   }
 
   // Threads: the random cube with 1 and 2 threads and one point at a time.
-  {
+  if (!cube_only) {
     const PointSet& set = sets[0];
     const size_t np = set.xyz.size() / 3;
     double best[3] = {1e30, 1e30, 1e30};
@@ -181,6 +203,6 @@ int main(int argc, char** argv) {
                 st.ok() ? "ok" : st.message().c_str(), seconds_since(t0));
     all_ok = all_ok && st.ok();
   }
-  std::printf("ratio_vs_cgal: %.2f\n", ratio_cube);
+  std::printf("ratio_vs_cgal: %.2f\nratio_vs_cgal_cpu: %.2f\n", ratio_cube, ratio_cube_cpu);
   return all_ok ? 0 : 1;
 }
