@@ -406,6 +406,21 @@ TEST(Optimize, AnisotropicMetricImprovesShapesInTheMetric) {
   EXPECT_LT(double(bad), 0.005 * double(tets_after));
 }
 
+namespace {
+
+// The live tets' edges, each once (its ends in order).
+std::vector<std::pair<uint32_t, uint32_t>> live_edges(const TetMesh& mesh) {
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
+    for (int i = 0; i < 4 && !mesh.is_deleted(t); ++i)
+      for (int j = i + 1; j < 4; ++j) edges.emplace_back(std::minmax(mesh.vertex(t, i), mesh.vertex(t, j)));
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+}  // namespace
+
 // OptimizeOptions::keep_lengths_in_range: with it, the optimizer's moves take no edge that
 // refinement left in [1/sqrt2, sqrt2] out of it, and the share in range does not fall (without
 // it, the UGAWG cube to its .sol went from 86.5% after refinement to 78.6% after optimization).
@@ -413,13 +428,7 @@ TEST(Optimize, AnisotropicMovesKeepLengthsInRange) {
   const int n[3] = {4, 4, 25};
   const test::AxisSizing field(0.25, 0.25, 0.04);
   auto share_in_range = [&field](const TetMesh& mesh) {
-    std::vector<std::pair<uint32_t, uint32_t>> edges;
-    for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
-      for (int i = 0; i < 4 && !mesh.is_deleted(t); ++i)
-        for (int j = i + 1; j < 4; ++j)
-          edges.emplace_back(std::minmax(mesh.vertex(t, i), mesh.vertex(t, j)));
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    const std::vector<std::pair<uint32_t, uint32_t>> edges = live_edges(mesh);
     size_t in = 0;
     for (const auto& [a, b] : edges) {
       const double l = metric_edge_length(field, mesh.point(a), mesh.point(b));
@@ -455,15 +464,9 @@ TEST(FlipSweep, AnisotropicFlipsKeepLengthsInRange) {
   const test::AxisSizing field(0.25, 0.25, 0.04);
   optimize_detail::Quality quality;
   auto out_of_range = [&](const TetMesh& mesh) {
-    std::vector<std::pair<uint32_t, uint32_t>> edges;
-    for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
-      for (int i = 0; i < 4 && !mesh.is_deleted(t); ++i)
-        for (int j = i + 1; j < 4; ++j) edges.emplace_back(std::minmax(mesh.vertex(t, i), mesh.vertex(t, j)));
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     size_t out = 0;
     const std::vector<double>& m = quality.vertex_metric;
-    for (const auto& [a, b] : edges) {
+    for (const auto& [a, b] : live_edges(mesh)) {
       const double l = metric_edge_length(&m[6 * size_t(a)], mesh.point(a), &m[6 * size_t(b)], mesh.point(b));
       out += !(l >= std::sqrt(0.5) && l <= std::sqrt(2.0));
     }
