@@ -738,7 +738,7 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
   cmd->add_option("--anisotropic-cycles", args.anisotropic_cycles,
                   "With an anisotropic metric (--metric tensors, --bl-sizing): at most this many more rounds "
                   "of refinement then optimization after the first, which even the metric lengths and shapes "
-                  "further; a round runs only after an optimization that raised the share of edges in range by 3 "
+                  "further; a round runs only after an optimization that raised the share of edges in range by 4.5 "
                   "points or more, and they stop after a round that raised it by less than 1 point")
       ->check(in_range(0, 10))
       ->capture_default_str()

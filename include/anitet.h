@@ -171,7 +171,7 @@ typedef struct anitet_options {
   int32_t anisotropic_cycles;        /**< with an anisotropic field, at most this many more
                                         rounds of refinement then optimization (0-10, default
                                         2); a round runs only after an optimization that
-                                        raised the share of edges in range by 3 points or
+                                        raised the share of edges in range by 4.5 points or
                                         more, and they stop after a round that raised it by
                                         less than 1 point */
   int32_t bl_num_patches;            /**< boundary layer: the number of labels in bl_patches

@@ -8,6 +8,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/bvh.hpp"
+#include "core/sizing.hpp"
 #include "predicates/predicates.hpp"
 
 namespace anitet::optimize_detail {
@@ -34,6 +35,19 @@ bool FlipMemo::still_fails(uint32_t t, const uint32_t v[4]) const {
   return t < failed.size() && newer_than_changes(failed[t], v);
 }
 
+namespace {
+
+// Whether edge ab's normalized length, in its ends' metrics, is out of [1/sqrt2, sqrt2].
+bool out_of_range(const FlipContext& c, uint32_t a, uint32_t b) {
+  const std::vector<double>& m = c.quality->vertex_metric;
+  const double l = metric_edge_length(&m[6 * size_t(a)], c.mesh.point(a), &m[6 * size_t(b)], c.mesh.point(b));
+  return !(l >= 0.7071067811865476 && l <= 1.4142135623730951);
+}
+
+bool guard_lengths(const FlipContext& c) { return c.keep_lengths_in_range && c.quality->anisotropic(); }
+
+}  // namespace
+
 bool try_flip23(FlipContext& c, uint32_t t, int i) {
   TetMesh& m = c.mesh;
   if (m.is_deleted(t) || m.facet_protected(t, i) || m.tet_adj[4 * size_t(t) + i] == TetMesh::kNoNeighbour)
@@ -46,6 +60,7 @@ bool try_flip23(FlipContext& c, uint32_t t, int i) {
     return false;
   }
   const uint32_t d = m.vertex(t, i), e = m.vertex(n, j);
+  if (guard_lengths(c) && out_of_range(c, d, e)) return false;
   const uint32_t f[3] = {m.vertex(t, kFacetVertex[i][0]), m.vertex(t, kFacetVertex[i][1]),
                          m.vertex(t, kFacetVertex[i][2])};
   const double before = std::min(c.tet(t), c.tet(n));
@@ -136,6 +151,19 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
     stack[top][0] = l;
     stack[top][1] = j;
     ++top;
+  }
+  if (guard_lengths(c)) {
+    // The new edges are the diagonals of the ring polygon's triangulation (c.fresh holds its
+    // triangles, each as (r_i, r_l, r_j, a)); each diagonal is a side of two triangles.
+    auto at = [&](uint32_t v) { return std::find(c.ring.begin(), c.ring.end(), v) - c.ring.begin(); };
+    int out_twice = 0;
+    for (size_t f = 0; f < c.fresh.size(); f += 2)
+      for (int e = 0; e < 3; ++e) {
+        const uint32_t p = c.fresh[f][e], q = c.fresh[f][(e + 1) % 3];
+        const auto gap = std::abs(at(p) - at(q));
+        if (gap != 1 && gap != n - 1) out_twice += out_of_range(c, p, q) ? 1 : 0;
+      }
+    if (out_twice > (out_of_range(c, a, b) ? 2 : 0)) return false;
   }
   c.old = c.ring_tets;
   if (!c.has_room(c.old.size(), c.fresh.size())) {
@@ -266,6 +294,7 @@ size_t parallel_round(FlipContext& c, double quality, const std::vector<uint32_t
     sub.gain = c.gain;
     sub.rule = c.rule;
     sub.quality = c.quality;
+    sub.keep_lengths_in_range = c.keep_lengths_in_range;
     sub.side = side.data();
     sub.me = static_cast<uint8_t>(k);
     sub.log = &task.log;

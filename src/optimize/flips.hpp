@@ -112,6 +112,10 @@ struct FlipContext {
   meshops::ConstrainedEdges rule = meshops::ConstrainedEdges::kRefuse;
   size_t flips23 = 0, edge_removals = 0;
   const Quality* quality = &Quality::euclidean();
+  // Anisotropic quality: a flip may not add edges out of [1/sqrt2, sqrt2] in the vertices'
+  // metrics beyond those it removes (a 2-3 flip's new edge must be in range; an edge removal
+  // may make no more out-of-range edges than the one it removes).
+  bool keep_lengths_in_range = false;
   FlipMemo memo{};
   // flip_sweep() runs a round on two tasks when it has at least this many tets to try.
   size_t parallel_min = 4096;

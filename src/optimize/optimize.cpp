@@ -885,6 +885,7 @@ Result<OptimizeStats> Optimizer::run() {
     }
   }
   stats_.anisotropic = quality_.anisotropic();
+  flips_.keep_lengths_in_range = options_.keep_lengths_in_range;
   if (stats_.anisotropic) stats_.length_in_range_before = share_in_range();
   take_lap(stats_.seconds_setup);
   for (int it = 0; it < options_.cvt_iterations; ++it) {

@@ -79,8 +79,11 @@ struct MesherOptions {
   // 4-8 points that a second round gave back: on the UGAWG cube, to its .sol and to polar1, one
   // round ends at 88.9% after optimization and the next two add 0.5 point at twice and three
   // times the time; where the optimizer's moves leave lengths to even (bench/aniso_cube: +6
-  // points) the next round runs.
-  double anisotropic_cycle_optimizer_gain = 0.03;
+  // points) the next round runs. 4.5 points since the flips keep lengths too (they took ~1.5
+  // points of the optimizer's gain before): the UGAWG cube, to its .sol and to polar1, gains 3.1
+  // and 3.5 points and stops after one round, where a second adds 0.6 point at twice the time;
+  // bench/aniso_cube gains 7.6 and goes on.
+  double anisotropic_cycle_optimizer_gain = 0.045;
   // With a boundary layer (growth > 1): the sizing field of stages 3b/3c is intersected with the
   // boundary-layer metric (metric::BoundaryLayerField: normal size h0 + (r - 1) d at distance d
   // from the walls), so the interior continues the layers' heights instead of jumping to the

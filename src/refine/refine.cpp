@@ -153,7 +153,8 @@ class Refiner {
   // vertices are never moved by refinement.
   void index_protected_facets();
   void reserve_for_refinement();
-  // Whether m (metric mm there) is within facet_clearance (metric length) of a protected facet.
+  // Whether m (metric mm there) is within facet_clearance (anisotropic_facet_clearance with an
+  // anisotropic metric), a metric length, of a protected facet.
   bool too_close_to_protected_facet(const double m[3], const double mm[6]) const;
   uint32_t insert_in_metric(const double p[3], const double mp[6], int32_t region);
   size_t metric_flip_pass();
@@ -373,15 +374,16 @@ void Refiner::index_protected_facets() {
 }
 
 bool Refiner::too_close_to_protected_facet(const double m[3], const double mm[6]) const {
-  if (!(options_.facet_clearance > 0.0) || facet_tri_.empty()) return false;
-  const double reach = options_.facet_clearance * meshops::metric_max_size(mm);
+  const double clearance = anisotropic_ ? options_.anisotropic_facet_clearance : options_.facet_clearance;
+  if (!(clearance > 0.0) || facet_tri_.empty()) return false;
+  const double reach = clearance * meshops::metric_max_size(mm);
   bool close = false;
   facet_bvh_.query(box_around(m, reach), [&](uint32_t f) {
     double q[3];
     closest_point_on_triangle(m, mesh_.point(facet_tri_[3 * size_t(f)]), mesh_.point(facet_tri_[3 * size_t(f) + 1]),
                               mesh_.point(facet_tri_[3 * size_t(f) + 2]), q);
     const double offset[3] = {m[0] - q[0], m[1] - q[1], m[2] - q[2]};
-    close = metric_norm(mm, offset) < options_.facet_clearance;
+    close = metric_norm(mm, offset) < clearance;
     return !close;
   });
   return close;

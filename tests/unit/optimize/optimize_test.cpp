@@ -406,6 +406,21 @@ TEST(Optimize, AnisotropicMetricImprovesShapesInTheMetric) {
   EXPECT_LT(double(bad), 0.005 * double(tets_after));
 }
 
+namespace {
+
+// The live tets' edges, each once (its ends in order).
+std::vector<std::pair<uint32_t, uint32_t>> live_edges(const TetMesh& mesh) {
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
+    for (int i = 0; i < 4 && !mesh.is_deleted(t); ++i)
+      for (int j = i + 1; j < 4; ++j) edges.emplace_back(std::minmax(mesh.vertex(t, i), mesh.vertex(t, j)));
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+}  // namespace
+
 // OptimizeOptions::keep_lengths_in_range: with it, the optimizer's moves take no edge that
 // refinement left in [1/sqrt2, sqrt2] out of it, and the share in range does not fall (without
 // it, the UGAWG cube to its .sol went from 86.5% after refinement to 78.6% after optimization).
@@ -413,13 +428,7 @@ TEST(Optimize, AnisotropicMovesKeepLengthsInRange) {
   const int n[3] = {4, 4, 25};
   const test::AxisSizing field(0.25, 0.25, 0.04);
   auto share_in_range = [&field](const TetMesh& mesh) {
-    std::vector<std::pair<uint32_t, uint32_t>> edges;
-    for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
-      for (int i = 0; i < 4 && !mesh.is_deleted(t); ++i)
-        for (int j = i + 1; j < 4; ++j)
-          edges.emplace_back(std::minmax(mesh.vertex(t, i), mesh.vertex(t, j)));
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    const std::vector<std::pair<uint32_t, uint32_t>> edges = live_edges(mesh);
     size_t in = 0;
     for (const auto& [a, b] : edges) {
       const double l = metric_edge_length(field, mesh.point(a), mesh.point(b));
@@ -445,6 +454,48 @@ TEST(Optimize, AnisotropicMovesKeepLengthsInRange) {
     }
   }
   EXPECT_GT(share[1], share[0] + 0.01);
+}
+
+// FlipContext::keep_lengths_in_range: with it, no flip adds more edges out of [1/sqrt2, sqrt2]
+// (in the vertices' metrics) than it removes, so a sweep leaves no more of them than it found;
+// without it the metric's quality alone chooses, and the count grows.
+TEST(FlipSweep, AnisotropicFlipsKeepLengthsInRange) {
+  const int n[3] = {4, 4, 25};
+  const test::AxisSizing field(0.25, 0.25, 0.04);
+  optimize_detail::Quality quality;
+  auto out_of_range = [&](const TetMesh& mesh) {
+    size_t out = 0;
+    const std::vector<double>& m = quality.vertex_metric;
+    for (const auto& [a, b] : live_edges(mesh)) {
+      const double l = metric_edge_length(&m[6 * size_t(a)], mesh.point(a), &m[6 * size_t(b)], mesh.point(b));
+      out += !(l >= std::sqrt(0.5) && l <= std::sqrt(2.0));
+    }
+    return out;
+  };
+  size_t grown[2] = {0, 0}, flips[2] = {0, 0};
+  for (int keep = 0; keep < 2; ++keep) {
+    std::vector<double> pts;
+    TetMesh mesh = test::stretched_box_mesh(n, pts);
+    ASSERT_TRUE(refine_mesh(mesh, field).ok());
+    quality.vertex_metric.resize(6 * mesh.num_vertices());
+    for (uint32_t v = 0; v < mesh.num_vertices(); ++v) field.metric(mesh.point(v), &quality.vertex_metric[6 * size_t(v)]);
+    meshops::VertexTets vt;
+    vt.build(mesh);
+    optimize_detail::FlipContext c{mesh, vt, {}, {}, {}, {}, {}};
+    c.quality = &quality;
+    c.keep_lengths_in_range = keep == 1;
+    const size_t before = out_of_range(mesh);
+    // (At 0.9, so that the sweep has many tets to flip.)
+    flips[keep] = optimize_detail::flip_sweep(c, 0.9, 3);
+    EXPECT_TRUE(check_mesh(mesh).ok());
+    const size_t after = out_of_range(mesh);
+    std::printf("keep_lengths_in_range %d: %zu flips, edges out of range %zu -> %zu\n", keep, flips[keep], before,
+                after);
+    grown[keep] = after > before ? after - before : 0;
+  }
+  EXPECT_GT(flips[1], 0u);
+  EXPECT_EQ(grown[1], 0u);
+  EXPECT_GT(grown[0], 0u);
 }
 
 TEST(Optimize, RejectsNegativeCounts) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
@@ -321,6 +322,41 @@ TEST(Refine, KeepsNewPointsOffSurfaceTrianglesMuchLargerThanTheSize) {
     const double d = nearest_to_surface(mesh, before);
     if (clearance > 0.0) EXPECT_GE(d, 0.2 * 0.25 * (1.0 - 1e-9));
     else EXPECT_LT(d, 0.1 * 0.25);  // without it, well inside the clearance
+  }
+}
+
+// The same with an anisotropic metric, whose clearance is anisotropic_facet_clearance (0.5 in
+// the metric): the cube's 12 triangles are 4 to 18 sizes across here, and points nearer them
+// only made flat tets that the optimizer collapsed again (the UGAWG cube: 1550 of ~4400 points).
+TEST(Refine, KeepsNewPointsHalfASizeOffCoarseSurfaceTrianglesInAnAnisotropicMetric) {
+  const SurfaceMesh s = test::grid_cube(1);
+  const double h[3] = {0.25, 0.25, 0.08};
+  // The metric distance to the cube's faces: the normal distance over the size along the normal.
+  auto nearest_in_metric = [&](const TetMesh& m, size_t first) {
+    double d = HUGE_VAL;
+    for (size_t v = first; v < m.num_vertices(); ++v)
+      for (int k = 0; k < 3; ++k)
+        d = std::min({d, m.point(uint32_t(v))[k] / h[k], (1.0 - m.point(uint32_t(v))[k]) / h[k]});
+    return d;
+  };
+  for (double clearance : {RefineOptions{}.anisotropic_facet_clearance, 0.2}) {
+    SCOPED_TRACE(clearance);
+    Result<CoupledMesh> c = test::coupled_mesh(s);
+    ASSERT_TRUE(c.ok()) << c.status().message();
+    TetMesh mesh = std::move(c->mesh);
+    const size_t before = mesh.num_vertices();
+    RefineOptions o;
+    o.anisotropic_facet_clearance = clearance;
+    o.check_each_pass = true;
+    Result<RefineStats> r = refine_mesh(mesh, test::AxisSizing(h[0], h[1], h[2]), o);
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    test::expect_surface_kept(s, mesh, "cube, anisotropic");
+    ASSERT_GT(mesh.num_vertices(), before);
+    const double d = nearest_in_metric(mesh, before);
+    std::printf("anisotropic_facet_clearance %.2f: %zu points, the nearest %.3f from S in the metric\n", clearance,
+                mesh.num_vertices() - before, d);
+    if (clearance == 0.5) EXPECT_GE(d, 0.5 * (1.0 - 1e-9));
+    else EXPECT_LT(d, 0.5);  // 0.2: points inside half a size
   }
 }
 
