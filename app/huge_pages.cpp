@@ -115,6 +115,9 @@ class Arena {
         h = end;
       }
     }
+    // Now too, not only at the next allocation: the live blocks may yet touch the rest of their
+    // sizes (a reserved array growing), which the free pages kept would then add to.
+    give_back_above_peak();
   }
 
  private:
