@@ -119,8 +119,8 @@ int exit_code_of(Error e) {
 
 namespace {
 
-// The memory a run takes per tet at its peak (bench/results/scale: 174 bytes at 10^7 tets since
-// issue 49, 186-194 before), with room to spare.
+// The memory a run takes per tet at its peak (bench/results/scale: 127 bytes at 10^7 tets and 187
+// at 10^6 since issue 49's mem6 branch, 174-194 at 10^7 before), with room to spare.
 constexpr double kBytesPerTet = 200;
 
 // MemAvailable of /proc/meminfo, in bytes; 0 when it cannot be read.

@@ -10,9 +10,13 @@
 // zeroes it), and the refinement's passes, the optimizer and the report free and allocate again
 // arrays of ever new sizes, which blocks kept only for requests of about their own size would
 // seldom serve. Free blocks are handed back to the kernel (madvise MADV_DONTNEED, the range kept)
-// whenever live and free blocks together would exceed the largest total the live ones have
-// reached, so the arena does not raise the peak memory. When the range cannot be reserved or is
-// full, blocks come from aligned_alloc.
+// whenever live and free blocks together would exceed the most pages the live blocks have had
+// resident, so the arena does not raise the peak memory. That peak counts the pages the kernel
+// has (mincore), not the blocks' sizes: the refinement reserves its mesh arrays for more tets than
+// it makes, and a peak of sizes let the free blocks stay resident up to that reservation (1648 MB
+// where 1472 were ever in use at 10^7 tets, which set the run's peak memory, issue 49). A freed
+// block likewise counts as resident only where it was touched. When the range cannot be reserved
+// or is full, blocks come from aligned_alloc.
 //
 // Only the executable replaces the global operator new: the library (and so the C ABI and the
 // Python binding) leaves allocation to its host. Not under the sanitizers, whose own operator new
@@ -82,7 +86,6 @@ class Arena {
     }
     block_pages_[first] = static_cast<std::uint32_t>(pages);
     live_ += pages;
-    peak_ = std::max(peak_, live_);
     give_back_above_peak();
     return base_ + first * kHugePage;
   }
@@ -95,10 +98,26 @@ class Arena {
     std::lock_guard<std::mutex> hold(lock_);
     const std::size_t first = std::size_t(static_cast<char*>(p) - base_) / kHugePage;
     const std::size_t pages = block_pages_[first];
+    // The live blocks are at a high before a release: their resident pages raise the peak (not
+    // measured when they cannot: their sizes are within it).
+    if (live_ > peak_) peak_ = std::max(peak_, resident_live_pages());
     block_pages_[first] = 0;
     live_ -= pages;
-    free_resident_ += pages;  // (before insert, which takes it back when it has no room)
-    insert({first, pages, true});
+    // The block's runs as the kernel has them (a reserved array's untouched tail is not resident).
+    for (std::size_t at = first; at < first + pages; at += kWindowPages) {
+      const std::size_t w = std::min(kWindowPages, first + pages - at);
+      measure(at, w);
+      for (std::size_t h = 0; h < w;) {
+        std::size_t end = h + 1;
+        while (end < w && page_resident_[end] == page_resident_[h]) ++end;
+        if (page_resident_[h]) free_resident_ += end - h;  // (before insert, which takes it back when it has no room)
+        insert({at + h, end - h, page_resident_[h]});  // (merged with the window before's last run)
+        h = end;
+      }
+    }
+    // Now too, not only at the next allocation: the live blocks may yet touch the rest of their
+    // sizes (a reserved array growing), which the free pages kept would then add to.
+    give_back_above_peak();
   }
 
  private:
@@ -133,6 +152,37 @@ class Arena {
     end_.store(at + huge_pages * kHugePage, std::memory_order_release);
     begin_.store(at, std::memory_order_release);
     return true;
+  }
+  // Whether each of the w huge pages from first holds memory (any of its small pages, when the
+  // kernel gave small ones), in page_resident_; all of them do when the kernel cannot tell.
+  void measure(std::size_t first, std::size_t w) {
+    constexpr std::size_t kSmall = kHugePage / 4096;
+    const bool known = mincore(base_ + first * kHugePage, w * kHugePage, residency_) == 0;
+    for (std::size_t h = 0; h < w; ++h)
+      page_resident_[h] = !known || std::any_of(residency_ + h * kSmall, residency_ + (h + 1) * kSmall,
+                                                [](unsigned char c) { return (c & 1) != 0; });
+  }
+  std::size_t resident_pages(std::size_t first, std::size_t pages) {
+    std::size_t n = 0;
+    for (std::size_t at = first; at < first + pages; at += kWindowPages) {
+      const std::size_t w = std::min(kWindowPages, first + pages - at);
+      measure(at, w);
+      n += std::size_t(std::count(page_resident_, page_resident_ + w, true));
+    }
+    return n;
+  }
+  std::size_t resident_live_pages() {
+    std::size_t n = 0;
+    for (std::size_t first = 0; first < top_;) {
+      const std::size_t pages = block_pages_[first];
+      if (pages == 0) {
+        ++first;
+        continue;
+      }
+      n += resident_pages(first, pages);
+      first += pages;
+    }
+    return n;
   }
   // The free run to take `pages` from: the smallest resident one that holds them, else the
   // smallest one; free_n_ when none does.
@@ -201,7 +251,12 @@ class Arena {
   std::atomic<std::uintptr_t> begin_{UINTPTR_MAX}, end_{0};  // the range, for owns()
   Run free_[kMaxRuns];
   std::size_t free_n_ = 0;
-  std::size_t live_ = 0, peak_ = 0, free_resident_ = 0;  // in huge pages
+  // In huge pages: the live blocks' sizes, the most pages they have had resident, and the
+  // resident pages of the free runs.
+  std::size_t live_ = 0, peak_ = 0, free_resident_ = 0;
+  static constexpr std::size_t kWindowPages = 64;  // huge pages per mincore call
+  unsigned char residency_[kWindowPages * (kHugePage / 4096)];  // mincore's answer, per small page
+  bool page_resident_[kWindowPages];                            // measure()'s, per huge page
 };
 
 // Never destroyed: operator delete may run after static destructors.

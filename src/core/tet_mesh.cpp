@@ -140,12 +140,9 @@ VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices, std::vector<uint32
   return to_volume_mesh(drop_unused_vertices, {}, {}, vertex_map);
 }
 
-VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices, const std::vector<uint32_t>& bnd_tri,
-                                   const std::vector<int32_t>& bnd_patch, std::vector<uint32_t>* vertex_map) const {
-  VolumeMesh out;
+void TetMesh::number_output_vertices(bool drop_unused_vertices, const std::vector<uint32_t>& bnd_tri,
+                                     std::vector<uint32_t>& remap) const {
   const size_t nv = num_vertices();
-  std::vector<uint32_t> local;
-  std::vector<uint32_t>& remap = vertex_map ? *vertex_map : local;
   remap.assign(nv, kNone);
   if (!drop_unused_vertices)
     for (size_t v = 0; v < nv; ++v) remap[v] = static_cast<uint32_t>(v);
@@ -163,9 +160,22 @@ VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices, const std::vector<
     for (size_t v = 0; v < nv; ++v)
       if (remap[v] != kNone) remap[v] = next++;
   }
+}
+
+VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices, const std::vector<uint32_t>& bnd_tri,
+                                   const std::vector<int32_t>& bnd_patch, std::vector<uint32_t>* vertex_map) const {
+  VolumeMesh out;
+  const size_t nv = num_vertices();
+  std::vector<uint32_t> local;
+  std::vector<uint32_t>& remap = vertex_map ? *vertex_map : local;
+  number_output_vertices(drop_unused_vertices, bnd_tri, remap);
   out.xyz.reserve(3 * nv);
   for (size_t v = 0; v < nv; ++v)
     if (remap[v] != kNone) out.xyz.insert(out.xyz.end(), &xyz[3 * v], &xyz[3 * v] + 3);
+  size_t tets = 0;
+  for (uint32_t t = 0; t < num_tet_slots(); ++t) tets += !is_deleted(t) && !is_ghost(t);
+  out.tet.reserve(4 * tets);
+  out.region.reserve(tets);
   for (uint32_t t = 0; t < num_tet_slots(); ++t) {
     if (is_deleted(t) || is_ghost(t)) continue;
     for (int i = 0; i < 4; ++i) out.tet.push_back(remap[vertex(t, i)]);
@@ -174,6 +184,36 @@ VolumeMesh TetMesh::to_volume_mesh(bool drop_unused_vertices, const std::vector<
   out.bnd_tri.reserve(bnd_tri.size());
   for (uint32_t v : bnd_tri) out.bnd_tri.push_back(v < nv ? remap[v] : kNone);
   out.bnd_patch = bnd_patch;
+  return out;
+}
+
+VolumeMesh TetMesh::take_volume_mesh(bool drop_unused_vertices, const std::vector<uint32_t>& bnd_tri,
+                                     const std::vector<int32_t>& bnd_patch, std::vector<uint32_t>* vertex_map) {
+  VolumeMesh out;
+  const size_t nv = num_vertices();
+  std::vector<uint32_t> local;
+  std::vector<uint32_t>& remap = vertex_map ? *vertex_map : local;
+  number_output_vertices(drop_unused_vertices, bnd_tri, remap);
+  // Compacted in place, front to back: a vertex's or tet's new place is never after its old one.
+  size_t kept = 0;
+  for (size_t v = 0; v < nv; ++v)
+    if (remap[v] != kNone) std::copy_n(&xyz[3 * v], 3, &xyz[3 * kept++]);
+  xyz.resize(3 * kept);
+  size_t tets = 0;
+  for (uint32_t t = 0; t < num_tet_slots(); ++t) {
+    if (is_deleted(t) || is_ghost(t)) continue;
+    for (int i = 0; i < 4; ++i) tet_v[4 * tets + i] = remap[tet_v[4 * size_t(t) + i]];
+    tet_region[tets++] = tet_region[t];
+  }
+  tet_v.resize(4 * tets);
+  tet_region.resize(tets);
+  out.xyz = std::move(xyz);
+  out.tet = std::move(tet_v);
+  out.region = std::move(tet_region);
+  out.bnd_tri.reserve(bnd_tri.size());
+  for (uint32_t v : bnd_tri) out.bnd_tri.push_back(v < nv ? remap[v] : kNone);
+  out.bnd_patch = bnd_patch;
+  *this = TetMesh();
   return out;
 }
 

@@ -123,7 +123,16 @@ class TetMesh {
   // of the tets stays in the output for the writers' check to find.
   VolumeMesh to_volume_mesh(bool drop_unused_vertices, const std::vector<uint32_t>& bnd_tri,
                             const std::vector<int32_t>& bnd_patch, std::vector<uint32_t>* vertex_map = nullptr) const;
+  // The same, made of this mesh's own arrays, compacted in place (no second copy of the tets: the
+  // pipeline's output, at the end of a run, issue 49); the mesh is left empty.
+  VolumeMesh take_volume_mesh(bool drop_unused_vertices, const std::vector<uint32_t>& bnd_tri,
+                              const std::vector<int32_t>& bnd_patch, std::vector<uint32_t>* vertex_map = nullptr);
   static TetMesh from_volume_mesh(const VolumeMesh& m);
+
+ private:
+  // to_volume_mesh's vertex numbers: remap[v] is v's output id, kNone for a dropped vertex.
+  void number_output_vertices(bool drop_unused_vertices, const std::vector<uint32_t>& bnd_tri,
+                              std::vector<uint32_t>& remap) const;
 };
 
 struct MeshCheckOptions {

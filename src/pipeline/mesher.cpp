@@ -518,9 +518,8 @@ class MeshingRun {
   // coarsening removed, and input vertices of no triangle, e.g. a volume mesh's interior ones);
   // the input's others stay first, in input order. The boundary triangles are the input's,
   // renumbered with the vertices.
-  // The mesh's adjacency is dropped before the copy (the run's last use of the TetMesh): its 16
-  // bytes per tet slot make room for the VolumeMesh's tets, which set the peak memory of large
-  // runs otherwise (issue 49).
+  // The VolumeMesh is made of the TetMesh's own arrays (the run's last use of it), compacted in
+  // place: no second copy of the tets at the end of large runs (issue 49).
   void finish(TetMesh& mesh, int32_t bodies) {
     const auto t = Clock::now();
     const BoundaryLayerOptions& bl = o_.layers.boundary_layer;
@@ -531,9 +530,8 @@ class MeshingRun {
         if (!mesh.is_deleted(k) && mesh.tet_region[k] >= bodies) ++result_.boundary_layer.tets;
       result_.boundary_layer.reduced_vertices = result_.layers.bl_reduced_vertices;
     }
-    std::vector<uint32_t>().swap(mesh.tet_adj);
     std::vector<uint32_t> vertex_map;
-    result_.mesh = mesh.to_volume_mesh(/*drop_unused_vertices=*/true, surface_.tri, surface_.patch, &vertex_map);
+    result_.mesh = mesh.take_volume_mesh(/*drop_unused_vertices=*/true, surface_.tri, surface_.patch, &vertex_map);
     result_.input_vertex.assign(vertex_map.begin(), vertex_map.begin() + std::ptrdiff_t(surface_.num_vertices()));
     if (bl.enabled()) {
       // Stage 1's vertex ids are the final TetMesh's (BL vertices are locked).

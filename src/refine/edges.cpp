@@ -12,45 +12,60 @@
 
 namespace anitet::refine_detail {
 
+namespace {
+
+// f(a, b, t, on_surface) for the six edges (a < b) of each live tet t in first .. last - 1, in
+// order; on_surface: the edge lies on a protected facet of t.
+template <class F>
+void for_each_edge(const TetMesh& mesh, uint32_t first, uint32_t last, F&& f) {
+  for (uint32_t t = first; t < last; ++t) {
+    if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
+    // Edge k of the tet lies on facet i when neither end is vertex i.
+    uint8_t on_facet = 0;
+    for (int i = 0; i < 4; ++i) {
+      if (!mesh.facet_protected(t, i)) continue;
+      for (int k = 0; k < 6; ++k)
+        if (kEdgeVertex[k][0] != i && kEdgeVertex[k][1] != i) on_facet |= uint8_t(1u << k);
+    }
+    for (int k = 0; k < 6; ++k) {
+      uint32_t a = mesh.vertex(t, kEdgeVertex[k][0]), b = mesh.vertex(t, kEdgeVertex[k][1]);
+      if (a > b) std::swap(a, b);
+      f(a, b, t, ((on_facet >> k) & 1u) != 0);
+    }
+  }
+}
+
+// A tet's edge (a, b) in a's bucket (collect_edges).
+struct Entry {
+  static constexpr uint32_t kSurface = 1u << 31;  // tet's top bit: the edge is on a protected facet
+  uint32_t b;
+  uint32_t tet;
+};
+
+}  // namespace
+
 void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, EdgeList& edges,
                    EdgeScratch& scratch) {
   // Bucketed by the lower end (a counting sort), then deduplicated per bucket: linear in the
   // tets, where one global sort of every tet's six edges dominated refinement.
   const size_t nv = mesh.num_vertices();
-  auto for_each_edge = [&mesh](uint32_t first, uint32_t last, auto&& f) {
-    for (uint32_t t = first; t < last; ++t) {
-      if (mesh.is_deleted(t) || mesh.is_ghost(t)) continue;
-      // Edge k of the tet lies on facet i when neither end is vertex i.
-      uint8_t on_facet = 0;
-      for (int i = 0; i < 4; ++i) {
-        if (!mesh.facet_protected(t, i)) continue;
-        for (int k = 0; k < 6; ++k)
-          if (kEdgeVertex[k][0] != i && kEdgeVertex[k][1] != i) on_facet |= uint8_t(1u << k);
-      }
-      for (int k = 0; k < 6; ++k) {
-        uint32_t a = mesh.vertex(t, kEdgeVertex[k][0]), b = mesh.vertex(t, kEdgeVertex[k][1]);
-        if (a > b) std::swap(a, b);
-        f(a, b, t, ((on_facet >> k) & 1u) != 0);
-      }
-    }
-  };
   // The counting sort by the lower end, on every core (parallel_bucket_by_key: each bucket lists
   // its items in tet order, as one loop would). 8 bytes per tet edge (the buckets hold six per
-  // tet: their memory traffic is most of the cost).
+  // tet: their memory traffic is most of the cost). Freed on return: not held beside the lists
+  // between the calls (48 bytes per tet slot; refinement's peak memory, issue 49). (Entries of 4
+  // bytes, the tet and its edge, reading the upper end from the tet again: about 1.7 times the
+  // edge lists' time on one core.)
   const uint32_t nt = static_cast<uint32_t>(mesh.num_tet_slots());
-  // (The lists are rebuilt: freed before they grow, they are never held twice. Their last
-  // copies were the peak of the 1e7-tet run.)
-  if (size_t(6) * nt > scratch.all.capacity()) UninitVector<EdgeScratch::Entry>().swap(scratch.all);
+  UninitVector<Entry> all;
   parallel_bucket_by_key(
       nv, nt,
       [&](size_t first, size_t last, auto&& emit) {
-        for_each_edge(uint32_t(first), uint32_t(last), [&](uint32_t a, uint32_t b, uint32_t t, bool s) {
-          emit(a, EdgeScratch::Entry{b, t | (s ? EdgeScratch::Entry::kSurface : 0u)});
+        for_each_edge(mesh, uint32_t(first), uint32_t(last), [&](uint32_t a, uint32_t b, uint32_t t, bool s) {
+          emit(a, Entry{b, t | (s ? Entry::kSurface : 0u)});
         });
       },
-      scratch.start, scratch.all, scratch.fill);
+      scratch.start, all, scratch.fill);
   const std::vector<uint32_t>& start = scratch.start;
-  const UninitVector<EdgeScratch::Entry>& all = scratch.all;
   // Duplicates are found within each bucket through a per-thread array holding, per upper end b,
   // the position of (a, b) while bucket a is scanned (kNone otherwise: each bucket clears what it
   // set). In chunks of vertices on every core: a first pass counts each chunk's edges, a second
@@ -64,7 +79,7 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, Edge
     uint32_t kept = 0;
     for (size_t v = c * kChunk; v < std::min(nv, (c + 1) * kChunk); ++v) {
       for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
-        const EdgeScratch::Entry& e = all[k];
+        const Entry& e = all[k];
         if (where[e.b] != TetMesh::kNone) {
           again(where[e.b], e);
           continue;
@@ -79,8 +94,8 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, Edge
   std::vector<size_t> offset(chunks + 1, 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t c = r.begin(); c != r.end(); ++c)
-      offset[c + 1] = dedup_chunk(c, [](uint32_t, const EdgeScratch::Entry&) {},
-                                  [](uint32_t, const EdgeScratch::Entry&) {});
+      offset[c + 1] = dedup_chunk(c, [](uint32_t, const Entry&) {},
+                                  [](uint32_t, const Entry&) {});
   });
   for (size_t c = 0; c < chunks; ++c) offset[c + 1] += offset[c];
   if (offset[chunks] > edges.capacity()) EdgeList().swap(edges);
@@ -90,12 +105,12 @@ void collect_edges(const TetMesh& mesh, const std::vector<double>& metrics, Edge
       Edge* out = edges.data() + offset[c];
       dedup_chunk(
           c,
-          [&](uint32_t a, const EdgeScratch::Entry& e) {
-            *out++ = {a, e.b, e.tet & ~EdgeScratch::Entry::kSurface, (e.tet & EdgeScratch::Entry::kSurface) != 0,
+          [&](uint32_t a, const Entry& e) {
+            *out++ = {a, e.b, e.tet & ~Entry::kSurface, (e.tet & Entry::kSurface) != 0,
                       false, normalized_length(mesh, metrics, a, e.b)};
           },
-          [&](uint32_t j, const EdgeScratch::Entry& e) {
-            edges[offset[c] + j].on_surface |= (e.tet & EdgeScratch::Entry::kSurface) != 0;
+          [&](uint32_t j, const Entry& e) {
+            edges[offset[c] + j].on_surface |= (e.tet & Entry::kSurface) != 0;
           });
     }
   });
@@ -275,6 +290,71 @@ void length_summary(const EdgeList& edges, double collapse_length, double split_
   }
   mean = counted ? sum / double(counted) : 0.0;
   in_range = counted ? double(inside) / double(counted) : 1.0;
+}
+
+void summarize_edge_lengths(const TetMesh& mesh, const std::vector<double>& metrics, double collapse_length,
+                            double split_length, double& mean, double& in_range) {
+  // collect_edges's buckets with 4 bytes per tet edge (its upper end, the top bit for "on a
+  // protected facet"), and no edge list: 24 bytes per tet slot where the list and its buckets
+  // took about 76, at the end of refinement, its peak memory (issue 49).
+  constexpr uint32_t kSurface = 1u << 31;
+  const size_t nv = mesh.num_vertices();
+  std::vector<uint32_t> start, counts;
+  UninitVector<uint32_t> upper;
+  parallel_bucket_by_key(
+      nv, mesh.num_tet_slots(),
+      [&](size_t first, size_t last, auto&& emit) {
+        for_each_edge(mesh, uint32_t(first), uint32_t(last),
+                      [&](uint32_t a, uint32_t b, uint32_t, bool s) { emit(a, b | (s ? kSurface : 0u)); });
+      },
+      start, upper, counts);
+  std::vector<uint32_t>().swap(counts);
+  // Per chunk of lower ends, on every core: each edge once (its entries merged: on a protected
+  // facet when any tet says so), counted when not on one. The chunks' sums add in chunk order (the
+  // same figures on any number of threads).
+  struct Sums {
+    size_t counted = 0, inside = 0;
+    double sum = 0.0;
+  };
+  constexpr size_t kChunk = 8192;
+  std::vector<Sums> sums((nv + kChunk - 1) / kChunk);
+  tbb::enumerable_thread_specific<std::vector<uint32_t>> where_local;  // per upper end: its edge in `bucket`
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, sums.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<uint32_t>& where = where_local.local();
+    if (where.size() < nv) where.resize(nv, TetMesh::kNone);
+    std::vector<uint32_t> bucket;  // the edges of one lower end, upper end and surface bit
+    for (size_t c = r.begin(); c != r.end(); ++c) {
+      Sums& s = sums[c];
+      for (size_t a = c * kChunk; a < std::min(nv, (c + 1) * kChunk); ++a) {
+        bucket.clear();
+        for (uint32_t k = start[a]; k < start[a + 1]; ++k) {
+          const uint32_t b = upper[k] & ~kSurface;
+          if (where[b] == TetMesh::kNone) {
+            where[b] = uint32_t(bucket.size());
+            bucket.push_back(upper[k]);
+          } else {
+            bucket[where[b]] |= upper[k] & kSurface;
+          }
+        }
+        for (uint32_t e : bucket) {
+          where[e & ~kSurface] = TetMesh::kNone;
+          if (e & kSurface) continue;
+          const double length = normalized_length(mesh, metrics, uint32_t(a), e);
+          ++s.counted;
+          s.sum += length;
+          if (length >= collapse_length && length <= split_length) ++s.inside;
+        }
+      }
+    }
+  });
+  Sums all;
+  for (const Sums& s : sums) {
+    all.counted += s.counted;
+    all.inside += s.inside;
+    all.sum += s.sum;
+  }
+  mean = all.counted ? all.sum / double(all.counted) : 0.0;
+  in_range = all.counted ? double(all.inside) / double(all.counted) : 1.0;
 }
 
 }  // namespace anitet::refine_detail

@@ -30,19 +30,19 @@ struct Edge {
 // (No member initializers: an EdgeList's resize writes nothing, its fill writes every field.)
 using EdgeList = UninitVector<Edge>;
 
-// Working memory of collect_edges, kept between calls (large meshes: page faults dominated).
+// Working memory of collect_edges, kept between calls (large meshes: page faults dominated); its
+// buckets are not (6 entries per tet slot: held beside the lists, they set refinement's peak memory).
 struct EdgeScratch {
-  struct Entry {                                 // one tet's edge (a, b), in a's bucket
-    static constexpr uint32_t kSurface = 1u << 31;  // tet's top bit: the edge is on a protected facet
-    uint32_t b;
-    uint32_t tet;
-  };
-  std::vector<uint32_t> start;  // per vertex: its bucket's first entry in `all`
+  std::vector<uint32_t> start;  // per vertex: its bucket's first entry
   std::vector<uint32_t> fill;   // per chunk of tets and vertex: counts, then fill positions
-  UninitVector<Entry> all;  // sized, then filled on every core
   // Per thread: the position of each upper end's edge in the bucket being scanned, else kNone
   // (collect_edges). Kept here, not thread_local, so that the memory goes with the scratch.
   tbb::enumerable_thread_specific<std::vector<uint32_t>> where;
+  void release() {
+    std::vector<uint32_t>().swap(start);
+    std::vector<uint32_t>().swap(fill);
+    where.clear();
+  }
 };
 
 // Every edge of the live tets once, a < b, grouped by a (ascending); within a group the order
@@ -91,5 +91,10 @@ size_t live_vertex_count(const TetMesh& mesh);
 // [collapse_length, split_length] (1 when there are none).
 void length_summary(const EdgeList& edges, double collapse_length, double split_length, double& mean,
                     double& in_range);
+// The same of every edge of the live tets (collect_edges's), without their list: in about a third
+// of the memory (the summary at the end of refinement). The mean may differ from length_summary's
+// in its last bits (the sum runs in chunks).
+void summarize_edge_lengths(const TetMesh& mesh, const std::vector<double>& metrics, double collapse_length,
+                            double split_length, double& mean, double& in_range);
 
 }  // namespace anitet::refine_detail

@@ -1132,10 +1132,13 @@ Result<RefineStats> Refiner::run() {
     stats_.stopped_at_pass_cap = pass + 1 == options_.max_passes;
   }
   const auto t = Clock::now();
-  refine_detail::collect_edges(mesh_, metrics_, edges, edge_scratch_);
+  // The summary of every edge, without their list: the run's peak memory was the full list and its
+  // buckets here, beside the grown mesh (issue 49). The last pass's list and scratch go first.
+  refine_detail::EdgeList().swap(edges);
+  edge_scratch_.release();
+  refine_detail::summarize_edge_lengths(mesh_, metrics_, options_.collapse_length, options_.split_length,
+                                        stats_.length_mean, stats_.length_in_range);
   stats_.seconds_edges += seconds_since(t);
-  refine_detail::length_summary(edges, options_.collapse_length, options_.split_length, stats_.length_mean,
-                                stats_.length_in_range);
   stats_.vertices_after = refine_detail::live_vertex_count(mesh_);
   stats_.tets_after = mesh_.num_live_tets();
   stats_.seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -105,6 +105,26 @@ TEST(HugePages, ResidentMemoryStaysWithinTheLivePeak) {
   EXPECT_LE(most, before + 128 * kMiB + 16 * kMiB);
 }
 
+// A large block touched only in part (a reserved array) does not count towards the peak as a
+// whole: the free blocks are not kept resident beside it up to its size, so that when it is
+// touched in full later the process holds that block, not that block and the free ones too.
+TEST(HugePages, AnUntouchedReservationDoesNotKeepFreeBlocksResident) {
+  if (!replaced()) GTEST_SKIP() << "operator new not replaced here";
+  const size_t before = resident_bytes();
+  ASSERT_GT(before, size_t(0));
+  Block reserved{new char[256 * kMiB], 256 * kMiB, 7};
+  std::memset(reserved.p, 1, 32 * kMiB);  // 32 MiB of it in use
+  std::vector<Block> live;
+  for (int k = 0; k < 8; ++k) live.push_back(make(16 * kMiB, uint64_t(k)));  // 160 MiB in use at most
+  for (Block& b : live) delete[] b.p;
+  stamp(reserved);  // now all of it: 256 MiB in use
+  const size_t most = resident_bytes();
+  EXPECT_TRUE(intact(reserved));
+  delete[] reserved.p;
+  // 256 MiB of peak (the 128 MiB freed before are not kept beside it), and some slack.
+  EXPECT_LE(most, before + 256 * kMiB + 16 * kMiB);
+}
+
 TEST(HugePages, BlocksAreAlignedAndNeverOverlapAcrossThreads) {
   if (!replaced()) GTEST_SKIP() << "operator new not replaced here";
   bool ok[2] = {true, true};

@@ -148,3 +148,33 @@ TEST(TetMesh, VolumeMeshRoundTrip) {
   EXPECT_TRUE(check_mesh(back, {}).ok());
   EXPECT_EQ(back.num_live_tets(), 6u);
 }
+
+// take_volume_mesh compacts the mesh's own arrays in place: the same VolumeMesh as
+// to_volume_mesh, deleted slots, ghosts and unused vertices dropped, the boundary renumbered.
+TEST(TetMesh, TakeVolumeMeshGivesWhatToVolumeMeshGives) {
+  TetMesh m = cube_mesh();
+  const double far[3] = {5, 5, 5}, unused[3] = {9, 9, 9};
+  m.add_vertex(unused);  // vertex 8: in no tet, dropped
+  const uint32_t g = m.add_vertex(far);  // vertex 9: only in the ghost-free tet below
+  m.tet_region[1] = 7;
+  m.delete_tet(2);
+  m.new_tet(0, 1, 5, TetMesh::kGhost);  // reuses slot 2: a ghost, not exported
+  const uint32_t apex = m.new_tet(1, 2, 6, g, 3);  // slot 6
+  if (predicates::orient3d(m.point(1), m.point(2), m.point(6), m.point(g)) < 0) std::swap(m.tet_v[4 * apex + 1], m.tet_v[4 * apex + 2]);
+  m.delete_tet(4);
+  const std::vector<uint32_t> bnd_tri = {0, 1, 9, 1, 2, 6};
+  const std::vector<int32_t> bnd_patch = {4, 5};
+  std::vector<uint32_t> map_copy, map_taken;
+  const VolumeMesh copy = m.to_volume_mesh(true, bnd_tri, bnd_patch, &map_copy);
+  const VolumeMesh taken = m.take_volume_mesh(true, bnd_tri, bnd_patch, &map_taken);
+  EXPECT_EQ(copy.num_tets(), 5u);  // 6 - 1 deleted + 1 new; the ghost not exported
+  EXPECT_EQ(copy.num_vertices(), 9u);  // the unused vertex dropped
+  EXPECT_EQ(taken.xyz, copy.xyz);
+  EXPECT_EQ(taken.tet, copy.tet);
+  EXPECT_EQ(taken.region, copy.region);
+  EXPECT_EQ(taken.bnd_tri, copy.bnd_tri);
+  EXPECT_EQ(taken.bnd_patch, copy.bnd_patch);
+  EXPECT_EQ(map_taken, map_copy);
+  EXPECT_EQ(m.num_vertices(), 0u);
+  EXPECT_EQ(m.num_tet_slots(), 0u);
+}
