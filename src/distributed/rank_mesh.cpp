@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "distributed/bytes.hpp"
+#include "distributed/memory_trace.hpp"
 #include "refine/edges.hpp"
 #include "refine/mesh_ops.hpp"
 #include "refine/refine.hpp"
@@ -381,20 +382,25 @@ Status mesh_round(RankMesh& rm, Step step, const SizingField& field, const Refin
   TetMesh kept_tets = compact_tets(rm.mesh, [&](uint32_t t) { return !rm.meshable[t]; });
   std::vector<uint64_t> kept_gid = rm.gid;
   drop_unused_vertices(kept_tets, kept_gid);
+  trace_memory(comm.rank(), "round: kept tets aside");
   const uint64_t created = rm.created;
   Result<LocalMesh> local = with_halo(std::move(rm), sharing.value(), comm);
   rm = RankMesh();
   if (!local.ok()) return local.status();
+  trace_memory(comm.rank(), "round: local mesh with halo");
   Result<MeshPart> part = extract_part(local->mesh, local->label, 0);
   if (!part.ok()) return part.status();
+  trace_memory(comm.rank(), "round: part extracted");
   const std::vector<uint64_t> whole_gid = std::move(local->gid);
   const std::vector<uint8_t> whole_vflags = std::move(local->mesh.vflags);
   local = LocalMesh();
   if (Status st = mesh_part(part.value(), step, field, refine, optimize); !st.ok()) return st;
+  trace_memory(comm.rank(), step == Step::kRefine ? "round: part refined" : "round: part optimized");
   Result<RankMesh> next = own_after_round(part.value(), whole_gid, whole_vflags, std::move(kept_tets),
                                           std::move(kept_gid), comm.rank(), created);
   if (!next.ok()) return next.status();
   rm = std::move(next).value();
+  trace_memory(comm.rank(), "round: own tets rebuilt");
   if (const size_t open_after = count_boundary_facets(rm.mesh); open_after != open_before)
     return Status(Error::Internal, "distributed: rank " + std::to_string(comm.rank()) + "'s part has " +
                                        std::to_string(open_after) + " facets without a neighbour after the round, " +
@@ -481,6 +487,7 @@ Result<size_t> move_and_migrate(RankMesh& rm, int rings, int zone, const std::ve
   drop_unused_vertices(rm.mesh, rm.gid);
   if (Status st = rm.mesh.build_adjacency(); !st.ok())
     return Status(Error::Internal, "distributed: rank " + std::to_string(rank) + " after migration: " + st.message());
+  trace_memory(rank, "move: migrated");
   return sent;
 }
 
@@ -641,13 +648,16 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
       rs.coarse_splits = splits.value();
     }
     const std::vector<double> weights = estimate_refined_tets_per_tet(coarse, field, scale);
+    trace_memory(comm.rank(), "coarse mesh split");
     Result<std::vector<int32_t>> part_of = partitioner.partition(coarse, weights, comm.ranks());
     if (!part_of.ok()) return part_of.status();
+    trace_memory(comm.rank(), "coarse mesh partitioned");
     Result<RankMesh> mine = own_coarse_part(coarse, part_of.value(), comm.rank());
     if (!mine.ok()) return mine.status();
     rm = std::move(mine).value();
   }
   coarse = TetMesh();  // from here on, this rank holds its part only
+  trace_memory(comm.rank(), "coarse mesh freed");
   rs.partition_seconds = since(t0);
   rs.own_tets_after_partition = rm.mesh.num_live_tets();
   t0 = Clock::now();
