@@ -3,9 +3,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 namespace anitet::distributed {
 
@@ -21,13 +18,7 @@ void trace_memory(int rank, const char* phase) {
     if (std::strncmp(line, "VmHWM:", 6) == 0) hwm = std::atof(line + 6) / 1024.0;
   }
   std::fclose(f);
-  double in_use = -1.0;  // bytes malloc hands out now (RSS also counts what it keeps for reuse)
-#if defined(__GLIBC__) && (__GLIBC__ > 2 || __GLIBC_MINOR__ >= 33)
-  const struct mallinfo2 mi = mallinfo2();
-  in_use = double(mi.uordblks + mi.hblkhd) / 1048576.0;
-#endif
-  std::fprintf(stderr, "anitet-mpi: rank %d: %-28s allocated %7.0f MB, RSS %7.0f MB, peak %7.0f MB\n", rank, phase,
-               in_use, rss, hwm);
+  std::fprintf(stderr, "anitet-mpi: rank %d: %-28s RSS %7.0f MB, peak %7.0f MB\n", rank, phase, rss, hwm);
 }
 
 }  // namespace anitet::distributed
