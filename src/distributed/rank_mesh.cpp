@@ -127,12 +127,24 @@ void drop_unused_vertices(TetMesh& m, std::vector<uint64_t>& gid) {
   for (uint32_t& v : m.tet_v) v = to[v];
 }
 
+// Room for `tets` tet slots at once: a mesh filled by new_tet one tet at a time otherwise ends
+// with up to twice the capacity it needs, and copies its arrays as they grow.
+void reserve_tets(TetMesh& m, size_t tets) {
+  m.tet_v.reserve(4 * tets);
+  m.tet_adj.reserve(4 * tets);
+  m.tet_flags.reserve(tets);
+  m.tet_region.reserve(tets);
+}
+
 // A compact copy of the live tets of `m` for which keep(t) holds (no adjacency).
 template <class Keep>
 TetMesh compact_tets(const TetMesh& m, Keep keep) {
   TetMesh c;
   c.xyz = m.xyz;
   c.vflags = m.vflags;
+  size_t kept_count = 0;
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t) kept_count += live(m, t) && keep(t) ? 1 : 0;
+  reserve_tets(c, kept_count);
   for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
     if (!live(m, t) || !keep(t)) continue;
     const uint32_t n = c.new_tet(m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3), m.tet_region[t]);
@@ -327,6 +339,9 @@ Result<RankMesh> own_after_round(const MeshPart& part, const std::vector<uint64_
   }
   std::vector<std::array<uint32_t, 3>> interface = part.interface_facets;
   std::sort(interface.begin(), interface.end());
+  size_t own_tets = 0;
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t) own_tets += live(m, t) && m.tet_region[t] >= 0 ? 1 : 0;
+  reserve_tets(rm.mesh, own_tets + kept_tets.num_live_tets());
   for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
     if (!live(m, t) || m.tet_region[t] < 0) continue;
     const uint32_t n = rm.mesh.new_tet(m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3), m.tet_region[t]);
@@ -396,6 +411,8 @@ Status mesh_round(RankMesh& rm, Step step, const SizingField& field, const Refin
   local = LocalMesh();
   if (Status st = mesh_part(part.value(), step, field, refine, optimize); !st.ok()) return st;
   trace_memory(comm.rank(), step == Step::kRefine ? "round: part refined" : "round: part optimized");
+  // own_after_round reads the part's tets and flags, not its adjacency (16 bytes per tet slot).
+  std::vector<uint32_t>().swap(part->mesh.tet_adj);
   Result<RankMesh> next = own_after_round(part.value(), whole_gid, whole_vflags, std::move(kept_tets),
                                           std::move(kept_gid), comm.rank(), created);
   if (!next.ok()) return next.status();
