@@ -267,6 +267,45 @@ Result<Sharing> find_sharing(const RankMesh& rm, Comm& comm) {
   return s;
 }
 
+namespace {
+
+// Drops, in place, the kept tets of `m` (all slots live; meshable per slot) that share no vertex
+// with a meshable one: they are in neither this rank's part nor its halo, and mesh_round holds
+// them aside already (in the optimization's zone rounds, most of the rank's tets). Returns the
+// label of each tet left (0 meshable, kept(0) kept); the adjacency is left unset. The vertices
+// stay.
+std::vector<int32_t> drop_far_kept_tets(TetMesh& m, const std::vector<uint8_t>& meshable) {
+  std::vector<uint8_t> near(m.num_vertices(), 0);
+  const auto slots = static_cast<uint32_t>(m.num_tet_slots());
+  for (uint32_t t = 0; t < slots; ++t)
+    if (meshable[t])
+      for (int i = 0; i < 4; ++i) near[m.vertex(t, i)] = 1;
+  std::vector<int32_t> label;
+  uint32_t n = 0;
+  for (uint32_t t = 0; t < slots; ++t) {
+    bool keep = meshable[t] != 0;
+    for (int i = 0; i < 4 && !keep; ++i) keep = near[m.vertex(t, i)] != 0;
+    if (!keep) continue;
+    std::copy_n(&m.tet_v[4 * size_t(t)], 4, &m.tet_v[4 * size_t(n)]);
+    m.tet_flags[n] = m.tet_flags[t];
+    m.tet_region[n] = m.tet_region[t];
+    label.push_back(meshable[t] ? 0 : kept(0));
+    ++n;
+  }
+  if (n == slots) return label;
+  m.tet_v.resize(4 * size_t(n));
+  m.tet_adj.assign(4 * size_t(n), TetMesh::kNoNeighbour);
+  m.tet_flags.resize(n);
+  m.tet_region.resize(n);
+  m.tet_v.shrink_to_fit();
+  m.tet_adj.shrink_to_fit();
+  m.tet_flags.shrink_to_fit();
+  m.tet_region.shrink_to_fit();
+  return label;
+}
+
+}  // namespace
+
 Result<LocalMesh> with_halo(RankMesh rm, const Sharing& sharing, Comm& comm) {
   const TetMesh& m = rm.mesh;
   const int ranks = comm.ranks();
@@ -295,16 +334,11 @@ Result<LocalMesh> with_halo(RankMesh rm, const Sharing& sharing, Comm& comm) {
   if (!from.ok()) return from.status();
   to.clear();
   LocalMesh local;
-  for (uint32_t t = 0, k = 0; t < m.num_tet_slots(); ++t)
-    if (live(m, t)) local.label.push_back(rm.meshable[k++] ? 0 : kept(0));
   // The own tets become the local mesh's first ones: moved when every slot is live (as a round
   // and a migration leave them), so that the rank does not hold its part twice.
-  if (m.num_live_tets() == m.num_tet_slots()) {
-    local.mesh = std::move(rm.mesh);
-  } else {
-    local.mesh = compact_tets(m, [](uint32_t) { return true; });
-    rm.mesh = TetMesh();
-  }
+  if (m.num_live_tets() != m.num_tet_slots()) rm.mesh = compact_tets(m, [](uint32_t) { return true; });
+  local.label = drop_far_kept_tets(rm.mesh, rm.meshable);
+  local.mesh = std::move(rm.mesh);
   local.gid = std::move(rm.gid);
   auto at = gid_index(local.gid);
   for (const std::vector<uint8_t>& bytes : from.value()) {
