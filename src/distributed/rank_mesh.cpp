@@ -153,6 +153,31 @@ TetMesh compact_tets(const TetMesh& m, Keep keep) {
   return c;
 }
 
+// Keeps, in place and in order, the live tets t of `m` for which keep(t) holds (keep reads slot t
+// before any later slot is written): no second copy of the rank's mesh, as compact_tets makes.
+// The adjacency is left unset (kNoNeighbour); the vertices stay.
+template <class Keep>
+void keep_tets_in_place(TetMesh& m, Keep keep) {
+  const auto slots = static_cast<uint32_t>(m.num_tet_slots());
+  uint32_t n = 0;
+  for (uint32_t t = 0; t < slots; ++t) {
+    if (!live(m, t) || !keep(t)) continue;
+    std::copy_n(&m.tet_v[4 * size_t(t)], 4, &m.tet_v[4 * size_t(n)]);
+    m.tet_flags[n] = m.tet_flags[t];
+    m.tet_region[n] = m.tet_region[t];
+    ++n;
+  }
+  m.tet_v.resize(4 * size_t(n));
+  m.tet_adj.assign(4 * size_t(n), TetMesh::kNoNeighbour);
+  m.tet_flags.resize(n);
+  m.tet_region.resize(n);
+  m.free_tets.clear();
+  m.tet_v.shrink_to_fit();
+  m.tet_adj.shrink_to_fit();
+  m.tet_flags.shrink_to_fit();
+  m.tet_region.shrink_to_fit();
+}
+
 // Per (vertex, sharer) pair one value to the sharer; each value of `values` combined (min or max)
 // with what the sharers sent for the vertex.
 Status combine_with_sharers(const RankMesh& rm, const Sharing& sharing, std::vector<int32_t>& values, bool max,
@@ -281,26 +306,12 @@ std::vector<int32_t> drop_far_kept_tets(TetMesh& m, const std::vector<uint8_t>& 
     if (meshable[t])
       for (int i = 0; i < 4; ++i) near[m.vertex(t, i)] = 1;
   std::vector<int32_t> label;
-  uint32_t n = 0;
-  for (uint32_t t = 0; t < slots; ++t) {
+  keep_tets_in_place(m, [&](uint32_t t) {
     bool keep = meshable[t] != 0;
     for (int i = 0; i < 4 && !keep; ++i) keep = near[m.vertex(t, i)] != 0;
-    if (!keep) continue;
-    std::copy_n(&m.tet_v[4 * size_t(t)], 4, &m.tet_v[4 * size_t(n)]);
-    m.tet_flags[n] = m.tet_flags[t];
-    m.tet_region[n] = m.tet_region[t];
-    label.push_back(meshable[t] ? 0 : kept(0));
-    ++n;
-  }
-  if (n == slots) return label;
-  m.tet_v.resize(4 * size_t(n));
-  m.tet_adj.assign(4 * size_t(n), TetMesh::kNoNeighbour);
-  m.tet_flags.resize(n);
-  m.tet_region.resize(n);
-  m.tet_v.shrink_to_fit();
-  m.tet_adj.shrink_to_fit();
-  m.tet_flags.shrink_to_fit();
-  m.tet_region.shrink_to_fit();
+    if (keep) label.push_back(meshable[t] ? 0 : kept(0));
+    return keep;
+  });
   return label;
 }
 
@@ -523,11 +534,12 @@ Result<size_t> move_and_migrate(RankMesh& rm, int rings, int zone, const std::ve
   Result<std::vector<std::vector<uint8_t>>> from = comm.exchange(to);
   if (!from.ok()) return from.status();
   to.clear();
-  TetMesh next = compact_tets(m, [&](uint32_t t) { return !in_zone[t] || label[t] == rank; });
-  std::vector<uint8_t> meshable;
-  for (uint32_t t = 0; t < slots; ++t)
-    if (live(m, t) && (!in_zone[t] || label[t] == rank)) meshable.push_back(in_zone[t]);
-  rm.mesh = std::move(next);
+  std::vector<uint8_t> meshable;  // of the tets that stay, kept in place
+  keep_tets_in_place(m, [&](uint32_t t) {
+    const bool stays = !in_zone[t] || label[t] == rank;
+    if (stays) meshable.push_back(in_zone[t]);
+    return stays;
+  });
   auto at = gid_index(rm.gid);
   for (const std::vector<uint8_t>& bytes : from.value()) {
     if (bytes.empty()) continue;
