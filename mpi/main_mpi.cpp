@@ -21,6 +21,7 @@
 
 #include "commands.hpp"
 #include "core/process_memory.hpp"
+#include "distributed/memory_trace.hpp"
 #include "distributed/parts.hpp"
 #include "distributed/rank_mesh.hpp"
 #include "exit_codes.hpp"
@@ -109,6 +110,7 @@ Status stage3_in_pieces(anitet::TetMesh& mesh, const anitet::SizingField& field,
   anitet::mpi::ScotchPartitioner partitioner(comm.comm());
   std::vector<double> surface_xyz(mesh.xyz.begin(), mesh.xyz.begin() + std::ptrdiff_t(3 * surface.num_vertices()));
   std::vector<uint8_t> surface_flags(mesh.vflags.begin(), mesh.vflags.begin() + std::ptrdiff_t(surface.num_vertices()));
+  anitet::distributed::trace_memory(comm.rank(), "stages 1-2 and coupling");
   anitet::distributed::RankMesh rm;
   anitet::distributed::RankRunStats stats;
   if (Status st = anitet::distributed::run_rank_parts(mesh, field, refine_options, optimize_options,
@@ -116,7 +118,9 @@ Status stage3_in_pieces(anitet::TetMesh& mesh, const anitet::SizingField& field,
                                                       refine, optimize, &stats);
       !st.ok())
     return st;
+  anitet::distributed::trace_memory(comm.rank(), "rounds done");
   if (Status st = anitet::mpi::write_pieces(rm, surface, output, comm); !st.ok()) return st;
+  anitet::distributed::trace_memory(comm.rank(), "piece written");
   if (std::getenv("ANITET_RANK_STATS"))
     std::fprintf(stderr,
                  "anitet-mpi: rank %d: %zu coarse splits, %zu own coarse tets after partitioning; %zu own tets, "

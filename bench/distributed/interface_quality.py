@@ -6,7 +6,9 @@
 An interface vertex is in more than one piece (GlobalNodeIds); the tets within two rings of the
 interfaces are those with a vertex of an interface vertex's tets. Prints, as one JSON line, the
 tets, the radius-ratio mean and min of all, and the share of tets below 0.3 near the interfaces
-and elsewhere (issue 51: the interfaces invisible in the quality means the first no higher).
+and elsewhere (issue 51: the interfaces invisible in the quality means the first no higher); the
+same shares among the tets with a vertex on the boundary triangles ("surface": in one process they
+hold nearly every tet below 0.3) and among the others ("interior"), and the lowest ratio of each.
 """
 import json
 import os
@@ -36,7 +38,7 @@ def radius_ratio(p, t):
 def main(index):
     root = ET.parse(index).getroot()
     pieces = [os.path.join(os.path.dirname(index), p.get("Source")) for p in root.iter("Piece")]
-    tets, quality, seen = [], [], {}
+    tets, quality, seen, on_surface = [], [], {}, []
     for k, path in enumerate(pieces):
         with open(path, "rb") as f:
             head = f.read(4096)
@@ -46,6 +48,8 @@ def main(index):
         gid = np.asarray(m.point_data["GlobalNodeIds"]).astype(np.int64).ravel()
         t = m.cells_dict["tetra"]
         tets.append(gid[t])
+        if "triangle" in m.cells_dict:
+            on_surface.append(np.unique(gid[m.cells_dict["triangle"]]))
         quality.append(radius_ratio(m.points, t))
         for g in np.unique(gid[t]):
             seen[g] = seen.get(g, 0) + 1
@@ -62,12 +66,23 @@ def main(index):
         near_vertex[t[ring].ravel()] = True
     near = ring
     bad = q < 0.3
+    surface_vertex = np.zeros(n, dtype=bool)
+    if on_surface:
+        surface_vertex[np.concatenate(on_surface)] = True
+    touches = surface_vertex[t].any(axis=1)
+    share = lambda mask: float(bad[mask].mean()) if mask.any() else 0.0
+    lowest = lambda mask: float(q[mask].min()) if mask.any() else 1.0
     out = {
         "pieces": len(pieces), "tets": int(len(q)), "rr_mean": float(q.mean()), "rr_min": float(q.min()),
         "tets_near_interfaces": int(near.sum()),
         "below_0.3_near": float(bad[near].mean()) if near.any() else 0.0,
         "below_0.3_elsewhere": float(bad[~near].mean()) if (~near).any() else 0.0,
+        "below_0.3_count_near": int(bad[near].sum()), "below_0.3_count_elsewhere": int(bad[~near].sum()),
     }
+    for name, mask in (("surface", touches), ("interior", ~touches)):
+        out[name] = {"tets_near": int((near & mask).sum()), "below_0.3_near": share(near & mask),
+                     "below_0.3_elsewhere": share(~near & mask), "min_near": lowest(near & mask),
+                     "min_elsewhere": lowest(~near & mask)}
     print(json.dumps(out))
 
 

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "distributed/bytes.hpp"
+#include "distributed/memory_trace.hpp"
 #include "refine/edges.hpp"
 #include "refine/mesh_ops.hpp"
 #include "refine/refine.hpp"
@@ -126,18 +127,55 @@ void drop_unused_vertices(TetMesh& m, std::vector<uint64_t>& gid) {
   for (uint32_t& v : m.tet_v) v = to[v];
 }
 
+// Room for `tets` tet slots at once: a mesh filled by new_tet one tet at a time otherwise ends
+// with up to twice the capacity it needs, and copies its arrays as they grow.
+void reserve_tets(TetMesh& m, size_t tets) {
+  m.tet_v.reserve(4 * tets);
+  m.tet_adj.reserve(4 * tets);
+  m.tet_flags.reserve(tets);
+  m.tet_region.reserve(tets);
+}
+
 // A compact copy of the live tets of `m` for which keep(t) holds (no adjacency).
 template <class Keep>
 TetMesh compact_tets(const TetMesh& m, Keep keep) {
   TetMesh c;
   c.xyz = m.xyz;
   c.vflags = m.vflags;
+  size_t kept_count = 0;
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t) kept_count += live(m, t) && keep(t) ? 1 : 0;
+  reserve_tets(c, kept_count);
   for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
     if (!live(m, t) || !keep(t)) continue;
     const uint32_t n = c.new_tet(m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3), m.tet_region[t]);
     c.tet_flags[n] = m.tet_flags[t];
   }
   return c;
+}
+
+// Keeps, in place and in order, the live tets t of `m` for which keep(t) holds (keep reads slot t
+// before any later slot is written): no second copy of the rank's mesh, as compact_tets makes.
+// The adjacency is left unset (kNoNeighbour); the vertices stay.
+template <class Keep>
+void keep_tets_in_place(TetMesh& m, Keep keep) {
+  const auto slots = static_cast<uint32_t>(m.num_tet_slots());
+  uint32_t n = 0;
+  for (uint32_t t = 0; t < slots; ++t) {
+    if (!live(m, t) || !keep(t)) continue;
+    std::copy_n(&m.tet_v[4 * size_t(t)], 4, &m.tet_v[4 * size_t(n)]);
+    m.tet_flags[n] = m.tet_flags[t];
+    m.tet_region[n] = m.tet_region[t];
+    ++n;
+  }
+  m.tet_v.resize(4 * size_t(n));
+  m.tet_adj.assign(4 * size_t(n), TetMesh::kNoNeighbour);
+  m.tet_flags.resize(n);
+  m.tet_region.resize(n);
+  m.free_tets.clear();
+  m.tet_v.shrink_to_fit();
+  m.tet_adj.shrink_to_fit();
+  m.tet_flags.shrink_to_fit();
+  m.tet_region.shrink_to_fit();
 }
 
 // Per (vertex, sharer) pair one value to the sharer; each value of `values` combined (min or max)
@@ -254,6 +292,31 @@ Result<Sharing> find_sharing(const RankMesh& rm, Comm& comm) {
   return s;
 }
 
+namespace {
+
+// Drops, in place, the kept tets of `m` (all slots live; meshable per slot) that share no vertex
+// with a meshable one: they are in neither this rank's part nor its halo, and mesh_round holds
+// them aside already (in the optimization's zone rounds, most of the rank's tets). Returns the
+// label of each tet left (0 meshable, kept(0) kept); the adjacency is left unset. The vertices
+// stay.
+std::vector<int32_t> drop_far_kept_tets(TetMesh& m, const std::vector<uint8_t>& meshable) {
+  std::vector<uint8_t> near(m.num_vertices(), 0);
+  const auto slots = static_cast<uint32_t>(m.num_tet_slots());
+  for (uint32_t t = 0; t < slots; ++t)
+    if (meshable[t])
+      for (int i = 0; i < 4; ++i) near[m.vertex(t, i)] = 1;
+  std::vector<int32_t> label;
+  keep_tets_in_place(m, [&](uint32_t t) {
+    bool keep = meshable[t] != 0;
+    for (int i = 0; i < 4 && !keep; ++i) keep = near[m.vertex(t, i)] != 0;
+    if (keep) label.push_back(meshable[t] ? 0 : kept(0));
+    return keep;
+  });
+  return label;
+}
+
+}  // namespace
+
 Result<LocalMesh> with_halo(RankMesh rm, const Sharing& sharing, Comm& comm) {
   const TetMesh& m = rm.mesh;
   const int ranks = comm.ranks();
@@ -282,16 +345,11 @@ Result<LocalMesh> with_halo(RankMesh rm, const Sharing& sharing, Comm& comm) {
   if (!from.ok()) return from.status();
   to.clear();
   LocalMesh local;
-  for (uint32_t t = 0, k = 0; t < m.num_tet_slots(); ++t)
-    if (live(m, t)) local.label.push_back(rm.meshable[k++] ? 0 : kept(0));
   // The own tets become the local mesh's first ones: moved when every slot is live (as a round
   // and a migration leave them), so that the rank does not hold its part twice.
-  if (m.num_live_tets() == m.num_tet_slots()) {
-    local.mesh = std::move(rm.mesh);
-  } else {
-    local.mesh = compact_tets(m, [](uint32_t) { return true; });
-    rm.mesh = TetMesh();
-  }
+  if (m.num_live_tets() != m.num_tet_slots()) rm.mesh = compact_tets(m, [](uint32_t) { return true; });
+  local.label = drop_far_kept_tets(rm.mesh, rm.meshable);
+  local.mesh = std::move(rm.mesh);
   local.gid = std::move(rm.gid);
   auto at = gid_index(local.gid);
   for (const std::vector<uint8_t>& bytes : from.value()) {
@@ -326,6 +384,9 @@ Result<RankMesh> own_after_round(const MeshPart& part, const std::vector<uint64_
   }
   std::vector<std::array<uint32_t, 3>> interface = part.interface_facets;
   std::sort(interface.begin(), interface.end());
+  size_t own_tets = 0;
+  for (uint32_t t = 0; t < m.num_tet_slots(); ++t) own_tets += live(m, t) && m.tet_region[t] >= 0 ? 1 : 0;
+  reserve_tets(rm.mesh, own_tets + kept_tets.num_live_tets());
   for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
     if (!live(m, t) || m.tet_region[t] < 0) continue;
     const uint32_t n = rm.mesh.new_tet(m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3), m.tet_region[t]);
@@ -381,20 +442,27 @@ Status mesh_round(RankMesh& rm, Step step, const SizingField& field, const Refin
   TetMesh kept_tets = compact_tets(rm.mesh, [&](uint32_t t) { return !rm.meshable[t]; });
   std::vector<uint64_t> kept_gid = rm.gid;
   drop_unused_vertices(kept_tets, kept_gid);
+  trace_memory(comm.rank(), "round: kept tets aside");
   const uint64_t created = rm.created;
   Result<LocalMesh> local = with_halo(std::move(rm), sharing.value(), comm);
   rm = RankMesh();
   if (!local.ok()) return local.status();
+  trace_memory(comm.rank(), "round: local mesh with halo");
   Result<MeshPart> part = extract_part(local->mesh, local->label, 0);
   if (!part.ok()) return part.status();
+  trace_memory(comm.rank(), "round: part extracted");
   const std::vector<uint64_t> whole_gid = std::move(local->gid);
   const std::vector<uint8_t> whole_vflags = std::move(local->mesh.vflags);
   local = LocalMesh();
   if (Status st = mesh_part(part.value(), step, field, refine, optimize); !st.ok()) return st;
+  trace_memory(comm.rank(), step == Step::kRefine ? "round: part refined" : "round: part optimized");
+  // own_after_round reads the part's tets and flags, not its adjacency (16 bytes per tet slot).
+  std::vector<uint32_t>().swap(part->mesh.tet_adj);
   Result<RankMesh> next = own_after_round(part.value(), whole_gid, whole_vflags, std::move(kept_tets),
                                           std::move(kept_gid), comm.rank(), created);
   if (!next.ok()) return next.status();
   rm = std::move(next).value();
+  trace_memory(comm.rank(), "round: own tets rebuilt");
   if (const size_t open_after = count_boundary_facets(rm.mesh); open_after != open_before)
     return Status(Error::Internal, "distributed: rank " + std::to_string(comm.rank()) + "'s part has " +
                                        std::to_string(open_after) + " facets without a neighbour after the round, " +
@@ -466,11 +534,12 @@ Result<size_t> move_and_migrate(RankMesh& rm, int rings, int zone, const std::ve
   Result<std::vector<std::vector<uint8_t>>> from = comm.exchange(to);
   if (!from.ok()) return from.status();
   to.clear();
-  TetMesh next = compact_tets(m, [&](uint32_t t) { return !in_zone[t] || label[t] == rank; });
-  std::vector<uint8_t> meshable;
-  for (uint32_t t = 0; t < slots; ++t)
-    if (live(m, t) && (!in_zone[t] || label[t] == rank)) meshable.push_back(in_zone[t]);
-  rm.mesh = std::move(next);
+  std::vector<uint8_t> meshable;  // of the tets that stay, kept in place
+  keep_tets_in_place(m, [&](uint32_t t) {
+    const bool stays = !in_zone[t] || label[t] == rank;
+    if (stays) meshable.push_back(in_zone[t]);
+    return stays;
+  });
   auto at = gid_index(rm.gid);
   for (const std::vector<uint8_t>& bytes : from.value()) {
     if (bytes.empty()) continue;
@@ -481,6 +550,7 @@ Result<size_t> move_and_migrate(RankMesh& rm, int rings, int zone, const std::ve
   drop_unused_vertices(rm.mesh, rm.gid);
   if (Status st = rm.mesh.build_adjacency(); !st.ok())
     return Status(Error::Internal, "distributed: rank " + std::to_string(rank) + " after migration: " + st.message());
+  trace_memory(rank, "move: migrated");
   return sent;
 }
 
@@ -641,13 +711,16 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
       rs.coarse_splits = splits.value();
     }
     const std::vector<double> weights = estimate_refined_tets_per_tet(coarse, field, scale);
+    trace_memory(comm.rank(), "coarse mesh split");
     Result<std::vector<int32_t>> part_of = partitioner.partition(coarse, weights, comm.ranks());
     if (!part_of.ok()) return part_of.status();
+    trace_memory(comm.rank(), "coarse mesh partitioned");
     Result<RankMesh> mine = own_coarse_part(coarse, part_of.value(), comm.rank());
     if (!mine.ok()) return mine.status();
     rm = std::move(mine).value();
   }
   coarse = TetMesh();  // from here on, this rank holds its part only
+  trace_memory(comm.rank(), "coarse mesh freed");
   rs.partition_seconds = since(t0);
   rs.own_tets_after_partition = rm.mesh.num_live_tets();
   t0 = Clock::now();

@@ -61,7 +61,8 @@ struct Sharing {
 // their gid), which tells every holder the others.
 Result<Sharing> find_sharing(const RankMesh& rm, Comm& comm);
 
-// Collective: the rank's own tets (meshable: label 0; kept: kept(0)) plus the halo (every tet of
+// Collective: the rank's own tets (meshable: label 0; kept: kept(0), only those with a vertex of a
+// meshable one: the others are in neither the part nor its halo) plus the halo (every tet of
 // another rank with a vertex of an own tet; label 1), and the gid of each of its vertices.
 struct LocalMesh {
   TetMesh mesh;

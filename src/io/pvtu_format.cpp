@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <string_view>
 
@@ -17,19 +18,52 @@ namespace {
 
 constexpr uint8_t kVtkTetra = 10, kVtkTriangle = 5;
 
-// One appended array: its declaration and its bytes.
+// One appended array: its declaration, its byte count, and how its values are written (in
+// order, through a Sink). The values are made as they are written, not copied into a buffer
+// first: the whole file built in memory held several times the piece's bytes and set the peak of
+// an anitet-mpi rank.
+class Sink;
 struct Array {
   const char* type;
-  std::string name;
+  const char* name;
   int components;
-  std::string bytes;
+  uint64_t bytes;
+  std::function<void(Sink&)> values;
+};
+
+// Buffers the appended bytes (1 MiB at a time) for write_file_with's writer.
+class Sink {
+ public:
+  explicit Sink(const std::function<bool(std::string_view)>& write) : write_(write) { buffer_.reserve(kSize); }
+  template <class T>
+  void put(T v) {
+    if (buffer_.size() + sizeof(T) > kSize) flush();
+    buffer_.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
+  template <class T>
+  void put_all(const std::vector<T>& v) {
+    for (const T& x : v) put(x);
+  }
+  void put_text(std::string_view text) {
+    flush();
+    ok_ = ok_ && write_(text);
+  }
+  bool flush() {
+    if (!buffer_.empty()) ok_ = ok_ && write_(buffer_);
+    buffer_.clear();
+    return ok_;
+  }
+
+ private:
+  static constexpr size_t kSize = size_t(1) << 20;
+  const std::function<bool(std::string_view)>& write_;
+  std::string buffer_;
+  bool ok_ = true;
 };
 
 template <class T>
-Array array_of(const char* type, std::string name, int components, const std::vector<T>& v) {
-  Array a{type, std::move(name), components, std::string(v.size() * sizeof(T), '\0')};
-  if (!v.empty()) std::memcpy(a.bytes.data(), v.data(), a.bytes.size());
-  return a;
+Array array_of(const char* type, const char* name, int components, const std::vector<T>& v) {
+  return {type, name, components, v.size() * sizeof(T), [&v](Sink& s) { s.put_all(v); }};
 }
 
 void declare(std::string& out, const Array& a, uint64_t offset) {
@@ -37,30 +71,37 @@ void declare(std::string& out, const Array& a, uint64_t offset) {
          std::to_string(a.components) + "\" format=\"appended\" offset=\"" + std::to_string(offset) + "\"/>\n";
 }
 
-// The cell arrays of a piece (tets, then triangles).
-struct CellArrays {
-  std::vector<int64_t> connectivity, offsets, cell_id;
-  std::vector<uint8_t> types;
-  std::vector<int32_t> region, patch, owner;
-};
-
-CellArrays cell_arrays(const VtuPiece& p) {
-  CellArrays c;
+// The arrays of a piece's sections (point data, cell data, points, cells): the cells are its tets,
+// then its triangles.
+std::array<std::vector<Array>, 4> piece_arrays(const VtuPiece& p) {
   const size_t nt = p.region.size(), nb = p.patch.size();
-  c.connectivity.assign(p.tet.begin(), p.tet.end());
-  c.connectivity.insert(c.connectivity.end(), p.tri.begin(), p.tri.end());
-  for (size_t t = 0; t < nt; ++t) c.offsets.push_back(int64_t(4 * (t + 1)));
-  for (size_t b = 0; b < nb; ++b) c.offsets.push_back(int64_t(4 * nt + 3 * (b + 1)));
-  c.types.assign(nt, kVtkTetra);
-  c.types.resize(nt + nb, kVtkTriangle);
-  c.region = p.region;
-  c.region.resize(nt + nb, -1);
-  c.patch.assign(nt, -1);
-  c.patch.insert(c.patch.end(), p.patch.begin(), p.patch.end());
-  c.cell_id = p.tet_id;
-  c.cell_id.resize(nt + nb, -1);
-  c.owner.assign(nt + nb, p.owner);
-  return c;
+  auto cells_then = [nt, nb](const char* type, const char* name, uint64_t size, auto tet_value, auto tri_value) {
+    return Array{type, name, 1, uint64_t(nt + nb) * size, [=](Sink& s) {
+                   for (size_t t = 0; t < nt; ++t) tet_value(s, t);
+                   for (size_t b = 0; b < nb; ++b) tri_value(s, b);
+                 }};
+  };
+  std::array<std::vector<Array>, 4> sections;
+  sections[0].push_back(array_of("Int64", "GlobalNodeIds", 1, p.node_id));
+  sections[1].push_back(cells_then("Int32", "region", 4, [&p](Sink& s, size_t t) { s.put(p.region[t]); },
+                                   [](Sink& s, size_t) { s.put(int32_t(-1)); }));
+  sections[1].push_back(cells_then("Int32", "patch", 4, [](Sink& s, size_t) { s.put(int32_t(-1)); },
+                                   [&p](Sink& s, size_t b) { s.put(p.patch[b]); }));
+  sections[1].push_back(cells_then("Int64", "GlobalCellIds", 8, [&p](Sink& s, size_t t) { s.put(p.tet_id[t]); },
+                                   [](Sink& s, size_t) { s.put(int64_t(-1)); }));
+  const int32_t owner = p.owner;
+  auto put_owner = [owner](Sink& s, size_t) { s.put(owner); };
+  sections[1].push_back(cells_then("Int32", "owner", 4, put_owner, put_owner));
+  sections[2].push_back(array_of("Float64", "Points", 3, p.xyz));
+  sections[3].push_back(Array{"Int64", "connectivity", 1, 8 * uint64_t(4 * nt + 3 * nb), [&p](Sink& s) {
+                                for (uint32_t v : p.tet) s.put(int64_t(v));
+                                for (uint32_t v : p.tri) s.put(int64_t(v));
+                              }});
+  sections[3].push_back(cells_then("Int64", "offsets", 8, [](Sink& s, size_t t) { s.put(int64_t(4 * (t + 1))); },
+                                   [nt](Sink& s, size_t b) { s.put(int64_t(4 * nt + 3 * (b + 1))); }));
+  sections[3].push_back(cells_then("UInt8", "types", 1, [](Sink& s, size_t) { s.put(kVtkTetra); },
+                                   [](Sink& s, size_t) { s.put(kVtkTriangle); }));
+  return sections;
 }
 
 Status parse_error(const std::string& path, const std::string& what) {
@@ -85,39 +126,36 @@ Status write_vtu_piece(const std::string& path, const VtuPiece& p) {
                                            std::to_string(nv) + " vertices");
   if (Status st = check_boundary_elements(p.tet, nv, p.tri, /*cover=*/false); !st.ok())
     return Status(st.code(), path + ": " + st.message());
-  const CellArrays c = cell_arrays(p);
-  const std::vector<Array> points = {array_of("Float64", "Points", 3, p.xyz)};
-  const std::vector<Array> point_data = {array_of("Int64", "GlobalNodeIds", 1, p.node_id)};
-  const std::vector<Array> cells = {array_of("Int64", "connectivity", 1, c.connectivity),
-                                    array_of("Int64", "offsets", 1, c.offsets), array_of("UInt8", "types", 1, c.types)};
-  const std::vector<Array> cell_data = {array_of("Int32", "region", 1, c.region), array_of("Int32", "patch", 1, c.patch),
-                                        array_of("Int64", "GlobalCellIds", 1, c.cell_id),
-                                        array_of("Int32", "owner", 1, c.owner)};
+  const std::array<std::vector<Array>, 4> sections = piece_arrays(p);
   std::string out =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
       "header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" +
-      std::to_string(p.node_id.size()) + "\" NumberOfCells=\"" + std::to_string(c.types.size()) + "\">\n";
+      std::to_string(p.node_id.size()) + "\" NumberOfCells=\"" + std::to_string(p.region.size() + p.patch.size()) +
+      "\">\n";
+  const char* open[4] = {"      <PointData GlobalIds=\"GlobalNodeIds\">\n", "      <CellData>\n", "      <Points>\n",
+                         "      <Cells>\n"};
+  const char* close[4] = {"      </PointData>\n", "      </CellData>\n", "      </Points>\n", "      </Cells>\n"};
   uint64_t offset = 0;
-  std::string data;
-  auto section = [&](const char* open, const char* close, const std::vector<Array>& arrays) {
-    out += open;
-    for (const Array& a : arrays) {
+  for (size_t k = 0; k < sections.size(); ++k) {
+    out += open[k];
+    for (const Array& a : sections[k]) {
       declare(out, a, offset);
-      const uint64_t n = a.bytes.size();
-      data.append(reinterpret_cast<const char*>(&n), sizeof n);
-      data += a.bytes;
-      offset += sizeof n + n;
+      offset += sizeof(uint64_t) + a.bytes;
     }
-    out += close;
-  };
-  section("      <PointData GlobalIds=\"GlobalNodeIds\">\n", "      </PointData>\n", point_data);
-  section("      <CellData>\n", "      </CellData>\n", cell_data);
-  section("      <Points>\n", "      </Points>\n", points);
-  section("      <Cells>\n", "      </Cells>\n", cells);
+    out += close[k];
+  }
   out += "    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
-  out += data;
-  out += "\n  </AppendedData>\n</VTKFile>\n";
-  return write_file_bytes(path, out);
+  return write_file_with(path, [&](const std::function<bool(std::string_view)>& write) {
+    Sink sink(write);
+    sink.put_text(out);
+    for (const std::vector<Array>& section : sections)
+      for (const Array& a : section) {
+        sink.put(a.bytes);
+        a.values(sink);
+      }
+    sink.put_text("\n  </AppendedData>\n</VTKFile>\n");
+    return sink.flush();
+  });
 }
 
 Status write_pvtu_index(const std::string& path, const std::vector<std::string>& pieces) {
