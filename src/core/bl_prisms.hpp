@@ -37,8 +37,9 @@ struct PrismMergeStats {
 // shared between them). A prism whose quad side would lie on a tet's faces (its neighbour kept as
 // tets: a column that stopped in a layer, a partial push) is kept as tets too, so that every quad
 // side is shared by two prisms or on the boundary (a quad facing two triangles would need a
-// pyramid cell, which VolumeMesh has not), and so is a prism beside it, through the layer. Error::InvalidArgument for a vertex_origin of
-// the wrong size or with a cycle, Error::BadIndex for an index out of range.
+// pyramid cell, which VolumeMesh has not), and so is a prism beside it, through the layer.
+// Error::InvalidArgument for a vertex_origin of the wrong size or with a cycle, Error::BadIndex
+// for an index out of range.
 // tet_prism (may be null): 1 per tet of the mesh given, the prism it went into or -1 (kept).
 Result<PrismMergeStats> merge_bl_prisms(VolumeMesh& mesh, const std::vector<uint32_t>& vertex_origin,
                                         int32_t first_bl_region, std::vector<int32_t>* tet_prism = nullptr);
