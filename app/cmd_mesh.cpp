@@ -551,10 +551,7 @@ class MeshCommand {
       print_json(r, quality.value());
     } else if (!args_.quiet) {
       print_summary(args_, r, quality.value(), not_written_.empty());
-      if (prisms_)
-        std::cout << "  written with --bl-cells prisms: " << prisms_->prisms << " prisms (3 BL tets each), "
-                  << prisms_->kept_tets << " of " << prisms_->bl_tets
-                  << " BL tets left as tets (no exact prism: a column that stopped, or a neighbour of one)\n";
+      if (prisms_) print_prisms(*prisms_);
       if (args_.verbose) {
         print_details(r, quality.value());
         if (const double peak = peak_resident_bytes(); peak > 0)
@@ -564,6 +561,18 @@ class MeshCommand {
       else std::cout << "  (-v: every stage's figures and the full quality report)\n";
     }
     return not_written_.empty() ? kExitOk : kExitReadError;
+  }
+
+  // --bl-cells prisms: the prisms written and why the other BL tets are left as tets.
+  static void print_prisms(const PrismMergeStats& p) {
+    std::cout << "  written with --bl-cells prisms: " << p.prisms << " prisms (3 BL tets each), " << p.kept_tets << " of "
+              << p.bl_tets << " BL tets left as tets";
+    if (p.kept_tets > 0)
+      std::cout << ": " << p.kept_tets - 3 * (p.exact_prisms - p.prisms)
+                << " in no prism (around columns that stopped in their layer), the prisms beside them ("
+                << p.beside_other_cells << ") and beside those through their layer (" << p.beside_kept
+                << "): a quad side cannot face tets";
+    std::cout << "\n";
   }
 
   // --bl-columns FILE: one CSV line per wall vertex (bl_columns_csv).
@@ -600,6 +609,9 @@ class MeshCommand {
       out["boundary_layer"]["cells"] = "prisms";
       out["boundary_layer"]["prisms"] = prisms_->prisms;
       out["boundary_layer"]["tets_kept"] = prisms_->kept_tets;
+      out["boundary_layer"]["tets_kept_in_no_prism"] = prisms_->kept_tets - 3 * (prisms_->exact_prisms - prisms_->prisms);
+      out["boundary_layer"]["prisms_kept_beside_other_cells"] = prisms_->beside_other_cells;
+      out["boundary_layer"]["prisms_kept_beside_kept"] = prisms_->beside_kept;
     }
     out["quality"] = nlohmann::json::parse(quality_report_json(quality));
     out["ok"] = not_written_.empty();

@@ -181,45 +181,69 @@ struct Candidate {
   bool kept = true;
 };
 
-// Drops the candidates with a quad side on a face of a tet that stays a tet, until none is left:
-// every quad side is then another prism's or on the boundary.
-void drop_unmatched_sides(const VolumeMesh& mesh, std::vector<Candidate>& cands) {
+// A candidate's quad side, for finding the candidate on its other side.
+struct Side {
+  Quad q;
+  uint32_t cand;
+  bool operator<(const Side& o) const { return q < o.q; }
+};
+
+// Whether a triangle of quad q (any three of its corners) is in `faces` (sorted).
+bool quad_on_faces(const Quad& q, const std::vector<Tri>& faces) {
+  for (int skip = 0; skip < 4; ++skip) {
+    Tri t{};
+    for (int i = 0, n = 0; i < 4; ++i)
+      if (i != skip) t[size_t(n++)] = q[size_t(i)];
+    if (std::binary_search(faces.begin(), faces.end(), t)) return true;
+  }
+  return false;
+}
+
+// Keeps as tets the candidates with a quad side on a face of a tet that stays a tet: first those
+// beside a BL cell that is no prism (a column that stopped in the layer leaves two tets, a
+// pyramid, on each triangle around it), then, one after the other, those beside a candidate kept
+// as tets (its tets split the quad they share), which spreads through the layer. Every quad side
+// left is then another prism's or on the boundary.
+void drop_unmatched_sides(const VolumeMesh& mesh, std::vector<Candidate>& cands, PrismMergeStats& stats) {
   const size_t nt = mesh.num_tets();
-  for (bool changed = true; changed;) {
-    changed = false;
-    std::vector<uint8_t> in_prism(nt, 0);
-    std::vector<Quad> quads;
-    for (const Candidate& c : cands)
-      if (c.kept) {
-        for (uint32_t t : c.tets) in_prism[t] = 1;
-        for (int f = 0; f < 3; ++f) quads.push_back(sorted_quad(c.v, f));
+  std::vector<uint8_t> in_prism(nt, 0);
+  std::vector<Side> sides;
+  for (size_t i = 0; i < cands.size(); ++i) {
+    for (uint32_t t : cands[i].tets) in_prism[t] = 1;
+    for (int f = 0; f < 3; ++f) sides.push_back({sorted_quad(cands[i].v, f), uint32_t(i)});
+  }
+  std::sort(sides.begin(), sides.end());
+  std::vector<Tri> tet_faces;  // of the tets in no candidate
+  for (size_t t = 0; t < nt; ++t)
+    if (!in_prism[t])
+      for (const auto& lf : kOutwardFace) {
+        const uint32_t* v = &mesh.tet[4 * t];
+        tet_faces.push_back(sorted3(v[lf[0]], v[lf[1]], v[lf[2]]));
       }
-    std::sort(quads.begin(), quads.end());
-    std::vector<Tri> tet_faces;
-    for (size_t t = 0; t < nt; ++t)
-      if (!in_prism[t])
-        for (const auto& lf : kOutwardFace) {
-          const uint32_t* v = &mesh.tet[4 * t];
-          tet_faces.push_back(sorted3(v[lf[0]], v[lf[1]], v[lf[2]]));
+  std::sort(tet_faces.begin(), tet_faces.end());
+  std::vector<uint32_t> dropped;
+  for (size_t i = 0; i < sides.size();) {
+    size_t j = i + 1;
+    while (j < sides.size() && sides[j].q == sides[i].q) ++j;
+    Candidate& c = cands[sides[i].cand];
+    if (j - i == 1 && c.kept && quad_on_faces(sides[i].q, tet_faces)) {
+      c.kept = false;
+      ++stats.beside_other_cells;
+      dropped.push_back(sides[i].cand);
+    }
+    i = j;
+  }
+  while (!dropped.empty()) {
+    const uint32_t d = dropped.back();
+    dropped.pop_back();
+    for (int f = 0; f < 3; ++f) {
+      const auto range = std::equal_range(sides.begin(), sides.end(), Side{sorted_quad(cands[d].v, f), 0});
+      for (auto it = range.first; it != range.second; ++it)
+        if (cands[it->cand].kept) {
+          cands[it->cand].kept = false;
+          ++stats.beside_kept;
+          dropped.push_back(it->cand);
         }
-    std::sort(tet_faces.begin(), tet_faces.end());
-    for (Candidate& c : cands) {
-      if (!c.kept) continue;
-      for (int f = 0; f < 3 && c.kept; ++f) {
-        const Quad q = sorted_quad(c.v, f);
-        const auto range = std::equal_range(quads.begin(), quads.end(), q);
-        if (range.second - range.first >= 2) continue;  // another prism's side
-        for (int skip = 0; skip < 4; ++skip) {
-          Tri t{};
-          for (int i = 0, n = 0; i < 4; ++i)
-            if (i != skip) t[size_t(n++)] = q[size_t(i)];
-          if (std::binary_search(tet_faces.begin(), tet_faces.end(), t)) {
-            c.kept = false;
-            changed = true;
-            break;
-          }
-        }
-      }
     }
   }
 }
@@ -261,7 +285,8 @@ Result<PrismMergeStats> merge_bl_prisms(VolumeMesh& mesh, const std::vector<uint
     }
     i = j;
   }
-  drop_unmatched_sides(mesh, cands);
+  stats.exact_prisms = cands.size();
+  drop_unmatched_sides(mesh, cands, stats);
 
   std::vector<uint8_t> merged(nt, 0);
   if (tet_prism) tet_prism->assign(nt, -1);

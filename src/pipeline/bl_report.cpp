@@ -59,7 +59,7 @@ void summarize_transition(std::vector<double>& ratios, double edge_ratio_sum, Bo
 
 void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptions& bl, int layers,
                             const std::vector<uint32_t>& vertex_origin, const std::vector<double>& t1_xyz,
-                            const TetMesh& mesh, BoundaryLayerReport& r) {
+                            const TetMesh& mesh, int32_t first_bl_region, BoundaryLayerReport& r) {
   r.layers = layers;
   r.column_xyz.clear();
   r.column_layers.clear();
@@ -73,6 +73,11 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
   std::vector<std::vector<uint32_t>> children(nv);
   for (uint32_t v = 0; v < nv; ++v)
     if (vertex_origin[v] != TetMesh::kNone && vertex_origin[v] < nv) children[vertex_origin[v]].push_back(v);
+  std::vector<uint8_t> in_bl_tet(nv, 0);
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
+    if (!mesh.is_deleted(t) && !mesh.is_ghost(t) && mesh.tet_region[t] >= first_bl_region)
+      for (int i = 0; i < 4; ++i)
+        if (mesh.vertex(t, i) < nv) in_bl_tet[mesh.vertex(t, i)] = 1;
   std::vector<uint8_t> wall(surface.num_vertices(), 0);
   for (size_t t = 0; t < surface.num_triangles(); ++t)
     if (std::find(bl.wall_patches.begin(), bl.wall_patches.end(), surface.patch[t]) != bl.wall_patches.end())
@@ -91,7 +96,7 @@ void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptio
     double worst = 0.0, first = 0.0, last = 0.0, total = 0.0;
     int reached = 0;
     for (int i = 0; i < layers; ++i) {
-      if (at >= nv || children[at].empty()) break;
+      if (at >= nv || children[at].empty() || !in_bl_tet[children[at].back()]) break;
       ++reached;
       const uint32_t next = children[at].back();
       const double h = distance(mesh.point(at), mesh.point(next));

@@ -64,9 +64,12 @@ struct BoundaryLayerReport {
 // The BL columns of `surface`'s wall vertices measured on `mesh` (stage 1's T1, or the final
 // mesh, whose vertex ids T1's are). vertex_origin and t1_xyz: stage 1's, for the T1 vertices;
 // max_displacement is measured on the vertices flagged vflag::kBoundaryLayer (none in T1: 0).
+// A column's step counts as a BL layer only up to a vertex of a BL tet (region >=
+// first_bl_region): a vertex that stopped in the top BL layers is pushed by the ordinary layers
+// after them, which are no BL layer.
 void measure_boundary_layer(const SurfaceMesh& surface, const BoundaryLayerOptions& bl, int layers,
                             const std::vector<uint32_t>& vertex_origin, const std::vector<double>& t1_xyz,
-                            const TetMesh& mesh, BoundaryLayerReport& r);
+                            const TetMesh& mesh, int32_t first_bl_region, BoundaryLayerReport& r);
 
 // The dual-mesh figures above (dual_faces .. skew_faces) on the tets of regions >= first_bl_region
 // (the final mesh's BL regions, or T1's BoundaryLayerOptions::region).

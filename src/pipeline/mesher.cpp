@@ -524,7 +524,8 @@ class MeshingRun {
     const auto t = Clock::now();
     const BoundaryLayerOptions& bl = o_.layers.boundary_layer;
     if (bl.enabled()) {
-      measure_boundary_layer(surface_, bl, result_.layers.bl_layers, t1_origin_, t1_xyz_, mesh, result_.boundary_layer);
+      measure_boundary_layer(surface_, bl, result_.layers.bl_layers, t1_origin_, t1_xyz_, mesh, bodies,
+                             result_.boundary_layer);
       measure_boundary_layer_cells(mesh, bodies, result_.boundary_layer);
       for (uint32_t k = 0; k < mesh.num_tet_slots(); ++k)
         if (!mesh.is_deleted(k) && mesh.tet_region[k] >= bodies) ++result_.boundary_layer.tets;

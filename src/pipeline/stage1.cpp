@@ -55,7 +55,7 @@ Result<Stage1Result> run_stage1(const SurfaceMesh& input, const LayersOptions& i
   const BoundaryLayerOptions& bl = options.boundary_layer;
   if (bl.enabled()) {
     BoundaryLayerReport& b = out.boundary_layer;
-    measure_boundary_layer(surface, bl, r.stats.bl_layers, r.vertex_origin, r.mesh.xyz, r.mesh, b);
+    measure_boundary_layer(surface, bl, r.stats.bl_layers, r.vertex_origin, r.mesh.xyz, r.mesh, bl.region, b);
     measure_boundary_layer_cells(r.mesh, bl.region, b);
     for (uint32_t k = 0; k < r.mesh.num_tet_slots(); ++k)
       if (!r.mesh.is_deleted(k) && r.mesh.tet_region[k] == bl.region) ++b.tets;
