@@ -219,7 +219,7 @@ int run_adapt(const AdaptArgs& args) {
         {"features", {{"ridge_edges", s.ridge_edges}, {"corners", s.corners}}},
         {"cycles", s.cycles},
         {"operations",
-         {{"splits", s.splits}, {"surface_splits", s.surface_splits}, {"collapses", s.collapses},
+         {{"splits", s.splits}, {"surface_splits", s.surface_splits}, {"splits_in_thirds", s.splits_in_thirds}, {"collapses", s.collapses},
           {"surface_collapses", s.surface_collapses}, {"swaps", s.swaps}, {"surface_swaps", s.surface_swaps},
           {"moves", s.moves}, {"surface_moves", s.surface_moves}, {"splits_refused", s.split_refused},
           {"collapses_refused", s.collapse_refused}}},

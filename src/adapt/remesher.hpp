@@ -121,6 +121,12 @@ class Remesher {
   // metric length from y on the line y v. Leaves the neighbours in nb_ and the length energy of v
   // where it is in nb_energy_, which the balancing tries of try_move compare with.
   bool balance_target(uint32_t v, const std::vector<uint32_t>& ball, double out[3]);
+  // Where the edge ab (lengths la, lb in a's and b's metric) is cut: its parameter, the point
+  // there (place(t, x, false) puts the point of parameter t in x), its metric and hint
+  // (split.cpp).
+  template <class Place>
+  double split_parameter(uint32_t a, uint32_t b, double la, double lb, Place&& place, double pos[3], double met[6],
+                         uint32_t& hint);
   // The ideal point of v over face i of t (the apex making it regular in the metric m).
   bool ideal_point(uint32_t t, int i, const double m[6], double out[3]) const;
 
