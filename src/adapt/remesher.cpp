@@ -1,6 +1,7 @@
 #include "adapt/remesher.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "adapt/surface_geometry.hpp"
 
@@ -8,23 +9,21 @@ namespace anitet::adapt {
 
 double Remesher::quality(const uint32_t v[4], uint32_t moved, const double* pos, const double* met, double det) const {
   const double* p[4];
-  const double* m = nullptr;
-  double best = -1.0;
+  const double* m[4];
+  double d[4];
   for (int i = 0; i < 4; ++i) {
-    double d;
-    const double* mi;
     if (v[i] == moved) {
-      p[i] = pos;
-      d = det;
-      mi = met;
+      p[i] = pos, d[i] = det, m[i] = met;
     } else {
-      p[i] = mesh_.p(v[i]);
-      d = mesh_.mdet[v[i]];
-      mi = mesh_.m(v[i]);
+      p[i] = mesh_.p(v[i]), d[i] = mesh_.mdet[v[i]], m[i] = mesh_.m(v[i]);
     }
-    if (d > best) best = d, m = mi;
   }
-  return ugawg_mean_ratio(p[0], p[1], p[2], p[3], m, best);
+  // The worst of the mean ratios in the four corners' metrics: one metric does not see how the
+  // metric turns over the tet (the sphere case's wall: the normal of a corner's metric is not
+  // its neighbour's), and the moves and swaps then worked against the lengths.
+  double q = HUGE_VAL;
+  for (int i = 0; i < 4; ++i) q = std::min(q, ugawg_mean_ratio(p[0], p[1], p[2], p[3], m[i], d[i]));
+  return q;
 }
 
 const double* Remesher::side_normal(uint32_t v, const double face_n[3]) const {

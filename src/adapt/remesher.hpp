@@ -35,7 +35,8 @@ class Remesher {
     return ugawg_edge_length(mesh_.p(a), mesh_.p(b), mesh_.m(a), mesh_.m(b));
   }
   // The quality of the tet (a b c d) with point `moved` (when not kNone) at pos with metric
-  // met/det.
+  // met/det: the worst of its mean ratios in its four corners' metrics (at most the UGAWG mean
+  // ratio, which takes the corner of largest det).
   double quality(const uint32_t v[4], uint32_t moved = kNone, const double* pos = nullptr,
                  const double* met = nullptr, double det = 0.0) const;
   double quality(uint32_t t) const { return quality(mesh_.verts(t)); }
