@@ -59,6 +59,7 @@ struct AdaptStats {
   size_t splits = 0, surface_splits = 0, collapses = 0, surface_collapses = 0;
   size_t swaps = 0, surface_swaps = 0, moves = 0, surface_moves = 0;
   size_t split_refused = 0, collapse_refused = 0;
+  size_t splits_in_thirds = 0;  // splits cut at a third of the edge, not its midpoint (split.cpp)
   // Seconds: setup (checks, adjacency, features), each operation, output.
   double seconds_setup = 0, seconds_split = 0, seconds_collapse = 0, seconds_swap = 0, seconds_smooth = 0,
          seconds_output = 0, seconds_total = 0;

@@ -1,6 +1,7 @@
 #include "adapt/remesher.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "adapt/surface_geometry.hpp"
 
@@ -8,23 +9,34 @@ namespace anitet::adapt {
 
 double Remesher::quality(const uint32_t v[4], uint32_t moved, const double* pos, const double* met, double det) const {
   const double* p[4];
-  const double* m = nullptr;
-  double best = -1.0;
+  const double* m[4];
+  double d[4];
   for (int i = 0; i < 4; ++i) {
-    double d;
-    const double* mi;
     if (v[i] == moved) {
-      p[i] = pos;
-      d = det;
-      mi = met;
+      p[i] = pos, d[i] = det, m[i] = met;
     } else {
-      p[i] = mesh_.p(v[i]);
-      d = mesh_.mdet[v[i]];
-      mi = mesh_.m(v[i]);
+      p[i] = mesh_.p(v[i]), d[i] = mesh_.mdet[v[i]], m[i] = mesh_.m(v[i]);
     }
-    if (d > best) best = d, m = mi;
   }
-  return ugawg_mean_ratio(p[0], p[1], p[2], p[3], m, best);
+  // The worst of the mean ratios in the four corners' metrics: one metric does not see how the
+  // metric turns over the tet (the sphere case's wall: the normal of a corner's metric is not
+  // its neighbour's), and the moves and swaps then worked against the lengths. The edges and
+  // the volume once; per metric M, q^3 = 432 vol6^2 det M / l2(M)^3 (ugawg_mean_ratio's form
+  // cubed), so one cube root for the worst.
+  double e[6][3];
+  for (int k = 0; k < 6; ++k)
+    for (int c = 0; c < 3; ++c) e[k][c] = p[kEdgeVertex[k][1]][c] - p[kEdgeVertex[k][0]][c];
+  const double vol6 = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                      e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+  if (!(vol6 > 0.0)) return -1.0;
+  double worst = HUGE_VAL;  // det M / l2(M)^3
+  for (int i = 0; i < 4; ++i) {
+    if (!(d[i] > 0.0)) return 0.0;
+    double l2 = 0.0;
+    for (int k = 0; k < 6; ++k) l2 += quad_form(m[i], e[k]);
+    worst = std::min(worst, d[i] / (l2 * l2 * l2));
+  }
+  return 6.0 * cbrt_positive(2.0 * vol6 * vol6 * worst);
 }
 
 const double* Remesher::side_normal(uint32_t v, const double face_n[3]) const {

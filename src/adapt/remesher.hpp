@@ -35,7 +35,8 @@ class Remesher {
     return ugawg_edge_length(mesh_.p(a), mesh_.p(b), mesh_.m(a), mesh_.m(b));
   }
   // The quality of the tet (a b c d) with point `moved` (when not kNone) at pos with metric
-  // met/det.
+  // met/det: the worst of its mean ratios in its four corners' metrics (at most the UGAWG mean
+  // ratio, which takes the corner of largest det).
   double quality(const uint32_t v[4], uint32_t moved = kNone, const double* pos = nullptr,
                  const double* met = nullptr, double det = 0.0) const;
   double quality(uint32_t t) const { return quality(mesh_.verts(t)); }
@@ -121,6 +122,12 @@ class Remesher {
   // metric length from y on the line y v. Leaves the neighbours in nb_ and the length energy of v
   // where it is in nb_energy_, which the balancing tries of try_move compare with.
   bool balance_target(uint32_t v, const std::vector<uint32_t>& ball, double out[3]);
+  // Where the edge ab (lengths la, lb in a's and b's metric) is cut: its parameter, the point
+  // there (place(t, x, false) puts the point of parameter t in x), its metric and hint
+  // (split.cpp).
+  template <class Place>
+  double split_parameter(uint32_t a, uint32_t b, double la, double lb, Place&& place, double pos[3], double met[6],
+                         uint32_t& hint);
   // The ideal point of v over face i of t (the apex making it regular in the metric m).
   bool ideal_point(uint32_t t, int i, const double m[6], double out[3]) const;
 

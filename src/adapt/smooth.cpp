@@ -9,11 +9,12 @@
 // When that finds no move, v is tried where its edges come nearer unit length (balance: each
 // neighbour wants v at unit metric length on the line through them): made when the sum of
 // squared log lengths of v's edges falls by 5% and no tet of the ball falls below
-// min(its worst, kBalanceQuality). The mean ratio, in the one metric of a tet's vertex, does not
-// see how the metric turns along an edge; the lengths do: on a curved wall with a strong normal
-// metric (the sphere case, h_r = 0.001 at R = 0.5) a tangential edge of length l has a normal
-// part l^2/2R at its ends, so the lengths in range span a factor 1.4 in l, not 2, and the
-// quality moves left the tangential spacing uneven (misses short and long side by side).
+// min(its worst, kBalanceQuality). The mean ratio (the worst over the corners' metrics) sees
+// the metric's turn over a tet only in part; the lengths see it along each edge: on a curved
+// wall with a strong normal metric (the sphere case, h_r = 0.001 at R = 0.5) a tangential edge
+// of length l has a normal part l^2/2R at its ends, so the lengths in range span a factor 1.4
+// in l, not 2, and the quality moves left the tangential spacing uneven (misses short and long
+// side by side).
 #include <algorithm>
 #include <cmath>
 

@@ -196,7 +196,10 @@ TEST(Adapt, UniformSizeIsFollowed) {
 // cube, coarse (h_t) along it, as the sphere case of issue 46 on a small scale. A tangential edge
 // of length l has a normal part l^2/2R at its ends, so the lengths in range span a factor 1.4 in
 // l, not 2; the moves towards ideal tets left the spacing uneven (short and long edges side by
-// side). With the balancing moves (smooth.cpp) 74.4% of the edges are in range, 68.5% without.
+// side). With the balancing moves (smooth.cpp) 74.4% of the edges are in range, 68.5% without;
+// cutting edges in thirds where halves miss and thirds fit (split.cpp) 74.5%, some 1 300 such
+// splits; with the tet quality the worst over its corners' metrics (remesher.cpp) 79.1% (78.4%
+// without the thirds).
 class TurningShellMetric final : public SizingField {
  public:
   void metric(const double p[3], double m[6]) const override {
@@ -228,8 +231,10 @@ TEST(Adapt, TurningMetricEdgesAreBalanced) {
     in_range += l >= std::sqrt(0.5) && l <= std::sqrt(2.0);
   }
   const double share = double(in_range) / double(edges.size());
-  std::printf("%zu tets, %.1f%% of %zu edges in range\n", out.num_tets(), 100 * share, edges.size());
-  EXPECT_GT(share, 0.71);
+  std::printf("%zu tets, %.1f%% of %zu edges in range, %zu splits in thirds\n", out.num_tets(), 100 * share,
+              edges.size(), r.value().stats.splits_in_thirds);
+  EXPECT_GT(share, 0.77);
+  EXPECT_GT(r.value().stats.splits_in_thirds, 100u);
   EXPECT_NEAR(checked_volume(out), 1.0, 1e-12);
 }
 
