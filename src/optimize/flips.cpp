@@ -8,6 +8,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/bvh.hpp"
+#include "core/metric_measures.hpp"
 #include "core/sizing.hpp"
 #include "predicates/predicates.hpp"
 
@@ -41,7 +42,7 @@ namespace {
 bool out_of_range(const FlipContext& c, uint32_t a, uint32_t b) {
   const std::vector<double>& m = c.quality->vertex_metric;
   const double l = metric_edge_length(&m[6 * size_t(a)], c.mesh.point(a), &m[6 * size_t(b)], c.mesh.point(b));
-  return !(l >= 0.7071067811865476 && l <= 1.4142135623730951);
+  return !in_unit_range(l);
 }
 
 bool guard_lengths(const FlipContext& c) { return c.keep_lengths_in_range && c.quality->anisotropic(); }
