@@ -79,11 +79,8 @@ void measure_lengths(const TetMesh& mesh, const SizingField& field, const Refine
   const ScaledSizing scaled(field, options.size_scale > 0.0 ? options.size_scale : 1.0);
   std::vector<double> metrics(6 * mesh.num_vertices());
   for (uint32_t v = 0; v < mesh.num_vertices(); ++v) scaled.metric(mesh.point(v), &metrics[6 * size_t(v)]);
-  refine_detail::EdgeList edges;
-  refine_detail::EdgeScratch scratch;
-  refine_detail::collect_edges(mesh, metrics, edges, scratch);
-  refine_detail::length_summary(edges, options.collapse_length, options.split_length, stats.length_mean,
-                                stats.length_in_range);
+  refine_detail::summarize_edge_lengths(mesh, metrics, options.collapse_length, options.split_length,
+                                        stats.length_mean, stats.length_in_range);
   stats.vertices_after = refine_detail::live_vertex_count(mesh);
   stats.tets_after = mesh.num_live_tets();
 }

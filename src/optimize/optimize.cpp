@@ -118,11 +118,8 @@ class Optimizer {
     return in_unit_range(l);
   }
   double share_in_range() const {
-    refine_detail::EdgeList edges;
-    refine_detail::EdgeScratch scratch;
-    refine_detail::collect_edges(mesh_, quality_.vertex_metric, edges, scratch);
     double mean = 0.0, share = 0.0;
-    refine_detail::length_summary(edges, kUnitRangeMin, kUnitRangeMax, mean, share);
+    refine_detail::summarize_edge_lengths(mesh_, quality_.vertex_metric, kUnitRangeMin, kUnitRangeMax, mean, share);
     return share;
   }
   // The quality of w.ball[k] where its points are now (only w.moving moved since measure_ball()),

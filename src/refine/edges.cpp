@@ -278,20 +278,6 @@ size_t live_vertex_count(const TetMesh& mesh) {
   return n;
 }
 
-void length_summary(const EdgeList& edges, double collapse_length, double split_length, double& mean,
-                    double& in_range) {
-  size_t counted = 0, inside = 0;
-  double sum = 0.0;
-  for (const Edge& e : edges) {
-    if (e.on_surface) continue;
-    ++counted;
-    sum += e.length;
-    if (e.length >= collapse_length && e.length <= split_length) ++inside;
-  }
-  mean = counted ? sum / double(counted) : 0.0;
-  in_range = counted ? double(inside) / double(counted) : 1.0;
-}
-
 void summarize_edge_lengths(const TetMesh& mesh, const std::vector<double>& metrics, double collapse_length,
                             double split_length, double& mean, double& in_range) {
   // collect_edges's buckets with 4 bytes per tet edge (its upper end, the top bit for "on a

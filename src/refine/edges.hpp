@@ -87,13 +87,10 @@ void mark_vetoed(EdgeList& edges, std::vector<uint64_t>& keys, double split_leng
 // Vertices used by a live tet.
 size_t live_vertex_count(const TetMesh& mesh);
 
-// Mean normalized length of the edges not on a protected facet, and the share of them in
-// [collapse_length, split_length] (1 when there are none).
-void length_summary(const EdgeList& edges, double collapse_length, double split_length, double& mean,
-                    double& in_range);
-// The same of every edge of the live tets (collect_edges's), without their list: in about a third
-// of the memory (the summary at the end of refinement). The mean may differ from length_summary's
-// in its last bits (the sum runs in chunks).
+// Mean normalized length of the live tets' edges not on a protected facet (collect_edges's), and
+// the share of them in [collapse_length, split_length] (1 when there are none); without their
+// list, in about a third of collect_edges's memory. The mean is summed in chunks of vertices, in
+// the same order on any number of threads.
 void summarize_edge_lengths(const TetMesh& mesh, const std::vector<double>& metrics, double collapse_length,
                             double split_length, double& mean, double& in_range);
 
