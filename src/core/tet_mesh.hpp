@@ -76,6 +76,15 @@ class TetMesh {
   // Live tets, ghosts included.
   size_t num_live_tets() const { return num_tet_slots() - free_tets.size(); }
 
+  // Room for `tets` tet slots in the four tet arrays at once: filled by new_tet one tet at a time,
+  // they would end with up to twice the capacity they need, copied as they grew.
+  void reserve_tets(size_t tets) {
+    tet_v.reserve(4 * tets);
+    tet_adj.reserve(4 * tets);
+    tet_flags.reserve(tets);
+    tet_region.reserve(tets);
+  }
+
   uint32_t add_vertex(const double p[3], uint8_t flags = 0);
   const double* point(uint32_t v) const { return &xyz[3 * size_t(v)]; }
 

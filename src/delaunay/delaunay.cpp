@@ -343,10 +343,7 @@ Result<DelaunayStats> delaunay_tetrahedralize(TetMesh& mesh, const double* xyz, 
   stats.num_points = n;
   mesh = TetMesh();
   const size_t expected_tets = (options.partitions > 1 ? 8 : 7) * n + 64;
-  mesh.tet_v.reserve(4 * expected_tets);
-  mesh.tet_adj.reserve(4 * expected_tets);
-  mesh.tet_flags.reserve(expected_tets);
-  mesh.tet_region.reserve(expected_tets);
+  mesh.reserve_tets(expected_tets);
   TetStorage store(mesh);
   CavityKernel kernel(options.seed);
   const Status st = insert_all(mesh, store, kernel, coords, order, round_begin, extent, options, stats);

@@ -127,15 +127,6 @@ void drop_unused_vertices(TetMesh& m, std::vector<uint64_t>& gid) {
   for (uint32_t& v : m.tet_v) v = to[v];
 }
 
-// Room for `tets` tet slots at once: a mesh filled by new_tet one tet at a time otherwise ends
-// with up to twice the capacity it needs, and copies its arrays as they grow.
-void reserve_tets(TetMesh& m, size_t tets) {
-  m.tet_v.reserve(4 * tets);
-  m.tet_adj.reserve(4 * tets);
-  m.tet_flags.reserve(tets);
-  m.tet_region.reserve(tets);
-}
-
 // A compact copy of the live tets of `m` for which keep(t) holds (no adjacency).
 template <class Keep>
 TetMesh compact_tets(const TetMesh& m, Keep keep) {
@@ -144,7 +135,7 @@ TetMesh compact_tets(const TetMesh& m, Keep keep) {
   c.vflags = m.vflags;
   size_t kept_count = 0;
   for (uint32_t t = 0; t < m.num_tet_slots(); ++t) kept_count += live(m, t) && keep(t) ? 1 : 0;
-  reserve_tets(c, kept_count);
+  c.reserve_tets(kept_count);
   for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
     if (!live(m, t) || !keep(t)) continue;
     const uint32_t n = c.new_tet(m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3), m.tet_region[t]);
@@ -386,7 +377,7 @@ Result<RankMesh> own_after_round(const MeshPart& part, const std::vector<uint64_
   std::sort(interface.begin(), interface.end());
   size_t own_tets = 0;
   for (uint32_t t = 0; t < m.num_tet_slots(); ++t) own_tets += live(m, t) && m.tet_region[t] >= 0 ? 1 : 0;
-  reserve_tets(rm.mesh, own_tets + kept_tets.num_live_tets());
+  rm.mesh.reserve_tets(own_tets + kept_tets.num_live_tets());
   for (uint32_t t = 0; t < m.num_tet_slots(); ++t) {
     if (!live(m, t) || m.tet_region[t] < 0) continue;
     const uint32_t n = rm.mesh.new_tet(m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3), m.tet_region[t]);

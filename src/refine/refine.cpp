@@ -346,10 +346,7 @@ void Refiner::reserve_for_refinement() {
   if (!(slots > double(mesh_.num_tet_slots()))) return;
   const auto n = static_cast<size_t>(slots);
   try {
-    mesh_.tet_v.reserve(4 * n);
-    mesh_.tet_adj.reserve(4 * n);
-    mesh_.tet_flags.reserve(n);
-    mesh_.tet_region.reserve(n);
+    mesh_.reserve_tets(n);
     mesh_.xyz.reserve(3 * (n / 5 + mesh_.num_vertices()));
     mesh_.vflags.reserve(n / 5 + mesh_.num_vertices());
   } catch (const std::bad_alloc&) {
