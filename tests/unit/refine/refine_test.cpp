@@ -293,6 +293,21 @@ TEST(Refine, KnightWithSurfaceSizing) {
   EXPECT_GT(r->length_in_range, 0.7);
 }
 
+// The unit cube's coupled mesh refined with `o` in `field` (every pass checked), its surface
+// kept; `before` is its vertex count before refinement. Callers return on a fatal failure.
+static void refine_cube(const SurfaceMesh& s, const SizingField& field, RefineOptions o, const char* label,
+                        TetMesh& mesh, size_t& before) {
+  Result<CoupledMesh> c = test::coupled_mesh(s);
+  ASSERT_TRUE(c.ok()) << c.status().message();
+  mesh = std::move(c->mesh);
+  before = mesh.num_vertices();
+  o.check_each_pass = true;
+  Result<RefineStats> r = refine_mesh(mesh, field, o);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  test::expect_surface_kept(s, mesh, label);
+  ASSERT_GT(mesh.num_vertices(), before);
+}
+
 TEST(Refine, KeepsNewPointsOffSurfaceTrianglesMuchLargerThanTheSize) {
   // The unit cube in 12 triangles (1.4 long), size 0.25: each split of an edge running along a
   // face used to halve its distance to the face again (points 1e-10 from it, flat tets). New
@@ -308,17 +323,12 @@ TEST(Refine, KeepsNewPointsOffSurfaceTrianglesMuchLargerThanTheSize) {
   };
   for (double clearance : {0.2, 0.0}) {
     SCOPED_TRACE(clearance);
-    Result<CoupledMesh> c = test::coupled_mesh(s);
-    ASSERT_TRUE(c.ok()) << c.status().message();
-    TetMesh mesh = std::move(c->mesh);
-    const size_t before = mesh.num_vertices();
     RefineOptions o;
     o.facet_clearance = clearance;
-    o.check_each_pass = true;
-    Result<RefineStats> r = refine_mesh(mesh, test::ConstantSizing(0.25), o);
-    ASSERT_TRUE(r.ok()) << r.status().message();
-    test::expect_surface_kept(s, mesh, "cube h=0.25");
-    ASSERT_GT(mesh.num_vertices(), before);
+    TetMesh mesh;
+    size_t before = 0;
+    refine_cube(s, test::ConstantSizing(0.25), o, "cube h=0.25", mesh, before);
+    if (HasFatalFailure()) return;
     const double d = nearest_to_surface(mesh, before);
     if (clearance > 0.0) EXPECT_GE(d, 0.2 * 0.25 * (1.0 - 1e-9));
     else EXPECT_LT(d, 0.1 * 0.25);  // without it, well inside the clearance
@@ -341,17 +351,12 @@ TEST(Refine, KeepsNewPointsHalfASizeOffCoarseSurfaceTrianglesInAnAnisotropicMetr
   };
   for (double clearance : {RefineOptions{}.anisotropic_facet_clearance, 0.2}) {
     SCOPED_TRACE(clearance);
-    Result<CoupledMesh> c = test::coupled_mesh(s);
-    ASSERT_TRUE(c.ok()) << c.status().message();
-    TetMesh mesh = std::move(c->mesh);
-    const size_t before = mesh.num_vertices();
     RefineOptions o;
     o.anisotropic_facet_clearance = clearance;
-    o.check_each_pass = true;
-    Result<RefineStats> r = refine_mesh(mesh, test::AxisSizing(h[0], h[1], h[2]), o);
-    ASSERT_TRUE(r.ok()) << r.status().message();
-    test::expect_surface_kept(s, mesh, "cube, anisotropic");
-    ASSERT_GT(mesh.num_vertices(), before);
+    TetMesh mesh;
+    size_t before = 0;
+    refine_cube(s, test::AxisSizing(h[0], h[1], h[2]), o, "cube, anisotropic", mesh, before);
+    if (HasFatalFailure()) return;
     const double d = nearest_in_metric(mesh, before);
     std::printf("anisotropic_facet_clearance %.2f: %zu points, the nearest %.3f from S in the metric\n", clearance,
                 mesh.num_vertices() - before, d);
