@@ -96,6 +96,10 @@ class Optimizer {
     // whose edge to it was in [1/sqrt2, sqrt2] in the metric when the ball was measured; a move
     // may not take one of these edges out of range.
     std::vector<uint32_t> in_range;
+    std::vector<uint32_t> seen;  // per vertex: the last measure_ball() call that listed it
+    uint32_t seen_mark = 0;
+    // try_move(): the indices in in_range and in ball of the tests that last refused a trial.
+    size_t range_first = 0, quality_first = 0;
     double old_min = 1.0;
     size_t target = SIZE_MAX;   // perturbation: the index in `ball` of the tet to open (SIZE_MAX: none)
     double target_floor = 0.0;  // and the floor of the other tets when only it gains
@@ -232,15 +236,24 @@ void Optimizer::measure_ball(Work& w, uint32_t v) {
   }
   w.in_range.clear();
   if (quality_.anisotropic() && options_.keep_lengths_in_range) {
-    // The neighbours once each (a neighbour is in several ball tets), then the edges measured.
+    // The neighbours once each (a neighbour is in several ball tets; marked by this call's
+    // number, which a sort of the list took a tenth of the sliver stage to do), then the edges
+    // measured.
+    if (w.seen.size() < mesh_.num_vertices()) w.seen.resize(mesh_.num_vertices(), 0);
+    if (++w.seen_mark == 0) {
+      std::fill(w.seen.begin(), w.seen.end(), 0);
+      w.seen_mark = 1;
+    }
+    w.seen[v] = w.seen_mark;
     for (uint32_t t : w.ball)
-      for (int i = 0; i < 4; ++i) w.in_range.push_back(mesh_.vertex(t, i));
-    std::sort(w.in_range.begin(), w.in_range.end());
-    w.in_range.erase(std::unique(w.in_range.begin(), w.in_range.end()), w.in_range.end());
-    w.in_range.erase(std::remove_if(w.in_range.begin(), w.in_range.end(),
-                                    [&](uint32_t u) { return u == v || !edge_in_range(v, u); }),
-                     w.in_range.end());
+      for (int i = 0; i < 4; ++i) {
+        const uint32_t u = mesh_.vertex(t, i);
+        if (w.seen[u] == w.seen_mark) continue;
+        w.seen[u] = w.seen_mark;
+        if (edge_in_range(v, u)) w.in_range.push_back(u);
+      }
   }
+  w.range_first = w.quality_first = 0;
   w.old_min = 1.0;
   for (size_t k = 0; k < w.ball.size(); ++k) {
     w.old_q[k] = tet_q_.empty() ? ball_tet_quality(w, k) : tet_q_[w.ball[k]];
@@ -256,13 +269,31 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
   std::copy_n(p, 3, x);
   double q_min = 1.0;
   bool ok = true;
+  // Every test must pass, so their order changes no verdict, only how soon a trial is refused:
+  // the edge lengths first (far cheaper than a tet's quality, and they refuse most trials whose
+  // qualities pass), and in both lists the test that refused the trial before first (the next
+  // trial of a climb is most often refused by it again).
+  if (!w.in_range.empty()) {
+    ok = edge_in_range(v, w.in_range[w.range_first]);
+    for (size_t k = 0; k < w.in_range.size() && ok; ++k)
+      if (k != w.range_first && !edge_in_range(v, w.in_range[k])) {
+        ok = false;
+        w.range_first = k;
+      }
+  }
   w.new_q.resize(w.ball.size());
-  for (size_t k = 0; k < w.ball.size() && ok; ++k) {
+  auto passes = [&](size_t k) {
     const double q = ball_tet_quality(w, k);
     w.new_q[k] = q;
     q_min = std::min(q_min, q);
-    ok = q > 0.0 && q >= std::min(w.old_q[k], floor);
-  }
+    return q > 0.0 && q >= std::min(w.old_q[k], floor);
+  };
+  if (ok) ok = passes(w.quality_first);
+  for (size_t k = 0; k < w.ball.size() && ok; ++k)
+    if (k != w.quality_first && !passes(k)) {
+      ok = false;
+      w.quality_first = k;
+    }
   // quality_out asks for a strict gain (perturbation): of the ball's worst tet, or of the target
   // while no tet falls below min(its quality, target_floor). The worst alone would not do: a
   // vertex of S1 holds tets on S's sliver triangles, whose quality no move raises much, and the
@@ -277,7 +308,6 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
     }
     ok = gain;
   }
-  for (size_t k = 0; k < w.in_range.size() && ok; ++k) ok = edge_in_range(v, w.in_range[k]);
   if (ok && meshops::all_positive(mesh_, w.ball)) {
     if (!tet_q_.empty())
       for (size_t k = 0; k < w.ball.size(); ++k) tet_q_[w.ball[k]] = w.new_q[k];
