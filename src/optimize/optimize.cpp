@@ -508,8 +508,13 @@ bool Optimizer::try_collapse(uint32_t v, uint32_t w, bool to_midpoint) {
   std::vector<uint32_t>& old = work_.ball;
   if (!meshops::collapse_tets(mesh_, vt_, v, tv, w, to_midpoint, old, collapse_fresh_, collapse_ball_w_))
     return false;
+  // (The flip memo's measures where they still hold: the same figures. A bad tet's edges try
+  // up to three collapses each, on the same balls.)
   double old_min = 1.0;
-  for (uint32_t t : old) old_min = std::min(old_min, quality_.tet(mesh_, t));
+  const optimize_detail::FlipMemo& memo = flips_.memo;
+  for (uint32_t t : old)
+    old_min = std::min(old_min, memo.knows_quality(t, &mesh_.tet_v[4 * size_t(t)]) ? memo.quality_of[t]
+                                                                                      : quality_.tet(mesh_, t));
   double* xw = &mesh_.xyz[3 * size_t(w)];
   const double saved[3] = {xw[0], xw[1], xw[2]};
   if (to_midpoint)
@@ -526,23 +531,21 @@ bool Optimizer::try_collapse(uint32_t v, uint32_t w, bool to_midpoint) {
       longest2 = std::max(longest2, (pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
                                         (pa[2] - pb[2]) * (pa[2] - pb[2]));
     }
+  // Both tests must pass for every new tet: the lengths (cheap) first, then the qualities.
   bool ok = true;
-  double new_min = 1.0;
   const double hw = size_at(w);
-  for (const meshops::TetVerts& f : collapse_fresh_) {
-    new_min = std::min(new_min, quality_.of(mesh_, f.data()));
-    if (!(new_min > old_min + 1e-9)) {
-      ok = false;
-      break;
-    }
-    for (uint32_t x : f) {
+  for (size_t i = 0; i < collapse_fresh_.size() && ok; ++i)
+    for (uint32_t x : collapse_fresh_[i]) {
       if (x == w) continue;
       const double* px = mesh_.point(x);
       const double d2 = (px[0] - xw[0]) * (px[0] - xw[0]) + (px[1] - xw[1]) * (px[1] - xw[1]) +
                         (px[2] - xw[2]) * (px[2] - xw[2]);
       if (d2 > longest2 && d2 > kCollapseMaxLength * kCollapseMaxLength * hw * size_at(x)) ok = false;
     }
-    if (!ok) break;
+  double new_min = 1.0;
+  for (size_t i = 0; i < collapse_fresh_.size() && ok; ++i) {
+    new_min = std::min(new_min, quality_.of(mesh_, collapse_fresh_[i].data()));
+    ok = new_min > old_min + 1e-9;
   }
   if (ok) ok = meshops::replace_tets(mesh_, old, collapse_fresh_, vt_, flips_.scratch);
   if (!ok) {
