@@ -69,6 +69,11 @@ class Optimizer {
     meshops::vertex_ball(mesh_, v, t, touch_scratch_);
     touch_tets(touch_scratch_);
   }
+  // t's quality: the flip memo's measure when it still holds (the same figure), else measured.
+  double known_quality(uint32_t t) const {
+    const optimize_detail::FlipMemo& memo = flips_.memo;
+    return memo.knows_quality(t, &mesh_.tet_v[4 * size_t(t)]) ? memo.quality_of[t] : quality_.tet(mesh_, t);
+  }
   double size_at(uint32_t v) {
     if (sizes_.size() < mesh_.num_vertices()) sizes_.resize(mesh_.num_vertices(), -1.0);
     if (sizes_[v] < 0.0) {
@@ -255,8 +260,13 @@ void Optimizer::measure_ball(Work& w, uint32_t v) {
   }
   w.range_first = w.quality_first = 0;
   w.old_min = 1.0;
+  // (Outside the CVT pass, the flip memo's measures where they still hold: the same figures.)
+  const optimize_detail::FlipMemo& memo = flips_.memo;
   for (size_t k = 0; k < w.ball.size(); ++k) {
-    w.old_q[k] = tet_q_.empty() ? ball_tet_quality(w, k) : tet_q_[w.ball[k]];
+    const uint32_t t = w.ball[k];
+    if (!tet_q_.empty()) w.old_q[k] = tet_q_[t];
+    else if (memo.knows_quality(t, &mesh_.tet_v[4 * size_t(t)])) w.old_q[k] = memo.quality_of[t];
+    else w.old_q[k] = ball_tet_quality(w, k);
     w.old_min = std::min(w.old_min, w.old_q[k]);
   }
 }
@@ -477,7 +487,7 @@ size_t Optimizer::collapse_pass() {
   const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, cq, quality_, &flips_.memo);
   size_t done = 0;
   for (uint32_t t : bad) {
-    if (mesh_.is_deleted(t) || fixed_tet(t) || quality_.tet(mesh_, t) >= cq) continue;
+    if (mesh_.is_deleted(t) || fixed_tet(t) || known_quality(t) >= cq) continue;
     // Its edges, shortest first; the removed end must be free (a vertex of S never moves).
     std::array<std::pair<double, int>, 6> edges;
     for (int k = 0; k < 6; ++k) {
@@ -508,13 +518,9 @@ bool Optimizer::try_collapse(uint32_t v, uint32_t w, bool to_midpoint) {
   std::vector<uint32_t>& old = work_.ball;
   if (!meshops::collapse_tets(mesh_, vt_, v, tv, w, to_midpoint, old, collapse_fresh_, collapse_ball_w_))
     return false;
-  // (The flip memo's measures where they still hold: the same figures. A bad tet's edges try
-  // up to three collapses each, on the same balls.)
+  // (A bad tet's edges try up to three collapses each, on the same balls.)
   double old_min = 1.0;
-  const optimize_detail::FlipMemo& memo = flips_.memo;
-  for (uint32_t t : old)
-    old_min = std::min(old_min, memo.knows_quality(t, &mesh_.tet_v[4 * size_t(t)]) ? memo.quality_of[t]
-                                                                                      : quality_.tet(mesh_, t));
+  for (uint32_t t : old) old_min = std::min(old_min, known_quality(t));
   double* xw = &mesh_.xyz[3 * size_t(w)];
   const double saved[3] = {xw[0], xw[1], xw[2]};
   if (to_midpoint)
@@ -573,7 +579,7 @@ size_t Optimizer::perturb_pass(const std::vector<uint8_t>* near, size_t bad_limi
       if (!close) continue;
     }
     for (int i = 0; i < 4; ++i) {
-      if (mesh_.is_deleted(t) || quality_.tet(mesh_, t) >= options_.sliver_quality) break;
+      if (mesh_.is_deleted(t) || known_quality(t) >= options_.sliver_quality) break;
       moved += perturb_vertex(t, i, options_.perturb_trials, 4);
     }
   }
@@ -633,7 +639,7 @@ size_t Optimizer::rescue_pass(const std::vector<uint8_t>* near, std::vector<uint
       interior &= !(mesh_.vflags[mesh_.vertex(t, i)] & vflag::kOnInputSurface);
       close |= near && (*near)[mesh_.vertex(t, i)] != 0;
     }
-    for (int i = 0; interior && close && i < 4 && !mesh_.is_deleted(t) && quality_.tet(mesh_, t) < kRescueQuality;
+    for (int i = 0; interior && close && i < 4 && !mesh_.is_deleted(t) && known_quality(t) < kRescueQuality;
          ++i) {
       const bool mv = perturb_vertex(t, i, 8 * options_.perturb_trials, 10, !quality_.anisotropic(), true);
       moved += mv;
