@@ -581,6 +581,9 @@ size_t Refiner::metric_flip_pass() {
       if (mesh_.is_deleted(t) || mesh_.is_ghost(t) || not_poor_[t]) continue;
       poor_at_start[t] = failed_unchanged(t) ? 2 : poor(t) ? 1 : 0;
       not_poor_[t] = poor_at_start[t] == 0;
+      // Unchanged since its failure: it would fail now, so its failure dates from now (fewer
+      // vertices are newer than that, and fewer rings walked at the next look).
+      if (poor_at_start[t] == 2) flip_failed_at_[t] = epoch_;
     }
   });
   auto note_refilled = [&] {
@@ -592,7 +595,14 @@ size_t Refiner::metric_flip_pass() {
     if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
     // 2: skipped at the start as failed and unchanged, which the flips before t may have changed.
     const bool measured = t < n_start && !refilled[t] && poor_at_start[t] != 2;
-    if (!(measured ? poor_at_start[t] == 1 : !failed_unchanged(t) && poor(t))) continue;
+    if (measured) {
+      if (poor_at_start[t] != 1) continue;
+    } else if (failed_unchanged(t)) {
+      flip_failed_at_[t] = epoch_;  // (as above)
+      continue;
+    } else if (!poor(t)) {
+      continue;
+    }
     const meshops::TetVerts tv = tet_verts(t);
     bool flipped = false;
     // 2-3 across facet i: the new tets are t with one facet vertex replaced by the apex b of n.
