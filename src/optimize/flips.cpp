@@ -64,7 +64,7 @@ bool try_flip23(FlipContext& c, uint32_t t, int i) {
   if (guard_lengths(c) && out_of_range(c, d, e)) return false;
   const uint32_t f[3] = {m.vertex(t, kFacetVertex[i][0]), m.vertex(t, kFacetVertex[i][1]),
                          m.vertex(t, kFacetVertex[i][2])};
-  const double before = std::min(c.tet(t), c.tet(n));
+  const double before = std::min(c.known_tet(t), c.known_tet(n));
   double after = 1.0;
   c.fresh.clear();
   for (int k = 0; k < 3; ++k) {
@@ -97,7 +97,7 @@ bool try_remove_edge(FlipContext& c, uint32_t t, int k) {
       return false;
     }
   double before = 1.0;
-  for (uint32_t s : c.ring_tets) before = std::min(before, c.tet(s));
+  for (uint32_t s : c.ring_tets) before = std::min(before, c.known_tet(s));
   // Orient the ring so that (r_i r_j r_k a) and (r_j r_i r_k b) are positive for i < j < k.
   if (predicates::orient3d(m.point(a), m.point(b), m.point(c.ring[0]), m.point(c.ring[1])) > 0)
     std::reverse(c.ring.begin(), c.ring.end());
@@ -223,7 +223,7 @@ size_t flip_round(FlipContext& c, double quality, const std::vector<uint32_t>& b
     // t is measured once: a flip that fails leaves it as it was, one that succeeds ends its turn.
     if (m.is_deleted(t)) continue;
     const uint32_t* v = &m.tet_v[4 * size_t(t)];
-    if ((memo.still_fails(t, v) && !touched_now(v)) || c.tet(t) >= quality) continue;
+    if ((memo.still_fails(t, v) && !touched_now(v)) || c.known_tet(t) >= quality) continue;
     c.foreign = false;
     bool done = false;
     for (int k = 0; k < 6 && !done && !m.is_deleted(t); ++k) done = try_remove_edge(c, t, k);

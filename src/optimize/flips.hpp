@@ -157,6 +157,15 @@ struct FlipContext {
       for (uint32_t x : f) record(2 * uint64_t(x));
   }
   double tet(uint32_t t) const { return quality->tet(mesh, t); }
+  // The same, from the memo's measure when it still holds (the flips' tets are mostly ones
+  // tets_below() measured, and each measure in the metric takes a mean and a Cholesky factor).
+  double known_tet(uint32_t t) const {
+    const FlipMemo& m = memo_source ? *memo_source : memo;
+    const uint32_t* v = &mesh.tet_v[4 * size_t(t)];
+    const bool touched =
+        phase_touched && (phase_touched[v[0]] | phase_touched[v[1]] | phase_touched[v[2]] | phase_touched[v[3]]);
+    return m.knows_quality(t, v) && !touched ? m.quality_of[t] : tet(t);
+  }
   double of(const uint32_t v[4]) const { return quality->of(mesh, v); }
 };
 

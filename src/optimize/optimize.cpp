@@ -69,6 +69,11 @@ class Optimizer {
     meshops::vertex_ball(mesh_, v, t, touch_scratch_);
     touch_tets(touch_scratch_);
   }
+  // t's quality: the flip memo's measure when it still holds (the same figure), else measured.
+  double known_quality(uint32_t t) const {
+    const optimize_detail::FlipMemo& memo = flips_.memo;
+    return memo.knows_quality(t, &mesh_.tet_v[4 * size_t(t)]) ? memo.quality_of[t] : quality_.tet(mesh_, t);
+  }
   double size_at(uint32_t v) {
     if (sizes_.size() < mesh_.num_vertices()) sizes_.resize(mesh_.num_vertices(), -1.0);
     if (sizes_[v] < 0.0) {
@@ -96,6 +101,10 @@ class Optimizer {
     // whose edge to it was in [1/sqrt2, sqrt2] in the metric when the ball was measured; a move
     // may not take one of these edges out of range.
     std::vector<uint32_t> in_range;
+    std::vector<uint32_t> seen;  // per vertex: the last measure_ball() call that listed it
+    uint32_t seen_mark = 0;
+    // try_move(): the indices in in_range and in ball of the tests that last refused a trial.
+    size_t range_first = 0, quality_first = 0;
     double old_min = 1.0;
     size_t target = SIZE_MAX;   // perturbation: the index in `ball` of the tet to open (SIZE_MAX: none)
     double target_floor = 0.0;  // and the floor of the other tets when only it gains
@@ -232,18 +241,32 @@ void Optimizer::measure_ball(Work& w, uint32_t v) {
   }
   w.in_range.clear();
   if (quality_.anisotropic() && options_.keep_lengths_in_range) {
-    // The neighbours once each (a neighbour is in several ball tets), then the edges measured.
+    // The neighbours once each (a neighbour is in several ball tets; marked by this call's
+    // number, which a sort of the list took a tenth of the sliver stage to do), then the edges
+    // measured.
+    if (w.seen.size() < mesh_.num_vertices()) w.seen.resize(mesh_.num_vertices(), 0);
+    if (++w.seen_mark == 0) {
+      std::fill(w.seen.begin(), w.seen.end(), 0);
+      w.seen_mark = 1;
+    }
+    w.seen[v] = w.seen_mark;
     for (uint32_t t : w.ball)
-      for (int i = 0; i < 4; ++i) w.in_range.push_back(mesh_.vertex(t, i));
-    std::sort(w.in_range.begin(), w.in_range.end());
-    w.in_range.erase(std::unique(w.in_range.begin(), w.in_range.end()), w.in_range.end());
-    w.in_range.erase(std::remove_if(w.in_range.begin(), w.in_range.end(),
-                                    [&](uint32_t u) { return u == v || !edge_in_range(v, u); }),
-                     w.in_range.end());
+      for (int i = 0; i < 4; ++i) {
+        const uint32_t u = mesh_.vertex(t, i);
+        if (w.seen[u] == w.seen_mark) continue;
+        w.seen[u] = w.seen_mark;
+        if (edge_in_range(v, u)) w.in_range.push_back(u);
+      }
   }
+  w.range_first = w.quality_first = 0;
   w.old_min = 1.0;
+  // (Outside the CVT pass, the flip memo's measures where they still hold: the same figures.)
+  const optimize_detail::FlipMemo& memo = flips_.memo;
   for (size_t k = 0; k < w.ball.size(); ++k) {
-    w.old_q[k] = tet_q_.empty() ? ball_tet_quality(w, k) : tet_q_[w.ball[k]];
+    const uint32_t t = w.ball[k];
+    if (!tet_q_.empty()) w.old_q[k] = tet_q_[t];
+    else if (memo.knows_quality(t, &mesh_.tet_v[4 * size_t(t)])) w.old_q[k] = memo.quality_of[t];
+    else w.old_q[k] = ball_tet_quality(w, k);
     w.old_min = std::min(w.old_min, w.old_q[k]);
   }
 }
@@ -256,13 +279,31 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
   std::copy_n(p, 3, x);
   double q_min = 1.0;
   bool ok = true;
+  // Every test must pass, so their order changes no verdict, only how soon a trial is refused:
+  // the edge lengths first (far cheaper than a tet's quality, and they refuse most trials whose
+  // qualities pass), and in both lists the test that refused the trial before first (the next
+  // trial of a climb is most often refused by it again).
+  if (!w.in_range.empty()) {
+    ok = edge_in_range(v, w.in_range[w.range_first]);
+    for (size_t k = 0; k < w.in_range.size() && ok; ++k)
+      if (k != w.range_first && !edge_in_range(v, w.in_range[k])) {
+        ok = false;
+        w.range_first = k;
+      }
+  }
   w.new_q.resize(w.ball.size());
-  for (size_t k = 0; k < w.ball.size() && ok; ++k) {
+  auto passes = [&](size_t k) {
     const double q = ball_tet_quality(w, k);
     w.new_q[k] = q;
     q_min = std::min(q_min, q);
-    ok = q > 0.0 && q >= std::min(w.old_q[k], floor);
-  }
+    return q > 0.0 && q >= std::min(w.old_q[k], floor);
+  };
+  if (ok) ok = passes(w.quality_first);
+  for (size_t k = 0; k < w.ball.size() && ok; ++k)
+    if (k != w.quality_first && !passes(k)) {
+      ok = false;
+      w.quality_first = k;
+    }
   // quality_out asks for a strict gain (perturbation): of the ball's worst tet, or of the target
   // while no tet falls below min(its quality, target_floor). The worst alone would not do: a
   // vertex of S1 holds tets on S's sliver triangles, whose quality no move raises much, and the
@@ -277,7 +318,6 @@ bool Optimizer::try_move(Work& w, uint32_t v, const double p[3], double floor, d
     }
     ok = gain;
   }
-  for (size_t k = 0; k < w.in_range.size() && ok; ++k) ok = edge_in_range(v, w.in_range[k]);
   if (ok && meshops::all_positive(mesh_, w.ball)) {
     if (!tet_q_.empty())
       for (size_t k = 0; k < w.ball.size(); ++k) tet_q_[w.ball[k]] = w.new_q[k];
@@ -447,7 +487,7 @@ size_t Optimizer::collapse_pass() {
   const std::vector<uint32_t> bad = optimize_detail::tets_below(mesh_, cq, quality_, &flips_.memo);
   size_t done = 0;
   for (uint32_t t : bad) {
-    if (mesh_.is_deleted(t) || fixed_tet(t) || quality_.tet(mesh_, t) >= cq) continue;
+    if (mesh_.is_deleted(t) || fixed_tet(t) || known_quality(t) >= cq) continue;
     // Its edges, shortest first; the removed end must be free (a vertex of S never moves).
     std::array<std::pair<double, int>, 6> edges;
     for (int k = 0; k < 6; ++k) {
@@ -478,8 +518,9 @@ bool Optimizer::try_collapse(uint32_t v, uint32_t w, bool to_midpoint) {
   std::vector<uint32_t>& old = work_.ball;
   if (!meshops::collapse_tets(mesh_, vt_, v, tv, w, to_midpoint, old, collapse_fresh_, collapse_ball_w_))
     return false;
+  // (A bad tet's edges try up to three collapses each, on the same balls.)
   double old_min = 1.0;
-  for (uint32_t t : old) old_min = std::min(old_min, quality_.tet(mesh_, t));
+  for (uint32_t t : old) old_min = std::min(old_min, known_quality(t));
   double* xw = &mesh_.xyz[3 * size_t(w)];
   const double saved[3] = {xw[0], xw[1], xw[2]};
   if (to_midpoint)
@@ -496,23 +537,21 @@ bool Optimizer::try_collapse(uint32_t v, uint32_t w, bool to_midpoint) {
       longest2 = std::max(longest2, (pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
                                         (pa[2] - pb[2]) * (pa[2] - pb[2]));
     }
+  // Both tests must pass for every new tet: the lengths (cheap) first, then the qualities.
   bool ok = true;
-  double new_min = 1.0;
   const double hw = size_at(w);
-  for (const meshops::TetVerts& f : collapse_fresh_) {
-    new_min = std::min(new_min, quality_.of(mesh_, f.data()));
-    if (!(new_min > old_min + 1e-9)) {
-      ok = false;
-      break;
-    }
-    for (uint32_t x : f) {
+  for (size_t i = 0; i < collapse_fresh_.size() && ok; ++i)
+    for (uint32_t x : collapse_fresh_[i]) {
       if (x == w) continue;
       const double* px = mesh_.point(x);
       const double d2 = (px[0] - xw[0]) * (px[0] - xw[0]) + (px[1] - xw[1]) * (px[1] - xw[1]) +
                         (px[2] - xw[2]) * (px[2] - xw[2]);
       if (d2 > longest2 && d2 > kCollapseMaxLength * kCollapseMaxLength * hw * size_at(x)) ok = false;
     }
-    if (!ok) break;
+  double new_min = 1.0;
+  for (size_t i = 0; i < collapse_fresh_.size() && ok; ++i) {
+    new_min = std::min(new_min, quality_.of(mesh_, collapse_fresh_[i].data()));
+    ok = new_min > old_min + 1e-9;
   }
   if (ok) ok = meshops::replace_tets(mesh_, old, collapse_fresh_, vt_, flips_.scratch);
   if (!ok) {
@@ -540,7 +579,7 @@ size_t Optimizer::perturb_pass(const std::vector<uint8_t>* near, size_t bad_limi
       if (!close) continue;
     }
     for (int i = 0; i < 4; ++i) {
-      if (mesh_.is_deleted(t) || quality_.tet(mesh_, t) >= options_.sliver_quality) break;
+      if (mesh_.is_deleted(t) || known_quality(t) >= options_.sliver_quality) break;
       moved += perturb_vertex(t, i, options_.perturb_trials, 4);
     }
   }
@@ -600,7 +639,7 @@ size_t Optimizer::rescue_pass(const std::vector<uint8_t>* near, std::vector<uint
       interior &= !(mesh_.vflags[mesh_.vertex(t, i)] & vflag::kOnInputSurface);
       close |= near && (*near)[mesh_.vertex(t, i)] != 0;
     }
-    for (int i = 0; interior && close && i < 4 && !mesh_.is_deleted(t) && quality_.tet(mesh_, t) < kRescueQuality;
+    for (int i = 0; interior && close && i < 4 && !mesh_.is_deleted(t) && known_quality(t) < kRescueQuality;
          ++i) {
       const bool mv = perturb_vertex(t, i, 8 * options_.perturb_trials, 10, !quality_.anisotropic(), true);
       moved += mv;

@@ -244,12 +244,17 @@ class Refiner {
     return true;
   }
   // Change stamps for the metric flips: epoch_ grows with every change of the tets, a vertex
-  // keeps the epoch of the last change of its tets, and a tet slot the epoch at which no flip
-  // took it or it was found not poor (0: none since it was made). A tet none of whose vertices'
-  // tets changed since then has the same shape, neighbours and edge rings, so it is as good as
-  // it was or the same flips would fail again: it is skipped.
+  // keeps the epoch of the last change of its tets, a tet slot the epoch at which it was made
+  // and the one at which no flip took it (0: none since it was made). Refinement moves no point
+  // without remaking its tets, so a tet found not poor stays so while its slot lives. A flip of a
+  // tet reads only the tets around its edges (its facets' neighbours among them), and a change
+  // that replaces one of those while keeping the tet makes a tet on that edge: when none of them
+  // was made since the failure, the same flips would fail again, and the tet is skipped. (After
+  // a pass's splits and flips most failed tets have a vertex whose tets changed: the vertices'
+  // epochs name the edges that may have new tets, and only their rings are walked.)
   uint32_t epoch_ = 1;
-  std::vector<uint32_t> vertex_epoch_, flip_failed_at_;
+  std::vector<uint32_t> vertex_epoch_, flip_failed_at_, made_at_;
+  std::vector<uint8_t> not_poor_;  // per tet slot: measured not poor (0: not since it was made)
   // After a point's insertion: its tets become its vertices' (vt_), their vertices are touched
   // (no collapse this pass) and changed (the metric flips' memo).
   void note_created(const std::vector<uint32_t>& created) {
@@ -264,23 +269,34 @@ class Refiner {
     ++epoch_;
     if (vertex_epoch_.size() < mesh_.num_vertices()) vertex_epoch_.resize(mesh_.num_vertices(), 0);
     if (changed_.size() < mesh_.num_tet_slots()) changed_.resize(mesh_.num_tet_slots(), 0);
+    if (made_at_.size() < mesh_.num_tet_slots()) made_at_.resize(mesh_.num_tet_slots(), 0);
     for (uint32_t t : created) {
       for (int i = 0; i < 4; ++i) vertex_epoch_[mesh_.vertex(t, i)] = epoch_;
       if (t < flip_failed_at_.size()) flip_failed_at_[t] = 0;
+      if (t < not_poor_.size()) not_poor_[t] = 0;
+      made_at_[t] = epoch_;
       changed_[t] = 1;
     }
   }
   // Per tet slot: made since the pass's edge list was built (the next list measures only the
   // edges around these again: refine_detail::update_edges).
   std::vector<uint8_t> changed_;
+  // A tet made on edge ab stamps both a and b: an edge of t with an end unchanged since t's
+  // failure has no new tet around it; the others' rings are looked at.
   bool failed_unchanged(uint32_t t) const {
     if (t >= flip_failed_at_.size() || flip_failed_at_[t] == 0) return false;
+    unsigned newer = 0;
     for (int i = 0; i < 4; ++i) {
       const uint32_t v = mesh_.vertex(t, i);
-      if (v < vertex_epoch_.size() && vertex_epoch_[v] > flip_failed_at_[t]) return false;
+      if (v < vertex_epoch_.size() && vertex_epoch_[v] > flip_failed_at_[t]) newer |= 1u << i;
     }
+    for (int k = 0; k < 6; ++k)
+      if ((newer >> kEdgeVertex[k][0] & 1u) && (newer >> kEdgeVertex[k][1] & 1u) && !edge_ring_unchanged(t, k))
+        return false;
     return true;
   }
+  // No tet around edge k of t was made after t's failure (see epoch_).
+  bool edge_ring_unchanged(uint32_t t, int k) const;
   std::vector<uint32_t> old_, ring_tets_, ring_;
   // One split pass's candidate midpoints (one per long edge, in length order), and the chosen
   // ones with their edges (one record to read per insertion). split_pass keeps them in locals,
@@ -502,6 +518,34 @@ meshops::MetricMap Refiner::map_of_vertices(const uint32_t* v, size_t n) const {
   return meshops::MetricMap::of(m);
 }
 
+bool Refiner::edge_ring_unchanged(uint32_t t, int k) const {
+  const uint32_t since = flip_failed_at_[t];
+  const uint32_t a = mesh_.vertex(t, kEdgeVertex[k][0]), b = mesh_.vertex(t, kEdgeVertex[k][1]);
+  // Around ab from t one way, and when the ring is open (a facet without neighbour), the other
+  // way too: across the facets of ab opposite each of t's two other vertices in turn.
+  for (int side = 0; side < 2; ++side) {
+    uint32_t s = t, x = mesh_.vertex(t, kEdgeVertex[5 - k][side]);
+    for (int steps = 0; steps < 64; ++steps) {
+      int ix = 0;
+      while (mesh_.vertex(s, ix) != x) ++ix;
+      if (mesh_.tet_adj[4 * size_t(s) + ix] == TetMesh::kNoNeighbour) break;
+      const uint32_t n = mesh_.neighbour(s, ix);
+      if (n == t) return true;
+      if (n < made_at_.size() && made_at_[n] > since) return false;
+      // Next, n is left across its other facet of ab (not the one just crossed, opposite its
+      // new vertex).
+      const int back = mesh_.neighbour_facet(s, ix);
+      for (int i = 0; i < 4; ++i) {
+        const uint32_t w = mesh_.vertex(n, i);
+        if (w != a && w != b && i != back) x = w;
+      }
+      s = n;
+      if (steps == 63) return false;  // (not expected: a ring of 64 tets)
+    }
+  }
+  return true;
+}
+
 // Anisotropic metrics: flips that raise the worst shape in the metric (measured in the mean of
 // the flipped region's vertices' metrics), around the tets below metric_flip_quality: 2-3 across a
 // facet, 3-2 removing an edge of three tets. The Euclidean flips of optimize/ would undo the
@@ -527,12 +571,16 @@ size_t Refiner::metric_flip_pass() {
   const uint32_t n_start = mesh_.num_tet_slots();
   std::vector<uint8_t> poor_at_start(n_start, 0), refilled(n_start, 0);
   flip_failed_at_.resize(n_start, 0);
-  // A tet found not poor is stamped as a failed one is: it stays not poor, and is skipped, until a
-  // change around its vertices (most tets, measured again at every sweep of every pass before).
+  not_poor_.resize(n_start, 0);
+  // A tet found not poor is marked so, and not measured again while its slot lives (see epoch_).
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_start, 1024), [&](const tbb::blocked_range<uint32_t>& r) {
     for (uint32_t t = r.begin(); t < r.end(); ++t) {
-      poor_at_start[t] = mesh_.is_deleted(t) || mesh_.is_ghost(t) ? 0 : failed_unchanged(t) ? 2 : poor(t) ? 1 : 0;
-      if (poor_at_start[t] == 0 && !mesh_.is_deleted(t) && !mesh_.is_ghost(t)) flip_failed_at_[t] = epoch_;
+      if (mesh_.is_deleted(t) || mesh_.is_ghost(t) || not_poor_[t]) continue;
+      poor_at_start[t] = failed_unchanged(t) ? 2 : poor(t) ? 1 : 0;
+      not_poor_[t] = poor_at_start[t] == 0;
+      // Unchanged since its failure: it would fail now, so its failure dates from now (fewer
+      // vertices are newer than that, and fewer rings walked at the next look).
+      if (poor_at_start[t] == 2) flip_failed_at_[t] = epoch_;
     }
   });
   auto note_refilled = [&] {
@@ -544,7 +592,14 @@ size_t Refiner::metric_flip_pass() {
     if (mesh_.is_deleted(t) || mesh_.is_ghost(t)) continue;
     // 2: skipped at the start as failed and unchanged, which the flips before t may have changed.
     const bool measured = t < n_start && !refilled[t] && poor_at_start[t] != 2;
-    if (!(measured ? poor_at_start[t] == 1 : !failed_unchanged(t) && poor(t))) continue;
+    if (measured) {
+      if (poor_at_start[t] != 1) continue;
+    } else if (failed_unchanged(t)) {
+      flip_failed_at_[t] = epoch_;  // (as above)
+      continue;
+    } else if (!poor(t)) {
+      continue;
+    }
     const meshops::TetVerts tv = tet_verts(t);
     bool flipped = false;
     // 2-3 across facet i: the new tets are t with one facet vertex replaced by the apex b of n.
@@ -560,7 +615,8 @@ size_t Refiner::metric_flip_pass() {
       const double before = std::min(metric_quality(map, tv), metric_quality(map, nv));
       fresh.clear();
       double after = 1.0;
-      for (int j = 0; j < 4; ++j) {
+      // (after only falls: the first new tet that brings it to before + 1e-3 decides)
+      for (int j = 0; j < 4 && after > before + 1e-3; ++j) {
         if (j == i) continue;
         meshops::TetVerts f = tv;
         f[j] = b;
