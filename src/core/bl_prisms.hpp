@@ -22,9 +22,9 @@ struct PrismMergeStats {
   // a pyramid (the other BL tets form neither: a partial push, a tet alone where two of a
   // triangle's three columns stopped); of those cells, kept as tets because a quad lies on
   // triangles of another cell (beside_other_cells: a tet, or a pyramid's side where a column
-  // stopped in one layer and went on in the next, when the cells of the triangles around it do
-  // not split those layers alike), or on a cell kept as tets (beside_kept: spreads through the
-  // layer). Without pyramids, every column that stops in a layer keeps its layer as tets.
+  // stalled behind its neighbours and went on later, so that the cells around it cannot all
+  // meet quad to quad), or on a cell kept as tets (beside_kept: spreads through the layer).
+  // Without pyramids, every column that stops in a layer keeps its layer as tets.
   size_t exact_prisms = 0;
   size_t exact_pyramids = 0;
   size_t beside_other_cells = 0;
