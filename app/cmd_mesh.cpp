@@ -563,16 +563,19 @@ class MeshCommand {
     return not_written_.empty() ? kExitOk : kExitReadError;
   }
 
-  // --bl-cells prisms: the prisms written and why the other BL tets are left as tets.
+  // --bl-cells prisms: the prisms and pyramids written and why the other BL tets are left as tets.
   static void print_prisms(const PrismMergeStats& p) {
-    std::cout << "  written with --bl-cells prisms: " << p.prisms << " prisms (3 BL tets each), " << p.kept_tets << " of "
-              << p.bl_tets << " BL tets left as tets";
+    std::cout << "  written with --bl-cells prisms: " << p.prisms << " prisms (3 BL tets each), " << p.pyramids
+              << " pyramids (2 each, where a column stopped), " << p.kept_tets << " of " << p.bl_tets
+              << " BL tets left as tets";
     if (p.kept_tets > 0)
-      std::cout << ": " << p.kept_tets - 3 * (p.exact_prisms - p.prisms)
-                << " in no prism (around columns that stopped in their layer), the prisms beside them ("
+      std::cout << ": " << tets_in_no_cell(p) << " in no prism or pyramid, the cells beside them ("
                 << p.beside_other_cells << ") and beside those through their layer (" << p.beside_kept
-                << "): a quad side cannot face tets";
+                << "): a quad cannot face tets";
     std::cout << "\n";
+  }
+  static size_t tets_in_no_cell(const PrismMergeStats& p) {
+    return p.kept_tets - 3 * (p.exact_prisms - p.prisms) - 2 * (p.exact_pyramids - p.pyramids);
   }
 
   // --bl-columns FILE: one CSV line per wall vertex (bl_columns_csv).
@@ -608,8 +611,9 @@ class MeshCommand {
     if (prisms_) {
       out["boundary_layer"]["cells"] = "prisms";
       out["boundary_layer"]["prisms"] = prisms_->prisms;
+      out["boundary_layer"]["pyramids"] = prisms_->pyramids;
       out["boundary_layer"]["tets_kept"] = prisms_->kept_tets;
-      out["boundary_layer"]["tets_kept_in_no_prism"] = prisms_->kept_tets - 3 * (prisms_->exact_prisms - prisms_->prisms);
+      out["boundary_layer"]["tets_kept_in_no_prism"] = tets_in_no_cell(*prisms_);
       out["boundary_layer"]["prisms_kept_beside_other_cells"] = prisms_->beside_other_cells;
       out["boundary_layer"]["prisms_kept_beside_kept"] = prisms_->beside_kept;
     }
@@ -819,8 +823,9 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
       ->group(bl_group);
   cmd->add_option("--bl-cells", args.bl_cells,
                   "How the boundary layer's prisms are written: tets (each split into the 3 tets the "
-                  "pipeline keeps, every format) or prisms (one prism cell each, for finite-volume "
-                  "solvers; .vtu and OpenFOAM polyMesh only, other outputs are refused)")
+                  "pipeline keeps, every format) or prisms (one prism cell each, and a pyramid where "
+                  "a column stopped, for finite-volume solvers; .vtu and OpenFOAM polyMesh only, "
+                  "other outputs are refused)")
       ->capture_default_str()
       ->check(CLI::IsMember({"tets", "prisms"}))
       ->group(bl_group);
@@ -883,7 +888,7 @@ int run_mesh(const CLI::App& cmd, MeshArgs& args) {
       Result<VolumeFormat> format = volume_format_from_path(path);
       if (format.ok() && !volume_format_writes_prisms(format.value())) {
         std::cerr << "anitet mesh: --bl-cells prisms: '" << path << "' is a format written with tets only; prism "
-                  << "cells are written to " << kPrismFormats << " (or give --bl-cells tets)\n";
+                  << "and pyramid cells are written to " << kPrismFormats << " (or give --bl-cells tets)\n";
         return kExitUsage;
       }
     }

@@ -10,8 +10,11 @@ namespace anitet::capi {
 
 Status make_prism_cells(anitet_mesh& mesh) {
   VolumeMesh merged = mesh.mesh;
-  Result<PrismMergeStats> stats =
-      merge_bl_prisms(merged, mesh.run->bl_vertex_origin, mesh.run->bl_first_region, &mesh.tet_prism);
+  // No pyramid cells at the ABI (no getters for them yet): a column that stopped in its layer
+  // keeps its tets and, as before them, its layer's prisms beside it (3 bl_prisms + tets left =
+  // BL tets still).
+  Result<PrismMergeStats> stats = merge_bl_prisms(merged, mesh.run->bl_vertex_origin, mesh.run->bl_first_region,
+                                                  &mesh.tet_prism, /*make_pyramids=*/false);
   if (!stats.ok()) return stats.status();
   mesh.prism = std::move(merged.prism);
   mesh.prism_region = std::move(merged.prism_region);

@@ -502,7 +502,8 @@ ANITET_API int anitet_mesh_get_boundary_patches(const anitet_mesh* mesh, int32_t
 /* Prism cells (a mesh of anitet_mesher_run with options->bl_cells ANITET_BL_CELLS_PRISMS): the
  * mesh keeps every tet (anitet_mesh_get_tets, the quality, partition and field transfer work on
  * them); anitet_mesh_write writes each boundary-layer prism's 3 tets as one prism cell instead,
- * the other tets as tets (a BL tet with no exact prism, where a column stopped, stays a tet). */
+ * the other tets as tets (a BL tet with no exact prism, where a column stopped, stays a tet; the
+ * ABI makes no pyramid cells, so the prisms of that layer beside it stay tets too). */
 /** The number of prism cells into *num_prisms: 0 for a mesh without (bl_cells TETS, read or
  * created from arrays). */
 ANITET_API int anitet_mesh_get_prism_count(const anitet_mesh* mesh, int64_t* num_prisms);

@@ -70,7 +70,7 @@ $py - "$out" $cases <<'PY' >>"$out/table.md"
 import json, sys, os
 out = sys.argv[1]
 verdicts = dict(l.rstrip("\n").split("|", 1) for l in open(os.path.join(out, "verdicts.txt")))
-print("\n| case | valid | tets (prisms written) | seconds | tets/s | layers / sizing / refine / optimize s | full columns | transition median (within 1.5) | checkMesh (prisms) |")
+print("\n| case | valid | tets (prisms, pyramids written) | seconds | tets/s | layers / sizing / refine / optimize s | full columns | transition median (within 1.5) | checkMesh (prisms) |")
 print("|---|---|---|---|---|---|---|---|---|")
 for c in sys.argv[2:]:
     p = os.path.join(out, c + ".json")
@@ -84,7 +84,7 @@ for c in sys.argv[2:]:
     stages = " / ".join(f"{st.get(k, 0):.1f}" for k in ("layers", "sizing", "refine", "optimize"))
     within = b["transition_within_1_5"] / max(b["transition_faces"], 1)
     valid = "yes" if d["quality"]["valid"] and d["quality"]["input_triangles_missing"] == 0 else "NO"
-    print(f"| {c} | {valid} | {tets} ({b.get('prisms', 0)}) | {d['seconds']:.1f} | {d['tets_per_second']:.0f} | {stages} | "
+    print(f"| {c} | {valid} | {tets} ({b.get('prisms', 0)}, {b.get('pyramids', 0)}) | {d['seconds']:.1f} | {d['tets_per_second']:.0f} | {stages} | "
           f"{b['full_columns']} / {b['wall_vertices']} | {b['transition_ratio_median']:.1f} ({100 * within:.0f}%) | {verdicts.get(c, '')} |")
 PY
 cat "$out/table.md"

@@ -63,9 +63,10 @@ struct QuadKey {
 }  // namespace
 
 Result<MeshFaces> build_mesh_faces(const VolumeMesh& mesh) {
-  const size_t nt = mesh.num_tets(), np = mesh.num_prisms(), nb = mesh.num_boundary_triangles();
+  const size_t nt = mesh.num_tets(), np = mesh.num_prisms(), ny = mesh.num_pyramids();
+  const size_t nb = mesh.num_boundary_triangles();
   std::vector<FaceKey> keys;
-  keys.reserve(4 * nt + 2 * np);
+  keys.reserve(4 * nt + 2 * np + 4 * ny);
   for (size_t t = 0; t < nt; ++t) {
     const uint32_t* v = &mesh.tet[4 * t];
     for (int f = 0; f < 4; ++f) {
@@ -74,23 +75,28 @@ Result<MeshFaces> build_mesh_faces(const VolumeMesh& mesh) {
     }
   }
   std::vector<QuadKey> quads;
-  quads.reserve(3 * np);
-  for (size_t p = 0; p < np; ++p) {
-    const uint32_t* v = &mesh.prism[6 * p];
+  quads.reserve(3 * np + ny);
+  // Prisms, then pyramids: five faces each, a quad or a triangle.
+  for (size_t p = 0; p < np + ny; ++p) {
+    const bool prism = p < np;
+    const uint32_t* v = prism ? &mesh.prism[6 * p] : &mesh.pyramid[5 * (p - np)];
     const int64_t base = int64_t(4 * nt + 5 * p);
-    for (int f = 0; f < 3; ++f) {
-      QuadKey q{{v[kPrismFace[f][0]], v[kPrismFace[f][1]], v[kPrismFace[f][2]], v[kPrismFace[f][3]]}, base + f};
-      std::sort(q.v.begin(), q.v.end());
-      quads.push_back(q);
+    for (int f = 0; f < 5; ++f) {
+      const int* lf = prism ? kPrismFace[f] : kPyramidFace[f];
+      if ((prism ? kPrismFaceSize[f] : kPyramidFaceSize[f]) == 4) {
+        QuadKey q{{v[lf[0]], v[lf[1]], v[lf[2]], v[lf[3]]}, base + f};
+        std::sort(q.v.begin(), q.v.end());
+        quads.push_back(q);
+      } else {
+        keys.push_back({sorted3(v[lf[0]], v[lf[1]], v[lf[2]]), base + f});
+      }
     }
-    for (int f = 3; f < 5; ++f)
-      keys.push_back({sorted3(v[kPrismFace[f][0]], v[kPrismFace[f][1]], v[kPrismFace[f][2]]), base + f});
   }
   MeshFaces out;
-  out.across.assign(4 * nt + 5 * np, MeshFaces::kNone);
+  out.across.assign(4 * nt + 5 * (np + ny), MeshFaces::kNone);
   if (Status st = pair_faces(keys, out.across, "face"); !st.ok()) return st;
   if (Status st = pair_faces(quads, out.across, "quad face"); !st.ok()) return st;
-  // With prisms, a boundary triangle may be half of a quad side: the quads' four corner triangles.
+  // With prisms or pyramids, a boundary triangle may be half of a quad: its four corner triangles.
   std::vector<FaceKey> halves;
   for (const QuadKey& q : quads)
     for (int skip = 0; skip < 4; ++skip) {
@@ -134,10 +140,12 @@ int face_vertices(const VolumeMesh& mesh, int64_t face, uint32_t out[4]) {
     for (int k = 0; k < 3; ++k) out[k] = v[kOutwardFace[f % 4][k]];
     return 3;
   }
-  const uint32_t* v = &mesh.prism[6 * ((f - 4 * nt) / 5)];
-  const size_t lf = (f - 4 * nt) % 5;
-  for (int k = 0; k < kPrismFaceSize[lf]; ++k) out[k] = v[kPrismFace[lf][k]];
-  return kPrismFaceSize[lf];
+  const size_t cell = (f - 4 * nt) / 5, lf = (f - 4 * nt) % 5, np = mesh.num_prisms();
+  const bool prism = cell < np;
+  const uint32_t* v = prism ? &mesh.prism[6 * cell] : &mesh.pyramid[5 * (cell - np)];
+  const int n = prism ? kPrismFaceSize[lf] : kPyramidFaceSize[lf];
+  for (int k = 0; k < n; ++k) out[k] = v[prism ? kPrismFace[lf][k] : kPyramidFace[lf][k]];
+  return n;
 }
 
 BoundaryElements boundary_elements(const VolumeMesh& mesh, const MeshFaces& faces, const std::vector<uint32_t>& tris) {

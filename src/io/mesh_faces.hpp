@@ -12,16 +12,17 @@
 
 namespace anitet {
 
-// (kOutwardFace and kPrismFace, the cells' outward faces, are in core/volume_mesh.hpp.)
+// (kOutwardFace, kPrismFace and kPyramidFace, the cells' outward faces, are in core/volume_mesh.hpp.)
 
 struct MeshFaces {
   static constexpr int64_t kNone = -1;
   // Cell faces are numbered 4t+f for tet t's face f (kOutwardFace), then 4 nt + 5p + f for prism
-  // p's face f (kPrismFace: three quads, then the two triangles). For each cell face: the cell
+  // p's face f (kPrismFace: three quads, then the two triangles), then 4 nt + 5 (np + y) + f for
+  // pyramid y's face f (kPyramidFace: the quad, then four triangles). For each cell face: the cell
   // face on the other side, or kNone on the mesh boundary.
   std::vector<int64_t> across;
-  // For each boundary triangle i: the cell face with the same three vertices, or a prism's quad
-  // side whose diagonal split it is half of; kNone when there is none. When two cells share it
+  // For each boundary triangle i: the cell face with the same three vertices, or a prism's or
+  // pyramid's quad whose diagonal split it is half of; kNone when there is none. When two cells share it
   // (an internal face) the one with the smaller number.
   std::vector<int64_t> bnd_face;
   // For each boundary triangle: true when the face it matched has a cell on both sides.
@@ -31,14 +32,14 @@ struct MeshFaces {
 // Error::InvalidMesh, naming the vertices, when three or more cell faces share their vertices.
 Result<MeshFaces> build_mesh_faces(const VolumeMesh& mesh);
 
-// The cell of cell face `face` (tets 0..nt-1, then prisms nt + p) and its vertices, outward from
-// that cell; returns their count (3 or 4).
+// The cell of cell face `face` (tets 0..nt-1, then prisms nt + p, then pyramids nt + np + y) and
+// its vertices, outward from that cell; returns their count (3 or 4).
 size_t cell_of_face(const VolumeMesh& mesh, int64_t face);
 int face_vertices(const VolumeMesh& mesh, int64_t face, uint32_t out[4]);
 
 // The boundary elements of the boundary triangles `tris` (e.g. a patch's), in that order: each
-// triangle oriented as outward_triangle does, but the two triangles of a prism's quad side as that
-// quad, once (at the first of the two), outward from the prism.
+// triangle oriented as outward_triangle does, but the two triangles of a prism's or pyramid's quad
+// as that quad, once (at the first of the two), outward from the cell.
 struct BoundaryElements {
   std::vector<uint32_t> vertices;  // 3 or 4 per element
   std::vector<uint8_t> size;       // per element: 3 or 4

@@ -130,7 +130,7 @@ Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_nam
   const MeshFaces& faces = built.value();
   const size_t nt = mesh.num_tets();
 
-  const size_t np = mesh.num_prisms(), num_cells = nt + np;
+  const size_t np = mesh.num_prisms(), ny = mesh.num_pyramids(), num_cells = nt + np + ny;
   auto first_face = [&](size_t c) { return c < nt ? 4 * c : 4 * nt + 5 * (c - nt); };
   auto num_faces = [&](size_t c) { return c < nt ? 4 : 5; };
 
@@ -150,7 +150,7 @@ Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_nam
                                                   "') is an internal face between two cells: OpenFOAM "
                                                   "patches hold boundary faces only");
       }
-      // A prism's quad side is given by two triangles of one patch (check_boundary_elements).
+      // A quad is given by two triangles of one patch (check_boundary_elements).
       uint32_t v[4];
       const bool quad = face_vertices(mesh, face, v) == 4;
       if (face_patch[size_t(face)] != kUnset && !(quad && face_patch[size_t(face)] == p)) {
@@ -210,10 +210,11 @@ Result<PolyMesh> to_polymesh(const VolumeMesh& mesh, const PatchNames& patch_nam
     patch.size = pm.owner.size() - patch.start;
     pm.patches.push_back(std::move(patch));
   }
-  if (!mesh.region.empty() || !mesh.prism_region.empty()) {
+  if (!mesh.region.empty() || !mesh.prism_region.empty() || !mesh.pyramid_region.empty()) {
     std::map<int32_t, std::vector<uint32_t>> zones;
     for (size_t t = 0; t < nt; ++t) zones[mesh.region[t]].push_back(static_cast<uint32_t>(t));
     for (size_t p = 0; p < np; ++p) zones[mesh.prism_region[p]].push_back(static_cast<uint32_t>(nt + p));
+    for (size_t y = 0; y < ny; ++y) zones[mesh.pyramid_region[y]].push_back(static_cast<uint32_t>(nt + np + y));
     for (auto& [label, cells] : zones) pm.cell_zones.emplace_back(region_name(label), std::move(cells));
   }
   return pm;
@@ -261,7 +262,8 @@ Status write_openfoam(const VolumeMesh& mesh, const std::string& dir, const Patc
   out += ")\n";
   if (Status s = write_file_bytes(base + "faces", out); !s.ok()) return s;
 
-  const std::string note = "nPoints:" + std::to_string(nv) + "  nCells:" + std::to_string(mesh.num_tets() + mesh.num_prisms()) +
+  const size_t num_cells = mesh.num_tets() + mesh.num_prisms() + mesh.num_pyramids();
+  const std::string note = "nPoints:" + std::to_string(nv) + "  nCells:" + std::to_string(num_cells) +
                            "  nFaces:" + std::to_string(nf) +
                            "  nInternalFaces:" + std::to_string(pm.num_internal_faces());
   out.clear();

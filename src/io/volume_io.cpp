@@ -31,9 +31,9 @@ std::string last_component(std::string path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// check_boundary_elements for a mesh with prisms: the cell faces matched by build_mesh_faces,
-// a prism's quad side on the boundary given by two triangles of one patch that split it along a
-// diagonal.
+// check_boundary_elements for a mesh with prisms or pyramids: the cell faces matched by
+// build_mesh_faces, a quad on the boundary given by two triangles of one patch that split it
+// along a diagonal.
 Status check_mixed_boundary_elements(const VolumeMesh& mesh, bool cover) {
   Result<MeshFaces> built = build_mesh_faces(mesh);
   if (!built.ok()) return built.status();
@@ -54,7 +54,7 @@ Status check_mixed_boundary_elements(const VolumeMesh& mesh, bool cover) {
     const int n = face_vertices(mesh, int64_t(face), v);
     const std::vector<uint32_t>& g = given[face];
     auto where = [&] {
-      return std::string(n == 4 ? "the prism quad side " : "the face ") + one_based(v) +
+      return std::string(n == 4 ? "the quad side " : "the face ") + one_based(v) +
              (n == 4 ? " " + std::to_string(uint64_t{v[3]} + 1) : "") + " (1-based)";
     };
     if (g.empty()) {
@@ -185,10 +185,11 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
                                                 "or a .../polyMesh directory)");
   }
   if (format.value() == VolumeFormat::TetGen) return check_writable_volume_path(path);
-  if (!mesh.prism.empty() && !volume_format_writes_prisms(format.value()))
+  if (mesh.has_mixed_cells() && !volume_format_writes_prisms(format.value()))
     return Status(Error::UnsupportedFormat, path + ": this format is written with tets only, and the mesh has " +
-                                                std::to_string(mesh.num_prisms()) + " prisms (prism cells: " +
-                                                kPrismFormats + ")");
+                                                std::to_string(mesh.num_prisms()) + " prisms and " +
+                                                std::to_string(mesh.num_pyramids()) +
+                                                " pyramids (prism and pyramid cells: " + kPrismFormats + ")");
   // Nothing wrong is written: the boundary elements are checked against the tets first.
   const bool cover = has_markers(format.value()) || !mesh.bnd_tri.empty();
   if (Status st = check_boundary_elements(mesh, cover); !st.ok()) {
@@ -223,10 +224,12 @@ Status write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const 
 
 Status check_volume_arrays(const VolumeMesh& mesh) {
   // Regions are given for every cell or for none.
-  const bool regions = !mesh.region.empty() || !mesh.prism_region.empty();
+  const bool regions = !mesh.region.empty() || !mesh.prism_region.empty() || !mesh.pyramid_region.empty();
   if (mesh.xyz.size() % 3 != 0 || mesh.tet.size() % 4 != 0 || mesh.bnd_tri.size() % 3 != 0 ||
-      mesh.prism.size() % 6 != 0 || mesh.bnd_patch.size() != mesh.num_boundary_triangles() ||
-      (regions && (mesh.region.size() != mesh.num_tets() || mesh.prism_region.size() != mesh.num_prisms()))) {
+      mesh.prism.size() % 6 != 0 || mesh.pyramid.size() % 5 != 0 ||
+      mesh.bnd_patch.size() != mesh.num_boundary_triangles() ||
+      (regions && (mesh.region.size() != mesh.num_tets() || mesh.prism_region.size() != mesh.num_prisms() ||
+                   mesh.pyramid_region.size() != mesh.num_pyramids()))) {
     return Status(Error::InvalidArgument, "volume mesh arrays of inconsistent sizes");
   }
   const size_t nv = mesh.num_vertices();
@@ -242,6 +245,12 @@ Status check_volume_arrays(const VolumeMesh& mesh) {
                                          std::to_string(mesh.prism[i]) + " of " + std::to_string(nv));
     }
   }
+  for (size_t i = 0; i < mesh.pyramid.size(); ++i) {
+    if (mesh.pyramid[i] >= nv) {
+      return Status(Error::BadIndex, "pyramid " + std::to_string(i / 5) + " refers to vertex " +
+                                         std::to_string(mesh.pyramid[i]) + " of " + std::to_string(nv));
+    }
+  }
   for (size_t i = 0; i < mesh.bnd_tri.size(); ++i) {
     if (mesh.bnd_tri[i] >= nv) {
       return Status(Error::BadIndex, "boundary triangle " + std::to_string(i / 3) +
@@ -254,7 +263,7 @@ Status check_volume_arrays(const VolumeMesh& mesh) {
 
 Status check_boundary_elements(const VolumeMesh& mesh, bool cover) {
   if (Status st = check_volume_arrays(mesh); !st.ok()) return st;
-  if (!mesh.prism.empty()) return check_mixed_boundary_elements(mesh, cover);
+  if (mesh.has_mixed_cells()) return check_mixed_boundary_elements(mesh, cover);
   return check_boundary_elements(mesh.tet, mesh.num_vertices(), mesh.bnd_tri, cover);
 }
 

@@ -20,8 +20,9 @@ enum class VolumeFormat { Medit, MeditBinary, Gmsh, TetGen, Vtu, Su2, OpenFoam, 
 // whose last component is "polyMesh" (e.g. CASE/constant/polyMesh, a trailing '/' allowed) is an
 // OpenFOAM polyMesh directory. Su2, OpenFoam, Cgns and Exodus are written only.
 Result<VolumeFormat> volume_format_from_path(const std::string& path);
-// Whether the format's writer writes VolumeMesh::prism (prism cells); the others refuse a mesh
-// with prisms (Error::UnsupportedFormat). kPrismFormats names them for messages.
+// Whether the format's writer writes VolumeMesh::prism and ::pyramid (prism and pyramid cells);
+// the others refuse a mesh with either (Error::UnsupportedFormat). kPrismFormats names them for
+// messages.
 bool volume_format_writes_prisms(VolumeFormat f);
 inline constexpr const char* kPrismFormats = ".vtu and .../polyMesh";
 // Error::UnsupportedFormat unless the format of `path` can be written; Error::NotImplemented for
@@ -108,7 +109,7 @@ Result<std::string> to_sol(const VolumeMesh& mesh);
 Result<std::string> to_su2(const VolumeMesh& mesh, const PatchNames& patch_names = {});
 
 // OpenFOAM polyMesh (ASCII, the layout of OpenFOAM's own writers): cells = tets in order, then
-// prisms (their quad sides as quad faces, a boundary quad given by its two triangles); faces
+// prisms, then pyramids (their quads as quad faces, a boundary quad given by its two triangles); faces
 // in OpenFOAM's order: internal faces first, in upper-triangular order (by owner, then
 // neighbour; owner < neighbour), oriented from owner to neighbour; then the boundary faces patch
 // by patch (increasing label), oriented out of the domain. Every boundary face of the tets must
@@ -123,7 +124,7 @@ struct PolyMeshPatch {
 };
 struct PolyMesh {
   std::vector<uint32_t> face;       // the faces' vertices one after another (3 per tet face)
-  std::vector<uint8_t> face_size;   // 1 per face: 3, or 4 for a prism's quad side
+  std::vector<uint8_t> face_size;   // 1 per face: 3, or 4 for a prism's or pyramid's quad
   std::vector<uint32_t> owner;      // 1 per face
   std::vector<uint32_t> neighbour;  // 1 per internal face
   std::vector<PolyMeshPatch> patches;

@@ -16,6 +16,7 @@ namespace {
 constexpr int kVtkTriangle = 5;
 constexpr int kVtkTetra = 10;
 constexpr int kVtkWedge = 13;
+constexpr int kVtkPyramid = 14;  // VolumeMesh::pyramid's order is VTK's
 // VolumeMesh::prism's vertex k is VTK wedge vertex kVtkWedgeOrder[k] (VTK's 0 1 2 face points away
 // from 3 4 5).
 constexpr int kVtkWedgeOrder[6] = {0, 2, 1, 3, 5, 4};
@@ -176,8 +177,8 @@ Result<std::string> to_vtu(const VolumeMesh& mesh, const std::vector<TetScalar>&
   Status valid = check_volume_arrays(mesh);
   if (!valid.ok()) return valid;
   const size_t nv = mesh.num_vertices(), nt = mesh.num_tets(), nb = mesh.num_boundary_triangles();
-  // Cells: the tets, the prisms (nc - nb cells in all), then the boundary triangles.
-  const size_t np = mesh.num_prisms(), nc = nt + np + nb;
+  // Cells: the tets, the prisms, the pyramids (nc - nb cells in all), then the boundary triangles.
+  const size_t np = mesh.num_prisms(), ny = mesh.num_pyramids(), nvol = nt + np + ny, nc = nvol + nb;
   for (const TetScalar& s : tet_scalars) {
     if (s.values.size() != nt || !valid_xml_name(s.name) || s.name == "region" ||
         s.name == "patch") {
@@ -210,12 +211,14 @@ Result<std::string> to_vtu(const VolumeMesh& mesh, const std::vector<TetScalar>&
       for (int k = 0; k < 6; ++k) wedges[6 * p + size_t(k)] = mesh.prism[6 * p + size_t(kVtkWedgeOrder[k])];
     append_values(out, wedges.data(), wedges.size(), 6);
   }
+  append_values(out, mesh.pyramid.data(), mesh.pyramid.size(), 5);
   append_values(out, mesh.bnd_tri.data(), mesh.bnd_tri.size(), 3);
   out += kCloseArray;
   open_array(out, "Int64", "offsets", 1);
   std::vector<uint64_t> offsets(nc);
-  for (size_t c = 0; c < nc; ++c) {
-    offsets[c] = c < nt ? 4 * (c + 1) : c < nt + np ? 4 * nt + 6 * (c - nt + 1) : 4 * nt + 6 * np + 3 * (c - nt - np + 1);
+  for (size_t c = 0, end = 0; c < nc; ++c) {
+    end += c < nt ? 4 : c < nt + np ? 6 : c < nvol ? 5 : 3;
+    offsets[c] = end;
   }
   append_values(out, offsets.data(), offsets.size(), 10);
   out += kCloseArray;
@@ -223,6 +226,8 @@ Result<std::string> to_vtu(const VolumeMesh& mesh, const std::vector<TetScalar>&
   std::vector<int32_t> types(nc, kVtkTriangle);
   std::fill(types.begin(), types.begin() + static_cast<std::ptrdiff_t>(nt), kVtkTetra);
   std::fill(types.begin() + static_cast<std::ptrdiff_t>(nt), types.begin() + static_cast<std::ptrdiff_t>(nt + np), kVtkWedge);
+  std::fill(types.begin() + static_cast<std::ptrdiff_t>(nt + np), types.begin() + static_cast<std::ptrdiff_t>(nvol),
+            kVtkPyramid);
   append_values(out, types.data(), types.size(), 20);
   out += kCloseArray;
   out += "      </Cells>\n      <CellData>\n";
@@ -230,11 +235,12 @@ Result<std::string> to_vtu(const VolumeMesh& mesh, const std::vector<TetScalar>&
   std::vector<int32_t> labels(nc, -1);
   for (size_t t = 0; t < nt; ++t) labels[t] = mesh.region.empty() ? 0 : mesh.region[t];
   for (size_t p = 0; p < np; ++p) labels[nt + p] = mesh.prism_region.empty() ? 0 : mesh.prism_region[p];
+  for (size_t y = 0; y < ny; ++y) labels[nt + np + y] = mesh.pyramid_region.empty() ? 0 : mesh.pyramid_region[y];
   open_array(out, "Int32", "region", 1);
   append_values(out, labels.data(), labels.size(), 20);
   out += kCloseArray;
   std::fill(labels.begin(), labels.end(), -1);
-  for (size_t b = 0; b < nb; ++b) labels[nt + np + b] = mesh.bnd_patch[b];
+  for (size_t b = 0; b < nb; ++b) labels[nvol + b] = mesh.bnd_patch[b];
   open_array(out, "Int32", "patch", 1);
   append_values(out, labels.data(), labels.size(), 20);
   out += kCloseArray;

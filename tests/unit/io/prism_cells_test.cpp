@@ -1,12 +1,14 @@
 // Boundary-layer prisms as prism cells: merge_bl_prisms (core/bl_prisms.hpp) on a hand-built
 // two-layer slab split into tets as stage 1 splits them, and the writers that take prisms
-// (OpenFOAM polyMesh, VTU read back by meshio), the boundary check and the refusals.
+// (OpenFOAM polyMesh, VTU read back by meshio), the boundary check and the refusals; the pyramids
+// where a column stopped in its layer, likewise.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <map>
+#include <set>
 #include <string>
 
 #include "core/bl_prisms.hpp"
@@ -98,7 +100,8 @@ TEST(PrismCells, TellsEachTetsPrism) {
   s.mesh.tet.erase(s.mesh.tet.begin(), s.mesh.tet.begin() + 4);  // the first prism stays tets
   s.mesh.region.erase(s.mesh.region.begin());
   std::vector<int32_t> tet_prism;
-  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1, &tet_prism);
+  // Without pyramids: the prism's two tets left would be one.
+  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1, &tet_prism, /*make_pyramids=*/false);
   ASSERT_TRUE(merged.ok());
   ASSERT_EQ(tet_prism.size(), 11u);
   std::vector<int> tets_of(merged->prisms, 0);
@@ -123,10 +126,11 @@ TEST(PrismCells, KeepsTetsWhereNoExactPrism) {
   // Only the BL regions merge.
   VolumeMesh other = s.mesh;
   ASSERT_EQ(merge_bl_prisms(other, s.origin, 2)->prisms, 0u);
-  // A prism missing a tet stays tets, and so does a prism whose quad side would lie on its tets.
+  // A prism missing a tet stays tets, and so does a prism whose quad side would lie on its tets
+  // (without pyramids: its two tets left are one, PyramidCells below).
   s.mesh.tet.erase(s.mesh.tet.begin(), s.mesh.tet.begin() + 4);
   s.mesh.region.erase(s.mesh.region.begin());
-  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1);
+  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1, nullptr, /*make_pyramids=*/false);
   ASSERT_TRUE(merged.ok());
   EXPECT_EQ(merged->bl_tets, 11u);
   EXPECT_GE(merged->prisms, 2u);  // the upper layer's at least
@@ -179,8 +183,8 @@ Slab strip(uint32_t squares) {
 }
 
 TEST(PrismCells, SaysWhyPrismsStayTets) {
-  // 6 prisms per layer; the lower layer's first prism misses a tet (as around a column that
-  // stopped): its two neighbours (across the diagonal and in the next square) have a quad side on
+  // 6 prisms per layer; the lower layer's first prism misses a tet (without pyramids, as around a
+  // column that stopped): its two neighbours (across the diagonal and in the next square) have a quad side on
   // its tets, and the rest of the lower layer, one beside the other, a quad side on those. The
   // upper layer merges.
   Slab s = strip(3);
@@ -189,10 +193,23 @@ TEST(PrismCells, SaysWhyPrismsStayTets) {
   EXPECT_EQ(whole->prisms, 12u);
   EXPECT_EQ(whole->exact_prisms, 12u);
   EXPECT_EQ(whole->beside_other_cells + whole->beside_kept, 0u);
+  // With pyramids, the two tets left are one (its base the quad to the next square's prism,
+  // which stays a prism), and only the prism across the diagonal, whose quad lies on the missing
+  // tet's face and the pyramid's side triangle, stays tets (its other sides are on the boundary).
   s = strip(3);
   s.mesh.tet.erase(s.mesh.tet.begin(), s.mesh.tet.begin() + 4);
   s.mesh.region.erase(s.mesh.region.begin());
-  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1);
+  Result<PrismMergeStats> pyramid = merge_bl_prisms(s.mesh, s.origin, 1);
+  ASSERT_TRUE(pyramid.ok()) << pyramid.status().message();
+  EXPECT_EQ(pyramid->pyramids, 1u);
+  EXPECT_EQ(pyramid->prisms, 10u);
+  EXPECT_EQ(pyramid->beside_other_cells, 1u);
+  EXPECT_EQ(pyramid->beside_kept, 0u);
+  EXPECT_EQ(pyramid->kept_tets, 3u);
+  s = strip(3);
+  s.mesh.tet.erase(s.mesh.tet.begin(), s.mesh.tet.begin() + 4);
+  s.mesh.region.erase(s.mesh.region.begin());
+  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1, nullptr, /*make_pyramids=*/false);
   ASSERT_TRUE(merged.ok()) << merged.status().message();
   EXPECT_EQ(merged->exact_prisms, 11u);
   EXPECT_EQ(merged->beside_other_cells, 2u);
@@ -313,6 +330,227 @@ print("meshio read the wedges")
 )";
   ASSERT_TRUE(write_file_bytes(dir + "/check_wedges.py", script).ok());
   EXPECT_EQ(std::system(("/usr/bin/python3 '" + dir + "/check_wedges.py' '" + dir + "' 1>&2").c_str()), 0);
+}
+
+// A grid of nx x ny unit squares (each split along (i, j)-(i + 1, j + 1)) under `layers` layers
+// of height 0.1 (2 or 3), split as stage 1 splits them, with wall vertex `stop` not pushed in
+// layer 1 (its column stops there: two tets, a pyramid, on each triangle around it, the
+// degenerate third tet left out) and pushed again in layer 2, a layer lower than the others;
+// boundary triangles: the wall patch 1, the top 2, the four sides 3.
+Slab stopped_grid(uint32_t nx, uint32_t ny, uint32_t stop, uint32_t layers = 2) {
+  Slab s;
+  const uint32_t nw = (nx + 1) * (ny + 1);
+  std::vector<uint32_t> id((layers + 1) * nw, kNo);  // (level k, wall vertex w) -> vertex
+  for (uint32_t k = 0; k <= layers; ++k)
+    for (uint32_t w = 0; w < nw; ++w) {
+      if (k == 2 && w == stop) {
+        id[2 * nw + w] = id[nw + w];
+        continue;
+      }
+      id[k * nw + w] = uint32_t(s.origin.size());
+      const uint32_t from = k == 0 ? kNo : id[(k - 1) * nw + w];
+      s.origin.push_back(from);
+      const double z = from == kNo ? 0.0 : s.mesh.point(from)[2] + 0.1;
+      s.mesh.xyz.insert(s.mesh.xyz.end(), {double(w % (nx + 1)), double(w / (nx + 1)), z});
+    }
+  for (uint32_t k = 0; k < layers; ++k)
+    for (uint32_t j = 0; j < ny; ++j)
+      for (uint32_t i = 0; i < nx; ++i) {
+        const uint32_t a = j * (nx + 1) + i, b = a + 1, c = a + nx + 2, d = a + nx + 1;
+        for (std::array<uint32_t, 3> t : {std::array<uint32_t, 3>{a, b, c}, std::array<uint32_t, 3>{a, c, d}}) {
+          t = sorted(t);  // the push order: each quad side split along one diagonal from both sides
+          std::array<uint32_t, 3> lo{}, hi{};
+          for (size_t m = 0; m < 3; ++m) lo[m] = id[k * nw + t[m]], hi[m] = id[(k + 1) * nw + t[m]];
+          for (std::array<uint32_t, 4> tet : {std::array<uint32_t, 4>{lo[0], lo[1], lo[2], hi[0]},
+                                              {hi[0], lo[1], lo[2], hi[1]}, {hi[0], hi[1], lo[2], hi[2]}}) {
+            if (std::set<uint32_t>(tet.begin(), tet.end()).size() < 4) continue;
+            if (volume(s.mesh, tet[0], tet[1], tet[2], tet[3]) < 0) std::swap(tet[0], tet[1]);
+            s.mesh.tet.insert(s.mesh.tet.end(), tet.begin(), tet.end());
+            s.mesh.region.push_back(1);
+          }
+        }
+      }
+  std::map<std::array<uint32_t, 3>, int> count;
+  for (size_t t = 0; t < s.mesh.num_tets(); ++t)
+    for (const auto& f : kOutwardFace) {
+      const uint32_t* v = &s.mesh.tet[4 * t];
+      ++count[sorted({v[f[0]], v[f[1]], v[f[2]]})];
+    }
+  for (const auto& [f, n] : count) {
+    if (n != 1) continue;
+    auto all = [&](int axis, double value) {
+      return std::all_of(f.begin(), f.end(), [&](uint32_t v) { return s.mesh.point(v)[axis] == value; });
+    };
+    s.mesh.bnd_tri.insert(s.mesh.bnd_tri.end(), f.begin(), f.end());
+    const bool side = all(0, 0) || all(0, nx) || all(1, 0) || all(1, ny);
+    s.mesh.bnd_patch.push_back(side ? 3 : all(2, 0) ? 1 : 2);
+  }
+  return s;
+}
+
+// 3 x 2 squares, 12 triangles; the interior wall vertex (1, 1) is in 6 of them. Its copy in layer
+// 1, the apex, is vertex 12 + 5 (layers 0 and 1 are whole).
+constexpr uint32_t kStop = 5, kApex = 17;
+
+TEST(PyramidCells, StoppedColumnGivesPyramidsAndThePrismsBesideStay) {
+  Slab s = stopped_grid(3, 2, kStop);
+  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1);
+  ASSERT_TRUE(merged.ok()) << merged.status().message();
+  EXPECT_EQ(merged->bl_tets, 12u * 3 + 6u * 3 + 6u * 2);
+  EXPECT_EQ(merged->exact_prisms, 18u);
+  EXPECT_EQ(merged->exact_pyramids, 6u);
+  EXPECT_EQ(merged->prisms, 18u);
+  EXPECT_EQ(merged->pyramids, 6u);
+  EXPECT_EQ(merged->kept_tets, 0u);
+  EXPECT_EQ(merged->beside_other_cells + merged->beside_kept, 0u);
+  EXPECT_EQ(s.mesh.num_tets(), 0u);
+  ASSERT_EQ(s.mesh.num_pyramids(), 6u);
+  EXPECT_EQ(s.mesh.pyramid_region, std::vector<int32_t>(6, 1));
+  ASSERT_EQ(s.origin[kApex], kStop);
+  for (size_t y = 0; y < 6; ++y) {
+    const uint32_t* v = &s.mesh.pyramid[5 * y];
+    EXPECT_EQ(v[4], kApex) << "pyramid " << y;
+    // The base: two columns, each edge 0-1 / 2-3 or 1-2 / 3-0 one pushed from the other.
+    const bool pairs01 = s.origin[v[1]] == v[0] || s.origin[v[0]] == v[1];
+    EXPECT_TRUE(pairs01 ? (s.origin[v[2]] == v[3] || s.origin[v[3]] == v[2])
+                        : (s.origin[v[2]] == v[1] || s.origin[v[1]] == v[2]))
+        << "pyramid " << y;
+    for (int i = 0; i < 4; ++i)  // 0 1 2 3 counter-clockwise seen from the apex, either diagonal
+      EXPECT_GT(volume(s.mesh, v[i], v[(i + 1) % 4], v[(i + 2) % 4], v[4]), 0) << "pyramid " << y;
+  }
+  EXPECT_TRUE(check_boundary_elements(s.mesh, /*cover=*/true).ok());
+
+  // Without pyramids (the C ABI's path): the stopped column's tets and its layer's prisms stay tets.
+  Slab old = stopped_grid(3, 2, kStop);
+  std::vector<int32_t> tet_prism, tet_pyramid;
+  Result<PrismMergeStats> tets = merge_bl_prisms(old.mesh, old.origin, 1, &tet_prism, false, &tet_pyramid);
+  ASSERT_TRUE(tets.ok()) << tets.status().message();
+  EXPECT_EQ(tets->prisms, 12u);
+  EXPECT_EQ(tets->pyramids, 0u);
+  EXPECT_EQ(tets->exact_pyramids, 0u);
+  EXPECT_EQ(tets->kept_tets, 66u - 36u);
+  EXPECT_EQ(tets->beside_other_cells + tets->beside_kept, 6u);
+  EXPECT_EQ(std::count(tet_pyramid.begin(), tet_pyramid.end(), -1), 66);
+}
+
+TEST(PyramidCells, ColumnPushedAgainInTheNextLayerStaysConforming) {
+  // Layer 2's prisms on the stopped column's triangles have one column a layer lower: grouped by
+  // lowest depth, the triangles where that column is first in the push order take layer 1's
+  // pyramid and one tet of layer 2 as a prism (and the rest of layer 2 as a pyramid), the others
+  // do not, so their quads differ: those cells stay tets, and what is written still conforms.
+  Slab s = stopped_grid(3, 2, kStop, 3);
+  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1);
+  ASSERT_TRUE(merged.ok()) << merged.status().message();
+  EXPECT_EQ(merged->bl_tets, 12u * 3 * 2 + 6u * 3 + 6u * 2);
+  EXPECT_EQ(merged->kept_tets, merged->bl_tets - 3 * merged->prisms - 2 * merged->pyramids);
+  EXPECT_GE(merged->prisms, 12u);  // layer 0's at least
+  for (size_t p = 0; p < merged->prisms; ++p) {
+    const uint32_t* v = &s.mesh.prism[6 * p];
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(s.origin[v[3 + i]], v[i]) << "prism " << p;
+    EXPECT_GT(volume(s.mesh, v[0], v[1], v[2], v[3]), 0) << "prism " << p;
+  }
+  const Status faces = check_boundary_elements(s.mesh, /*cover=*/true);
+  EXPECT_TRUE(faces.ok()) << faces.message();
+  const Result<PolyMesh> pm = to_polymesh(s.mesh);
+  EXPECT_TRUE(pm.ok()) << pm.status().message();
+}
+
+TEST(PyramidCells, TellsEachTetsCell) {
+  Slab s = stopped_grid(3, 2, kStop);
+  const VolumeMesh before = s.mesh;
+  std::vector<int32_t> tet_prism, tet_pyramid;
+  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1, &tet_prism, true, &tet_pyramid);
+  ASSERT_TRUE(merged.ok());
+  ASSERT_EQ(tet_pyramid.size(), before.num_tets());
+  std::vector<int> tets_of(merged->pyramids, 0);
+  for (size_t t = 0; t < before.num_tets(); ++t) {
+    EXPECT_TRUE((tet_prism[t] < 0) != (tet_pyramid[t] < 0)) << "tet " << t << " is in one cell";
+    if (tet_pyramid[t] < 0) continue;
+    ++tets_of[size_t(tet_pyramid[t])];
+    const uint32_t* y = &s.mesh.pyramid[5 * size_t(tet_pyramid[t])];
+    for (int i = 0; i < 4; ++i) EXPECT_NE(std::find(y, y + 5, before.tet[4 * t + size_t(i)]), y + 5);
+  }
+  EXPECT_EQ(tets_of, std::vector<int>(merged->pyramids, 2));
+}
+
+TEST(PyramidCells, NoPyramidWhereTheApexIsNotAboveItsBase) {
+  // The apex moved to (2.5, 1) crosses the planes of two pyramids' bases (over the wall edges
+  // (1,0)-(2,1) and (2,1)-(2,2)): those stay tets, and so do the 5 prisms of the upper layer
+  // beside them, one beside the other; the pyramid over (0,1)-(1,2) and the prism beside it, and
+  // the three pyramids whose bases are on the sides, stay cells.
+  Slab s = stopped_grid(3, 2, kStop);
+  s.mesh.xyz[3 * kApex] = 2.5;
+  Result<PrismMergeStats> merged = merge_bl_prisms(s.mesh, s.origin, 1);
+  ASSERT_TRUE(merged.ok());
+  EXPECT_EQ(merged->exact_pyramids, 4u);
+  EXPECT_EQ(merged->pyramids, 4u);
+  EXPECT_EQ(merged->prisms, 13u);
+  EXPECT_EQ(merged->beside_other_cells + merged->beside_kept, 5u);
+  EXPECT_EQ(merged->kept_tets, 66u - 3u * 13 - 2u * 4);
+  EXPECT_TRUE(check_boundary_elements(s.mesh, /*cover=*/true).ok());
+}
+
+TEST(PyramidCells, WritersWriteThemAndTheOthersRefuse) {
+  Slab s = stopped_grid(3, 2, kStop);
+  ASSERT_TRUE(merge_bl_prisms(s.mesh, s.origin, 1).ok());
+  const size_t cells = s.mesh.num_prisms() + s.mesh.num_pyramids();
+  Result<PolyMesh> pm = to_polymesh(s.mesh);
+  ASSERT_TRUE(pm.ok()) << pm.status().message();
+  EXPECT_EQ(size_t(*std::max_element(pm->owner.begin(), pm->owner.end())) + 1, cells);
+  // Each cell's faces: 5 for prisms and pyramids; a quad between a pyramid and a prism for each
+  // pyramid whose base is not on the sides.
+  std::vector<int> faces_of(cells, 0), pyramid_prism_quads(1, 0);
+  for (size_t f = 0; f < pm->face_size.size(); ++f) {
+    ++faces_of[pm->owner[f]];
+    if (f < pm->num_internal_faces()) {
+      ++faces_of[pm->neighbour[f]];
+      const bool py_owner = pm->owner[f] >= s.mesh.num_prisms(), py_neigh = pm->neighbour[f] >= s.mesh.num_prisms();
+      if (pm->face_size[f] == 4 && py_owner != py_neigh) ++pyramid_prism_quads[0];
+    }
+  }
+  EXPECT_EQ(faces_of, std::vector<int>(cells, 5));
+  EXPECT_EQ(pyramid_prism_quads[0], 3);
+  const std::string dir = test::temp_dir();
+  ASSERT_TRUE(write_volume_mesh(s.mesh, dir + "/grid/constant/polyMesh").ok());
+  Result<std::string> owner = read_file_bytes(dir + "/grid/constant/polyMesh/owner");
+  ASSERT_TRUE(owner.ok());
+  EXPECT_NE(owner->find("nCells:24 "), std::string::npos);
+  for (const char* name : {"grid.su2", "grid.msh", "grid.mesh", "grid.meshb", "grid.cgns", "grid.exo"}) {
+    VolumeMesh pyramids_only = s.mesh;
+    pyramids_only.prism.clear();
+    pyramids_only.prism_region.clear();
+    const Status st = write_volume_mesh(pyramids_only, dir + "/" + name);
+    EXPECT_EQ(st.code(), Error::UnsupportedFormat) << name;
+    EXPECT_NE(st.message().find("6 pyramids"), std::string::npos) << st.message();
+  }
+  if (std::system("/usr/bin/python3 -c 'import meshio' >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "/usr/bin/python3 has no meshio";
+  ASSERT_TRUE(write_volume_mesh(s.mesh, dir + "/grid.vtu").ok());
+  // VTK_PYRAMID (14): the base 0 1 2 3's right-hand normal points to the apex 4.
+  const std::string script = R"(
+import sys, warnings
+import xml.etree.ElementTree as ET
+import numpy as np
+import meshio
+warnings.simplefilter("ignore")
+path = sys.argv[1] + "/grid.vtu"
+arrays = {a.get("Name"): a.text.split() for a in ET.parse(path).iter("DataArray")}
+types = [int(t) for t in arrays["types"]]
+assert types.count(13) == 18 and types.count(14) == 6 and types.count(10) == 0, types
+m = meshio.read(path)
+kinds = {c.type: len(c.data) for c in m.cells}
+assert kinds["wedge"] == 18 and kinds["pyramid"] == 6, kinds
+p = m.points
+for c in m.get_cells_type("pyramid"):
+    for i in range(4):
+        a, b, d = p[c[i]], p[c[(i + 1) % 4]], p[c[(i + 2) % 4]]
+        assert np.dot(np.cross(b - a, d - a), p[c[4]] - a) > 0, c
+region = m.cell_data["region"][[c.type for c in m.cells].index("pyramid")]
+assert list(region) == [1] * 6, region
+print("meshio read the pyramids")
+)";
+  ASSERT_TRUE(write_file_bytes(dir + "/check_pyramids.py", script).ok());
+  EXPECT_EQ(std::system(("/usr/bin/python3 '" + dir + "/check_pyramids.py' '" + dir + "' 1>&2").c_str()), 0);
 }
 
 }  // namespace
