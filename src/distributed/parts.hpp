@@ -59,10 +59,11 @@ struct MeshPart {
 // ghost tets.
 Result<MeshPart> extract_part(const TetMesh& whole, const std::vector<int32_t>& part_of, int32_t p);
 
-// What every run in parts refuses: ghost tets (InvalidArgument), and anisotropic sizing fields
-// (NotImplemented: the metric kernel, flips and extra cycles, refine_optimize_cycles, have not been
-// tried in parts, so they are refused rather than meshed untested).
-Status check_meshable_in_parts(const TetMesh& mesh, const SizingField& field);
+// What every run in parts refuses: ghost tets (InvalidArgument). Anisotropic fields are meshed:
+// refinement's metric kernel and flips and the optimizer's metric measures stop at protected
+// facets and locked vertices as the isotropic ones do, and each rank evaluates the field at its
+// own vertices (the metric never travels).
+Status check_meshable_in_parts(const TetMesh& mesh);
 
 // What a round does to each part: refinement (refine_mesh, then the new vertices renumbered for
 // locality), or optimization (optimize_mesh with the field scaled by refine.size_scale).
@@ -139,11 +140,13 @@ struct PartsOptions {
 // (what the first round could not touch). Each round ends with the merged mesh on every rank.
 // Refining and optimizing in separate rounds keeps the optimizer away from the coarse coupled
 // tets that freeze the first refinement's interfaces: with both in one round it spent 20 times
-// the serial perturbations on tets there that no move could lift. Anisotropic fields are
-// refused (Error::NotImplemented). `refine` and `optimize` get the parts' counts summed
-// (rank 0: all parts; elsewhere its own), the lengths and qualities of the final mesh. A failure
-// on any rank fails every rank, with its message. The result depends on ranks() (the parts), not
-// on the threads of each rank.
+// the serial perturbations on tets there that no move could lift. Anisotropic fields run the
+// same rounds (the pipeline's extra refine/optimize cycles, refine_optimize_cycles, do not run in
+// parts); their shares of edges in [1/sqrt2, sqrt2] after refinement and at the end are measured
+// on the whole mesh (OptimizeStats::length_in_range_*). `refine` and `optimize` get the parts'
+// counts summed (rank 0: all parts; elsewhere its own), the lengths and qualities of the final
+// mesh. A failure on any rank fails every rank, with its message. The result depends on ranks()
+// (the parts), not on the threads of each rank.
 Status run_in_parts(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
                     const OptimizeOptions& optimize_options, const PartsOptions& options, Exchange& exchange,
                     RefineStats& refine, OptimizeStats& optimize);

@@ -695,7 +695,7 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
                       RankRunStats* stats) {
   RankRunStats local_stats;
   RankRunStats& rs = stats ? *stats : local_stats;
-  if (Status s = check_meshable_in_parts(coarse, field); !s.ok()) return s;
+  if (Status s = check_meshable_in_parts(coarse); !s.ok()) return s;
   refine = RefineStats();
   optimize = OptimizeStats();
   auto t0 = Clock::now();
