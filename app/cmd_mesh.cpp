@@ -300,6 +300,7 @@ class MeshCommand {
     if (!run.ok()) return mesher_failed(run.status());
     if (distributed_ && distributed_->rank != 0) return kExitOk;  // rank 0 writes and reports
     MesherResult& r = run.value();
+    if (distributed_) r.anisotropic_cycles = cycles_run_;
     if (in_pieces_) return report_pieces(r);
     // A field built here, before the pipeline, is its sizing stage given to it ready: its time counts.
     if (field_seconds_ > 0.0) {
@@ -420,8 +421,8 @@ class MeshCommand {
       }
       options_.stage3_leaves_no_mesh = true;
       options_.stage3 = [this](TetMesh& mesh, const SizingField& f, RefineStats& refine, OptimizeStats& optimize) {
-        return distributed_->stage3_parts(mesh, f, options_.refine, options_.optimize, checked_.surface, args_.output,
-                                          refine, optimize);
+        return distributed_->stage3_parts(mesh, f, options_.refine, options_.optimize, cycles(), checked_.surface,
+                                          args_.output, refine, optimize);
       };
       return kExitOk;
     }
@@ -429,9 +430,15 @@ class MeshCommand {
       std::cerr << kCmd << ": note: with an output other than .pvtu, rank 0 gathers the whole mesh after every round "
                    "(-o NAME.pvtu writes one piece per rank without a gather)\n";
     options_.stage3 = [this](TetMesh& mesh, const SizingField& f, RefineStats& refine, OptimizeStats& optimize) {
-      return distributed_->stage3(mesh, f, options_.refine, options_.optimize, refine, optimize);
+      return distributed_->stage3(mesh, f, options_.refine, options_.optimize, cycles(), refine, optimize);
     };
     return kExitOk;
+  }
+
+  // The pipeline's anisotropic cycles, for the rounds in parts (they count those run in cycles_run_).
+  CycleOptions cycles() {
+    return {options_.anisotropic_cycles, options_.anisotropic_cycle_gain, options_.anisotropic_cycle_optimizer_gain,
+            &cycles_run_};
   }
 
   // anitet-mpi with a .pvtu output: the ranks wrote their pieces; rank 0 reports the whole.
@@ -658,6 +665,7 @@ class MeshCommand {
   double field_seconds_ = 0.0;  // a field built here, before the pipeline
   const DistributedRun* distributed_ = nullptr;
   bool in_pieces_ = false;  // anitet-mpi writing a .pvtu: no whole mesh anywhere
+  int cycles_run_ = 0;      // anitet-mpi: the anisotropic cycles the rounds in parts ran
   std::vector<std::string> not_written_;  // the report or metric files that could not be written
 };
 

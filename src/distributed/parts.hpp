@@ -132,6 +132,12 @@ struct PartsOptions {
   // run_rank_parts splits the coarse mesh until every part has about this many coarse tets or
   // more (split_coarse_for_parts); <= 0: no split.
   double coarse_tets_per_part = 2000;
+  // With an anisotropic field: the pipeline's extra cycles (MesherOptions::anisotropic_cycles and
+  // their gains, as refine_optimize_cycles runs them), each a refinement's rounds then an
+  // optimization's. 0: none.
+  int anisotropic_cycles = 0;
+  double cycle_gain = 0.01, cycle_optimizer_gain = 0.045;
+  int* cycles_run = nullptr;  // when set: the cycles that ran
 };
 
 // Stages 3b/3c of `mesh` (the coupled mesh; rank 0's is sent to all) in ranks() parts, rank r
@@ -141,9 +147,9 @@ struct PartsOptions {
 // Refining and optimizing in separate rounds keeps the optimizer away from the coarse coupled
 // tets that freeze the first refinement's interfaces: with both in one round it spent 20 times
 // the serial perturbations on tets there that no move could lift. Anisotropic fields run the
-// same rounds (the pipeline's extra refine/optimize cycles, refine_optimize_cycles, do not run in
-// parts); their shares of edges in [1/sqrt2, sqrt2] after refinement and at the end are measured
-// on the whole mesh (OptimizeStats::length_in_range_*). `refine` and `optimize` get the parts'
+// same rounds, then PartsOptions::anisotropic_cycles more of both as the pipeline's cycles run
+// (their gates read the shares of edges in [1/sqrt2, sqrt2], measured on the whole mesh, which
+// every rank holds between rounds: OptimizeStats::length_in_range_*). `refine` and `optimize` get the parts'
 // counts summed (rank 0: all parts; elsewhere its own), the lengths and qualities of the final
 // mesh. A failure on any rank fails every rank, with its message. The result depends on ranks()
 // (the parts), not on the threads of each rank.

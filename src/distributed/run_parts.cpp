@@ -157,21 +157,42 @@ Status run_in_parts(TetMesh& mesh, const SizingField& field, const RefineOptions
     return run_round(step);
   };
   // With an anisotropic field the optimizer reports the share of edges in [1/sqrt2, sqrt2] before
-  // and after it (OptimizeStats::length_in_range_*): every rank holds the whole mesh between the
-  // rounds, so the shares are measured on it, not summed from the parts.
+  // and after it (OptimizeStats::length_in_range_*), and the cycles' gates read them and
+  // refinement's share: measured on the whole mesh, not summed from the parts.
+  const bool anisotropic = anisotropic_somewhere(mesh, field, refine_options);
   RefineOptions unit_range = refine_options;
   unit_range.collapse_length = kUnitRangeMin;
   unit_range.split_length = kUnitRangeMax;
-  double unused_mean = 0.0;
-  for (Step step : {Step::kRefine, Step::kOptimize}) {
+  double unused_mean = 0.0, refined_in_range = 0.0;
+  auto rounds = [&](Step step) -> Status {
     if (Status st = two_rounds(step); !st.ok()) return st;
-    if (step == Step::kRefine && anisotropic_somewhere(mesh, field, refine_options))
+    if (!anisotropic) return Status::success();
+    if (step == Step::kRefine) {
+      measure_lengths(mesh, field, refine_options, unused_mean, refined_in_range);
       measure_lengths(mesh, field, unit_range, unused_mean, optimize.length_in_range_before);
+    } else {
+      measure_lengths(mesh, field, unit_range, unused_mean, optimize.length_in_range_after);
+    }
+    return Status::success();
+  };
+  for (Step step : {Step::kRefine, Step::kOptimize})
+    if (Status st = rounds(step); !st.ok()) return st;
+  // refine_optimize_cycles' gates: no cycle after an optimization that gained too little, and
+  // none after one whose refinement did.
+  if (options.cycles_run) *options.cycles_run = 0;
+  for (int c = 0; anisotropic && c < options.anisotropic_cycles; ++c) {
+    if (options.cycle_optimizer_gain > 0.0 &&
+        optimize.length_in_range_after < optimize.length_in_range_before + options.cycle_optimizer_gain)
+      break;
+    const double before = refined_in_range;
+    for (Step step : {Step::kRefine, Step::kOptimize})
+      if (Status st = rounds(step); !st.ok()) return st;
+    if (options.cycles_run) ++*options.cycles_run;
+    if (refined_in_range < before + options.cycle_gain) break;
   }
   // The rounds' meshes travel without their adjacency; the caller gets it.
   if (Status st = mesh.build_adjacency(); !st.ok()) return st;
   measure_lengths(mesh, field, refine_options, refine.length_mean, refine.length_in_range);
-  if (optimize.anisotropic) measure_lengths(mesh, field, unit_range, unused_mean, optimize.length_in_range_after);
   refine.vertices_after = refine_detail::live_vertex_count(mesh);
   refine.tets_after = mesh.num_live_tets();
   optimize.after = summarize_quality(mesh);

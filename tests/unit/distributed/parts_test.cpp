@@ -99,7 +99,7 @@ class ThreadExchange final : public Exchange {
 
 // The pipeline with stages 3b/3c in `parts` parts, one thread each.
 Result<MesherResult> mesh_in_parts(const SurfaceMesh& surface, int parts, size_t* tets_after_hook = nullptr,
-                                   const SizingField* sizing = nullptr) {
+                                   const SizingField* sizing = nullptr, const PartsOptions& parts_options = {}) {
   MesherOptions options;
   options.sizing = sizing;
   options.stage3 = [&](TetMesh& mesh, const SizingField& field, RefineStats& refine, OptimizeStats& optimize) {
@@ -112,11 +112,13 @@ Result<MesherResult> mesh_in_parts(const SurfaceMesh& surface, int parts, size_t
         ThreadExchange ex(box, r, parts);
         RefineStats rs;
         OptimizeStats os;
-        status[size_t(r)] = run_in_parts(copies[size_t(r) - 1], field, options.refine, options.optimize,
-                                         PartsOptions(), ex, rs, os);
+        PartsOptions own = parts_options;
+        own.cycles_run = nullptr;  // rank 0's count only
+        status[size_t(r)] = run_in_parts(copies[size_t(r) - 1], field, options.refine, options.optimize, own, ex, rs,
+                                         os);
       });
     ThreadExchange ex(box, 0, parts);
-    status[0] = run_in_parts(mesh, field, options.refine, options.optimize, PartsOptions(), ex, refine, optimize);
+    status[0] = run_in_parts(mesh, field, options.refine, options.optimize, parts_options, ex, refine, optimize);
     for (std::thread& t : others) t.join();
     for (const Status& st : status)
       if (!st.ok()) return st;
@@ -341,7 +343,8 @@ TEST(Parts, SplittingTheCoarseMeshCapsItsLargestTetsTheSameEveryTime) {
 
 // An anisotropic field (sizes a third as long along z as along x and y) meshed in 2 parts: the
 // rounds run refinement's metric kernel and flips and the optimizer's metric measures with the
-// interfaces frozen; valid, boundary constrained, and the metric measures as one process's.
+// interfaces frozen, and the pipeline's extra cycles under the same gates (as many as one
+// process runs); valid, boundary constrained, and the metric measures as one process's.
 TEST(Parts, AnisotropicFieldMeshesInPartsAsInOneProcess) {
   const SurfaceMesh s = knight();
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
@@ -360,11 +363,16 @@ TEST(Parts, AnisotropicFieldMeshesInPartsAsInOneProcess) {
   field.h = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) / 10.0;
   MesherOptions serial_options;
   serial_options.sizing = &field;
-  serial_options.anisotropic_cycles = 0;  // the rounds in parts run no extra cycles
   Result<MesherResult> serial = Mesher(serial_options).run(s);
   ASSERT_TRUE(serial.ok()) << serial.status().message();
   ASSERT_TRUE(serial->optimize.anisotropic);
-  Result<MesherResult> r = mesh_in_parts(s, 2, nullptr, &field);
+  PartsOptions parts_options;
+  int cycles_run = -1;
+  parts_options.anisotropic_cycles = serial_options.anisotropic_cycles;
+  parts_options.cycle_gain = serial_options.anisotropic_cycle_gain;
+  parts_options.cycle_optimizer_gain = serial_options.anisotropic_cycle_optimizer_gain;
+  parts_options.cycles_run = &cycles_run;
+  Result<MesherResult> r = mesh_in_parts(s, 2, nullptr, &field, parts_options);
   ASSERT_TRUE(r.ok()) << r.status().message();
   expect_valid_and_constrained(s, r.value(), "anisotropic, 2 parts");
   EXPECT_TRUE(r->optimize.anisotropic);
@@ -380,9 +388,10 @@ TEST(Parts, AnisotropicFieldMeshesInPartsAsInOneProcess) {
   };
   const double share = in_range(r.value()), serial_share = in_range(serial.value());
   std::printf("anisotropic, 2 parts: edges in range %.4f (one process %.4f), metric radius ratio mean %.4f (%.4f), "
-              "tets %zu (%zu)\n",
+              "tets %zu (%zu), extra cycles %d (%d)\n",
               share, serial_share, r->metric_quality.mean, serial->metric_quality.mean, r->mesh.num_tets(),
-              serial->mesh.num_tets());
+              serial->mesh.num_tets(), cycles_run, serial->anisotropic_cycles);
+  EXPECT_EQ(cycles_run, serial->anisotropic_cycles);
   EXPECT_GT(share, serial_share - 0.02);
   EXPECT_GT(r->metric_quality.mean, 0.97 * serial->metric_quality.mean);
 }
