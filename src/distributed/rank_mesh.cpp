@@ -660,8 +660,8 @@ Result<QualitySummary> whole_quality(const TetMesh& mesh, Comm& comm) {
 
 // Whether the anisotropic cycles may run: some are asked for and the field is anisotropic at a
 // vertex of some rank (the optimizer's rule). Collective.
-bool anisotropic_cycles_wanted(const TetMesh& mesh, const SizingField& field, double scale,
-                               const PartsOptions& options, Comm& comm) {
+Result<bool> anisotropic_cycles_wanted(const TetMesh& mesh, const SizingField& field, double scale,
+                                       const PartsOptions& options, Comm& comm) {
   if (options.anisotropic_cycles <= 0) return false;
   const ScaledSizing scaled(field, scale);
   double m[6], found = 0.0;
@@ -670,7 +670,8 @@ bool anisotropic_cycles_wanted(const TetMesh& mesh, const SizingField& field, do
     found = meshops::MetricMap::of(m).identity ? 0.0 : 1.0;
   }
   Result<std::vector<double>> any = comm.allreduce({found}, true);
-  return any.ok() && any.value()[0] > 0.0;
+  if (!any.ok()) return any.status();
+  return any.value()[0] > 0.0;
 }
 
 // The share of the edges not on a protected facet whose normalized length is in [lo, hi], over
@@ -774,7 +775,9 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
   };
   // The shares of edges in [1/sqrt2, sqrt2] that the anisotropic cycles' gates read (refinement's
   // range, then the unit range), over the ranks.
-  const bool anisotropic = anisotropic_cycles_wanted(rm.mesh, field, scale, options, comm);
+  Result<bool> wanted = anisotropic_cycles_wanted(rm.mesh, field, scale, options, comm);
+  if (!wanted.ok()) return wanted.status();
+  const bool anisotropic = wanted.value();
   double refined_in_range = 0.0;
   auto steps = [&](Step step) -> Status {
     std::fill(rm.meshable.begin(), rm.meshable.end(), 1);
