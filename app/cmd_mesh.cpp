@@ -414,9 +414,10 @@ class MeshCommand {
       // A prism is three BL tets merged with the columns' vertex origins, on the whole mesh; the
       // ranks write their own tets only.
       if (args_.bl_cells == "prisms") {
-        std::cerr << kCmd << ": --bl-cells prisms is not possible with a .pvtu output (each rank writes its own "
-                     "tets, no rank holds the whole mesh): write a .mesh, .msh or other single file (rank 0 gathers "
-                     "the mesh) or leave the layers as tets\n";
+        if (distributed_->rank == 0)
+          std::cerr << kCmd << ": --bl-cells prisms is not possible with a .pvtu output (each rank writes its own "
+                       "tets, no rank holds the whole mesh): write a .vtu or an OpenFOAM polyMesh (rank 0 gathers "
+                       "the mesh) or leave the layers as tets\n";
         return kExitNotImplemented;
       }
       options_.stage3_leaves_no_mesh = true;
