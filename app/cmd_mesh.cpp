@@ -300,6 +300,7 @@ class MeshCommand {
     if (!run.ok()) return mesher_failed(run.status());
     if (distributed_ && distributed_->rank != 0) return kExitOk;  // rank 0 writes and reports
     MesherResult& r = run.value();
+    if (distributed_) r.anisotropic_cycles = cycles_run_;
     if (in_pieces_) return report_pieces(r);
     // A field built here, before the pipeline, is its sizing stage given to it ready: its time counts.
     if (field_seconds_ > 0.0) {
@@ -404,19 +405,25 @@ class MeshCommand {
   int distributed_options() {
     distributed_ = distributed_run();
     if (!distributed_) return kExitOk;
-    if (!args_.bl_patches.empty()) {
-      std::cerr << kCmd << ": boundary layers are not implemented with MPI yet: run `anitet mesh`\n";
-      return kExitNotImplemented;
-    }
     if (args_.no_refine || args_.no_optimize) {
       std::cerr << kCmd << ": with MPI, refinement and optimization both run (they are what the ranks share)\n";
       return kExitUsage;
     }
     in_pieces_ = is_pvtu_path(args_.output) && distributed_->stage3_parts;
     if (in_pieces_) {
+      // A prism is three BL tets merged with the columns' vertex origins, on the whole mesh; the
+      // ranks write their own tets only.
+      if (args_.bl_cells == "prisms") {
+        if (distributed_->rank == 0)
+          std::cerr << kCmd << ": --bl-cells prisms is not possible with a .pvtu output (each rank writes its own "
+                       "tets, no rank holds the whole mesh): write a .vtu or an OpenFOAM polyMesh (rank 0 gathers "
+                       "the mesh) or leave the layers as tets\n";
+        return kExitNotImplemented;
+      }
+      options_.stage3_leaves_no_mesh = true;
       options_.stage3 = [this](TetMesh& mesh, const SizingField& f, RefineStats& refine, OptimizeStats& optimize) {
-        return distributed_->stage3_parts(mesh, f, options_.refine, options_.optimize, checked_.surface, args_.output,
-                                          refine, optimize);
+        return distributed_->stage3_parts(mesh, f, options_.refine, options_.optimize, cycles(), checked_.surface,
+                                          args_.output, refine, optimize);
       };
       return kExitOk;
     }
@@ -424,9 +431,15 @@ class MeshCommand {
       std::cerr << kCmd << ": note: with an output other than .pvtu, rank 0 gathers the whole mesh after every round "
                    "(-o NAME.pvtu writes one piece per rank without a gather)\n";
     options_.stage3 = [this](TetMesh& mesh, const SizingField& f, RefineStats& refine, OptimizeStats& optimize) {
-      return distributed_->stage3(mesh, f, options_.refine, options_.optimize, refine, optimize);
+      return distributed_->stage3(mesh, f, options_.refine, options_.optimize, cycles(), refine, optimize);
     };
     return kExitOk;
+  }
+
+  // The pipeline's anisotropic cycles, for the rounds in parts (they count those run in cycles_run_).
+  CycleOptions cycles() {
+    return {options_.anisotropic_cycles, options_.anisotropic_cycle_gain, options_.anisotropic_cycle_optimizer_gain,
+            &cycles_run_};
   }
 
   // anitet-mpi with a .pvtu output: the ranks wrote their pieces; rank 0 reports the whole.
@@ -438,11 +451,32 @@ class MeshCommand {
       out["tets"] = q.tets;
       out["radius_ratio"] = {{"mean", q.mean}, {"min", q.min}, {"below_0.1", q.below_01}};
       out["seconds"] = r.seconds;
+      if (const BoundaryLayerReport& bl = r.boundary_layer; bl.layers > 0)
+        out["boundary_layer"] = {{"layers", bl.layers},
+                                 {"wall_vertices", bl.wall_vertices},
+                                 {"tets", bl.tets},
+                                 {"full_columns", bl.full_columns},
+                                 {"nominal_columns", bl.nominal_columns},
+                                 {"first_height_min", bl.first_height_min},
+                                 {"first_height_max", bl.first_height_max},
+                                 {"measured", "before the rounds (the layers stay frozen through them)"}};
       std::cout << out.dump(2) << "\n";
     } else if (!args_.quiet) {
       std::printf("%s: %zu tets in %d pieces; radius ratio mean %.4f, min %.4f; %.1f s\n", args_.output.c_str(), q.tets,
                   distributed_->ranks, q.mean, q.min, r.seconds);
+      const BoundaryLayerReport& bl = r.boundary_layer;
+      if (bl.layers > 0)
+        std::printf("  boundary layer: %d layers on %zu wall vertices, %zu tets, %zu full columns, %zu within 10%% of "
+                    "h0 r^i, first height %.4g .. %.4g (measured before the rounds, which keep the layers frozen; "
+                    "the cell and transition figures need the whole mesh: not measured with .pvtu)\n",
+                    bl.layers, bl.wall_vertices, bl.tets, bl.full_columns, bl.nominal_columns, bl.first_height_min,
+                    bl.first_height_max);
     }
+    if (!args_.bl_columns.empty())
+      if (Status st = write_bl_columns(r); !st.ok()) {
+        std::cerr << kCmd << ": cannot write '" << args_.bl_columns << "': " << st.message() << "\n";
+        return kExitReadError;
+      }
     return kExitOk;
   }
 
@@ -636,6 +670,7 @@ class MeshCommand {
   double field_seconds_ = 0.0;  // a field built here, before the pipeline
   const DistributedRun* distributed_ = nullptr;
   bool in_pieces_ = false;  // anitet-mpi writing a .pvtu: no whole mesh anywhere
+  int cycles_run_ = 0;      // anitet-mpi: the anisotropic cycles the rounds in parts ran
   std::vector<std::string> not_written_;  // the report or metric files that could not be written
 };
 
@@ -825,7 +860,7 @@ CLI::App* add_mesh_command(CLI::App& app, MeshArgs& args) {
                   "How the boundary layer's prisms are written: tets (each split into the 3 tets the "
                   "pipeline keeps, every format) or prisms (one prism cell each, and a pyramid where "
                   "a column stopped, for finite-volume solvers; .vtu and OpenFOAM polyMesh only, "
-                  "other outputs are refused)")
+                  "other outputs are refused, as is anitet-mpi's .pvtu, whose ranks write their own tets)")
       ->capture_default_str()
       ->check(CLI::IsMember({"tets", "prisms"}))
       ->group(bl_group);

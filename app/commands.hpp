@@ -35,14 +35,22 @@ int cli_main(int argc, char** argv);
 // With a `.pvtu` output, `stage3_parts` runs instead: no rank ever holds the whole mesh, each
 // writes its piece of `output` (the boundary triangles from `surface`), and the coarse mesh is
 // left with no tet; rank 0 prints a short report.
+// The pipeline's anisotropic cycles (MesherOptions::anisotropic_cycles, _cycle_gain and
+// _cycle_optimizer_gain), which the rounds in parts run too; `run` gets the cycles that ran.
+struct CycleOptions {
+  int cycles = 0;
+  double gain = 0.0, optimizer_gain = 0.0;
+  int* run = nullptr;
+};
 struct DistributedRun {
   int rank = 0, ranks = 1;
   std::function<Status(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
-                       const OptimizeOptions& optimize_options, RefineStats& refine, OptimizeStats& optimize)>
+                       const OptimizeOptions& optimize_options, const CycleOptions& cycles, RefineStats& refine,
+                       OptimizeStats& optimize)>
       stage3;
   std::function<Status(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
-                       const OptimizeOptions& optimize_options, const SurfaceMesh& surface, const std::string& output,
-                       RefineStats& refine, OptimizeStats& optimize)>
+                       const OptimizeOptions& optimize_options, const CycleOptions& cycles, const SurfaceMesh& surface,
+                       const std::string& output, RefineStats& refine, OptimizeStats& optimize)>
       stage3_parts;
 };
 // Whether an output path names a .pvtu index (the pieces' output of anitet-mpi).

@@ -104,8 +104,8 @@ bool all_ranks_ready(bool ready) {
 // mesh is left with the surface's vertices and no tet, for the report of `anitet mesh`.
 Status stage3_in_pieces(anitet::TetMesh& mesh, const anitet::SizingField& field,
                         const anitet::RefineOptions& refine_options, const anitet::OptimizeOptions& optimize_options,
-                        const anitet::SurfaceMesh& surface, const std::string& output, anitet::RefineStats& refine,
-                        anitet::OptimizeStats& optimize) {
+                        const anitet::distributed::PartsOptions& options, const anitet::SurfaceMesh& surface,
+                        const std::string& output, anitet::RefineStats& refine, anitet::OptimizeStats& optimize) {
   anitet::mpi::MpiComm comm(MPI_COMM_WORLD);
   anitet::mpi::ScotchPartitioner partitioner(comm.comm());
   std::vector<double> surface_xyz(mesh.xyz.begin(), mesh.xyz.begin() + std::ptrdiff_t(3 * surface.num_vertices()));
@@ -113,9 +113,8 @@ Status stage3_in_pieces(anitet::TetMesh& mesh, const anitet::SizingField& field,
   anitet::distributed::trace_memory(comm.rank(), "stages 1-2 and coupling");
   anitet::distributed::RankMesh rm;
   anitet::distributed::RankRunStats stats;
-  if (Status st = anitet::distributed::run_rank_parts(mesh, field, refine_options, optimize_options,
-                                                      anitet::distributed::PartsOptions(), comm, partitioner, rm,
-                                                      refine, optimize, &stats);
+  if (Status st = anitet::distributed::run_rank_parts(mesh, field, refine_options, optimize_options, options, comm,
+                                                      partitioner, rm, refine, optimize, &stats);
       !st.ok())
     return st;
   anitet::distributed::trace_memory(comm.rank(), "rounds done");
@@ -132,6 +131,16 @@ Status stage3_in_pieces(anitet::TetMesh& mesh, const anitet::SizingField& field,
   mesh.xyz = std::move(surface_xyz);
   mesh.vflags = std::move(surface_flags);
   return Status::success();
+}
+
+// The rounds' options, with the pipeline's anisotropic cycles.
+anitet::distributed::PartsOptions parts_options(const anitet::cli::CycleOptions& cycles) {
+  anitet::distributed::PartsOptions options;
+  options.anisotropic_cycles = cycles.cycles;
+  options.cycle_gain = cycles.gain;
+  options.cycle_optimizer_gain = cycles.optimizer_gain;
+  options.cycles_run = cycles.run;
+  return options;
 }
 
 // The subcommand: the first argument that is not an option.
@@ -181,23 +190,25 @@ int main(int argc, char** argv) {
     run.stage3 = [&exchange, &entered](anitet::TetMesh& mesh, const anitet::SizingField& field,
                                        const anitet::RefineOptions& refine_options,
                                        const anitet::OptimizeOptions& optimize_options,
-                                       anitet::RefineStats& refine, anitet::OptimizeStats& optimize) {
+                                       const anitet::cli::CycleOptions& cycles, anitet::RefineStats& refine,
+                                       anitet::OptimizeStats& optimize) {
       entered = true;
       if (!all_ranks_ready(true))
         return Status(Error::Internal, "another rank failed before stages 3b/3c (see its message)");
-      const anitet::distributed::PartsOptions options;
-      return anitet::distributed::run_in_parts(mesh, field, refine_options, optimize_options, options, exchange,
-                                               refine, optimize);
+      return anitet::distributed::run_in_parts(mesh, field, refine_options, optimize_options, parts_options(cycles),
+                                               exchange, refine, optimize);
     };
     run.stage3_parts = [&entered](anitet::TetMesh& mesh, const anitet::SizingField& field,
                                   const anitet::RefineOptions& refine_options,
-                                  const anitet::OptimizeOptions& optimize_options, const anitet::SurfaceMesh& surface,
+                                  const anitet::OptimizeOptions& optimize_options,
+                                  const anitet::cli::CycleOptions& cycles, const anitet::SurfaceMesh& surface,
                                   const std::string& output, anitet::RefineStats& refine,
                                   anitet::OptimizeStats& optimize) {
       entered = true;
       if (!all_ranks_ready(true))
         return Status(Error::Internal, "another rank failed before stages 3b/3c (see its message)");
-      return stage3_in_pieces(mesh, field, refine_options, optimize_options, surface, output, refine, optimize);
+      return stage3_in_pieces(mesh, field, refine_options, optimize_options, parts_options(cycles), surface, output,
+                              refine, optimize);
     };
     anitet::cli::set_distributed_run(&run);
     code = anitet::cli::cli_main(argc, argv);

@@ -179,17 +179,10 @@ std::vector<int32_t> move_interfaces(const TetMesh& mesh, const std::vector<int3
   return tet_part;
 }
 
-Status check_meshable_in_parts(const TetMesh& mesh, const SizingField& field) {
+Status check_meshable_in_parts(const TetMesh& mesh) {
   for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
     if (!mesh.is_deleted(t) && mesh.is_ghost(t))
       return Status(Error::InvalidArgument, "distributed: the mesh has ghost tets");
-  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
-    double m[6];
-    field.metric(mesh.point(v), m);
-    if (!meshops::MetricMap::of(m).identity)
-      return Status(Error::NotImplemented,
-                    "anisotropic sizing fields are not implemented in parts yet: run `anitet mesh`");
-  }
   return Status::success();
 }
 

@@ -59,10 +59,11 @@ struct MeshPart {
 // ghost tets.
 Result<MeshPart> extract_part(const TetMesh& whole, const std::vector<int32_t>& part_of, int32_t p);
 
-// What every run in parts refuses: ghost tets (InvalidArgument), and anisotropic sizing fields
-// (NotImplemented: the metric kernel, flips and extra cycles, refine_optimize_cycles, have not been
-// tried in parts, so they are refused rather than meshed untested).
-Status check_meshable_in_parts(const TetMesh& mesh, const SizingField& field);
+// What every run in parts refuses: ghost tets (InvalidArgument). Anisotropic fields are meshed:
+// refinement's metric kernel and flips and the optimizer's metric measures stop at protected
+// facets and locked vertices as the isotropic ones do, and each rank evaluates the field at its
+// own vertices (the metric never travels).
+Status check_meshable_in_parts(const TetMesh& mesh);
 
 // What a round does to each part: refinement (refine_mesh, then the new vertices renumbered for
 // locality), or optimization (optimize_mesh with the field scaled by refine.size_scale).
@@ -131,6 +132,12 @@ struct PartsOptions {
   // run_rank_parts splits the coarse mesh until every part has about this many coarse tets or
   // more (split_coarse_for_parts); <= 0: no split.
   double coarse_tets_per_part = 2000;
+  // With an anisotropic field: the pipeline's extra cycles (MesherOptions::anisotropic_cycles and
+  // their gains, as refine_optimize_cycles runs them), each a refinement's rounds then an
+  // optimization's. 0: none.
+  int anisotropic_cycles = 0;
+  double cycle_gain = 0.01, cycle_optimizer_gain = 0.045;
+  int* cycles_run = nullptr;  // when set: the cycles that ran
 };
 
 // Stages 3b/3c of `mesh` (the coupled mesh; rank 0's is sent to all) in ranks() parts, rank r
@@ -139,11 +146,13 @@ struct PartsOptions {
 // (what the first round could not touch). Each round ends with the merged mesh on every rank.
 // Refining and optimizing in separate rounds keeps the optimizer away from the coarse coupled
 // tets that freeze the first refinement's interfaces: with both in one round it spent 20 times
-// the serial perturbations on tets there that no move could lift. Anisotropic fields are
-// refused (Error::NotImplemented). `refine` and `optimize` get the parts' counts summed
-// (rank 0: all parts; elsewhere its own), the lengths and qualities of the final mesh. A failure
-// on any rank fails every rank, with its message. The result depends on ranks() (the parts), not
-// on the threads of each rank.
+// the serial perturbations on tets there that no move could lift. Anisotropic fields run the
+// same rounds, then PartsOptions::anisotropic_cycles more of both as the pipeline's cycles run
+// (their gates read the shares of edges in [1/sqrt2, sqrt2], measured on the whole mesh, which
+// every rank holds between rounds: OptimizeStats::length_in_range_*). `refine` and `optimize` get the parts'
+// counts summed (rank 0: all parts; elsewhere its own), the lengths and qualities of the final
+// mesh. A failure on any rank fails every rank, with its message. The result depends on ranks()
+// (the parts), not on the threads of each rank.
 Status run_in_parts(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
                     const OptimizeOptions& optimize_options, const PartsOptions& options, Exchange& exchange,
                     RefineStats& refine, OptimizeStats& optimize);

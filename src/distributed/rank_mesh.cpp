@@ -649,6 +649,38 @@ Result<QualitySummary> whole_quality(const TetMesh& mesh, Comm& comm) {
   return w;
 }
 
+// Whether the anisotropic cycles may run: some are asked for and the field is anisotropic at a
+// vertex of some rank (the optimizer's rule). Collective.
+Result<bool> anisotropic_cycles_wanted(const TetMesh& mesh, const SizingField& field, double scale,
+                                       const PartsOptions& options, Comm& comm) {
+  if (options.anisotropic_cycles <= 0) return false;
+  const ScaledSizing scaled(field, scale);
+  double m[6], found = 0.0;
+  for (uint32_t v = 0; v < mesh.num_vertices() && found == 0.0; ++v) {
+    scaled.metric(mesh.point(v), m);
+    found = meshops::MetricMap::of(m).identity ? 0.0 : 1.0;
+  }
+  Result<std::vector<double>> any = comm.allreduce({found}, true);
+  if (!any.ok()) return any.status();
+  return any.value()[0] > 0.0;
+}
+
+// The share of the edges not on a protected facet whose normalized length is in [lo, hi], over
+// the ranks: each rank's share of its own edges weighted by its tets (edges on an interface are
+// measured on each rank that has them; the cycles' gates need no more). Collective.
+Result<double> share_in_range(const TetMesh& mesh, const SizingField& field, double scale, double lo, double hi,
+                              Comm& comm) {
+  const ScaledSizing scaled(field, scale);
+  std::vector<double> metrics(6 * mesh.num_vertices());
+  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) scaled.metric(mesh.point(v), &metrics[6 * size_t(v)]);
+  double mean = 0.0, share = 0.0;
+  refine_detail::summarize_edge_lengths(mesh, metrics, lo, hi, mean, share);
+  const auto tets = double(mesh.num_live_tets());
+  Result<std::vector<double>> sum = comm.allreduce({share * tets, tets}, false);
+  if (!sum.ok()) return sum.status();
+  return sum.value()[1] > 0.0 ? sum.value()[0] / sum.value()[1] : 1.0;
+}
+
 }  // namespace
 
 Result<size_t> split_coarse_for_parts(TetMesh& coarse, const SizingField& field, const RefineOptions& refine_options,
@@ -686,7 +718,7 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
                       RankRunStats* stats) {
   RankRunStats local_stats;
   RankRunStats& rs = stats ? *stats : local_stats;
-  if (Status s = check_meshable_in_parts(coarse, field); !s.ok()) return s;
+  if (Status s = check_meshable_in_parts(coarse); !s.ok()) return s;
   refine = RefineStats();
   optimize = OptimizeStats();
   auto t0 = Clock::now();
@@ -732,7 +764,13 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
     rs.migrated_tets += sent.value();
     return Status::success();
   };
-  for (Step step : {Step::kRefine, Step::kOptimize}) {
+  // The shares of edges in [1/sqrt2, sqrt2] that the anisotropic cycles' gates read (refinement's
+  // range, then the unit range), over the ranks.
+  Result<bool> wanted = anisotropic_cycles_wanted(rm.mesh, field, scale, options, comm);
+  if (!wanted.ok()) return wanted.status();
+  const bool anisotropic = wanted.value();
+  double refined_in_range = 0.0;
+  auto steps = [&](Step step) -> Status {
     std::fill(rm.meshable.begin(), rm.meshable.end(), 1);
     if (Status st = round(step); !st.ok()) return st;
     const int moves = step == Step::kRefine ? 1 : std::max(1, options.optimize_moves);
@@ -740,6 +778,29 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
       if (Status st = move(step); !st.ok()) return st;
       if (Status st = round(step); !st.ok()) return st;
     }
+    if (!anisotropic) return Status::success();
+    Result<double> share = share_in_range(rm.mesh, field, scale, refine_options.collapse_length,
+                                          refine_options.split_length, comm);
+    if (!share.ok()) return share.status();
+    if (step == Step::kRefine) refined_in_range = share.value();
+    Result<double> unit = share_in_range(rm.mesh, field, scale, kUnitRangeMin, kUnitRangeMax, comm);
+    if (!unit.ok()) return unit.status();
+    (step == Step::kRefine ? optimize.length_in_range_before : optimize.length_in_range_after) = unit.value();
+    return Status::success();
+  };
+  for (Step step : {Step::kRefine, Step::kOptimize})
+    if (Status st = steps(step); !st.ok()) return st;
+  // refine_optimize_cycles' gates, as run_in_parts reads them.
+  if (options.cycles_run) *options.cycles_run = 0;
+  for (int c = 0; anisotropic && c < options.anisotropic_cycles; ++c) {
+    if (options.cycle_optimizer_gain > 0.0 &&
+        optimize.length_in_range_after < optimize.length_in_range_before + options.cycle_optimizer_gain)
+      break;
+    const double before = refined_in_range;
+    for (Step step : {Step::kRefine, Step::kOptimize})
+      if (Status st = steps(step); !st.ok()) return st;
+    if (options.cycles_run) ++*options.cycles_run;
+    if (refined_in_range < before + options.cycle_gain) break;
   }
   rs.rounds_seconds = since(t0);
   if (Status st = sum_counts(refine, optimize, comm); !st.ok()) return st;

@@ -109,7 +109,9 @@ Result<size_t> split_coarse_for_parts(TetMesh& coarse, const SizingField& field,
 
 // Stages 3b/3c in parts with no gather: the coarse mesh `coarse` (replicated) split
 // (split_coarse_for_parts), partitioned, freed, then the rounds: refinement, a move, refinement;
-// optimization, then optimize_moves times a move and optimization (PartsOptions). `rm` is this rank's part at the end; refine/optimize get
+// optimization, then optimize_moves times a move and optimization (PartsOptions); with an
+// anisotropic field, PartsOptions::anisotropic_cycles more of both, gated as run_in_parts gates
+// them. `rm` is this rank's part at the end; refine/optimize get
 // the counts summed over the ranks and the quality of the whole (summed from the parts).
 struct RankRunStats {
   double partition_seconds = 0, rounds_seconds = 0;

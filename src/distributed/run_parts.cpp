@@ -74,15 +74,31 @@ std::vector<uint8_t> merge_messages(const TetMesh& mesh, const std::vector<int32
   return ok_message(serialize_mesh(merged.value(), tet_part));
 }
 
-// Normalized edge lengths of the edges not on a protected facet, as refinement reports them.
-void measure_lengths(const TetMesh& mesh, const SizingField& field, const RefineOptions& options, RefineStats& stats) {
+// Normalized edge lengths of the edges not on a protected facet, as refinement reports them
+// (with its range: the share in [collapse_length, split_length]).
+void measure_lengths(const TetMesh& mesh, const SizingField& field, const RefineOptions& options, double& mean,
+                     double& in_range) {
   const ScaledSizing scaled(field, options.size_scale > 0.0 ? options.size_scale : 1.0);
   std::vector<double> metrics(6 * mesh.num_vertices());
   for (uint32_t v = 0; v < mesh.num_vertices(); ++v) scaled.metric(mesh.point(v), &metrics[6 * size_t(v)]);
-  refine_detail::summarize_edge_lengths(mesh, metrics, options.collapse_length, options.split_length,
-                                        stats.length_mean, stats.length_in_range);
-  stats.vertices_after = refine_detail::live_vertex_count(mesh);
-  stats.tets_after = mesh.num_live_tets();
+  refine_detail::summarize_edge_lengths(mesh, metrics, options.collapse_length, options.split_length, mean, in_range);
+}
+
+// Whether the optimizer will measure in the metric (an anisotropic metric at some vertex of a
+// tet), as optimize_mesh decides it on the whole mesh.
+bool anisotropic_somewhere(const TetMesh& mesh, const SizingField& field, const RefineOptions& options) {
+  const ScaledSizing scaled(field, options.size_scale > 0.0 ? options.size_scale : 1.0);
+  std::vector<uint8_t> used(mesh.num_vertices(), 0);
+  for (uint32_t t = 0; t < mesh.num_tet_slots(); ++t)
+    if (!mesh.is_deleted(t) && !mesh.is_ghost(t))
+      for (int i = 0; i < 4; ++i) used[mesh.vertex(t, i)] = 1;
+  double m[6];
+  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
+    if (!used[v]) continue;
+    scaled.metric(mesh.point(v), m);
+    if (!meshops::MetricMap::of(m).identity) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -90,7 +106,7 @@ void measure_lengths(const TetMesh& mesh, const SizingField& field, const Refine
 Status run_in_parts(TetMesh& mesh, const SizingField& field, const RefineOptions& refine_options,
                     const OptimizeOptions& optimize_options, const PartsOptions& options, Exchange& exchange,
                     RefineStats& refine, OptimizeStats& optimize) {
-  if (Status s = check_meshable_in_parts(mesh, field); !s.ok()) return s;
+  if (Status s = check_meshable_in_parts(mesh); !s.ok()) return s;
   refine = RefineStats();
   optimize = OptimizeStats();
   std::vector<int32_t> part_of;
@@ -140,11 +156,45 @@ Status run_in_parts(TetMesh& mesh, const SizingField& field, const RefineOptions
     part_of = move_interfaces(mesh, part_of, options.rings, options.zone);
     return run_round(step);
   };
-  for (Step step : {Step::kRefine, Step::kOptimize})
+  // With an anisotropic field the optimizer reports the share of edges in [1/sqrt2, sqrt2] before
+  // and after it (OptimizeStats::length_in_range_*), and the cycles' gates read them and
+  // refinement's share: measured on the whole mesh, not summed from the parts.
+  const bool anisotropic = anisotropic_somewhere(mesh, field, refine_options);
+  RefineOptions unit_range = refine_options;
+  unit_range.collapse_length = kUnitRangeMin;
+  unit_range.split_length = kUnitRangeMax;
+  double unused_mean = 0.0, refined_in_range = 0.0;
+  auto rounds = [&](Step step) -> Status {
     if (Status st = two_rounds(step); !st.ok()) return st;
+    if (!anisotropic) return Status::success();
+    if (step == Step::kRefine) {
+      measure_lengths(mesh, field, refine_options, unused_mean, refined_in_range);
+      measure_lengths(mesh, field, unit_range, unused_mean, optimize.length_in_range_before);
+    } else {
+      measure_lengths(mesh, field, unit_range, unused_mean, optimize.length_in_range_after);
+    }
+    return Status::success();
+  };
+  for (Step step : {Step::kRefine, Step::kOptimize})
+    if (Status st = rounds(step); !st.ok()) return st;
+  // refine_optimize_cycles' gates: no cycle after an optimization that gained too little, and
+  // none after one whose refinement did.
+  if (options.cycles_run) *options.cycles_run = 0;
+  for (int c = 0; anisotropic && c < options.anisotropic_cycles; ++c) {
+    if (options.cycle_optimizer_gain > 0.0 &&
+        optimize.length_in_range_after < optimize.length_in_range_before + options.cycle_optimizer_gain)
+      break;
+    const double before = refined_in_range;
+    for (Step step : {Step::kRefine, Step::kOptimize})
+      if (Status st = rounds(step); !st.ok()) return st;
+    if (options.cycles_run) ++*options.cycles_run;
+    if (refined_in_range < before + options.cycle_gain) break;
+  }
   // The rounds' meshes travel without their adjacency; the caller gets it.
   if (Status st = mesh.build_adjacency(); !st.ok()) return st;
-  measure_lengths(mesh, field, refine_options, refine);
+  measure_lengths(mesh, field, refine_options, refine.length_mean, refine.length_in_range);
+  refine.vertices_after = refine_detail::live_vertex_count(mesh);
+  refine.tets_after = mesh.num_live_tets();
   optimize.after = summarize_quality(mesh);
   return Status::success();
 }

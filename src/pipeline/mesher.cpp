@@ -239,6 +239,8 @@ class MeshingRun {
     TetMesh& mesh = coupled->mesh;
     const auto bodies = int32_t(coupled->stats.bodies);
     if (o_.layers.boundary_layer.enabled()) result_.boundary_layer.vertices = freeze_boundary_layer(mesh, bodies);
+    if (o_.layers.boundary_layer.enabled() && o_.stage3 && o_.stage3_leaves_no_mesh)
+      measure_layers(mesh, bodies, false);
     if (o_.run_refine || o_.run_optimize) {
       if (Status st = progress("sizing", kDoneAfterCoupling); !st.ok()) return st;
       StageField field;  // (it points into itself: filled in place)
@@ -514,6 +516,19 @@ class MeshingRun {
     return Status::success();
   }
 
+  // The boundary layer's figures on `mesh`: its columns, and with `cells` its dual faces and
+  // transition (result_.boundary_layer.vertices, set when the layers were frozen, is kept).
+  void measure_layers(const TetMesh& mesh, int32_t bodies, bool cells) {
+    const BoundaryLayerOptions& bl = o_.layers.boundary_layer;
+    BoundaryLayerReport& r = result_.boundary_layer;
+    measure_boundary_layer(surface_, bl, result_.layers.bl_layers, t1_origin_, t1_xyz_, mesh, bodies, r);
+    if (cells) measure_boundary_layer_cells(mesh, bodies, r);
+    r.tets = 0;
+    for (uint32_t k = 0; k < mesh.num_tet_slots(); ++k)
+      if (!mesh.is_deleted(k) && !mesh.is_ghost(k) && mesh.tet_region[k] >= bodies) ++r.tets;
+    r.reduced_vertices = result_.layers.bl_reduced_vertices;
+  }
+
   // The boundary layer's figures, then the VolumeMesh: vertices of no tet are dropped (those
   // coarsening removed, and input vertices of no triangle, e.g. a volume mesh's interior ones);
   // the input's others stay first, in input order. The boundary triangles are the input's,
@@ -523,14 +538,7 @@ class MeshingRun {
   void finish(TetMesh& mesh, int32_t bodies) {
     const auto t = Clock::now();
     const BoundaryLayerOptions& bl = o_.layers.boundary_layer;
-    if (bl.enabled()) {
-      measure_boundary_layer(surface_, bl, result_.layers.bl_layers, t1_origin_, t1_xyz_, mesh, bodies,
-                             result_.boundary_layer);
-      measure_boundary_layer_cells(mesh, bodies, result_.boundary_layer);
-      for (uint32_t k = 0; k < mesh.num_tet_slots(); ++k)
-        if (!mesh.is_deleted(k) && mesh.tet_region[k] >= bodies) ++result_.boundary_layer.tets;
-      result_.boundary_layer.reduced_vertices = result_.layers.bl_reduced_vertices;
-    }
+    if (bl.enabled() && !(o_.stage3 && o_.stage3_leaves_no_mesh)) measure_layers(mesh, bodies, true);
     std::vector<uint32_t> vertex_map;
     result_.mesh = mesh.take_volume_mesh(/*drop_unused_vertices=*/true, surface_.tri, surface_.patch, &vertex_map);
     result_.input_vertex.assign(vertex_map.begin(), vertex_map.begin() + std::ptrdiff_t(surface_.num_vertices()));

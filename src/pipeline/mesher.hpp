@@ -103,6 +103,11 @@ struct MesherOptions {
   // The MPI driver (mpi/) runs them in parts, one per rank (distributed::run_in_parts). Needs
   // run_refine and run_optimize.
   std::function<Status(TetMesh& mesh, const SizingField& field, RefineStats& refine, OptimizeStats& optimize)> stage3;
+  // stage3 leaves no tets in `mesh` (anitet-mpi writing one piece per rank): the boundary layer's
+  // columns are then measured on the coupled mesh before it (its tets are frozen through stages
+  // 3b/3c, so the columns and heights are the final mesh's), and its cell figures (dual faces,
+  // the transition to the interior), which need the interior's final tets, are not measured.
+  bool stage3_leaves_no_mesh = false;
   metric::SurfaceSizingOptions surface_sizing = default_surface_sizing();
 
   static metric::SurfaceSizingOptions default_surface_sizing() {

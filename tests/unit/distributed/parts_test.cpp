@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <map>
@@ -19,6 +20,7 @@
 #include "io/surface_io.hpp"
 #include "pipeline/mesher.hpp"
 #include "quality/quality_report.hpp"
+#include "refine/edges.hpp"
 
 using namespace anitet;
 using namespace anitet::distributed;
@@ -96,8 +98,10 @@ class ThreadExchange final : public Exchange {
 };
 
 // The pipeline with stages 3b/3c in `parts` parts, one thread each.
-Result<MesherResult> mesh_in_parts(const SurfaceMesh& surface, int parts, size_t* tets_after_hook = nullptr) {
+Result<MesherResult> mesh_in_parts(const SurfaceMesh& surface, int parts, size_t* tets_after_hook = nullptr,
+                                   const SizingField* sizing = nullptr, const PartsOptions& parts_options = {}) {
   MesherOptions options;
+  options.sizing = sizing;
   options.stage3 = [&](TetMesh& mesh, const SizingField& field, RefineStats& refine, OptimizeStats& optimize) {
     Mailbox box(parts);
     std::vector<TetMesh> copies(size_t(parts) - 1, mesh);
@@ -108,11 +112,13 @@ Result<MesherResult> mesh_in_parts(const SurfaceMesh& surface, int parts, size_t
         ThreadExchange ex(box, r, parts);
         RefineStats rs;
         OptimizeStats os;
-        status[size_t(r)] = run_in_parts(copies[size_t(r) - 1], field, options.refine, options.optimize,
-                                         PartsOptions(), ex, rs, os);
+        PartsOptions own = parts_options;
+        own.cycles_run = nullptr;  // rank 0's count only
+        status[size_t(r)] = run_in_parts(copies[size_t(r) - 1], field, options.refine, options.optimize, own, ex, rs,
+                                         os);
       });
     ThreadExchange ex(box, 0, parts);
-    status[0] = run_in_parts(mesh, field, options.refine, options.optimize, PartsOptions(), ex, refine, optimize);
+    status[0] = run_in_parts(mesh, field, options.refine, options.optimize, parts_options, ex, refine, optimize);
     for (std::thread& t : others) t.join();
     for (const Status& st : status)
       if (!st.ok()) return st;
@@ -299,7 +305,6 @@ TEST(Parts, PipelineInPartsIsValidConstrainedAndAsGoodAsSerial) {
   }
 }
 
-// Anisotropic fields are refused in parts (not tried there yet), before any round.
 // split_coarse_for_parts, as run_rank_parts calls it for 4 ranks, on the knight meshed 4 times
 // finer (size scale 0.25): the largest coarse tet's prediction falls (337 -> 127 final tets; the
 // tets whose edges lie on the surface are not split), the mesh stays valid with its boundary, and
@@ -336,20 +341,57 @@ TEST(Parts, SplittingTheCoarseMeshCapsItsLargestTetsTheSameEveryTime) {
   ASSERT_TRUE(r.ok()) << r.status().message();
 }
 
-TEST(Parts, AnisotropicFieldIsRefused) {
+// An anisotropic field (sizes a third as long along z as along x and y) meshed in 2 parts: the
+// rounds run refinement's metric kernel and flips and the optimizer's metric measures with the
+// interfaces frozen, and the pipeline's extra cycles under the same gates (as many as one
+// process runs); valid, boundary constrained, and the metric measures as one process's.
+TEST(Parts, AnisotropicFieldMeshesInPartsAsInOneProcess) {
+  const SurfaceMesh s = knight();
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (size_t v = 0; v < s.num_vertices(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], s.xyz[3 * v + size_t(k)]);
+      hi[k] = std::max(hi[k], s.xyz[3 * v + size_t(k)]);
+    }
   struct Stretched final : SizingField {
+    double h = 1.0;
     void metric(const double*, double m[6]) const override {
-      const double v[6] = {1.0, 0.0, 100.0, 0.0, 0.0, 1.0};
+      const double v[6] = {1.0 / (h * h), 0.0, 1.0 / (h * h), 0.0, 0.0, 9.0 / (h * h)};
       std::copy(v, v + 6, m);
     }
   } field;
-  TetMesh m = coupled_knight();
-  const std::vector<uint32_t> before = m.tet_v;
-  Mailbox box(1);
-  ThreadExchange ex(box, 0, 1);
-  RefineStats rs;
-  OptimizeStats os;
-  const Status st = run_in_parts(m, field, RefineOptions(), OptimizeOptions(), PartsOptions(), ex, rs, os);
-  EXPECT_EQ(st.code(), Error::NotImplemented) << st.message();
-  EXPECT_EQ(m.tet_v, before);
+  field.h = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) / 10.0;
+  MesherOptions serial_options;
+  serial_options.sizing = &field;
+  Result<MesherResult> serial = Mesher(serial_options).run(s);
+  ASSERT_TRUE(serial.ok()) << serial.status().message();
+  ASSERT_TRUE(serial->optimize.anisotropic);
+  PartsOptions parts_options;
+  int cycles_run = -1;
+  parts_options.anisotropic_cycles = serial_options.anisotropic_cycles;
+  parts_options.cycle_gain = serial_options.anisotropic_cycle_gain;
+  parts_options.cycle_optimizer_gain = serial_options.anisotropic_cycle_optimizer_gain;
+  parts_options.cycles_run = &cycles_run;
+  Result<MesherResult> r = mesh_in_parts(s, 2, nullptr, &field, parts_options);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  expect_valid_and_constrained(s, r.value(), "anisotropic, 2 parts");
+  EXPECT_TRUE(r->optimize.anisotropic);
+  EXPECT_GT(r->metric_quality.tets, 0u);
+  // The share of the final mesh's edges in [1/sqrt2, sqrt2] (all edges, the same measure for both).
+  auto in_range = [&](const MesherResult& m) {
+    TetMesh tm = TetMesh::from_volume_mesh(m.mesh);
+    std::vector<double> metrics(6 * tm.num_vertices());
+    for (uint32_t v = 0; v < tm.num_vertices(); ++v) field.metric(tm.point(v), &metrics[6 * size_t(v)]);
+    double mean = 0.0, share = 0.0;
+    refine_detail::summarize_edge_lengths(tm, metrics, 1.0 / std::sqrt(2.0), std::sqrt(2.0), mean, share);
+    return share;
+  };
+  const double share = in_range(r.value()), serial_share = in_range(serial.value());
+  std::printf("anisotropic, 2 parts: edges in range %.4f (one process %.4f), metric radius ratio mean %.4f (%.4f), "
+              "tets %zu (%zu), extra cycles %d (%d)\n",
+              share, serial_share, r->metric_quality.mean, serial->metric_quality.mean, r->mesh.num_tets(),
+              serial->mesh.num_tets(), cycles_run, serial->anisotropic_cycles);
+  EXPECT_EQ(cycles_run, serial->anisotropic_cycles);
+  EXPECT_GT(share, serial_share - 0.02);
+  EXPECT_GT(r->metric_quality.mean, 0.97 * serial->metric_quality.mean);
 }
