@@ -186,6 +186,24 @@ Status check_meshable_in_parts(const TetMesh& mesh) {
   return Status::success();
 }
 
+Status run_steps_and_cycles(const PartsOptions& options, bool anisotropic, const double& refined_in_range,
+                            const OptimizeStats& optimize, const std::function<Status(Step)>& steps) {
+  for (Step step : {Step::kRefine, Step::kOptimize})
+    if (Status st = steps(step); !st.ok()) return st;
+  if (options.cycles_run) *options.cycles_run = 0;
+  for (int c = 0; anisotropic && c < options.anisotropic_cycles; ++c) {
+    if (options.cycle_optimizer_gain > 0.0 &&
+        optimize.length_in_range_after < optimize.length_in_range_before + options.cycle_optimizer_gain)
+      break;
+    const double before = refined_in_range;
+    for (Step step : {Step::kRefine, Step::kOptimize})
+      if (Status st = steps(step); !st.ok()) return st;
+    if (options.cycles_run) ++*options.cycles_run;
+    if (refined_in_range < before + options.cycle_gain) break;
+  }
+  return Status::success();
+}
+
 Result<MeshPart> extract_part(const TetMesh& whole, const std::vector<int32_t>& part_of, int32_t p) {
   const size_t nv = whole.num_vertices();
   const auto slots = static_cast<uint32_t>(whole.num_tet_slots());

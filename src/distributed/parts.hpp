@@ -13,6 +13,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/status.hpp"
@@ -139,6 +140,14 @@ struct PartsOptions {
   double cycle_gain = 0.01, cycle_optimizer_gain = 0.045;
   int* cycles_run = nullptr;  // when set: the cycles that ran
 };
+
+// Refinement's rounds then optimization's (`steps`, which with an anisotropic field measures
+// `refined_in_range` and optimize.length_in_range_before/after), then up to
+// options.anisotropic_cycles more of both, gated as the pipeline's refine_optimize_cycles: no
+// cycle after an optimization that gained less than cycle_optimizer_gain, no more after one
+// whose refinement gained less than cycle_gain. run_in_parts and run_rank_parts share it.
+Status run_steps_and_cycles(const PartsOptions& options, bool anisotropic, const double& refined_in_range,
+                            const OptimizeStats& optimize, const std::function<Status(Step)>& steps);
 
 // Stages 3b/3c of `mesh` (the coupled mesh; rank 0's is sent to all) in ranks() parts, rank r
 // meshing part r. Refinement, then optimization, each in two rounds: on Hilbert parts of the

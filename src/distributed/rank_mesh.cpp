@@ -788,20 +788,7 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
     (step == Step::kRefine ? optimize.length_in_range_before : optimize.length_in_range_after) = unit.value();
     return Status::success();
   };
-  for (Step step : {Step::kRefine, Step::kOptimize})
-    if (Status st = steps(step); !st.ok()) return st;
-  // refine_optimize_cycles' gates, as run_in_parts reads them.
-  if (options.cycles_run) *options.cycles_run = 0;
-  for (int c = 0; anisotropic && c < options.anisotropic_cycles; ++c) {
-    if (options.cycle_optimizer_gain > 0.0 &&
-        optimize.length_in_range_after < optimize.length_in_range_before + options.cycle_optimizer_gain)
-      break;
-    const double before = refined_in_range;
-    for (Step step : {Step::kRefine, Step::kOptimize})
-      if (Status st = steps(step); !st.ok()) return st;
-    if (options.cycles_run) ++*options.cycles_run;
-    if (refined_in_range < before + options.cycle_gain) break;
-  }
+  if (Status st = run_steps_and_cycles(options, anisotropic, refined_in_range, optimize, steps); !st.ok()) return st;
   rs.rounds_seconds = since(t0);
   if (Status st = sum_counts(refine, optimize, comm); !st.ok()) return st;
   Result<QualitySummary> after = whole_quality(rm.mesh, comm);

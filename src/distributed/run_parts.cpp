@@ -175,21 +175,7 @@ Status run_in_parts(TetMesh& mesh, const SizingField& field, const RefineOptions
     }
     return Status::success();
   };
-  for (Step step : {Step::kRefine, Step::kOptimize})
-    if (Status st = rounds(step); !st.ok()) return st;
-  // refine_optimize_cycles' gates: no cycle after an optimization that gained too little, and
-  // none after one whose refinement did.
-  if (options.cycles_run) *options.cycles_run = 0;
-  for (int c = 0; anisotropic && c < options.anisotropic_cycles; ++c) {
-    if (options.cycle_optimizer_gain > 0.0 &&
-        optimize.length_in_range_after < optimize.length_in_range_before + options.cycle_optimizer_gain)
-      break;
-    const double before = refined_in_range;
-    for (Step step : {Step::kRefine, Step::kOptimize})
-      if (Status st = rounds(step); !st.ok()) return st;
-    if (options.cycles_run) ++*options.cycles_run;
-    if (refined_in_range < before + options.cycle_gain) break;
-  }
+  if (Status st = run_steps_and_cycles(options, anisotropic, refined_in_range, optimize, rounds); !st.ok()) return st;
   // The rounds' meshes travel without their adjacency; the caller gets it.
   if (Status st = mesh.build_adjacency(); !st.ok()) return st;
   measure_lengths(mesh, field, refine_options, refine.length_mean, refine.length_in_range);
