@@ -186,6 +186,13 @@ Status check_meshable_in_parts(const TetMesh& mesh) {
   return Status::success();
 }
 
+std::vector<double> vertex_metrics(const TetMesh& mesh, const SizingField& field, double scale) {
+  const ScaledSizing scaled(field, scale);
+  std::vector<double> metrics(6 * mesh.num_vertices());
+  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) scaled.metric(mesh.point(v), &metrics[6 * size_t(v)]);
+  return metrics;
+}
+
 Status run_steps_and_cycles(const PartsOptions& options, bool anisotropic, const double& refined_in_range,
                             const OptimizeStats& optimize, const std::function<Status(Step)>& steps) {
   for (Step step : {Step::kRefine, Step::kOptimize})

@@ -141,6 +141,10 @@ struct PartsOptions {
   int* cycles_run = nullptr;  // when set: the cycles that ran
 };
 
+// The metric of `field` scaled by `scale` at each vertex of `mesh` (6 per vertex): what the
+// runs in parts measure edge lengths in (refine_detail::summarize_edge_lengths).
+std::vector<double> vertex_metrics(const TetMesh& mesh, const SizingField& field, double scale);
+
 // Refinement's rounds then optimization's (`steps`, which with an anisotropic field measures
 // `refined_in_range` and optimize.length_in_range_before/after), then up to
 // options.anisotropic_cycles more of both, gated as the pipeline's refine_optimize_cycles: no

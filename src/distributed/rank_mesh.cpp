@@ -665,14 +665,12 @@ Result<bool> anisotropic_cycles_wanted(const TetMesh& mesh, const SizingField& f
   return any.value()[0] > 0.0;
 }
 
-// The share of the edges not on a protected facet whose normalized length is in [lo, hi], over
-// the ranks: each rank's share of its own edges weighted by its tets (edges on an interface are
-// measured on each rank that has them; the cycles' gates need no more). Collective.
-Result<double> share_in_range(const TetMesh& mesh, const SizingField& field, double scale, double lo, double hi,
+// The share of the edges not on a protected facet whose normalized length in `metrics`
+// (vertex_metrics) is in [lo, hi], over the ranks: each rank's share of its own edges weighted by
+// its tets (edges on an interface are measured on each rank that has them; the cycles' gates need
+// no more). Collective.
+Result<double> share_in_range(const TetMesh& mesh, const std::vector<double>& metrics, double lo, double hi,
                               Comm& comm) {
-  const ScaledSizing scaled(field, scale);
-  std::vector<double> metrics(6 * mesh.num_vertices());
-  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) scaled.metric(mesh.point(v), &metrics[6 * size_t(v)]);
   double mean = 0.0, share = 0.0;
   refine_detail::summarize_edge_lengths(mesh, metrics, lo, hi, mean, share);
   const auto tets = double(mesh.num_live_tets());
@@ -779,11 +777,12 @@ Status run_rank_parts(TetMesh& coarse, const SizingField& field, const RefineOpt
       if (Status st = round(step); !st.ok()) return st;
     }
     if (!anisotropic) return Status::success();
-    Result<double> share = share_in_range(rm.mesh, field, scale, refine_options.collapse_length,
-                                          refine_options.split_length, comm);
+    const std::vector<double> metrics = vertex_metrics(rm.mesh, field, scale);
+    Result<double> share =
+        share_in_range(rm.mesh, metrics, refine_options.collapse_length, refine_options.split_length, comm);
     if (!share.ok()) return share.status();
     if (step == Step::kRefine) refined_in_range = share.value();
-    Result<double> unit = share_in_range(rm.mesh, field, scale, kUnitRangeMin, kUnitRangeMax, comm);
+    Result<double> unit = share_in_range(rm.mesh, metrics, kUnitRangeMin, kUnitRangeMax, comm);
     if (!unit.ok()) return unit.status();
     (step == Step::kRefine ? optimize.length_in_range_before : optimize.length_in_range_after) = unit.value();
     return Status::success();

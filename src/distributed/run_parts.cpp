@@ -74,14 +74,9 @@ std::vector<uint8_t> merge_messages(const TetMesh& mesh, const std::vector<int32
   return ok_message(serialize_mesh(merged.value(), tet_part));
 }
 
-// Normalized edge lengths of the edges not on a protected facet, as refinement reports them
-// (with its range: the share in [collapse_length, split_length]).
-void measure_lengths(const TetMesh& mesh, const SizingField& field, const RefineOptions& options, double& mean,
-                     double& in_range) {
-  const ScaledSizing scaled(field, options.size_scale > 0.0 ? options.size_scale : 1.0);
-  std::vector<double> metrics(6 * mesh.num_vertices());
-  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) scaled.metric(mesh.point(v), &metrics[6 * size_t(v)]);
-  refine_detail::summarize_edge_lengths(mesh, metrics, options.collapse_length, options.split_length, mean, in_range);
+// The field's metrics at the vertices, scaled as refinement scales them.
+std::vector<double> scaled_metrics(const TetMesh& mesh, const SizingField& field, const RefineOptions& options) {
+  return vertex_metrics(mesh, field, options.size_scale > 0.0 ? options.size_scale : 1.0);
 }
 
 // Whether the optimizer will measure in the metric (an anisotropic metric at some vertex of a
@@ -160,25 +155,26 @@ Status run_in_parts(TetMesh& mesh, const SizingField& field, const RefineOptions
   // and after it (OptimizeStats::length_in_range_*), and the cycles' gates read them and
   // refinement's share: measured on the whole mesh, not summed from the parts.
   const bool anisotropic = anisotropic_somewhere(mesh, field, refine_options);
-  RefineOptions unit_range = refine_options;
-  unit_range.collapse_length = kUnitRangeMin;
-  unit_range.split_length = kUnitRangeMax;
   double unused_mean = 0.0, refined_in_range = 0.0;
   auto rounds = [&](Step step) -> Status {
     if (Status st = two_rounds(step); !st.ok()) return st;
     if (!anisotropic) return Status::success();
+    const std::vector<double> metrics = scaled_metrics(mesh, field, refine_options);
     if (step == Step::kRefine) {
-      measure_lengths(mesh, field, refine_options, unused_mean, refined_in_range);
-      measure_lengths(mesh, field, unit_range, unused_mean, optimize.length_in_range_before);
-    } else {
-      measure_lengths(mesh, field, unit_range, unused_mean, optimize.length_in_range_after);
+      refine_detail::summarize_edge_lengths(mesh, metrics, refine_options.collapse_length, refine_options.split_length,
+                                            unused_mean, refined_in_range);
     }
+    refine_detail::summarize_edge_lengths(
+        mesh, metrics, kUnitRangeMin, kUnitRangeMax, unused_mean,
+        step == Step::kRefine ? optimize.length_in_range_before : optimize.length_in_range_after);
     return Status::success();
   };
   if (Status st = run_steps_and_cycles(options, anisotropic, refined_in_range, optimize, rounds); !st.ok()) return st;
   // The rounds' meshes travel without their adjacency; the caller gets it.
   if (Status st = mesh.build_adjacency(); !st.ok()) return st;
-  measure_lengths(mesh, field, refine_options, refine.length_mean, refine.length_in_range);
+  refine_detail::summarize_edge_lengths(mesh, scaled_metrics(mesh, field, refine_options),
+                                        refine_options.collapse_length, refine_options.split_length,
+                                        refine.length_mean, refine.length_in_range);
   refine.vertices_after = refine_detail::live_vertex_count(mesh);
   refine.tets_after = mesh.num_live_tets();
   optimize.after = summarize_quality(mesh);
